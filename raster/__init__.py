@@ -1,0 +1,47 @@
+"""raster: a vector-graphics rasterizer, SVG toolchain and curve toolkit.
+
+The front door (see README.md):
+
+* :func:`parse_path` -- SVG path data to an immutable :class:`Path`;
+* :func:`flatten` -- a path to polylines within a tolerance in device pixels;
+* :func:`bbox` -- exact bounding box of a path;
+* :func:`render` / :func:`render_image` -- an SVG document to an RGBA array or
+  a PIL image.
+
+Names are imported lazily so that ``import raster`` stays fast.
+"""
+
+from .errors import (RasterError, PathError, TransformError, CanvasError,  # noqa: F401
+                     LimitError, SVGError)
+from .path import Path, PathBuilder, TransformPen, RecordingPen  # noqa: F401
+from .transform import Affine  # noqa: F401
+
+__version__ = '0.1.0'
+
+_LAZY = {
+    'parse_path': 'raster.svgpath',
+    'flatten': 'raster.flatten',
+    'Polylines': 'raster.flatten',
+    'bbox': 'raster.bbox',
+    'stroke': 'raster.stroke',
+    'Stroke': 'raster.stroke',
+    'coverage': 'raster.scan',
+    'Canvas': 'raster.canvas',
+    'render': 'raster.svg',
+    'render_image': 'raster.svg',
+    'load_svg': 'raster.svg',
+}
+
+
+def __getattr__(name):
+    mod = _LAZY.get(name)
+    if mod is None:
+        raise AttributeError('module raster has no attribute %r' % name)
+    import importlib
+    value = getattr(importlib.import_module(mod), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))

@@ -1,0 +1,34 @@
+"""Exceptions raised by raster.
+
+Every error the library raises on bad input derives from :class:`RasterError`,
+so callers can catch one type.  The command-line tools turn these into a
+one-line message and a non-zero exit status.
+"""
+
+
+class RasterError(Exception):
+    """Base class of every error raised by raster for bad input or limits."""
+
+
+class PathError(RasterError, ValueError):
+    """Invalid path data: non-finite coordinates, a drawing command with no
+    current point, unparsable SVG path syntax."""
+
+
+class TransformError(RasterError, ValueError):
+    """A transform that cannot be used (non-finite, or singular where an
+    inverse is needed)."""
+
+
+class CanvasError(RasterError, ValueError):
+    """A canvas or output size that is zero, negative, non-finite or larger
+    than :data:`raster.limits.MAX_PIXELS`."""
+
+
+class LimitError(RasterError):
+    """A safety limit was exceeded (too many points, ``use`` nesting, pixel
+    buffer size, ...)."""
+
+
+class SVGError(RasterError):
+    """The document cannot be rendered: unreadable XML, not SVG, invalid size."""

@@ -1,0 +1,16 @@
+"""Safety limits.  Inputs beyond these raise :class:`raster.errors.LimitError`
+(or :class:`raster.errors.CanvasError` for sizes) instead of exhausting memory
+or time."""
+
+#: Largest pixel buffer (width * height) a canvas may have: 10^8 pixels is
+#: 1.6 GB of float32 RGBA.
+MAX_PIXELS = 100_000_000
+
+#: Largest canvas side in pixels.
+MAX_SIDE = 100_000
+
+#: Absolute coordinate magnitude beyond which geometry is refused (device px).
+MAX_COORD = 1e9
+
+#: Most line segments a single flatten call may produce.
+MAX_FLATTEN_POINTS = 50_000_000

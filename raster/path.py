@@ -1,0 +1,441 @@
+"""The path model: an immutable list of verbs and points, and the pens that
+make and consume it.
+
+Coordinates are float64 user units (x right, y down, as in SVG).
+
+Verbs and the points each one consumes:
+
+=========  =====  =====================================================
+verb       value  points
+=========  =====  =====================================================
+``MOVE``   0      1: the contour's first point
+``LINE``   1      1: end point
+``QUAD``   2      2: control point, end point
+``CUBIC``  3      3: two control points, end point
+``CLOSE``  4      0: closes the contour back to its first point
+=========  =====  =====================================================
+
+Guarantees of a :class:`Path` (enforced by :class:`PathBuilder` and by
+:meth:`Path.from_arrays`):
+
+* every point is finite;
+* every contour starts with ``MOVE``; a drawing verb after ``CLOSE`` follows a
+  ``MOVE`` to the closed contour's first point (SVG's rule), inserted by the
+  builder, so the point before any drawing verb is always its start point;
+* ``CLOSE`` only follows a contour that was started by ``MOVE``.
+
+A contour may consist of a lone ``MOVE`` (or ``MOVE CLOSE``): it draws no
+fill, but ``MOVE CLOSE`` and zero-length segments still get stroke caps.
+
+The pen protocol (after fontTools) is the one sink for everything that makes
+Bezier segments: ``moveTo(pt)``, ``lineTo(pt)``, ``qCurveTo(*pts)``,
+``curveTo(*pts)``, ``closePath()``, ``endPath()``.  :meth:`Path.draw` replays a
+path into any pen; :class:`TransformPen` and :class:`RecordingPen` wrap or
+record.
+
+>>> b = PathBuilder()
+>>> b.moveTo((0, 0)); b.lineTo((10, 0)); b.curveTo((10, 5), (5, 10), (0, 10)); b.closePath()
+>>> p = b.path()
+>>> p.verbs.tolist(), p.points.shape
+([0, 1, 3, 4], (5, 2))
+"""
+
+from typing import NamedTuple
+
+import numpy as np
+
+from .errors import PathError
+from .transform import as_affine
+
+MOVE, LINE, QUAD, CUBIC, CLOSE = 0, 1, 2, 3, 4
+VERB_NAMES = ('M', 'L', 'Q', 'C', 'Z')
+_NPTS = np.array([1, 1, 2, 3, 0], dtype=np.int64)
+
+
+class Segments(NamedTuple):
+    """All drawing segments of a path as arrays (closing lines not included).
+
+    Attributes
+    ----------
+    ctrl : (S, 4, 2) float64 ndarray
+        Control points, start point first.  A segment of degree ``k`` uses
+        ``ctrl[:, :k+1]``; the unused slots repeat its end point.
+    degree : (S,) int8 ndarray
+        1 (line), 2 (quadratic) or 3 (cubic).
+    contour : (S,) int64 ndarray
+        Index of the contour each segment belongs to.
+    contour_start : (C, 2) float64 ndarray
+        First point of each contour.
+    contour_end : (C, 2) float64 ndarray
+        Last point of each contour before any close.
+    contour_closed : (C,) bool ndarray
+        Whether the contour ends with ``CLOSE``.
+    contour_nseg : (C,) int64 ndarray
+        Number of segments of each contour.
+    """
+    ctrl: np.ndarray
+    degree: np.ndarray
+    contour: np.ndarray
+    contour_start: np.ndarray
+    contour_end: np.ndarray
+    contour_closed: np.ndarray
+    contour_nseg: np.ndarray
+
+    @property
+    def end(self):
+        """(S, 2) end points."""
+        return self.ctrl[:, 3]
+
+
+class Path:
+    """Immutable path of verbs and points.
+
+    Parameters
+    ----------
+    verbs : (V,) uint8 ndarray
+    points : (P, 2) float64 ndarray
+
+    Use :class:`PathBuilder`, :func:`raster.parse_path` or
+    :meth:`Path.from_arrays` to make one; the constructor trusts its input.
+    """
+
+    __slots__ = ('verbs', 'points', '_segments')
+
+    def __init__(self, verbs, points, _checked=False):
+        if not _checked:
+            verbs, points = _validate(verbs, points)
+        verbs.flags.writeable = False
+        points.flags.writeable = False
+        object.__setattr__(self, 'verbs', verbs)
+        object.__setattr__(self, 'points', points)
+        object.__setattr__(self, '_segments', None)
+
+    def __setattr__(self, name, value):
+        raise AttributeError('Path is immutable')
+
+    @classmethod
+    def from_arrays(cls, verbs, points):
+        """Validated construction from verb and point arrays (raises
+        :class:`~raster.errors.PathError`)."""
+        return cls(verbs, points)
+
+    @classmethod
+    def empty(cls):
+        return cls(np.zeros(0, np.uint8), np.zeros((0, 2)), _checked=True)
+
+    @classmethod
+    def polygon(cls, points, closed=True):
+        """Path of one polyline contour through ``points`` ((N, 2))."""
+        pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+        if len(pts) == 0:
+            return cls.empty()
+        verbs = np.full(len(pts) + (1 if closed else 0), LINE, np.uint8)
+        verbs[0] = MOVE
+        if closed:
+            verbs[-1] = CLOSE
+        return cls(verbs, pts.copy())
+
+    @classmethod
+    def concat(cls, paths):
+        paths = [p for p in paths if len(p.verbs)]
+        if not paths:
+            return cls.empty()
+        return cls(np.concatenate([p.verbs for p in paths]),
+                   np.concatenate([p.points for p in paths]), _checked=True)
+
+    # -- queries -------------------------------------------------------------
+    def __len__(self):
+        return len(self.verbs)
+
+    @property
+    def is_empty(self):
+        """True when the path has no drawing segment."""
+        return not np.any((self.verbs >= LINE) & (self.verbs <= CUBIC))
+
+    def __eq__(self, other):
+        return (isinstance(other, Path) and np.array_equal(self.verbs, other.verbs)
+                and np.array_equal(self.points, other.points))
+
+    __hash__ = None
+
+    def __repr__(self):
+        return 'Path(%r)' % self.to_svg(precision=6)[:200]
+
+    def segments(self):
+        """All drawing segments as arrays: see :class:`Segments`.  Cached."""
+        if self._segments is None:
+            object.__setattr__(self, '_segments', _segments(self.verbs, self.points))
+        return self._segments
+
+    def control_box(self):
+        """(xmin, ymin, xmax, ymax) of all points (a bound, not exact)."""
+        if len(self.points) == 0:
+            raise PathError('empty path has no bounds')
+        lo, hi = self.points.min(0), self.points.max(0)
+        return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+
+    # -- transformations -----------------------------------------------------
+    def transform(self, t):
+        """Return the path with every point mapped by the affine ``t``
+        (an :class:`~raster.transform.Affine`, 6 numbers or a 2x3 matrix)."""
+        t = as_affine(t)
+        if t.is_identity:
+            return self
+        pts = t.apply(self.points)
+        if not np.all(np.isfinite(pts)):
+            raise PathError('transformed path has non-finite coordinates')
+        return Path(self.verbs.copy(), pts, _checked=True)
+
+    def draw(self, pen):
+        """Replay the path into a pen."""
+        pts = self.points
+        i = 0
+        for v in self.verbs.tolist():
+            if v == MOVE:
+                pen.moveTo(tuple(pts[i])); i += 1
+            elif v == LINE:
+                pen.lineTo(tuple(pts[i])); i += 1
+            elif v == QUAD:
+                pen.qCurveTo(tuple(pts[i]), tuple(pts[i + 1])); i += 2
+            elif v == CUBIC:
+                pen.curveTo(tuple(pts[i]), tuple(pts[i + 1]), tuple(pts[i + 2])); i += 3
+            else:
+                pen.closePath()
+
+    def to_svg(self, precision=None):
+        """SVG path data with absolute commands (``M L Q C Z``).
+
+        ``precision`` rounds to that many decimals (``None``: shortest exact
+        repr)."""
+        def fmt(v):
+            if precision is not None:
+                v = round(v, precision)
+            if v == int(v) and abs(v) < 1e15:
+                return str(int(v))
+            return repr(v) if precision is None else ('%.*f' % (precision, v)).rstrip('0').rstrip('.')
+        out = []
+        pts = self.points.tolist()
+        i = 0
+        for v in self.verbs.tolist():
+            n = int(_NPTS[v])
+            coords = ' '.join('%s %s' % (fmt(x), fmt(y)) for x, y in pts[i:i + n])
+            out.append(VERB_NAMES[v] + (' ' + coords if coords else ''))
+            i += n
+        return ' '.join(out)
+
+
+def _validate(verbs, points):
+    verbs = np.ascontiguousarray(verbs, dtype=np.uint8).reshape(-1)
+    points = np.ascontiguousarray(points, dtype=np.float64).reshape(-1, 2)
+    if np.any(verbs > CLOSE):
+        raise PathError('unknown verb value')
+    if int(_NPTS[verbs].sum()) != len(points):
+        raise PathError('verbs need %d points, got %d' % (int(_NPTS[verbs].sum()), len(points)))
+    if not np.all(np.isfinite(points)):
+        raise PathError('path has non-finite coordinates (NaN or infinity)')
+    if len(verbs):
+        if verbs[0] != MOVE:
+            raise PathError('path must start with a move')
+        prev = np.concatenate([[MOVE], verbs[:-1]])
+        if np.any((prev == CLOSE) & (verbs != MOVE)):
+            raise PathError('a contour after a close must start with a move')
+    return verbs.copy(), points.copy()
+
+
+def _segments(verbs, points):
+    npts = _NPTS[verbs]
+    off = np.cumsum(npts) - npts                 # index of the verb's first point
+    contour = np.cumsum(verbs == MOVE) - 1
+    ncont = int(contour[-1]) + 1 if len(verbs) else 0
+    draw = (verbs >= LINE) & (verbs <= CUBIC)
+    dv = verbs[draw].astype(np.int8)
+    doff = off[draw]
+    S = len(dv)
+    ctrl = np.empty((S, 4, 2))
+    if S:
+        ctrl[:, 0] = points[doff - 1]
+        last = doff + dv - 1                      # index of end point
+        for k in range(1, 4):
+            idx = np.minimum(doff + k - 1, last)
+            ctrl[:, k] = points[idx]
+    seg_contour = contour[draw].astype(np.int64)
+    moves = verbs == MOVE
+    cstart = points[off[moves]] if ncont else np.zeros((0, 2))
+    closed = np.zeros(ncont, bool)
+    closed[contour[verbs == CLOSE]] = True
+    nseg = np.bincount(seg_contour, minlength=ncont).astype(np.int64)
+    # contour end: the last point of the contour (start if it has no segment)
+    cend = cstart.copy()
+    if S:
+        last_seg = np.zeros(ncont, np.int64) - 1
+        np.maximum.at(last_seg, seg_contour, np.arange(S))
+        has = last_seg >= 0
+        cend[has] = ctrl[last_seg[has], 3]
+    return Segments(ctrl, dv, seg_contour, cstart, cend, closed, nseg)
+
+
+class PathBuilder:
+    """A pen that builds an immutable :class:`Path`.
+
+    Raises :class:`~raster.errors.PathError` for non-finite coordinates and
+    for drawing with no current point.  After ``closePath`` a drawing call
+    starts a new contour at the closed contour's first point (SVG rule).
+    """
+
+    def __init__(self):
+        self._verbs = []
+        self._pts = []
+        self._start = None      # first point of the current contour
+        self._open = False      # a contour is in progress (not closed)
+
+    # -- pen protocol ----------------------------------------------------------
+    def moveTo(self, pt):
+        p = _pt(pt)
+        self._verbs.append(MOVE)
+        self._pts.append(p)
+        self._start = p
+        self._open = True
+
+    def lineTo(self, pt):
+        self._need_current()
+        self._verbs.append(LINE)
+        self._pts.append(_pt(pt))
+
+    def qCurveTo(self, *pts):
+        """Quadratic curve(s); with more than one off-curve point the on-curve
+        points between them are implied at midpoints (TrueType rule).  A
+        ``None`` last point (closed all-off-curve contour) is not supported."""
+        if len(pts) < 1 or pts[-1] is None:
+            raise PathError('qCurveTo needs an on-curve end point')
+        self._need_current()
+        pts = [_pt(p) for p in pts]
+        if len(pts) == 1:
+            self._verbs.append(LINE)
+            self._pts.append(pts[0])
+            return
+        offs, end = pts[:-1], pts[-1]
+        for i, c in enumerate(offs):
+            if i + 1 < len(offs):
+                n = offs[i + 1]
+                on = ((c[0] + n[0]) * 0.5, (c[1] + n[1]) * 0.5)
+            else:
+                on = end
+            self._verbs.append(QUAD)
+            self._pts.extend((c, on))
+
+    def curveTo(self, *pts):
+        """Cubic curve(s): 3 points per cubic (a multiple of 3 is accepted)."""
+        if len(pts) == 0 or len(pts) % 3:
+            raise PathError('curveTo takes a multiple of 3 points, got %d' % len(pts))
+        self._need_current()
+        pts = [_pt(p) for p in pts]
+        for i in range(0, len(pts), 3):
+            self._verbs.append(CUBIC)
+            self._pts.extend(pts[i:i + 3])
+
+    def closePath(self):
+        if self._start is None:
+            raise PathError('closePath with no current contour')
+        if self._open:
+            self._verbs.append(CLOSE)
+            self._open = False
+
+    def endPath(self):
+        """End an open contour; the next drawing call needs a ``moveTo``."""
+        self._start = None
+        self._open = False
+
+    def addComponent(self, glyphName, transformation):  # fontTools pen API
+        raise PathError('components are not supported by PathBuilder')
+
+    # -- helpers ---------------------------------------------------------------
+    @property
+    def current_point(self):
+        if not self._pts:
+            return None
+        if not self._open:
+            return self._start
+        return self._pts[-1]
+
+    def _need_current(self):
+        if self._start is None:
+            raise PathError('drawing command with no current point (missing move)')
+        if not self._open:
+            # drawing after closePath: implicit move to the contour start
+            self.moveTo(self._start)
+
+    def path(self):
+        """The :class:`Path` built so far."""
+        verbs = np.array(self._verbs, dtype=np.uint8)
+        pts = np.array(self._pts, dtype=np.float64).reshape(-1, 2)
+        return Path(verbs, pts, _checked=True)
+
+
+def _pt(p):
+    try:
+        x, y = float(p[0]), float(p[1])
+    except (TypeError, ValueError, IndexError):
+        raise PathError('point must be two numbers, got %r' % (p,)) from None
+    if not (np.isfinite(x) and np.isfinite(y)):
+        raise PathError('non-finite coordinate (%r, %r)' % (x, y))
+    return (x, y)
+
+
+class TransformPen:
+    """Pen that maps every point through an affine transform and forwards to
+    another pen."""
+
+    def __init__(self, out, transform):
+        self.out = out
+        self.t = as_affine(transform)
+
+    def _m(self, pts):
+        return [tuple(q) for q in self.t.apply(np.asarray(pts, dtype=np.float64)).tolist()]
+
+    def moveTo(self, pt):
+        self.out.moveTo(self._m([pt])[0])
+
+    def lineTo(self, pt):
+        self.out.lineTo(self._m([pt])[0])
+
+    def qCurveTo(self, *pts):
+        self.out.qCurveTo(*self._m(pts))
+
+    def curveTo(self, *pts):
+        self.out.curveTo(*self._m(pts))
+
+    def closePath(self):
+        self.out.closePath()
+
+    def endPath(self):
+        self.out.endPath()
+
+
+class RecordingPen:
+    """Pen that records calls as ``(name, args)`` tuples in ``self.value``;
+    :meth:`replay` sends them to another pen."""
+
+    def __init__(self):
+        self.value = []
+
+    def moveTo(self, pt):
+        self.value.append(('moveTo', (tuple(pt),)))
+
+    def lineTo(self, pt):
+        self.value.append(('lineTo', (tuple(pt),)))
+
+    def qCurveTo(self, *pts):
+        self.value.append(('qCurveTo', tuple(tuple(p) for p in pts)))
+
+    def curveTo(self, *pts):
+        self.value.append(('curveTo', tuple(tuple(p) for p in pts)))
+
+    def closePath(self):
+        self.value.append(('closePath', ()))
+
+    def endPath(self):
+        self.value.append(('endPath', ()))
+
+    def replay(self, pen):
+        for name, args in self.value:
+            getattr(pen, name)(*args)

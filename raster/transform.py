@@ -1,0 +1,192 @@
+"""2-D affine transforms.
+
+An :class:`Affine` is the SVG matrix ``(a, b, c, d, e, f)``, mapping a point
+``(x, y)`` to ``(a*x + c*y + e, b*x + d*y + f)``.  Coordinates follow SVG and
+image conventions: x grows to the right, y grows downward.
+
+Composition reads like SVG transform lists: ``A @ B`` applies ``B`` first,
+then ``A`` (so ``transform="translate(..) scale(..)"`` is
+``translate @ scale``).
+
+>>> t = Affine.translate(10, 0) @ Affine.scale(2)
+>>> t.apply([[1.0, 1.0]]).tolist()
+[[12.0, 2.0]]
+"""
+
+import math
+
+import numpy as np
+
+from .errors import TransformError
+
+
+class Affine:
+    """Immutable 2x3 affine transform ``(a, b, c, d, e, f)`` as in SVG."""
+
+    __slots__ = ('a', 'b', 'c', 'd', 'e', 'f')
+
+    def __init__(self, a=1.0, b=0.0, c=0.0, d=1.0, e=0.0, f=0.0):
+        vals = tuple(float(v) for v in (a, b, c, d, e, f))
+        if not all(math.isfinite(v) for v in vals):
+            raise TransformError('transform has non-finite values: %r' % (vals,))
+        object.__setattr__(self, 'a', vals[0])
+        object.__setattr__(self, 'b', vals[1])
+        object.__setattr__(self, 'c', vals[2])
+        object.__setattr__(self, 'd', vals[3])
+        object.__setattr__(self, 'e', vals[4])
+        object.__setattr__(self, 'f', vals[5])
+
+    def __setattr__(self, name, value):
+        raise AttributeError('Affine is immutable')
+
+    # -- constructors -----------------------------------------------------
+    @classmethod
+    def identity(cls):
+        return cls()
+
+    @classmethod
+    def translate(cls, tx, ty=0.0):
+        return cls(1, 0, 0, 1, tx, ty)
+
+    @classmethod
+    def scale(cls, sx, sy=None):
+        return cls(sx, 0, 0, sx if sy is None else sy, 0, 0)
+
+    @classmethod
+    def rotate(cls, degrees, cx=0.0, cy=0.0):
+        r = math.radians(degrees)
+        co, si = math.cos(r), math.sin(r)
+        # snap tiny values so 90-degree rotations are exact
+        co = 0.0 if abs(co) < 1e-15 else co
+        si = 0.0 if abs(si) < 1e-15 else si
+        rot = cls(co, si, -si, co, 0, 0)
+        if cx or cy:
+            return cls.translate(cx, cy) @ rot @ cls.translate(-cx, -cy)
+        return rot
+
+    @classmethod
+    def skew_x(cls, degrees):
+        return cls(1, 0, math.tan(math.radians(degrees)), 1, 0, 0)
+
+    @classmethod
+    def skew_y(cls, degrees):
+        return cls(1, math.tan(math.radians(degrees)), 0, 1, 0, 0)
+
+    @classmethod
+    def from_matrix(cls, m):
+        """From a (2, 3) or (3, 3) array ``[[a, c, e], [b, d, f]]``."""
+        m = np.asarray(m, dtype=np.float64)
+        return cls(m[0, 0], m[1, 0], m[0, 1], m[1, 1], m[0, 2], m[1, 2])
+
+    # -- algebra -----------------------------------------------------------
+    def __matmul__(self, other):
+        if not isinstance(other, Affine):
+            return NotImplemented
+        a, b, c, d, e, f = self.a, self.b, self.c, self.d, self.e, self.f
+        A, B, C, D, E, F = other.a, other.b, other.c, other.d, other.e, other.f
+        return Affine(a * A + c * B, b * A + d * B,
+                      a * C + c * D, b * C + d * D,
+                      a * E + c * F + e, b * E + d * F + f)
+
+    def inverse(self):
+        det = self.determinant
+        if det == 0 or not math.isfinite(1.0 / det):
+            raise TransformError('transform is not invertible')
+        a, b, c, d, e, f = self.a, self.b, self.c, self.d, self.e, self.f
+        ia, ib, ic, id_ = d / det, -b / det, -c / det, a / det
+        return Affine(ia, ib, ic, id_, -(ia * e + ic * f), -(ib * e + id_ * f))
+
+    # -- properties --------------------------------------------------------
+    @property
+    def determinant(self):
+        return self.a * self.d - self.b * self.c
+
+    @property
+    def matrix(self):
+        """(2, 3) float64 ndarray ``[[a, c, e], [b, d, f]]``."""
+        return np.array([[self.a, self.c, self.e], [self.b, self.d, self.f]])
+
+    @property
+    def is_identity(self):
+        return (self.a, self.b, self.c, self.d, self.e, self.f) == (1, 0, 0, 1, 0, 0)
+
+    @property
+    def is_translation(self):
+        return (self.a, self.b, self.c, self.d) == (1, 0, 0, 1)
+
+    def max_scale(self):
+        """Largest singular value: the most any length can grow."""
+        a, b, c, d = self.a, self.b, self.c, self.d
+        s = a * a + b * b + c * c + d * d
+        det = a * d - b * c
+        disc = math.sqrt(max(s * s / 4 - det * det, 0.0))
+        return math.sqrt(max(s / 2 + disc, 0.0))
+
+    def min_scale(self):
+        """Smallest singular value: the least any length can grow."""
+        a, b, c, d = self.a, self.b, self.c, self.d
+        s = a * a + b * b + c * c + d * d
+        det = a * d - b * c
+        disc = math.sqrt(max(s * s / 4 - det * det, 0.0))
+        return math.sqrt(max(s / 2 - disc, 0.0))
+
+    def mean_scale(self):
+        """sqrt(|det|): the factor a stroke width scales by on average."""
+        return math.sqrt(abs(self.determinant))
+
+    # -- application -------------------------------------------------------
+    def apply(self, points):
+        """Transform points.
+
+        Parameters
+        ----------
+        points : (..., 2) array_like of float
+
+        Returns
+        -------
+        (..., 2) float64 ndarray
+        """
+        p = np.asarray(points, dtype=np.float64)
+        x, y = p[..., 0], p[..., 1]
+        out = np.empty(p.shape, dtype=np.float64)
+        out[..., 0] = self.a * x + self.c * y + self.e
+        out[..., 1] = self.b * x + self.d * y + self.f
+        return out
+
+    def apply_vector(self, vectors):
+        """Transform direction vectors (no translation)."""
+        p = np.asarray(vectors, dtype=np.float64)
+        x, y = p[..., 0], p[..., 1]
+        out = np.empty(p.shape, dtype=np.float64)
+        out[..., 0] = self.a * x + self.c * y
+        out[..., 1] = self.b * x + self.d * y
+        return out
+
+    def __iter__(self):
+        return iter((self.a, self.b, self.c, self.d, self.e, self.f))
+
+    def __eq__(self, other):
+        return isinstance(other, Affine) and tuple(self) == tuple(other)
+
+    def __hash__(self):
+        return hash(tuple(self))
+
+    def __repr__(self):
+        return 'Affine(%g, %g, %g, %g, %g, %g)' % tuple(self)
+
+
+IDENTITY = Affine()
+
+
+def as_affine(t):
+    """Accept None, an :class:`Affine`, 6 numbers (a..f) or a (2,3)/(3,3) array."""
+    if t is None:
+        return IDENTITY
+    if isinstance(t, Affine):
+        return t
+    arr = np.asarray(t, dtype=np.float64)
+    if arr.shape == (6,):
+        return Affine(*arr)
+    if arr.shape in ((2, 3), (3, 3)):
+        return Affine.from_matrix(arr)
+    raise TransformError('cannot interpret %r as an affine transform' % (t,))
