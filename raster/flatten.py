@@ -1,0 +1,457 @@
+"""Adaptive flattening of Bezier curves into polylines.
+
+Two entry points:
+
+* :func:`flatten_beziers` -- ``S`` Bezier curves of one degree ``n >= 1``
+  (any dimension ``D``) to polylines, vectorized over all curves;
+* :func:`flatten` -- a :class:`~raster.path.Path` (optionally transformed to
+  device space) to :class:`Polylines`.
+
+The guarantee
+-------------
+Every returned polyline is within ``tolerance`` of its curve in the
+Hausdorff sense (both directions): every curve point is within
+``tolerance`` of the polyline and every polyline point is within
+``tolerance`` of the curve.  Polyline vertices lie on the curve (they are
+curve points at increasing parameters; the end points are copied exactly).
+
+How it works
+------------
+The curve parameter range is cut into pieces ``[a, b]``.  For a piece, its
+own control points ``Q_0 .. Q_n`` are computed from the *original* control
+points by blossoming (a de Casteljau scheme with ``a`` and ``b`` as
+arguments: stable, no accumulated error).  The piece is accepted when a
+rigorous bound on its distance to the chord ``Q_0 Q_n`` is ``<= tolerance``:
+
+* if every control point projects inside the chord (the curve's projection
+  then stays inside it too), the distance of the curve to the chord is the
+  perpendicular distance, a Bernstein polynomial vanishing at both ends, so
+  it is at most ``(1 - 2**(1-n)) * max_i |perp(Q_i)|`` (``1/2`` of the
+  largest control point offset for quadratics, ``3/4`` for cubics);
+* otherwise the convex-hull bound: the largest distance of a control point
+  to the chord *segment* (to the point ``Q_0`` when the chord has zero
+  length).
+
+Either bound also gives the other direction (each chord point is within the
+bound of the curve), because the curve joins the chord's ends while staying
+in the bound's neighbourhood of the chord.  A rejected piece with bound
+``e`` is cut into ``k = ceil(sqrt(e / tolerance))`` equal parameter pieces
+at once (the deviation of a piece falls like ``1/k**2``), which are tested
+again in the next round.  Rounds are a Python loop; each round is
+vectorized over all pieces of all curves.
+
+Conventions: coordinates are float64 user units (x right, y down);
+``tolerance`` is in the same units (device pixels after a transform).
+Tolerances below the floating-point resolution of the coordinates
+(``~1e-14`` times their magnitude) are raised to that floor, so the
+subdivision always terminates.
+
+>>> import numpy as np
+>>> quad = np.array([[[0.0, 0.0], [50.0, 100.0], [100.0, 0.0]]])
+>>> pts, counts = flatten_beziers(quad, tolerance=0.25)
+>>> counts.tolist(), pts[0].tolist(), pts[-1].tolist()
+([16], [0.0, 0.0], [100.0, 0.0])
+"""
+
+import math
+
+import numpy as np
+
+from .errors import PathError, LimitError
+from . import limits
+from .transform import as_affine
+
+__all__ = ['flatten', 'flatten_beziers', 'Polylines', 'DEFAULT_TOLERANCE']
+
+#: Default flattening tolerance in device pixels.
+DEFAULT_TOLERANCE = 0.25
+
+# Pieces are tested in chunks of this many to bound temporary memory.
+_CHUNK = 1 << 16
+# After this many rounds every remaining piece is accepted (never reached
+# for finite input: parameter intervals shrink geometrically).
+_MAX_ROUNDS = 200
+# Accept a piece whose deviation is at rounding-noise level.
+_NOISE = 64 * np.finfo(np.float64).eps
+
+
+def _check_tolerance(tolerance):
+    try:
+        tol = float(tolerance)
+    except (TypeError, ValueError):
+        raise PathError('tolerance must be a number, got %r' % (tolerance,)) from None
+    if not (tol > 0 and math.isfinite(tol)):
+        raise PathError('tolerance must be a positive finite number, got %r' % (tolerance,))
+    return tol
+
+
+def _blossom(P, a, b):
+    """Control points of the pieces ``[a, b]`` of the curves ``P``.
+
+    Parameters
+    ----------
+    P : (m, n+1, D) float64 ndarray
+        Control points of the curve each piece belongs to.
+    a, b : (m,) float64 ndarray
+        Parameter interval of each piece.
+
+    Returns
+    -------
+    (m, n+1, D) float64 ndarray
+        ``Q_i`` is the blossom ``P(a, .., a, b, .., b)`` with ``n - i``
+        copies of ``a``; ``Q_0 = P(a)`` and ``Q_n = P(b)`` exactly as the
+        de Casteljau evaluation at ``a`` and ``b``.
+    """
+    m, n1, D = P.shape
+    n = n1 - 1
+    i = np.arange(n1)
+    W = np.broadcast_to(P[:, None], (m, n1, n1, D))
+    a = a[:, None]
+    b = b[:, None]
+    for level in range(n):
+        t = np.where((level < n - i)[None, :], a, b)[:, :, None, None]
+        W = (1.0 - t) * W[:, :, :-1] + t * W[:, :, 1:]
+    return W[:, :, 0]
+
+
+def _deviation(Q):
+    """Rigorous bound of the Hausdorff distance between Bezier pieces and
+    their chords.
+
+    Parameters
+    ----------
+    Q : (m, n+1, D) float64 ndarray
+
+    Returns
+    -------
+    (m,) float64 ndarray
+    """
+    n = Q.shape[1] - 1
+    if n < 2:
+        return np.zeros(len(Q))
+    A = Q[:, 0]
+    d = Q[:, n] - A                                  # (m, D)
+    L2 = np.einsum('md,md->m', d, d)
+    rel = Q[:, 1:n] - A[:, None]                     # (m, n-1, D)
+    proj = np.einsum('mkd,md->mk', rel, d)
+    nz = L2 > 0
+    u = np.divide(proj, L2[:, None], out=np.zeros_like(proj), where=nz[:, None])
+    pv = rel - u[:, :, None] * d[:, None]
+    perp = np.sqrt(np.einsum('mkd,mkd->mk', pv, pv))
+    uc = np.clip(u, 0.0, 1.0)
+    seg = rel - uc[:, :, None] * d[:, None]
+    hull = np.sqrt(np.einsum('mkd,mkd->mk', seg, seg)).max(axis=1)
+    inside = nz & np.all((u >= 0.0) & (u <= 1.0), axis=1)
+    factor = 1.0 - 2.0 ** (1 - n)
+    return np.where(inside, factor * perp.max(axis=1), hull)
+
+
+def flatten_beziers(ctrl, tolerance=DEFAULT_TOLERANCE):
+    """Flatten Bezier curves of one degree into polylines.
+
+    Parameters
+    ----------
+    ctrl : (S, n+1, D) array_like of float
+        Control points of ``S`` Bezier curves of degree ``n >= 1`` in ``D``
+        dimensions (usually 2 or 3).
+    tolerance : float, optional
+        Largest allowed Hausdorff distance between each curve and its
+        polyline, in the units of ``ctrl`` (default 0.25).
+
+    Returns
+    -------
+    points : (N, D) float64 ndarray
+        The polylines of all curves concatenated in curve order.  Curve
+        ``i`` contributes ``counts[i]`` points: its start point, then the end
+        of every piece in increasing parameter order (the last one is the
+        curve's end point, copied exactly).
+    counts : (S,) int64 ndarray
+        Number of points of each curve (``>= 2``).
+
+    Raises
+    ------
+    PathError
+        Non-finite control points, wrong array shape, bad tolerance.
+    LimitError
+        More than :data:`raster.limits.MAX_FLATTEN_POINTS` points needed.
+
+    Examples
+    --------
+    A straight cubic needs no subdivision:
+
+    >>> line = [[[0, 0], [1, 1], [2, 2], [3, 3]]]
+    >>> pts, counts = flatten_beziers(line)
+    >>> pts.tolist(), counts.tolist()
+    ([[0.0, 0.0], [3.0, 3.0]], [2])
+    """
+    tol = _check_tolerance(tolerance)
+    try:
+        P = np.asarray(ctrl, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise PathError('control points must be an (S, n+1, D) array of numbers') from None
+    if P.ndim != 3 or P.shape[1] < 2 or P.shape[2] < 1:
+        raise PathError('control points must have shape (S, n+1, D) with n >= 1, got %r'
+                        % (P.shape,))
+    S, n1, D = P.shape
+    if not np.all(np.isfinite(P)):
+        raise PathError('control points must be finite (NaN or infinity found)')
+    if S == 0:
+        return np.zeros((0, D)), np.zeros(0, np.int64)
+    if 2 * S > limits.MAX_FLATTEN_POINTS:
+        raise LimitError('flattening would produce more than %d points'
+                         % limits.MAX_FLATTEN_POINTS)
+    n = n1 - 1
+    scale = np.abs(P).reshape(S, -1).max(axis=1)
+    floor = _NOISE * scale                            # per-curve noise level
+
+    # active pieces: curve index and parameter interval
+    cur = np.arange(S, dtype=np.int64)
+    a = np.zeros(S)
+    b = np.ones(S)
+    acc_cur, acc_t, acc_pt = [], [], []
+    n_acc = 0
+    for rnd in range(_MAX_ROUNDS + 1):
+        if len(cur) == 0:
+            break
+        new_cur, new_a, new_b = [], [], []
+        n_new = 0
+        for lo in range(0, len(cur), _CHUNK):
+            c = cur[lo:lo + _CHUNK]
+            ca, cb = a[lo:lo + _CHUNK], b[lo:lo + _CHUNK]
+            Q = _blossom(P[c], ca, cb)
+            e = _deviation(Q)
+            ok = (e <= np.maximum(tol, floor[c])) | (rnd == _MAX_ROUNDS)
+            if np.any(ok):
+                acc_cur.append(c[ok])
+                acc_t.append(cb[ok])
+                acc_pt.append(Q[ok, n])
+                n_acc += int(ok.sum())
+            bad = ~ok
+            if not np.any(bad):
+                continue
+            kf = np.maximum(np.ceil(np.sqrt(e[bad] / tol)), 2.0)
+            total = float(kf.sum())
+            if n_acc + n_new + len(cur) - lo + total + S > limits.MAX_FLATTEN_POINTS:
+                raise LimitError('flattening would produce more than %d points '
+                                 '(tolerance %g too small?)' % (limits.MAX_FLATTEN_POINTS, tol))
+            k = kf.astype(np.int64)
+            ba, bb = ca[bad], cb[bad]
+            tot = int(k.sum())
+            rep = np.repeat(np.arange(len(k)), k)
+            first = np.cumsum(k) - k
+            j = np.arange(tot) - first[rep]            # 0 .. k-1 within parent
+            kr = k[rep].astype(np.float64)
+            h = (bb - ba)[rep]
+            t0 = ba[rep] + h * (j / kr)
+            t1 = np.where(j + 1 == k[rep], bb[rep], ba[rep] + h * ((j + 1) / kr))
+            new_cur.append(c[bad][rep])
+            new_a.append(t0)
+            new_b.append(t1)
+            n_new += tot
+        if new_cur:
+            cur = np.concatenate(new_cur)
+            a = np.concatenate(new_a)
+            b = np.concatenate(new_b)
+        else:
+            cur = cur[:0]
+
+    ac = np.concatenate(acc_cur)
+    at = np.concatenate(acc_t)
+    ap = np.concatenate(acc_pt)
+    order = np.lexsort((at, ac))
+    ac, ap = ac[order], ap[order]
+    per = np.bincount(ac, minlength=S).astype(np.int64)
+    counts = per + 1
+    off = np.cumsum(counts) - counts                  # start of each curve
+    out = np.empty((int(counts.sum()), D))
+    out[off] = P[:, 0]
+    rank = np.arange(len(ac)) - (np.cumsum(per) - per)[ac]
+    out[off[ac] + 1 + rank] = ap
+    return out, counts
+
+
+class Polylines:
+    """Polylines made by :func:`flatten`: one per kept contour.
+
+    Attributes
+    ----------
+    points : (N, 2) float64 ndarray
+        All vertices, polyline after polyline.
+    starts : (K,) int64 ndarray
+        Index into ``points`` of each polyline's first vertex (increasing).
+    closed : (K,) bool ndarray
+        Whether the contour was closed (``Z``).
+
+    ``len(polylines)`` is ``K``; iterating yields ``(points_k, closed_k)``
+    pairs, ``points_k`` being an ``(N_k, 2)`` view.  A closed polyline does
+    not repeat its first vertex at the end unless the path itself returned
+    there explicitly.
+
+    >>> pl = Polylines([[0, 0], [1, 0], [1, 1], [5, 5]], [0, 3], [True, False])
+    >>> len(pl), [(p.shape, c) for p, c in pl]
+    (2, [((3, 2), True), ((1, 2), False)])
+    >>> pl.edges().shape
+    (3, 2, 2)
+    """
+
+    __slots__ = ('points', 'starts', 'closed')
+
+    def __init__(self, points, starts, closed):
+        self.points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+        self.starts = np.asarray(starts, dtype=np.int64).reshape(-1)
+        self.closed = np.asarray(closed, dtype=bool).reshape(-1)
+        if len(self.starts) != len(self.closed):
+            raise PathError('starts and closed must have the same length')
+
+    @property
+    def ends(self):
+        """(K,) int64: one past the last vertex index of each polyline."""
+        return np.append(self.starts[1:], len(self.points)).astype(np.int64)
+
+    @property
+    def sizes(self):
+        """(K,) int64: number of vertices of each polyline."""
+        return self.ends - self.starts
+
+    def __len__(self):
+        return len(self.starts)
+
+    def __getitem__(self, k):
+        s, e = int(self.starts[k]), int(self.ends[k])
+        return self.points[s:e], bool(self.closed[k])
+
+    def __iter__(self):
+        ends = self.ends
+        for s, e, c in zip(self.starts.tolist(), ends.tolist(), self.closed.tolist()):
+            yield self.points[s:e], c
+
+    def __repr__(self):
+        return 'Polylines(%d polylines, %d points)' % (len(self), len(self.points))
+
+    def edges(self, close_all=True):
+        """Line segments of all polylines.
+
+        Parameters
+        ----------
+        close_all : bool, optional
+            Add the closing edge (last vertex to first) of every polyline, as
+            a fill needs (default); with False only of the closed ones.
+
+        Returns
+        -------
+        (E, 2, 2) float64 ndarray
+            ``edges[e] = [[x0, y0], [x1, y1]]``, in polyline order, each
+            polyline's edges in order followed by its closing edge.  Closing
+            edges of zero length (the polyline already ends at its start,
+            or has a single vertex) are left out.
+        """
+        P = self.points
+        N = len(P)
+        if N == 0:
+            return np.zeros((0, 2, 2))
+        starts, ends = self.starts, self.ends
+        # inner edges i -> i+1 for i not the last vertex of its polyline
+        last = np.zeros(N, bool)
+        last[ends - 1] = True
+        src = np.flatnonzero(~last)
+        inner = np.stack([P[src], P[src + 1]], axis=1)
+        want = np.ones(len(starts), bool) if close_all else self.closed.copy()
+        cs, ce = starts[want], ends[want] - 1
+        nonzero = np.any(P[cs] != P[ce], axis=1)
+        cs, ce = cs[nonzero], ce[nonzero]
+        closing = np.stack([P[ce], P[cs]], axis=1)
+        # order: inner edges keyed by source index, closing edge after the
+        # polyline's last inner edge (key = last vertex index)
+        keys = np.concatenate([src, ce]).astype(np.float64)
+        keys[len(src):] += 0.5
+        order = np.argsort(keys, kind='stable')
+        return np.concatenate([inner, closing])[order]
+
+
+def flatten(path, tolerance=DEFAULT_TOLERANCE, transform=None):
+    """Flatten a path into polylines.
+
+    Parameters
+    ----------
+    path : raster.path.Path
+    tolerance : float, optional
+        Largest Hausdorff distance between each curve and its polyline, in
+        device pixels (the units after ``transform``); default 0.25.
+    transform : raster.transform.Affine or None, optional
+        Applied to the control points first (user to device space).
+
+    Returns
+    -------
+    Polylines
+        One polyline per contour: the contour's start point, then the
+        points of its segments in order (each segment's start is not
+        repeated).  Contours made of a lone move followed by a close
+        (``M x y Z``) give a 1-point closed polyline, kept because strokes
+        draw caps for them; a lone move without close (``M x y``) draws
+        nothing and is dropped.
+
+    Raises
+    ------
+    PathError
+        Bad tolerance, or coordinates that become non-finite after the
+        transform.
+    LimitError
+        More than :data:`raster.limits.MAX_FLATTEN_POINTS` points needed.
+
+    Examples
+    --------
+    >>> from raster.path import Path
+    >>> pl = flatten(Path.polygon([[0, 0], [4, 0], [4, 3]]), transform=(2, 0, 0, 2, 0, 0))
+    >>> pl.points.tolist(), pl.starts.tolist(), pl.closed.tolist()
+    ([[0.0, 0.0], [8.0, 0.0], [8.0, 6.0]], [0], [True])
+    """
+    tol = _check_tolerance(tolerance)
+    seg = path.segments()
+    t = as_affine(transform)
+    ctrl = seg.ctrl
+    cstart = seg.contour_start
+    if not t.is_identity:
+        ctrl = t.apply(ctrl)
+        cstart = t.apply(cstart)
+        if not (np.all(np.isfinite(ctrl)) and np.all(np.isfinite(cstart))):
+            raise PathError('transformed path has non-finite coordinates')
+    S = len(ctrl)
+    C = len(cstart)
+    deg = seg.degree.astype(np.int64)
+    # points each segment contributes (its start excluded)
+    seg_n = np.ones(S, np.int64)
+    seg_pts = [None] * 4
+    for d in (2, 3):
+        idx = np.flatnonzero(deg == d)
+        if len(idx):
+            pts, counts = flatten_beziers(ctrl[idx, :d + 1], tol)
+            keep = np.ones(len(pts), bool)
+            keep[np.cumsum(counts) - counts] = False
+            seg_n[idx] = counts - 1
+            seg_pts[d] = (idx, pts[keep], counts - 1)
+    keep_c = (seg.contour_nseg > 0) | seg.contour_closed
+    # item order: contour start j, then its segments; item index of start j
+    # is j + (segments before contour j), of segment s is contour[s] + 1 + s
+    nseg_before = np.cumsum(seg.contour_nseg) - seg.contour_nseg
+    item_n = np.zeros(C + S, np.int64)
+    start_item = np.arange(C) + nseg_before
+    seg_item = seg.contour + 1 + np.arange(S)
+    item_n[start_item] = keep_c
+    item_n[seg_item] = seg_n
+    item_off = np.cumsum(item_n) - item_n
+    total = int(item_n.sum())
+    if total > limits.MAX_FLATTEN_POINTS:
+        raise LimitError('flattening would produce more than %d points'
+                         % limits.MAX_FLATTEN_POINTS)
+    out = np.empty((total, 2))
+    starts = item_off[start_item][keep_c]
+    out[starts] = cstart[keep_c]
+    lines = np.flatnonzero(deg == 1)
+    out[item_off[seg_item[lines]]] = ctrl[lines, 1]
+    for d in (2, 3):
+        if seg_pts[d] is not None:
+            idx, pts, cnt = seg_pts[d]
+            base = np.repeat(item_off[seg_item[idx]], cnt)
+            within = np.arange(len(pts)) - np.repeat(np.cumsum(cnt) - cnt, cnt)
+            out[base + within] = pts
+    return Polylines(out, starts, seg.contour_closed[keep_c])
