@@ -1,0 +1,111 @@
+"""Write the golden SVG cases (one property per file, 200x200 viewBox, a
+<title> and a frame).  Run once when adding cases; the SVG files are
+committed, and their reference PNGs are made by regenerate.py on request."""
+
+import os
+
+HEAD = ('<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
+        'width="200" height="200" viewBox="0 0 200 200">\n  <title>{title}</title>\n'
+        '  <rect x="1" y="1" width="198" height="198" fill="none" stroke="#777" stroke-width="2"/>\n')
+
+CASES = {
+    # --- shapes -------------------------------------------------------------
+    'shapes-rect': ('rect', '<rect x="30" y="40" width="140" height="100" fill="#2a9d8f"/>'),
+    'shapes-rect-rounded': ('rect with rx and ry', '<rect x="30" y="40" width="140" height="100" rx="30" ry="15" fill="#2a9d8f"/>'),
+    'shapes-rect-rx-only': ('rect with only rx (ry auto)', '<rect x="30" y="40" width="140" height="100" rx="25" fill="#e76f51"/>'),
+    'shapes-rect-rx-clamped': ('rect rx larger than half width is clamped', '<rect x="30" y="40" width="140" height="100" rx="200" fill="#264653"/>'),
+    'shapes-circle': ('circle', '<circle cx="100" cy="100" r="70" fill="#e9c46a"/>'),
+    'shapes-ellipse': ('ellipse', '<ellipse cx="100" cy="100" rx="80" ry="40" fill="#f4a261"/>'),
+    'shapes-line': ('line with stroke', '<line x1="20" y1="30" x2="180" y2="170" stroke="#264653" stroke-width="8"/>'),
+    'shapes-polyline': ('polyline stroked and filled', '<polyline points="20,180 60,40 100,160 140,40 180,180" fill="#a8dadc" stroke="#1d3557" stroke-width="4"/>'),
+    'shapes-polygon': ('polygon', '<polygon points="100,20 180,180 20,180" fill="#457b9d"/>'),
+    'shapes-percent-units': ('lengths in percent', '<rect x="10%" y="20%" width="50%" height="30%" fill="#6a4c93"/><circle cx="75%" cy="75%" r="15%" fill="#1982c4"/>'),
+    'shapes-mm-units': ('lengths in mm, pt and pc', '<rect x="5mm" y="5mm" width="20mm" height="10mm" fill="#8ac926"/><rect x="60pt" y="90pt" width="6pc" height="3pc" fill="#ff595e"/>'),
+    'path-lines-relative': ('path with relative line commands', '<path d="m20 20 h160 v40 l-80 60 l-80 -60 z" fill="#2a9d8f"/>'),
+    'path-cubic-smooth': ('path with C and S commands', '<path d="M20 150 C 40 20, 90 20, 100 100 S 160 180, 180 50" fill="none" stroke="#e63946" stroke-width="6"/>'),
+    'path-quad-smooth': ('path with Q and T commands', '<path d="M20 100 Q 50 20 80 100 T 140 100 T 190 100" fill="none" stroke="#1d3557" stroke-width="6"/>'),
+    'path-arcs': ('path with elliptical arcs and flags', '<path d="M30 100 A 40 25 30 1 1 100 100 A 30 30 0 0 0 170 100" fill="#ffb703" stroke="#023047" stroke-width="4"/>'),
+    'path-arc-radii-correction': ('arc with radii too small is scaled up', '<path d="M40 100 A 10 10 0 0 1 160 100 Z" fill="#219ebc"/>'),
+    'path-implicit-repeat': ('implicit lineto after moveto', '<path d="M20,180 100,20 180,180 z" fill="#8338ec"/>'),
+    'path-compact-numbers': ('compact number syntax', '<path d="M20.5.5L180-0 180 180-.5 180z" transform="translate(0 10) scale(1 .9)" fill="#3a86ff"/>'),
+    # --- fill ---------------------------------------------------------------
+    'fill-rule-evenodd': ('fill-rule evenodd star', '<polygon points="100,10 155,180 10,70 190,70 45,180" fill="#ef476f" fill-rule="evenodd"/>'),
+    'fill-rule-nonzero': ('fill-rule nonzero star', '<polygon points="100,10 155,180 10,70 190,70 45,180" fill="#ef476f" fill-rule="nonzero"/>'),
+    'fill-overlapping-subpaths': ('two overlapping circles in one path, evenodd', '<path d="M30 100 a45 45 0 1 0 90 0 a45 45 0 1 0 -90 0 Z M80 100 a45 45 0 1 0 90 0 a45 45 0 1 0 -90 0 Z" fill="#118ab2" fill-rule="evenodd"/>'),
+    'fill-opacity': ('fill-opacity over another shape', '<rect x="20" y="20" width="110" height="110" fill="#073b4c"/><circle cx="120" cy="120" r="60" fill="#ffd166" fill-opacity="0.6"/>'),
+    'fill-none': ('fill none with stroke', '<circle cx="100" cy="100" r="60" fill="none" stroke="#06d6a0" stroke-width="10"/>'),
+    # --- colours ------------------------------------------------------------
+    'color-syntaxes': ('colour syntaxes', '<rect x="20" y="20" width="50" height="50" fill="#f80"/><rect x="75" y="20" width="50" height="50" fill="#ff880080"/>'
+                        '<rect x="130" y="20" width="50" height="50" fill="rgb(10%, 50%, 90%)"/><rect x="20" y="75" width="50" height="50" fill="rgba(200, 30, 60, 0.5)"/>'
+                        '<rect x="75" y="75" width="50" height="50" fill="hsl(120, 60%, 40%)"/><rect x="130" y="75" width="50" height="50" fill="DarkSlateBlue"/>'
+                        '<rect x="20" y="130" width="50" height="50" fill="#1a2b3c4d"/><rect x="75" y="130" width="50" height="50" fill="hsla(300, 100%, 50%, 0.4)"/>'
+                        '<rect x="130" y="130" width="50" height="50" fill="transparent" stroke="black"/>'),
+    'color-currentcolor': ('currentColor inherited from color', '<g color="#e76f51"><rect x="30" y="30" width="140" height="140" fill="currentColor" stroke="#264653" stroke-width="6"/></g>'),
+    # --- strokes ------------------------------------------------------------
+    'stroke-linejoin-miter': ('stroke-linejoin miter', '<polyline points="30,170 70,40 110,170 150,60" fill="none" stroke="#264653" stroke-width="18" stroke-linejoin="miter"/>'),
+    'stroke-linejoin-round': ('stroke-linejoin round', '<polyline points="30,170 70,40 110,170 150,60" fill="none" stroke="#264653" stroke-width="18" stroke-linejoin="round"/>'),
+    'stroke-linejoin-bevel': ('stroke-linejoin bevel', '<polyline points="30,170 70,40 110,170 150,60" fill="none" stroke="#264653" stroke-width="18" stroke-linejoin="bevel"/>'),
+    'stroke-miterlimit': ('stroke-miterlimit turning sharp miters into bevels', '<polyline points="20,60 180,80 20,100" fill="none" stroke="#264653" stroke-width="14" stroke-miterlimit="3"/><polyline points="20,120 180,140 20,160" fill="none" stroke="#e76f51" stroke-width="14" stroke-miterlimit="30"/>'),
+    'stroke-linecap-butt': ('stroke-linecap butt', '<line x1="40" y1="100" x2="160" y2="100" stroke="#2a9d8f" stroke-width="30" stroke-linecap="butt"/>'),
+    'stroke-linecap-round': ('stroke-linecap round', '<line x1="40" y1="100" x2="160" y2="100" stroke="#2a9d8f" stroke-width="30" stroke-linecap="round"/>'),
+    'stroke-linecap-square': ('stroke-linecap square', '<line x1="40" y1="100" x2="160" y2="100" stroke="#2a9d8f" stroke-width="30" stroke-linecap="square"/>'),
+    'stroke-dasharray': ('stroke-dasharray on a curve', '<path d="M20 160 C 60 0, 140 0, 180 160" fill="none" stroke="#8338ec" stroke-width="8" stroke-dasharray="20 10 5 10"/>'),
+    'stroke-dasharray-odd': ('odd-length dasharray is repeated', '<line x1="20" y1="100" x2="180" y2="100" stroke="#3a86ff" stroke-width="12" stroke-dasharray="15 5 5"/>'),
+    'stroke-dashoffset': ('stroke-dashoffset on a closed rect', '<rect x="40" y="40" width="120" height="120" fill="none" stroke="#fb5607" stroke-width="8" stroke-dasharray="30 15" stroke-dashoffset="20"/>'),
+    'stroke-dash-round-caps': ('dashes with round caps', '<circle cx="100" cy="100" r="60" fill="none" stroke="#ff006e" stroke-width="10" stroke-dasharray="1 20" stroke-linecap="round"/>'),
+    'stroke-opacity': ('stroke-opacity shows the fill under it', '<rect x="40" y="40" width="120" height="120" fill="#ffbe0b" stroke="#3a0ca3" stroke-width="24" stroke-opacity="0.5"/>'),
+    'stroke-zero-length-caps': ('zero-length subpaths draw round and square caps', '<path d="M60 100 z M140 100 L140 100" stroke="#7209b7" stroke-width="40" stroke-linecap="round"/><path d="M100 40 z" stroke="#f72585" stroke-width="30" stroke-linecap="square"/>'),
+    'stroke-nonuniform-scale': ('stroke under non-uniform scale', '<g transform="scale(3 1)"><circle cx="33" cy="100" r="20" fill="none" stroke="#4361ee" stroke-width="6"/></g>'),
+    'stroke-skew': ('stroke under skew', '<rect x="50" y="50" width="80" height="100" fill="none" stroke="#4cc9f0" stroke-width="10" transform="skewX(20)"/>'),
+    'stroke-hairline': ('hairline strokes thinner than a pixel', '<g fill="none" stroke="black"><line x1="20" y1="40" x2="180" y2="60" stroke-width="0.5"/><line x1="20" y1="80" x2="180" y2="100" stroke-width="0.25"/><circle cx="100" cy="150" r="30" stroke-width="0.3"/></g>'),
+    'stroke-cusp': ('stroke of a curve with a cusp', '<path d="M30 150 C 170 20, 30 20, 170 150" fill="none" stroke="#2b2d42" stroke-width="16"/>'),
+    # --- opacity and paint order -------------------------------------------
+    'opacity-group': ('group opacity composites the group as one layer', '<g opacity="0.5"><rect x="30" y="30" width="100" height="100" fill="#d62828"/><rect x="70" y="70" width="100" height="100" fill="#003049"/></g>'),
+    'opacity-element': ('element opacity with stroke', '<circle cx="100" cy="100" r="60" fill="#fcbf49" stroke="#003049" stroke-width="20" opacity="0.5"/>'),
+    'paint-order-stroke': ('paint-order stroke draws the fill on top', '<rect x="40" y="40" width="120" height="120" fill="#80b918" stroke="#007f5f" stroke-width="30" paint-order="stroke"/>'),
+    'shape-rendering-crisp': ('shape-rendering crispEdges disables anti-aliasing', '<circle cx="100" cy="100" r="70" fill="#5f0f40" shape-rendering="crispEdges"/>'),
+    # --- transforms ---------------------------------------------------------
+    'transform-list': ('transform list', '<rect x="0" y="0" width="60" height="40" fill="#0f4c5c" transform="translate(100 100) rotate(30) scale(1.5) translate(-30 -20)"/>'),
+    'transform-matrix': ('transform matrix', '<rect x="0" y="0" width="80" height="60" fill="#e36414" transform="matrix(1 0.3 -0.4 1 70 50)"/>'),
+    'transform-rotate-center': ('rotate about a centre point', '<rect x="60" y="80" width="80" height="40" fill="#9a031e" transform="rotate(45 100 100)"/>'),
+    # --- structure ----------------------------------------------------------
+    'structure-use': ('use with x and y', '<defs><rect id="r" width="50" height="50" fill="#588157"/></defs><use xlink:href="#r" x="20" y="20"/><use href="#r" x="120" y="120"/>'),
+    'structure-use-inherit': ('use content inherits from the use element', '<defs><circle id="c" r="30"/></defs><use xlink:href="#c" x="60" y="100" fill="#bc4749"/><use xlink:href="#c" x="140" y="100" fill="#386641"/>'),
+    'structure-symbol': ('symbol with viewBox instantiated by use', '<defs><symbol id="s" viewBox="0 0 10 10"><circle cx="5" cy="5" r="4" fill="#6d597a"/></symbol></defs><use xlink:href="#s" x="20" y="20" width="80" height="80"/><use xlink:href="#s" x="110" y="110" width="60" height="60"/>'),
+    'structure-nested-svg': ('nested svg clips to its viewport', '<svg x="40" y="40" width="120" height="120" viewBox="0 0 60 60"><circle cx="30" cy="30" r="40" fill="#b56576"/></svg>'),
+    'structure-style-css': ('style sheet selectors and precedence', '<style>circle { fill: #999 } .a { fill: #e56b6f } #b { fill: #355070 } g > .c { fill: #eaac8b } .d { fill: #6d597a !important }</style>'
+                            '<circle cx="55" cy="55" r="35"/><rect class="a" x="110" y="20" width="70" height="70"/><rect id="b" class="a" x="20" y="110" width="70" height="70"/>'
+                            '<g><rect class="c d" x="110" y="110" width="70" height="70" style="fill:red"/></g>'),
+    'structure-style-attribute': ('style attribute beats presentation attribute', '<rect x="40" y="40" width="120" height="120" fill="red" style="fill: #2d6a4f; stroke: #081c15; stroke-width: 6"/>'),
+    'structure-display-none': ('display none hides the subtree', '<g display="none"><rect x="20" y="20" width="160" height="160" fill="red"/></g><circle cx="100" cy="100" r="50" fill="#40916c"/>'),
+    'structure-visibility': ('visible child of a hidden group is drawn', '<g visibility="hidden"><rect x="20" y="20" width="160" height="160" fill="red"/><circle cx="100" cy="100" r="50" fill="#1b4332" visibility="visible"/></g>'),
+    'structure-switch': ('switch picks the first matching child', '<switch><rect systemLanguage="xx" x="20" y="20" width="160" height="160" fill="red"/><circle cx="100" cy="100" r="60" fill="#52b788"/><rect x="20" y="20" width="160" height="160" fill="red"/></switch>'),
+    'structure-inherit-keyword': ('inherit keyword', '<g fill="#9d4edd" stroke="#240046" stroke-width="8"><rect x="40" y="40" width="120" height="120" fill="inherit" stroke="inherit"/></g>'),
+}
+
+PAR_CASES = {
+    'structure-preserveaspectratio-xMidYMid-meet': 'xMidYMid meet',
+    'structure-preserveaspectratio-xMinYMax-meet': 'xMinYMax meet',
+    'structure-preserveaspectratio-xMaxYMin-slice': 'xMaxYMin slice',
+    'structure-preserveaspectratio-none': 'none',
+}
+
+
+def main():
+    here = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'cases')
+    os.makedirs(here, exist_ok=True)
+    for name, (title, body) in CASES.items():
+        with open(os.path.join(here, name + '.svg'), 'w') as f:
+            f.write(HEAD.format(title=title) + '  ' + body + '\n</svg>\n')
+    for name, par in PAR_CASES.items():
+        body = ('<svg x="20" y="40" width="160" height="120" viewBox="0 0 100 50" preserveAspectRatio="%s">'
+                '<rect x="0.5" y="0.5" width="99" height="49" fill="#edf2f4" stroke="#777"/>'
+                '<circle cx="25" cy="25" r="20" fill="#ef233c"/><rect x="60" y="10" width="30" height="30" fill="#2b2d42"/>'
+                '</svg>' % par)
+        svg = HEAD.format(title='preserveAspectRatio ' + par) + '  ' + body + '\n</svg>\n'
+        with open(os.path.join(here, name + '.svg'), 'w') as f:
+            f.write(svg)
+
+
+if __name__ == '__main__':
+    main()
