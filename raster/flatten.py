@@ -60,6 +60,7 @@ import numpy as np
 from .errors import PathError, LimitError
 from . import limits
 from .transform import as_affine
+from .bbox import quadratic_roots
 
 __all__ = ['flatten', 'flatten_beziers', 'Polylines', 'DEFAULT_TOLERANCE']
 
@@ -114,9 +115,44 @@ def _blossom(P, a, b):
     return W[:, :, 0]
 
 
+def _bernstein_max(c):
+    """Exact maximum and minimum over ``t`` in [0, 1] of Bernstein
+    polynomials of degree 2 or 3.
+
+    Parameters
+    ----------
+    c : (m, n+1) float64 ndarray, n in (2, 3)
+
+    Returns
+    -------
+    lo, hi : (m,) float64 ndarray
+    """
+    n = c.shape[1] - 1
+    w = n * np.diff(c, axis=1)                        # derivative, degree n-1
+    if n == 2:
+        A = np.zeros(len(c))
+        B = w[:, 1] - w[:, 0]
+        C = w[:, 0]
+    else:
+        A = w[:, 0] - 2.0 * w[:, 1] + w[:, 2]
+        B = 2.0 * (w[:, 1] - w[:, 0])
+        C = w[:, 0]
+    r = quadratic_roots(A, B, C)                      # (m, 2)
+    r = np.where((r > 0.0) & (r < 1.0), r, 0.0)       # t = 0 is a candidate anyway
+    vals = [c[:, 0], c[:, n]]
+    for j in range(2):
+        t = r[:, j:j + 1]
+        W = c
+        for _ in range(n):
+            W = (1.0 - t) * W[:, :-1] + t * W[:, 1:]
+        vals.append(W[:, 0])
+    V = np.stack(vals, axis=1)
+    return V.min(axis=1), V.max(axis=1)
+
+
 def _deviation(Q):
     """Rigorous bound of the Hausdorff distance between Bezier pieces and
-    their chords.
+    their chord segments.
 
     Parameters
     ----------
@@ -125,25 +161,156 @@ def _deviation(Q):
     Returns
     -------
     (m,) float64 ndarray
+        For planar quadratics and cubics the bound is exact up to rounding
+        whenever the curve's projection stays inside the chord.
     """
-    n = Q.shape[1] - 1
+    m, n1, D = Q.shape
+    n = n1 - 1
     if n < 2:
-        return np.zeros(len(Q))
+        return np.zeros(m)
     A = Q[:, 0]
-    d = Q[:, n] - A                                  # (m, D)
+    d = Q[:, n] - A                                   # (m, D)
     L2 = np.einsum('md,md->m', d, d)
-    rel = Q[:, 1:n] - A[:, None]                     # (m, n-1, D)
-    proj = np.einsum('mkd,md->mk', rel, d)
+    rel = Q[:, 1:n] - A[:, None]                      # (m, n-1, D)
     nz = L2 > 0
-    u = np.divide(proj, L2[:, None], out=np.zeros_like(proj), where=nz[:, None])
-    pv = rel - u[:, :, None] * d[:, None]
-    perp = np.sqrt(np.einsum('mkd,mkd->mk', pv, pv))
+    L2s = np.where(nz, L2, 1.0)
+    u = np.einsum('mkd,md->mk', rel, d) / L2s[:, None]   # chord parameter
     uc = np.clip(u, 0.0, 1.0)
     seg = rel - uc[:, :, None] * d[:, None]
     hull = np.sqrt(np.einsum('mkd,mkd->mk', seg, seg)).max(axis=1)
-    inside = nz & np.all((u >= 0.0) & (u <= 1.0), axis=1)
-    factor = 1.0 - 2.0 ** (1 - n)
-    return np.where(inside, factor * perp.max(axis=1), hull)
+    L = np.sqrt(L2)
+    if D == 2 and n <= 3:
+        # signed perpendicular offsets and chord parameters as Bernstein
+        # polynomials with exact extrema
+        s = (d[:, None, 0] * rel[:, :, 1] - d[:, None, 1] * rel[:, :, 0]) / L2s[:, None] * L[:, None]
+        z = np.zeros((m, 1))
+        slo, shi = _bernstein_max(np.concatenate([z, s, z], axis=1))
+        ulo, uhi = _bernstein_max(np.concatenate([z, u, z + 1.0], axis=1))
+        perp = np.maximum(-slo, shi)
+    else:
+        pv = rel - u[:, :, None] * d[:, None]
+        perp = (1.0 - 2.0 ** (1 - n)) * np.sqrt(np.einsum('mkd,mkd->mk', pv, pv)).max(axis=1)
+        ulo, uhi = u.min(axis=1), u.max(axis=1)
+    over = np.maximum(np.maximum(-ulo, uhi - 1.0), 0.0) * L
+    e = np.minimum(np.sqrt(perp * perp + over * over), hull)
+    return np.where(nz, e, hull)
+
+
+# Local parameters where the deviation density is sampled (midpoint rule)
+# when planning how to split a rejected piece.
+_G = 16
+_SG = (np.arange(_G) + 0.5) / _G
+
+
+def _bernstein_basis(n, s):
+    """(len(s), n+1) matrix of the degree-n Bernstein polynomials at s."""
+    from math import comb
+    i = np.arange(n + 1)
+    return (np.array([comb(n, k) for k in i], dtype=np.float64)
+            * s[:, None] ** i * (1.0 - s[:, None]) ** (n - i))
+
+
+def _plan_split(Q, e, tol):
+    """How to cut rejected pieces: piece counts and a deviation CDF.
+
+    The deviation of a chord over a short parameter step ``h`` at ``s`` is
+    about ``kappa(s) h**2 / 8`` with ``kappa = |B' x B''| / |B'|`` (the
+    normal component of the second derivative), so cutting where the
+    integral of ``sqrt(kappa / (8 tol))`` grows by at most 1 makes every
+    piece just flat enough.  The integral is taken by the midpoint rule on
+    ``_G`` cells.
+
+    Parameters
+    ----------
+    Q : (m, n+1, D) float64 ndarray
+        Control points of the rejected pieces (local parameter ``s``).
+    e : (m,) float64 ndarray
+        Their deviation bounds (``> tol``).
+    tol : float
+
+    Returns
+    -------
+    k : (m,) float64 ndarray
+        Number of pieces to cut each into (``>= 2``, integral values).
+    cdf : (m, _G + 1) float64 ndarray or None
+        Normalised cumulative density at ``s = 0, 1/_G, .., 1``; rows that
+        are all NaN ask for a uniform split.
+    """
+    m, n1, D = Q.shape
+    n = n1 - 1
+    # uniform estimate: deviation falls like 1/k**2
+    k_uni = np.maximum(np.ceil(np.sqrt(e / tol)), 2.0)
+    if n < 2:
+        return k_uni, None
+    d1 = n * np.diff(Q, axis=1)                       # (m, n, D)
+    d2 = (n - 1) * np.diff(d1, axis=1)                # (m, n-1, D)
+    v = np.einsum('gk,mkd->mgd', _bernstein_basis(n - 1, _SG), d1)
+    w = np.einsum('gk,mkd->mgd', _bernstein_basis(n - 2, _SG), d2)
+    vv = np.einsum('mgd,mgd->mg', v, v)
+    ww = np.einsum('mgd,mgd->mg', w, w)
+    vw = np.einsum('mgd,mgd->mg', v, w)
+    with np.errstate(all='ignore'):
+        cross = np.sqrt(np.maximum(vv * ww - vw * vw, 0.0))
+        kappa = cross / np.sqrt(vv)
+        dens = np.sqrt(kappa / (8.0 * tol))
+    dens = np.where(np.isfinite(dens), dens, 0.0)
+    F = np.zeros((m, _G + 1))
+    np.cumsum(dens / _G, axis=1, out=F[:, 1:])
+    total = F[:, -1]
+    k_den = np.ceil(total * _SAFETY)
+    use = np.isfinite(total) & (total > 0) & (k_den >= 2)
+    k = np.where(use, np.maximum(k_den, 2.0), k_uni)
+    with np.errstate(all='ignore'):
+        cdf = F / total[:, None]
+    cdf[~use] = np.nan
+    return k, cdf
+
+
+# Margin on the estimated piece count (the density model is approximate).
+_SAFETY = 1.0
+
+
+def _split_points(k, cdf):
+    """Local parameters of the ends of the cut pieces.
+
+    Parameters
+    ----------
+    k : (m,) int64 ndarray
+        Pieces per parent.
+    cdf : (m, _G + 1) float64 ndarray or None
+
+    Returns
+    -------
+    rep : (sum k,) int64 ndarray
+        Parent of each new piece.
+    s_end : (sum k,) float64 ndarray
+        Local parameter in (0, 1] of each new piece's end (the last one of a
+        parent is replaced by the exact parent end by the caller).
+    """
+    tot = int(k.sum())
+    rep = np.repeat(np.arange(len(k)), k)
+    j = np.arange(tot) - (np.cumsum(k) - k)[rep] + 1  # 1 .. k
+    frac = j / k[rep].astype(np.float64)
+    s_end = frac.copy()                               # uniform split
+    if cdf is not None:
+        rows = np.flatnonzero(~np.isnan(cdf[:, 0]))
+        if len(rows):
+            sel = np.isin(rep, rows)
+            # invert each piecewise-linear CDF: make rows one increasing
+            # sequence by adding the row number
+            pos = np.full(len(k), -1, np.int64)
+            pos[rows] = np.arange(len(rows))
+            G1 = cdf.shape[1]
+            flat = (cdf[rows] + np.arange(len(rows))[:, None] * 2.0).ravel()
+            target = frac[sel] + pos[rep[sel]] * 2.0
+            idx = np.searchsorted(flat, target, side='left')
+            idx = np.clip(idx, 1, len(flat) - 1)
+            f0, f1 = flat[idx - 1], flat[idx]
+            with np.errstate(all='ignore'):
+                r = np.where(f1 > f0, (target - f0) / (f1 - f0), 1.0)
+            cell = (idx - 1) % G1
+            s_end[sel] = np.clip((cell + r) / (G1 - 1), 0.0, 1.0)
+    return rep, s_end
 
 
 def flatten_beziers(ctrl, tolerance=DEFAULT_TOLERANCE):
@@ -229,21 +396,22 @@ def flatten_beziers(ctrl, tolerance=DEFAULT_TOLERANCE):
             bad = ~ok
             if not np.any(bad):
                 continue
-            kf = np.maximum(np.ceil(np.sqrt(e[bad] / tol)), 2.0)
+            kf, cdf = _plan_split(Q[bad], e[bad], tol)
             total = float(kf.sum())
             if n_acc + n_new + len(cur) - lo + total + S > limits.MAX_FLATTEN_POINTS:
                 raise LimitError('flattening would produce more than %d points '
                                  '(tolerance %g too small?)' % (limits.MAX_FLATTEN_POINTS, tol))
             k = kf.astype(np.int64)
             ba, bb = ca[bad], cb[bad]
-            tot = int(k.sum())
-            rep = np.repeat(np.arange(len(k)), k)
-            first = np.cumsum(k) - k
-            j = np.arange(tot) - first[rep]            # 0 .. k-1 within parent
-            kr = k[rep].astype(np.float64)
+            rep, s_end = _split_points(k, cdf)
+            last = np.zeros(len(rep), bool)
+            last[np.cumsum(k) - 1] = True
             h = (bb - ba)[rep]
-            t0 = ba[rep] + h * (j / kr)
-            t1 = np.where(j + 1 == k[rep], bb[rep], ba[rep] + h * ((j + 1) / kr))
+            t1 = np.where(last, bb[rep], ba[rep] + h * s_end)
+            t0 = np.empty_like(t1)
+            t0[1:] = t1[:-1]
+            t0[np.cumsum(k) - k] = ba
+            tot = len(rep)
             new_cur.append(c[bad][rep])
             new_a.append(t0)
             new_b.append(t1)

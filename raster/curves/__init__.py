@@ -1,0 +1,59 @@
+"""raster's curve toolkit: parametric curves for design, teaching and
+computation.
+
+Every family shares one vocabulary -- ``eval(t)`` (scalar or array of t),
+``deriv()``, ``subsegment(t0, t1)``, ``extrema()``, ``bounding_box()``,
+``to_beziers()`` (a :class:`PiecewiseBezier`, iterable as :class:`Bezier`
+objects), ``flatten(tolerance)``, ``to_path()``, ``to_svg()``, ``draw(pen)``
+and ``continuity()`` -- and converts exactly to Bezier segments, so curves
+can be flattened, bounded, stroked, rendered and exported with the rest of
+raster.
+
+=====================  ==============================================
+module                 classes and functions
+=====================  ==============================================
+``bezier``             :class:`Bezier`, :class:`PiecewiseBezier`,
+                       :func:`bernstein`, :func:`bernstein_matrix`
+``hermite``            :class:`Hermite`, :class:`HermiteSpline`,
+                       :func:`hermite_blend`, :func:`hermite_basis_matrix`
+``cardinal``           :class:`CardinalSpline`, :class:`CatmullRom`
+``kochanek``           :class:`KochanekBartels`
+``bspline``            :class:`BSpline`, :func:`basis_functions`,
+                       :func:`clamped_uniform_knots`
+``beta``               :class:`BetaSpline`, :func:`beta_basis_matrix`
+``natural``            :class:`NaturalSpline`, :class:`FunctionSpline`,
+                       :func:`solve_tridiagonal`
+``continuity``         :func:`continuity`, :class:`Joint`
+=====================  ==============================================
+
+Errors are :class:`CurveError` (a :class:`raster.errors.RasterError`).
+
+>>> from raster.curves import Bezier
+>>> Bezier([[0, 0], [1, 1]]).eval(0.5).tolist()
+[0.5, 0.5]
+"""
+
+from ._base import CurveError
+from .bezier import Bezier, PiecewiseBezier, bernstein, bernstein_matrix
+from .hermite import Hermite, HermiteSpline, hermite_blend, hermite_basis_matrix
+from .cardinal import CardinalSpline, CatmullRom
+from .kochanek import KochanekBartels
+from .bspline import BSpline, basis_functions, clamped_uniform_knots
+from .beta import BetaSpline, beta_basis_matrix, beta_blend
+from .natural import NaturalSpline, FunctionSpline, solve_tridiagonal
+from .continuity import continuity, Joint, format_joints
+
+
+def convex_hull(points):
+    """Convex hull of a 2-D point set (monotone chain), shared with the
+    flattener: :func:`raster.hull.convex_hull`."""
+    from ..hull import convex_hull as _hull
+    return _hull(points)
+
+
+__all__ = ['CurveError', 'Bezier', 'PiecewiseBezier', 'bernstein', 'bernstein_matrix',
+           'Hermite', 'HermiteSpline', 'hermite_blend', 'hermite_basis_matrix',
+           'CardinalSpline', 'CatmullRom', 'KochanekBartels', 'BSpline', 'basis_functions',
+           'clamped_uniform_knots', 'BetaSpline', 'beta_basis_matrix', 'beta_blend',
+           'NaturalSpline', 'FunctionSpline', 'solve_tridiagonal', 'continuity', 'Joint',
+           'format_joints', 'convex_hull']

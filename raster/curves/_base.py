@@ -169,7 +169,8 @@ class CurveMixin:
     def continuity(self, tolerance=1e-9):
         """Continuity at each joint; see :func:`raster.curves.continuity.continuity`."""
         from .continuity import continuity
-        return continuity(self.to_beziers(), tolerance)
+        closed = bool(getattr(self, 'closed', False)) or getattr(self, 'ends', None) == 'closed'
+        return continuity(self.to_beziers(), tolerance, closed=closed)
 
     def control_points(self):
         """The points that define the curve ((N, D) float64)."""

@@ -1,0 +1,198 @@
+"""SVG front end: load a document, resolve it into a tree, render it.
+
+The entry points:
+
+* :func:`load_svg` -- an SVG source to a resolved :class:`~raster.svg.tree.Tree`;
+* :func:`render` -- an SVG source to an ``(H, W, 4) uint8`` RGBA array;
+* :func:`render_image` -- the same as a :class:`PIL.Image.Image`.
+
+A *source* is a file path (``str`` or :class:`os.PathLike`; ``.svgz`` gzip
+files are accepted), the document as ``bytes``, or a binary file object.
+Relative references (images, external ``use``) resolve against the file's
+directory; files are only read from inside ``resources_dir`` when it is
+given (and from the document's own directory).
+
+Output sizes are in device pixels; the document's natural size is its
+``width``/``height`` in CSS px (96 per inch at ``dpi=96``).
+
+Note: the package attribute ``raster.svg.render`` is the :func:`render`
+function; the renderer *module* of the same name is
+``sys.modules['raster.svg.render']`` (``from raster.svg.render import
+render_tree`` works as usual).
+"""
+
+import os
+
+try:
+    # Import the renderer module first: loading a submodule binds its name on
+    # the package, and the function ``render`` defined below must win.
+    from . import render as _render_module  # noqa: F401
+    from .render import render_tree  # noqa: F401
+except ImportError:          # pragma: no cover - a dependency is missing
+    _render_module = None
+
+__all__ = ['render', 'render_image', 'load_svg', 'render_tree']
+
+
+def _source_and_base(source):
+    """(source for load_document, base directory or None)."""
+    if isinstance(source, (str, os.PathLike)):
+        path = os.fspath(source)
+        return path, os.path.dirname(os.path.abspath(path))
+    return source, None
+
+
+def load_svg(source, *, dpi=96, font_dirs=(), resources_dir=None, base_dir=None, **opts):
+    """Load and resolve an SVG document.
+
+    Parameters
+    ----------
+    source : str, os.PathLike, bytes or binary file object
+        The document (see the module docstring).
+    dpi : float
+        Resolution for absolute units (``in``, ``mm``, ``pt`` ...).
+    font_dirs : sequence of str
+        Directories holding fonts for text.
+    resources_dir : str or None
+        Directory external files may be read from.
+    base_dir : str or None
+        Directory relative references resolve against (default: the
+        source file's directory).
+    **opts
+        Further options of :func:`raster.svg.build.build_tree`.
+
+    Returns
+    -------
+    raster.svg.tree.Tree
+
+    Raises
+    ------
+    raster.errors.SVGError
+        Unreadable XML, not an SVG document, invalid size.
+    OSError
+        The file cannot be read.
+    """
+    from .build import build_tree
+    from .document import load_document
+    src, sbase = _source_and_base(source)
+    root = load_document(src)
+    kw = dict(opts)
+    kw['base_dir'] = base_dir if base_dir is not None else sbase
+    kw['dpi'] = dpi
+    kw['font_dirs'] = tuple(font_dirs or ())
+    kw['resources_dir'] = resources_dir
+    return build_tree(root, **_accepted(build_tree, kw))
+
+
+def _accepted(fn, kw):
+    """The keyword arguments ``fn`` accepts (all of them if it takes **kw)."""
+    import inspect
+    try:
+        params = inspect.signature(fn).parameters
+    except (TypeError, ValueError):
+        return kw
+    if any(p.kind == p.VAR_KEYWORD for p in params.values()):
+        return kw
+    return {k: v for k, v in kw.items() if k in params}
+
+
+def _background(bg):
+    if bg is None:
+        return None
+    from ..errors import SVGError
+    if isinstance(bg, str):
+        from .values import CURRENT_COLOR, parse_color
+        c = parse_color(bg)
+        if c is None or c is CURRENT_COLOR:
+            raise SVGError('invalid background colour %r' % (bg,))
+        return tuple(float(v) for v in c)
+    try:
+        c = tuple(float(v) for v in bg)
+    except (TypeError, ValueError):
+        raise SVGError('background must be a CSS colour or 4 floats, got %r' % (bg,)) from None
+    if len(c) == 3:
+        c = c + (1.0,)
+    if len(c) != 4 or not all(0.0 <= v <= 1.0 for v in c):
+        raise SVGError('background must be 4 floats in [0, 1], got %r' % (bg,))
+    return c
+
+
+def render(source, width=None, height=None, *, zoom=None, dpi=96, background=None, id=None,
+           font_dirs=(), resources_dir=None, premultiplied=False, tolerance=0.25):
+    """Render an SVG document to an RGBA array.
+
+    Parameters
+    ----------
+    source : str, os.PathLike, bytes or binary file object
+        The document.
+    width, height : int or None
+        Output size in pixels; only one keeps the aspect ratio, both stretch;
+        neither: the natural size (rounded up).
+    zoom : float or None
+        Scale of the natural size (instead of width/height).
+    dpi : float
+        Resolution for absolute units.
+    background : str, tuple or None
+        A CSS colour (``'white'``, ``'#ff000080'``) or straight RGBA floats;
+        None: transparent.
+    id : str or None
+        Render only the element with this id (with its ancestors'
+        transforms).
+    font_dirs, resources_dir :
+        See :func:`load_svg`.
+    premultiplied : bool
+        Return premultiplied colours (default: straight alpha).
+    tolerance : float
+        Flattening tolerance in device pixels.
+
+    Returns
+    -------
+    (H, W, 4) uint8 ndarray
+        RGBA, row 0 at the top.
+
+    Raises
+    ------
+    raster.errors.SVGError
+        Bad document, unknown ``id`` or bad background colour.
+    raster.errors.CanvasError
+        Zero, negative or non-finite size or zoom, or an output above
+        :data:`raster.limits.MAX_PIXELS` pixels.
+
+    >>> img = render(b'<svg xmlns="http://www.w3.org/2000/svg" width="4" height="2">'
+    ...              b'<rect width="2" height="2" fill="blue"/></svg>')
+    >>> img.shape, img[0, 0].tolist(), img[0, 3].tolist()
+    ((2, 4, 4), [0, 0, 255, 255], [0, 0, 0, 0])
+    """
+    from .render import render_tree
+    _rebind()
+    bg = _background(background)
+    tree = load_svg(source, dpi=dpi, font_dirs=font_dirs, resources_dir=resources_dir)
+    canvas = render_tree(tree, width=width, height=height, zoom=zoom, background=bg,
+                         node_id=id, tolerance=tolerance)
+    return canvas.to_rgba8(premultiplied=bool(premultiplied))
+
+
+def render_image(source, width=None, height=None, **kwargs):
+    """:func:`render` as a straight-alpha RGBA :class:`PIL.Image.Image`
+    (same arguments; ``premultiplied`` is not accepted)."""
+    from PIL import Image
+    if 'premultiplied' in kwargs:
+        raise TypeError('render_image() always returns straight alpha')
+    return Image.fromarray(render(source, width, height, **kwargs), 'RGBA')
+
+
+def _rebind():
+    """Restore the package attribute ``render`` to the function after a late
+    first import of the ``render`` submodule rebound it."""
+    globals()['render'] = _render_function
+
+
+_render_function = render
+
+
+def __getattr__(name):
+    if name == 'render_tree':
+        from .render import render_tree
+        _rebind()
+        return render_tree
+    raise AttributeError('module raster.svg has no attribute %r' % name)

@@ -196,7 +196,7 @@ navajowhite ffdead navy 000080 oldlace fdf5e6 olive 808000 olivedrab 6b8e23
 orange ffa500 orangered ff4500 orchid da70d6 palegoldenrod eee8aa
 palegreen 98fb98 paleturquoise afeeee palevioletred db7093
 papayawhip ffefd5 peachpuff ffdab9 peru cd853f pink ffc0cb plum dda0dd
-powderblue b0e0e6 purple 800080 red ff0000 rosybrown bc8f8f royalblue 4169e1
+powderblue b0e0e6 purple 800080 rebeccapurple 663399 red ff0000 rosybrown bc8f8f royalblue 4169e1
 saddlebrown 8b4513 salmon fa8072 sandybrown f4a460 seagreen 2e8b57
 seashell fff5ee sienna a0522d silver c0c0c0 skyblue 87ceeb slateblue 6a5acd
 slategray 708090 slategrey 708090 snow fffafa springgreen 00ff7f

@@ -1,0 +1,196 @@
+"""Shared plumbing of the command-line tools.
+
+* :func:`run` wraps a command's body: a :class:`~raster.errors.RasterError`,
+  an :class:`OSError` (or any other failure) becomes one line
+  ``<prog>: error: <message>`` on stderr and exit status 1, never a
+  traceback; usage errors from :mod:`argparse` exit with status 2.
+* :func:`read_source` reads a file or ``-`` (stdin) as bytes, gunzipping
+  ``.svgz`` (gzip) data.
+* :func:`write_output` writes bytes to a file atomically (a temporary file in
+  the target directory, renamed into place, removed on failure, so a failed
+  run never leaves a partial file at the output path) or to stdout for ``-``.
+"""
+
+import argparse
+import gzip
+import io
+import os
+import sys
+import tempfile
+import zlib
+
+from raster.errors import RasterError, SVGError
+
+#: Largest decompressed .svgz document accepted (bytes).
+MAX_SVG_BYTES = 256 * 1024 * 1024
+
+
+class UsageError(Exception):
+    """Bad combination of arguments found after parsing (exit status 2)."""
+
+
+class Parser(argparse.ArgumentParser):
+    """ArgumentParser that raises :class:`SystemExit` (2) with its usual
+    message; :func:`run` turns that into a return value."""
+
+
+def _one_line(msg):
+    msg = ' '.join(str(msg).split())
+    return msg or 'unknown error'
+
+
+def error_message(exc):
+    """One-line description of an exception for the user."""
+    if isinstance(exc, OSError):
+        parts = [exc.strerror or str(exc)]
+        if exc.filename:
+            parts.append(str(exc.filename))
+        return _one_line(': '.join(parts[::-1]) if exc.filename else parts[0])
+    if isinstance(exc, MemoryError):
+        return 'out of memory'
+    if isinstance(exc, RasterError):
+        return _one_line(exc)
+    return _one_line('internal error: %s: %s' % (type(exc).__name__, exc))
+
+
+def run(prog, body, parser, argv):
+    """Parse ``argv`` with ``parser`` and call ``body(args)``.
+
+    Returns the exit status: ``body``'s return value (default 0), 1 after an
+    error (one line on stderr), 2 for usage errors."""
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as e:
+        return e.code if isinstance(e.code, int) else 2
+    try:
+        rc = body(args)
+    except UsageError as e:
+        parser.print_usage(sys.stderr)
+        print('%s: error: %s' % (prog, _one_line(e)), file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print('%s: error: interrupted' % prog, file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        return 1
+    except Exception as e:      # never a traceback: one line, status 1
+        print('%s: error: %s' % (prog, error_message(e)), file=sys.stderr)
+        return 1
+    return 0 if rc is None else int(rc)
+
+
+def read_source(path):
+    """Bytes of ``path`` (``-``: stdin), decompressed when gzip-compressed.
+
+    Raises
+    ------
+    OSError
+        The file cannot be read.
+    SVGError
+        Corrupt gzip data or a document beyond :data:`MAX_SVG_BYTES`.
+    """
+    if path == '-':
+        data = sys.stdin.buffer.read()
+    else:
+        with open(path, 'rb') as f:
+            data = f.read()
+    if data[:2] == b'\x1f\x8b':
+        try:
+            with gzip.GzipFile(fileobj=io.BytesIO(data)) as g:
+                data = g.read(MAX_SVG_BYTES + 1)
+        except (OSError, EOFError, zlib.error) as e:
+            raise SVGError('corrupt gzip data: %s' % _one_line(e)) from None
+        if len(data) > MAX_SVG_BYTES:
+            raise SVGError('decompressed document exceeds %d bytes' % MAX_SVG_BYTES)
+    return data
+
+
+def base_dir_of(path):
+    """Directory against which a document's relative references resolve."""
+    if path == '-':
+        return os.getcwd()
+    return os.path.dirname(os.path.abspath(path))
+
+
+def write_output(path, data):
+    """Write ``data`` (bytes) to ``path`` atomically, or to stdout for ``-``."""
+    if path == '-':
+        sys.stdout.buffer.write(data)
+        sys.stdout.buffer.flush()
+        return
+    target = os.path.abspath(path)
+    d = os.path.dirname(target)
+    fd, tmp = tempfile.mkstemp(prefix='.%s.' % os.path.basename(target), suffix='.tmp', dir=d)
+    try:
+        with os.fdopen(fd, 'wb') as f:
+            f.write(data)
+        os.replace(tmp, target)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
+
+
+def write_text(path, text):
+    write_output(path, text.encode('utf-8'))
+
+
+def drawn_shapes(tree):
+    """Every painted path of a resolved tree in drawing order.
+
+    Yields ``(node, transform)``: a :class:`~raster.svg.tree.PathNode` with a
+    fill or a stroke, and the transform mapping its coordinates to the
+    tree's document pixels.  Descends into groups and marker instances (not
+    into clip paths, masks or patterns, which are not drawn themselves)."""
+    from raster.svg.tree import Group, PathNode
+    from raster.transform import IDENTITY
+    stack = [(tree.root, IDENTITY)]
+    while stack:
+        n, t = stack.pop()
+        if isinstance(n, Group):
+            t2 = t @ n.transform
+            stack.extend((c, t2) for c in reversed(n.children))
+        elif isinstance(n, PathNode):
+            if n.path is not None and (n.fill is not None or n.stroke is not None):
+                yield n, t
+            if n.markers is not None:
+                stack.append((n.markers, t))
+
+
+def subtree_shapes(node, t):
+    """Like :func:`drawn_shapes` for the subtree of one node whose parent
+    coordinates map to document px by ``t``."""
+    from raster.svg.tree import Group, Tree
+    for n, tt in drawn_shapes(Tree(1.0, 1.0, Group(children=[node]))):
+        yield n, t @ tt
+
+
+def node_transforms(tree):
+    """``{id(node): transform to document px}`` of every node of the tree,
+    markers included (the transform of the node's own coordinates)."""
+    from raster.svg.tree import Group, PathNode
+    from raster.transform import IDENTITY
+    out = {}
+    stack = [(tree.root, IDENTITY)]
+    while stack:
+        n, t = stack.pop()
+        out[id(n)] = t
+        if isinstance(n, Group):
+            t2 = t @ n.transform
+            stack.extend((c, t2) for c in reversed(n.children))
+        elif isinstance(n, PathNode) and n.markers is not None:
+            stack.append((n.markers, t))
+    return out
+
+
+def user_to_doc(tree):
+    """The root's user space to document px (the root group's transform)."""
+    return tree.root.transform
+
+
+def hex_color(rgba):
+    """``'#rrggbb'`` of straight RGBA floats (alpha dropped)."""
+    r, g, b = (max(0, min(255, int(round(float(v) * 255)))) for v in rgba[:3])
+    return '#%02x%02x%02x' % (r, g, b)

@@ -1,0 +1,410 @@
+"""``curve``: evaluate, tabulate and plot parametric curves from the command
+line.
+
+Examples::
+
+    curve bezier "1,1 2,3 4,3 6,4" --at 0,0.25,0.5,0.75,1
+    curve bezier "1,1 2,3 4,3 6,4" --step 0.2 --tangent --json
+    curve hermite "0,0 1,0" --tangents "0,3 0,-3" --poly
+    curve catmull-rom "0,0 1,2 3,2 4,0" --continuity --plot cr.png
+    curve kochanek-bartels "0,0 1,2 3,2 4,0" --tension 0.2 --continuity 0.5 --bias 0
+    curve bspline "0,0 1,2 3,2 4,0 5,1" --degree 2 --knots 0,0,0,1,2,3,3,3 --at 0.5,2.5
+    curve beta "0,0 1,2 3,2 4,0 5,1" --bias 2 --tension 1 --blend
+    curve natural "0,0 1,1 2,0 3,1" --function --at 0.5,1.5
+
+Points are separated by spaces (or semicolons); coordinates by commas; all
+points have 2 or 3 coordinates (3-D curves are plotted projected onto x, y).
+Without ``--at`` or ``--step`` the domain is sampled at 11 even steps.
+
+``--continuity`` without a value reports the continuity at every joint; for
+``kochanek-bartels`` a value (``--continuity 0.5``) sets the KB continuity
+parameter instead (use ``--joints`` for the report).
+
+Usage and input errors print one line on stderr and exit with status 2.
+"""
+
+import argparse
+import json
+import math
+import re
+import sys
+
+import numpy as np
+
+FAMILIES = ('bezier', 'hermite', 'cardinal', 'catmull-rom', 'kochanek-bartels', 'bspline',
+            'beta', 'natural')
+
+
+class UsageError(Exception):
+    """Bad command-line input (exit status 2)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        raise UsageError(message)
+
+
+def _number(text, what):
+    try:
+        v = float(text)
+    except ValueError:
+        raise UsageError('cannot parse %s %r as a number' % (what, text)) from None
+    if not math.isfinite(v):
+        raise UsageError('%s must be finite, got %r' % (what, text))
+    return v
+
+
+def parse_numbers(text, what='value'):
+    """'0,0.25,1' -> [0.0, 0.25, 1.0]."""
+    parts = [p for p in re.split(r'[,\s]+', text.strip()) if p]
+    if not parts:
+        raise UsageError('no %s given' % what)
+    return [_number(p, what) for p in parts]
+
+
+def parse_points(text, what='points'):
+    """'1,1 2,3 4,3' -> (N, D) float64 array (D the same for every point)."""
+    groups = [g for g in re.split(r'[\s;]+', text.strip()) if g]
+    if not groups:
+        raise UsageError('no %s given' % what)
+    pts = []
+    for g in groups:
+        coords = [c for c in g.split(',') if c != '']
+        pts.append([_number(c, 'coordinate') for c in coords])
+    dims = {len(p) for p in pts}
+    if len(dims) != 1:
+        raise UsageError('all %s must have the same number of coordinates' % what)
+    return np.array(pts, dtype=np.float64)
+
+
+def _per_key(text, what):
+    v = parse_numbers(text, what)
+    return v[0] if len(v) == 1 else v
+
+
+def build_parser():
+    p = _Parser(prog='curve', description='Evaluate and plot parametric curves '
+                '(Bezier, Hermite, cardinal, Catmull-Rom, Kochanek-Bartels, B-spline, '
+                'Beta-spline, natural cubic spline).')
+    p.add_argument('family', choices=FAMILIES, help='curve family')
+    p.add_argument('points', help='control points / keys, e.g. "1,1 2,3 4,3 6,4"')
+    g = p.add_argument_group('sampling')
+    g.add_argument('--at', help='comma-separated parameter values (x values with --function)')
+    g.add_argument('--step', help='sample the domain evenly with this step')
+    o = p.add_argument_group('output')
+    o.add_argument('--poly', action='store_true', help='print the polynomial form')
+    o.add_argument('--tangent', action='store_true', help='add tangents and slopes dy/dx')
+    o.add_argument('--blend', action='store_true', help='print blending-function values')
+    o.add_argument('--json', action='store_true', help='print JSON instead of tables')
+    o.add_argument('--plot', metavar='OUT', help='draw the curve to OUT.png or OUT.svg')
+    o.add_argument('--size', default='640', help='plot width in pixels (default 640)')
+    o.add_argument('--continuity', nargs='?', const=True, default=None,
+                   help='report joint continuity (kochanek-bartels: with a value, the '
+                   'continuity parameter)')
+    o.add_argument('--joints', action='store_true', help='report joint continuity')
+    o.add_argument('--tolerance', default='1e-9',
+                   help='relative tolerance of the continuity report (default 1e-9)')
+    s = p.add_argument_group('shape')
+    s.add_argument('--tangents', help='hermite: end tangents "tx0,ty0 tx1,ty1" (one per point)')
+    s.add_argument('--tension', help='cardinal, kochanek-bartels (per key allowed), '
+                   'beta (beta2, default 0)')
+    s.add_argument('--bias', help='kochanek-bartels (per key allowed), beta (beta1, default 1)')
+    s.add_argument('--ends', default='duplicate', choices=('duplicate', 'interior', 'closed'),
+                   help='cardinal/catmull-rom/kochanek-bartels end handling')
+    s.add_argument('--degree', default='3', help='bspline degree (default 3)')
+    s.add_argument('--knots', help='bspline knot vector k0,k1,... (default clamped uniform '
+                   'on [0, 1])')
+    s.add_argument('--closed', action='store_true', help='bspline/beta: closed (periodic) curve')
+    s.add_argument('--function', action='store_true',
+                   help='natural: points are (x, y) samples of a function y(x)')
+    s.add_argument('--param', default='chord', choices=('uniform', 'chord', 'centripetal'),
+                   help='natural (parametric): parameterization (default chord)')
+    s.add_argument('--end-tangents', help='natural: clamped end tangents "a b" (slopes with '
+                   '--function, vectors "tx0,ty0 tx1,ty1" otherwise)')
+    return p
+
+
+# -- building curves -----------------------------------------------------------
+def _unused(args, allowed):
+    names = {'tangents': '--tangents', 'tension': '--tension', 'bias': '--bias',
+             'knots': '--knots', 'end_tangents': '--end-tangents'}
+    for attr, flag in names.items():
+        if getattr(args, attr) is not None and attr not in allowed:
+            raise UsageError('%s does not apply to %s' % (flag, args.family))
+    if args.continuity not in (None, True) and args.family != 'kochanek-bartels':
+        raise UsageError('--continuity takes no value for %s' % args.family)
+
+
+def build_curve(args):
+    """The curve object described by the parsed arguments."""
+    from raster import curves as C
+    fam = args.family
+    pts = parse_points(args.points)
+    if pts.shape[1] not in (2, 3):
+        raise UsageError('points must have 2 or 3 coordinates, got %d' % pts.shape[1])
+    if fam == 'bezier':
+        _unused(args, ())
+        if len(pts) < 2:
+            raise UsageError('a Bezier curve needs at least 2 control points, got %d' % len(pts))
+        return C.Bezier(pts)
+    if fam == 'hermite':
+        _unused(args, ('tangents',))
+        if args.tangents is None:
+            raise UsageError('hermite needs --tangents "tx0,ty0 tx1,ty1"')
+        tans = parse_points(args.tangents, 'tangents')
+        if tans.shape != pts.shape:
+            raise UsageError('need one tangent per point (%d of dimension %d), got %d of %d'
+                             % (len(pts), pts.shape[1], len(tans), tans.shape[1]))
+        if len(pts) == 2:
+            return C.Hermite(pts[0], pts[1], tans[0], tans[1])
+        if len(pts) < 2:
+            raise UsageError('hermite needs at least 2 points')
+        return C.HermiteSpline(pts, tans[:-1], tans[1:])
+    if fam in ('cardinal', 'catmull-rom'):
+        _unused(args, ('tension',) if fam == 'cardinal' else ())
+        tension = _number(args.tension, 'tension') if args.tension is not None else 0.0
+        return C.CardinalSpline(pts, tension, args.ends)
+    if fam == 'kochanek-bartels':
+        _unused(args, ('tension', 'bias'))
+        kw = {}
+        if args.tension is not None:
+            kw['tension'] = _per_key(args.tension, 'tension')
+        if args.bias is not None:
+            kw['bias'] = _per_key(args.bias, 'bias')
+        if args.continuity not in (None, True):
+            kw['continuity'] = _per_key(args.continuity, 'continuity')
+        return C.KochanekBartels(pts, ends=args.ends, **kw)
+    if fam == 'bspline':
+        _unused(args, ('knots',))
+        deg = _number(args.degree, 'degree')
+        if deg != int(deg) or deg < 0:
+            raise UsageError('--degree must be a non-negative integer, got %r' % args.degree)
+        knots = parse_numbers(args.knots, 'knot') if args.knots is not None else None
+        return C.BSpline(pts, int(deg), knots, closed=args.closed)
+    if fam == 'beta':
+        _unused(args, ('tension', 'bias'))
+        b1 = _number(args.bias, 'bias') if args.bias is not None else 1.0
+        b2 = _number(args.tension, 'tension') if args.tension is not None else 0.0
+        return C.BetaSpline(pts, b1, b2, closed=args.closed)
+    # natural
+    _unused(args, ('end_tangents',))
+    if args.function:
+        if pts.shape[1] != 2:
+            raise UsageError('--function needs x,y samples')
+        ends = None
+        if args.end_tangents is not None:
+            ends = parse_numbers(args.end_tangents, 'end slope')
+            if len(ends) != 2:
+                raise UsageError('--end-tangents needs two slopes with --function')
+        return C.FunctionSpline(pts[:, 0], pts[:, 1], ends)
+    ends = None
+    if args.end_tangents is not None:
+        ends = parse_points(args.end_tangents, 'end tangents')
+        if ends.shape != (2, pts.shape[1]):
+            raise UsageError('--end-tangents needs two vectors of dimension %d' % pts.shape[1])
+    return C.NaturalSpline(pts, args.param, ends)
+
+
+def sample_params(args, curve):
+    lo, hi = curve.domain
+    if args.at is not None and args.step is not None:
+        raise UsageError('use either --at or --step')
+    if args.at is not None:
+        return np.array(parse_numbers(args.at, 'parameter'))
+    if args.step is not None:
+        h = _number(args.step, 'step')
+        if h <= 0:
+            raise UsageError('--step must be positive')
+        n = int(math.floor((hi - lo) / h + 1e-9)) + 1
+        if n > 1_000_000:
+            raise UsageError('--step %g gives too many samples (%d)' % (h, n))
+        return lo + h * np.arange(n)
+    return np.linspace(lo, hi, 11)
+
+
+# -- derived data --------------------------------------------------------------
+def blending(curve, t):
+    """(names, (M, K) values) of the family's blending functions at t."""
+    from raster import curves as C
+    if isinstance(curve, C.Bezier):
+        return ['B%d,%d' % (curve.degree, i) for i in range(curve.degree + 1)], curve.blending(t)
+    if isinstance(curve, C.BSpline):
+        N = len(curve.ctrl)
+        return ['N%d,%d' % (i, curve.degree) for i in range(N)], curve.basis(t)
+    if isinstance(curve, C.BetaSpline):
+        return ['b-2', 'b-1', 'b0', 'b1'], curve.blending(t)
+    if isinstance(curve, C.CardinalSpline):
+        return ['P(i-1)', 'P(i)', 'P(i+1)', 'P(i+2)'], curve.blending(t)
+    if isinstance(curve, C.HermiteSpline):
+        lo, hi = curve.domain
+        ta = np.asarray(t, dtype=np.float64)
+        if np.any(ta < lo) or np.any(ta > hi):
+            curve.eval(ta)          # raises the domain error
+        u = ta - np.clip(np.floor(ta), 0, len(curve.points) - 2)
+        return ['h00', 'h01', 'h10', 'h11'], C.hermite_blend(u)
+    raise UsageError('%s splines have no blending functions (global interpolation)'
+                     % type(curve).__name__)
+
+
+def _fmt_poly(coef, var='u'):
+    terms = []
+    for k, c in enumerate(coef):
+        if abs(c) < 1e-13 * max(1.0, np.abs(coef).max()):
+            continue
+        mono = '' if k == 0 else (var if k == 1 else '%s^%d' % (var, k))
+        mag = abs(c)
+        num = '%.10g' % mag
+        body = num if not mono else (mono if num == '1' else '%s*%s' % (num, mono))
+        terms.append(('-' if c < 0 else '+', body))
+    if not terms:
+        return '0'
+    out = ('-' if terms[0][0] == '-' else '') + terms[0][1]
+    for sgn, body in terms[1:]:
+        out += ' %s %s' % (sgn, body)
+    return out
+
+
+def polynomials(curve):
+    """List of (segment, (a, b), (n+1, D) power coefficients in the local
+    parameter u = (t - a) / (b - a))."""
+    from raster.curves import bernstein_matrix
+    pb = curve.to_beziers()
+    m = bernstein_matrix(pb.degree)
+    return [(s, (float(pb.breaks[s]), float(pb.breaks[s + 1])), m @ pb.ctrl[s])
+            for s in range(len(pb))]
+
+
+def _jnum(v):
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
+def compute(args, curve):
+    from raster.curves import FunctionSpline
+    t = sample_params(args, curve)
+    pts = np.atleast_2d(curve.eval(t))
+    res = {'t': t, 'points': pts}
+    if args.tangent:
+        res['tangents'] = np.atleast_2d(curve.tangent(t))
+        d = res['tangents']
+        with np.errstate(divide='ignore', invalid='ignore'):
+            res['slopes'] = d[:, 1] / d[:, 0]
+    if args.blend:
+        res['blend_names'], res['blend'] = blending(curve, t)
+    if args.poly:
+        res['poly'] = polynomials(curve)
+    if args.joints or args.continuity is True:
+        tol = _number(args.tolerance, 'tolerance')
+        res['joints'] = curve.continuity(tol)
+    res['function'] = isinstance(curve, FunctionSpline)
+    return res
+
+
+def describe(args, curve):
+    pb = curve.to_beziers()
+    lo, hi = curve.domain
+    pts = curve.points if hasattr(curve, 'points') else curve.ctrl
+    return ('%s: %d points (%d-D), %d Bezier segment%s of degree %d, %s in [%g, %g]'
+            % (args.family, len(pts), pts.shape[1], len(pb), '' if len(pb) == 1 else 's',
+               pb.degree, 'x' if args.function and args.family == 'natural' else 't', lo, hi))
+
+
+def print_text(args, curve, res, out):
+    from raster.curves import format_joints
+    print(describe(args, curve), file=out)
+    D = res['points'].shape[1]
+    var = 'x' if res['function'] else 't'
+    axes = ['x', 'y', 'z'][:D]
+    cols = [var] + ([] if res['function'] else axes)
+    if res['function']:
+        cols.append('y')
+    if args.tangent:
+        cols += ['d' + a for a in axes] + ['dy/dx']
+    if args.blend:
+        cols += res['blend_names']
+    print(' '.join('%12s' % c for c in cols), file=out)
+    for m, tv in enumerate(res['t']):
+        row = [tv] + (res['points'][m].tolist() if not res['function']
+                      else [res['points'][m, 1]])
+        if args.tangent:
+            row += res['tangents'][m].tolist() + [res['slopes'][m]]
+        if args.blend:
+            row += res['blend'][m].tolist()
+        print(' '.join('%12.6g' % v for v in row), file=out)
+    if args.poly:
+        print('polynomial form (u = (t - a) / (b - a) on each segment [a, b]):'
+              if len(res['poly']) > 1 or res['poly'][0][1] != (0.0, 1.0)
+              else 'polynomial form (u = t):', file=out)
+        for s, (a, b), coef in res['poly']:
+            if len(res['poly']) > 1:
+                print('segment %d, [%g, %g]:' % (s, a, b), file=out)
+            for d, name in enumerate(axes[:coef.shape[1]]):
+                print('  %s(u) = %s' % (name, _fmt_poly(coef[:, d])), file=out)
+    if 'joints' in res:
+        print(format_joints(res['joints']), file=out)
+
+
+def to_json(args, curve, res):
+    pts = curve.points if hasattr(curve, 'points') else curve.ctrl
+    lo, hi = curve.domain
+    pb = curve.to_beziers()
+    obj = {'curve': args.family, 'dimension': int(res['points'].shape[1]),
+           'degree': int(pb.degree), 'segments': len(pb), 'domain': [lo, hi],
+           'control_points': pts.tolist(), 'points': []}
+    for m, tv in enumerate(res['t']):
+        item = {'t': float(tv), 'point': res['points'][m].tolist()}
+        if args.tangent:
+            item['tangent'] = res['tangents'][m].tolist()
+            item['slope'] = _jnum(res['slopes'][m])
+        if args.blend:
+            item['blend'] = res['blend'][m].tolist()
+        obj['points'].append(item)
+    if args.blend:
+        obj['blend_names'] = res['blend_names']
+    if args.poly:
+        obj['polynomial'] = [{'segment': s, 'interval': [a, b],
+                              'coefficients': coef.T.tolist()}
+                             for s, (a, b), coef in res['poly']]
+    if 'joints' in res:
+        obj['joints'] = [{'index': j.index, 't': j.t, 'C': j.C, 'G': j.G, 'gap': j.gap,
+                          'angle': _jnum(j.angle), 'curvature_jump': _jnum(j.curvature_jump)}
+                         for j in res['joints']]
+    if args.plot:
+        obj['plot'] = args.plot
+    # one key per line, values compact
+    return '{\n' + ',\n'.join(' %s: %s' % (json.dumps(k), json.dumps(v))
+                              for k, v in obj.items()) + '\n}'
+
+
+def main(argv=None):
+    """Entry point; returns the exit status (0 ok, 1 output failure, 2 bad
+    input)."""
+    from raster.errors import RasterError
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+        curve = build_curve(args)
+        res = compute(args, curve)
+        if args.plot:
+            from raster.curves.plot import plot_curve
+            size = _number(args.size, 'size')
+            if size != int(size) or not 16 <= size <= 8000:
+                raise UsageError('--size must be an integer between 16 and 8000')
+            plot_curve(curve, args.plot, params=res['t'], width=int(size),
+                       label_var='x' if res['function'] else 't')
+        if args.json:
+            print(to_json(args, curve, res))
+        else:
+            print_text(args, curve, res, sys.stdout)
+    except (UsageError, RasterError) as e:
+        msg = str(e).splitlines()[0] if str(e) else type(e).__name__
+        print('curve: error: %s' % msg, file=sys.stderr)
+        return 2
+    except OSError as e:
+        print('curve: error: %s' % e, file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

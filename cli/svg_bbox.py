@@ -1,0 +1,137 @@
+"""svg-bbox: exact bounding boxes of an SVG document and its elements.
+
+    svg-bbox in.svg [--id ID] [--stroke]
+
+Prints JSON ``{"units": "user", "document": [xmin, ymin, xmax, ymax],
+"elements": {id: [xmin, ymin, xmax, ymax], ...}}``.  Boxes are in the root
+``<svg>`` element's user units (its ``viewBox`` coordinates, or CSS px
+without one), x right and y down.  ``document`` is the union of every drawn
+shape; ``elements`` holds every element with an id that draws something
+(the union of its shapes; null when it draws nothing).  Boxes are of the
+geometry (fill area) unless ``--stroke`` is given, which includes the
+stroke outlines (joins, caps, dashes).  ``--id`` reports only that element
+(an unknown id is an error).
+"""
+
+import json
+import sys
+
+from ._common import (Parser, base_dir_of, drawn_shapes, node_transforms, read_source, run,
+                      subtree_shapes, user_to_doc, write_text)
+
+PROG = 'svg-bbox'
+
+#: Tolerance (user units) of stroke outlines when an exact stroke box is not
+#: available.
+STROKE_TOLERANCE = 1e-4
+
+
+def shape_box(node, t, with_stroke=False):
+    """Box (x0, y0, x1, y1) of one PathNode under ``t``, or None."""
+    from raster.errors import RasterError
+    path = node.path
+    if path is None or len(path.verbs) == 0:
+        return None
+    boxes = []
+    if node.fill is not None or not with_stroke or node.stroke is None:
+        boxes.append(_path_box(path, t))
+    if with_stroke and node.stroke is not None:
+        from raster.stroke import StrokeStyle, stroke
+        s = node.stroke
+        style = StrokeStyle(width=s.width, join=s.join, cap=s.cap, miterlimit=s.miterlimit,
+                            dash=s.dash, dash_offset=s.dash_offset)
+        box = None
+        try:
+            from raster.bbox import bbox as exact
+            box = tuple(exact(path, transform=t, stroke=style))
+        except (ImportError, TypeError, RasterError, AttributeError):
+            out = stroke(path, style, transform=t, tolerance=STROKE_TOLERANCE)
+            if len(out.points):
+                box = out.control_box()
+        if box is not None:
+            boxes.append(box)
+        elif node.fill is None:
+            boxes.append(_path_box(path, t))
+    return _union_all(boxes)
+
+
+def _path_box(path, t):
+    from raster.errors import RasterError
+    try:
+        from raster.bbox import bbox as exact
+        return tuple(float(v) for v in exact(path, transform=t))
+    except (ImportError, TypeError, AttributeError):
+        pass
+    except RasterError:
+        return None
+    from raster.flatten import flatten
+    pts = flatten(path, 1e-6, transform=t).points
+    if len(pts) == 0:
+        return None
+    lo, hi = pts.min(0), pts.max(0)
+    return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+
+
+def _union_all(boxes):
+    boxes = [b for b in boxes if b is not None]
+    if not boxes:
+        return None
+    return (min(b[0] for b in boxes), min(b[1] for b in boxes),
+            max(b[2] for b in boxes), max(b[3] for b in boxes))
+
+
+def boxes(tree, with_stroke=False, only_id=None):
+    """``{'units': 'user', 'document': box, 'elements': {id: box}}`` in the
+    root's user units; boxes are ``[x0, y0, x1, y1]`` lists or None."""
+    from raster.errors import SVGError
+    to_user = user_to_doc(tree).inverse()
+    doc = _union_all(shape_box(n, to_user @ t, with_stroke) for n, t in drawn_shapes(tree))
+    ids = dict(tree.ids) if isinstance(tree.ids, dict) else {}
+    if only_id is not None:
+        if only_id not in ids:
+            raise SVGError('no element with id %r' % (only_id,))
+        ids = {only_id: ids[only_id]}
+    trans = node_transforms(tree)
+    elements = {}
+    for key in sorted(ids):
+        node = ids[key]
+        t = trans.get(id(node))
+        if t is None:            # defined but not part of the drawn tree
+            elements[key] = None
+            continue
+        b = _union_all(shape_box(n, to_user @ tt, with_stroke) for n, tt in subtree_shapes(node, t))
+        elements[key] = _fmt(b)
+    return {'units': 'user', 'document': _fmt(doc), 'elements': elements}
+
+
+def _fmt(b):
+    if b is None:
+        return None
+    return [round(float(v), 9) + 0.0 for v in b]
+
+
+def build_parser():
+    ap = Parser(prog=PROG, description='Exact bounding boxes of an SVG document and of its '
+                'elements with an id, in the root user units, as JSON.')
+    ap.add_argument('input', help='SVG or SVGZ file, or - for stdin')
+    ap.add_argument('--id', metavar='ID', help='report only this element')
+    ap.add_argument('--stroke', action='store_true', help='include stroke outlines')
+    ap.add_argument('-o', '--output', default='-', help='output file (default: stdout)')
+    return ap
+
+
+def _body(args):
+    from raster.svg import load_svg
+    data = read_source(args.input)
+    tree = load_svg(data, base_dir=base_dir_of(args.input))
+    result = boxes(tree, args.stroke, args.id)
+    write_text(args.output, json.dumps(result, indent=1) + '\n')
+    return 0
+
+
+def main(argv=None):
+    return run(PROG, _body, build_parser(), argv)
+
+
+if __name__ == '__main__':
+    sys.exit(main())

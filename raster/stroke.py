@@ -1,0 +1,793 @@
+"""Stroke outlines: offsets, joins, caps and dashes.
+
+:func:`stroke` turns a :class:`~raster.path.Path` and a :class:`StrokeStyle`
+into a new path of closed polygons (``MOVE``/``LINE``/``CLOSE`` only) whose
+**nonzero** fill is the stroked region.
+
+How the outline is built
+------------------------
+The geometry is computed in the path's *user space*, so that a non-uniform
+scale or a skew in ``transform`` turns round caps into ellipses and widens a
+stroke along the stretched axis, as SVG requires; the finished outline is then
+mapped by ``transform``.  Curves are flattened and arcs are polygonized with
+``tolerance / transform.max_scale()`` user units, so the error measured in
+device pixels stays within ``tolerance``.
+
+Instead of tracing one offset curve around the stroke (which needs a
+self-intersection clean-up), the outline is a *union of small convex
+pieces*, all built at once as numpy arrays:
+
+* one quadrilateral per segment (the segment swept by the pen's width);
+* one wedge per join, on the outer side of the turn: a triangle (bevel), a
+  quadrilateral (miter), a pentagon (clipped miter) or a fan (round);
+* one piece per cap (a rectangle for ``square``, a half-disc fan for
+  ``round``), and a disc or a square for a subpath of zero length.
+
+Every piece is oriented the same way (positive shoelace area in user space;
+a transform with a negative determinant flips them all together), so the
+winding number of a point is the number of pieces covering it, and the
+nonzero rule fills exactly their union: overlapping joins, inner corners,
+cusps and self-overlapping strokes need no special case.
+
+Joins *inside* a flattened curve (between the chords of one Bezier segment)
+are always round, whatever the join style, so curves stay smooth; since a
+round join is polygonized within the tolerance, such joins are usually single
+bevel triangles.
+
+Dashes
+------
+:func:`dash_polylines` cuts the flattened polylines (user space) at the dash
+boundaries, with cumulative arc length and :func:`numpy.searchsorted`, for
+all subpaths at once.  The pattern restarts at the start of every subpath.  A
+closed subpath is dashed as one line running from its start point around to
+its start point again (closing segment included); the pieces are open, so a
+dash that runs through the start point becomes two dashes, each with its own
+caps (as in resvg).  Zero-length dashes are kept: they draw a dot (round cap)
+or a square oriented along the path (square cap).
+
+Coordinates are float64, x right and y down, as everywhere in raster.
+
+>>> from raster.path import Path
+>>> out = stroke(Path.polygon([(0, 0), (10, 0)], closed=False), width=2)
+>>> out.verbs.tolist()                       # one quad: M L L L Z
+[0, 1, 1, 1, 4]
+>>> out.control_box()
+(0.0, -1.0, 10.0, 1.0)
+"""
+
+import dataclasses
+import math
+from typing import NamedTuple, Optional, Tuple
+
+import numpy as np
+
+from .errors import LimitError, RasterError
+from .limits import MAX_FLATTEN_POINTS
+from .path import CLOSE, LINE, MOVE, Path
+from .transform import as_affine
+
+__all__ = ['StrokeStyle', 'Stroke', 'StrokeError', 'stroke', 'dash_polylines',
+           'dash_pattern', 'hairline_scale', 'DashedLines']
+
+JOINS = ('miter', 'miter-clip', 'round', 'bevel', 'arcs')
+CAPS = ('butt', 'round', 'square')
+
+#: Relative size (of the largest coordinate) below which two consecutive
+#: points are treated as one and a segment has no direction.
+_EPS_REL = 1e-10
+
+
+class StrokeError(RasterError, ValueError):
+    """Invalid stroke parameters: negative or non-finite width, unknown join
+    or cap, miter limit below 1, non-finite dash values or tolerance, a path
+    argument that is not a :class:`~raster.path.Path`."""
+
+
+# ---------------------------------------------------------------------------
+# style
+# ---------------------------------------------------------------------------
+
+def _finite(name, v):
+    try:
+        f = float(v)
+    except (TypeError, ValueError):
+        raise StrokeError('%s must be a number, got %r' % (name, v)) from None
+    if not math.isfinite(f):
+        raise StrokeError('%s must be finite, got %r' % (name, v))
+    return f
+
+
+@dataclasses.dataclass(frozen=True)
+class StrokeStyle:
+    """How to stroke a path (SVG ``stroke-*`` properties).
+
+    Parameters
+    ----------
+    width : float
+        Stroke width in user units, >= 0 (0 draws nothing).
+    join : {'miter', 'miter-clip', 'round', 'bevel', 'arcs'}
+        Line join.  ``'arcs'`` (SVG 2) falls back to ``'miter'``, as in
+        browsers.  ``'miter-clip'`` clips an over-long miter at
+        ``miterlimit * width / 2`` from the vertex instead of bevelling it.
+    cap : {'butt', 'round', 'square'}
+        Line cap at the ends of open subpaths and of dashes.
+    miterlimit : float
+        Limit of the ratio miter length / width, >= 1.
+    dash : sequence of float or None
+        Dash array in user units (see :func:`dash_pattern` for how invalid
+        arrays fall back to a solid stroke).  Stored as a tuple.
+    dash_offset : float
+        Distance into the dash pattern at which each subpath starts; any
+        finite value (it wraps around the pattern length).
+
+    Raises
+    ------
+    StrokeError
+        For a negative or non-finite width, an unknown join or cap, a miter
+        limit below 1 or non-finite, non-finite dash values or offset.
+
+    >>> StrokeStyle(width=2, dash=[1, 2, 3]).dash
+    (1.0, 2.0, 3.0)
+    >>> StrokeStyle(miterlimit=0.5)
+    Traceback (most recent call last):
+    ...
+    raster.stroke.StrokeError: miterlimit must be >= 1, got 0.5
+    """
+
+    width: float = 1.0
+    join: str = 'miter'
+    cap: str = 'butt'
+    miterlimit: float = 4.0
+    dash: Optional[Tuple[float, ...]] = None
+    dash_offset: float = 0.0
+
+    def __post_init__(self):
+        w = _finite('stroke width', self.width)
+        if w < 0:
+            raise StrokeError('stroke width must be >= 0, got %r' % (self.width,))
+        if self.join not in JOINS:
+            raise StrokeError('unknown line join %r (expected one of %s)'
+                              % (self.join, ', '.join(JOINS)))
+        if self.cap not in CAPS:
+            raise StrokeError('unknown line cap %r (expected one of %s)'
+                              % (self.cap, ', '.join(CAPS)))
+        ml = _finite('miterlimit', self.miterlimit)
+        if ml < 1:
+            raise StrokeError('miterlimit must be >= 1, got %r' % (self.miterlimit,))
+        dash = self.dash
+        if dash is not None:
+            if isinstance(dash, (str, bytes)):
+                raise StrokeError('dash must be a sequence of numbers, got %r' % (dash,))
+            try:
+                dash = tuple(_finite('dash value', v) for v in dash)
+            except TypeError:
+                raise StrokeError('dash must be a sequence of numbers, got %r'
+                                  % (dash,)) from None
+        object.__setattr__(self, 'width', w)
+        object.__setattr__(self, 'miterlimit', ml)
+        object.__setattr__(self, 'dash', dash)
+        object.__setattr__(self, 'dash_offset', _finite('dash offset', self.dash_offset))
+
+
+#: Short alias of :class:`StrokeStyle`.
+Stroke = StrokeStyle
+
+
+def dash_pattern(dash):
+    """The effective dash pattern of an SVG dash array, or None for solid.
+
+    Follows SVG: an odd-length array is repeated to even length; an empty
+    array, any negative value or an all-zero sum means a solid stroke.
+
+    Parameters
+    ----------
+    dash : sequence of float or None
+
+    Returns
+    -------
+    (2k,) float64 ndarray or None
+        Alternating dash and gap lengths.
+
+    Raises
+    ------
+    StrokeError
+        For non-finite values.
+
+    >>> dash_pattern([5, 2, 1]).tolist()
+    [5.0, 2.0, 1.0, 5.0, 2.0, 1.0]
+    >>> dash_pattern([4, -1]) is None, dash_pattern([0, 0]) is None
+    (True, True)
+    """
+    if dash is None:
+        return None
+    try:
+        d = np.asarray(dash, dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError):
+        raise StrokeError('dash must be a sequence of numbers, got %r' % (dash,)) from None
+    if not np.all(np.isfinite(d)):
+        raise StrokeError('dash values must be finite')
+    if len(d) == 0 or np.any(d < 0) or not d.sum() > 0:
+        return None
+    if len(d) % 2:
+        d = np.concatenate([d, d])
+    return d
+
+
+def hairline_scale(style, transform=None):
+    """Coverage factor for a stroke thinner than one device pixel.
+
+    A stroke whose device width ``style.width * transform.mean_scale()`` is
+    below 1 px is drawn as a 1 px wide stroke (user width
+    ``1 / transform.mean_scale()``) whose coverage is multiplied by the
+    returned factor, the device width.  This keeps very thin lines visible
+    and of the right average darkness instead of letting them break up into
+    sub-pixel slivers.
+
+    Parameters
+    ----------
+    style : StrokeStyle
+    transform : Affine or None
+        User space to device space.
+
+    Returns
+    -------
+    float or None
+        The factor in (0, 1), or None when no hairline treatment applies
+        (device width >= 1 px, or zero: a zero width or a singular transform
+        draws nothing).
+
+    >>> from raster.transform import Affine
+    >>> hairline_scale(StrokeStyle(width=0.5), Affine.scale(1.5))
+    0.75
+    >>> hairline_scale(StrokeStyle(width=2.0)) is None
+    True
+    """
+    w = style.width * as_affine(transform).mean_scale()
+    if 0.0 < w < 1.0:
+        return float(w)
+    return None
+
+
+# ---------------------------------------------------------------------------
+# polylines
+# ---------------------------------------------------------------------------
+
+class DashedLines(NamedTuple):
+    """Open polylines produced by :func:`dash_polylines`.
+
+    Attributes
+    ----------
+    points : (N, 2) float64 ndarray
+        All vertices, polyline after polyline.
+    starts : (K,) int64 ndarray
+        Index of each polyline's first vertex in ``points``.
+    closed : (K,) bool ndarray
+        Always False (dashes are open).
+    tangent : (K, 2) float64 ndarray
+        Unit direction of the path where each dash starts (orients the
+        square cap of a zero-length dash).
+    """
+    points: np.ndarray
+    starts: np.ndarray
+    closed: np.ndarray
+    tangent: np.ndarray
+
+    def __iter__(self):
+        bounds = np.append(self.starts, len(self.points))
+        for k in range(len(self.starts)):
+            yield self.points[bounds[k]:bounds[k + 1]], bool(self.closed[k])
+
+
+class _Lines(NamedTuple):
+    """Internal polyline set (user space)."""
+    points: np.ndarray    # (N, 2)
+    starts: np.ndarray    # (C,) int64
+    counts: np.ndarray    # (C,) int64, >= 1
+    closed: np.ndarray    # (C,) bool
+    smooth: np.ndarray    # (N,) bool: vertex inside a flattened curve
+    tangent: np.ndarray   # (C, 2) direction used for a zero-length square cap
+
+
+def _starts(counts):
+    return np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.int64) \
+        if len(counts) else np.zeros(0, np.int64)
+
+
+def _ranges(counts):
+    """(owner, local) index arrays for consecutive blocks of ``counts``."""
+    counts = np.asarray(counts, dtype=np.int64)
+    owner = np.repeat(np.arange(len(counts)), counts)
+    local = np.arange(len(owner)) - np.repeat(_starts(counts), counts)
+    return owner, local
+
+
+def _check_size(n, what):
+    if n > MAX_FLATTEN_POINTS:
+        raise LimitError('stroke needs %d %s, more than the limit of %d'
+                         % (n, what, MAX_FLATTEN_POINTS))
+
+
+def _path_lines(path, tol):
+    """Flatten every segment of ``path`` within ``tol`` (user units) with
+    :func:`raster.flatten.flatten_beziers`, keeping track of which vertices
+    lie inside a curve (smooth joins).  Lone ``MOVE`` contours are dropped
+    (SVG does not stroke them)."""
+    from .flatten import flatten_beziers
+
+    seg = path.segments()
+    C = len(seg.contour_start)
+    S = len(seg.degree)
+    deg = seg.degree
+    n = np.ones(S, np.int64)                          # pieces per segment
+    seg_pts = [None, None, None, None]                # flattened points per degree
+    for k in (2, 3):
+        sel = deg == k
+        if np.any(sel):
+            p, cnt = flatten_beziers(seg.ctrl[sel, :k + 1], tol)
+            n[sel] = cnt - 1
+            first = _starts(cnt)
+            keep = np.ones(len(p), bool)
+            keep[first] = False                       # start = previous end point
+            seg_pts[k] = p[keep]
+    _check_size(float(n.sum()) + C, 'flattened points')
+
+    counts = np.bincount(seg.contour, weights=n, minlength=C).astype(np.int64) + 1
+    starts = _starts(counts)
+    N = int(counts.sum())
+    pts = np.empty((N, 2))
+    smooth = np.zeros(N, bool)
+    pts[starts] = seg.contour_start
+    if S:
+        sid, j = _ranges(n)
+        excl = _starts(n)
+        pos = excl[sid] + seg.contour[sid] + j + 1    # one start point per contour before
+        smooth[pos] = j < n[sid] - 1
+        lin = deg == 1
+        pts[pos[lin[sid]]] = seg.ctrl[lin, 1]
+        for k in (2, 3):
+            if seg_pts[k] is not None:
+                pts[pos[(deg == k)[sid]]] = seg_pts[k]
+    keep = (seg.contour_nseg > 0) | seg.contour_closed
+    tangent = np.zeros((C, 2))
+    tangent[:, 0] = 1.0
+    lines = _Lines(pts, starts, counts, seg.contour_closed.copy(), smooth, tangent)
+    return _select(lines, keep)
+
+
+def _select(lines, keep):
+    """Keep only the contours where ``keep`` is True."""
+    if np.all(keep):
+        return lines
+    cid = np.repeat(np.arange(len(lines.counts)), lines.counts)
+    vk = keep[cid]
+    counts = lines.counts[keep]
+    return _Lines(lines.points[vk], _starts(counts), counts, lines.closed[keep],
+                  lines.smooth[vk], lines.tangent[keep])
+
+
+def _clean(lines, eps):
+    """Merge runs of (nearly) equal consecutive points; for closed contours
+    also drop a last run equal to the first point (zero-length closing
+    segment).  A merged vertex is smooth only if every point of its run is."""
+    P, starts, counts = lines.points, lines.starts, lines.counts
+    N = len(P)
+    if N == 0:
+        return lines
+    cid = np.repeat(np.arange(len(counts)), counts)
+    first = np.zeros(N, bool)
+    first[starts] = True
+    step = np.empty(N)
+    step[0] = np.inf
+    step[1:] = np.hypot(*(P[1:] - P[:-1]).T)
+    head = first | (step > eps)                       # first point of each run
+    heads = np.flatnonzero(head)
+    smooth = np.logical_and.reduceat(lines.smooth, heads)
+    hc = cid[heads]
+    # closed contours: drop a final run that returns onto the first point
+    last = np.zeros(len(heads), bool)
+    last[:-1] = hc[1:] != hc[:-1]
+    last[-1] = True
+    back = last & lines.closed[hc] & ~first[heads] & \
+        (np.hypot(*(P[heads] - P[starts[hc]]).T) <= eps)
+    heads, smooth, hc = heads[~back], smooth[~back], hc[~back]
+    ncount = np.bincount(hc, minlength=len(counts)).astype(np.int64)
+    return _Lines(P[heads], _starts(ncount), ncount, lines.closed, smooth, lines.tangent)
+
+
+def _eps(points):
+    if len(points) == 0:
+        return 0.0
+    return _EPS_REL * max(float(np.abs(points).max()), 1e-300)
+
+
+def _unit(v):
+    ln = np.hypot(v[:, 0], v[:, 1])
+    with np.errstate(invalid='ignore', divide='ignore'):
+        u = v / ln[:, None]
+    u[~(ln > 0)] = (1.0, 0.0)
+    return u
+
+
+# ---------------------------------------------------------------------------
+# dashing
+# ---------------------------------------------------------------------------
+
+def _as_lines(polylines):
+    """Accept a :class:`raster.flatten.Polylines`-like object (``points``,
+    ``starts``, ``closed``), a :class:`DashedLines` or an internal _Lines."""
+    if isinstance(polylines, _Lines):
+        return polylines
+    try:
+        P = np.asarray(polylines.points, dtype=np.float64).reshape(-1, 2)
+        starts = np.asarray(polylines.starts, dtype=np.int64).reshape(-1)
+        closed = np.asarray(polylines.closed, dtype=bool).reshape(-1)
+    except (AttributeError, TypeError, ValueError):
+        raise StrokeError('expected polylines with points, starts and closed arrays') from None
+    if len(closed) != len(starts) or not np.all(np.isfinite(P)) or \
+            np.any(np.diff(np.append(starts, len(P))) < 1) or (len(starts) and starts[0] != 0):
+        raise StrokeError('malformed polylines (starts, closed and points disagree)')
+    counts = np.diff(np.append(starts, len(P))).astype(np.int64)
+    tangent = getattr(polylines, 'tangent', None)
+    if tangent is None:
+        tangent = np.tile([1.0, 0.0], (len(starts), 1))
+    return _Lines(P, starts, counts, closed, np.zeros(len(P), bool),
+                  np.asarray(tangent, dtype=np.float64).reshape(-1, 2))
+
+
+def _dash(lines, pattern, offset):
+    """Dash cleaned lines; returns open _Lines (tangent set per dash)."""
+    P, starts, counts, closed = lines.points, lines.starts, lines.counts, lines.closed
+    C = len(counts)
+    if C == 0:
+        return lines
+    # unroll closed contours: append the first point to draw the closing segment
+    cl = closed & (counts >= 2)
+    ucounts = counts + cl
+    ustarts = _starts(ucounts)
+    cid, loc = _ranges(ucounts)
+    src = starts[cid] + np.where(loc < counts[cid], loc, 0)
+    U = P[src]
+    usmooth = lines.smooth[src] & (loc < counts[cid]) & (loc > 0)
+    ulast = ustarts + ucounts - 1
+    # global arc length with a gap of 1 between contours (strictly increasing)
+    seglen = np.zeros(len(U))
+    seglen[1:] = np.hypot(*(U[1:] - U[:-1]).T)
+    seglen[ustarts] = 1.0
+    seglen[0] = 0.0
+    S = np.cumsum(seglen)
+    base = S[ustarts]
+    L = S[ulast] - base
+
+    period = float(pattern.sum())
+    cum = np.concatenate([[0.0], np.cumsum(pattern)])
+    on0, on1 = cum[0:-1:2], cum[1::2]             # dash intervals within a period
+    off = float(offset) % period
+    if not 0 <= off < period:
+        off = 0.0
+    K = np.floor((L + off) / period).astype(np.int64) + 1
+    _check_size(float(K.sum()) * len(on0), 'dashes')
+    kc, kk = _ranges(K)
+    a = (kk * period - off)[:, None] + on0[None, :]
+    b = (kk * period - off)[:, None] + on1[None, :]
+    dc = np.repeat(kc, len(on0))
+    a, b = a.reshape(-1), b.reshape(-1)
+    Lc = L[dc]
+    keep = ((a < Lc) & (b > 0)) | ((a == b) & (a >= 0) & (a <= Lc))
+    a, b, dc, Lc = a[keep], b[keep], dc[keep], Lc[keep]
+    a = np.clip(a, 0.0, Lc) + base[dc]
+    b = np.clip(b, 0.0, Lc) + base[dc]
+
+    lo_i = ustarts[dc]
+    hi_i = np.maximum(ulast[dc] - 1, lo_i)
+
+    def at(s):
+        i = np.clip(np.searchsorted(S, s, 'right') - 1, lo_i, hi_i)
+        j = np.minimum(i + 1, ulast[dc])
+        span = S[j] - S[i]
+        with np.errstate(invalid='ignore', divide='ignore'):
+            t = np.where(span > 0, (s - S[i]) / span, 0.0)
+        t = np.clip(t, 0.0, 1.0)[:, None]
+        return U[i] + t * (U[j] - U[i]), U[j] - U[i]
+
+    pa, da = at(a)
+    pb, _ = at(b)
+    j_lo = np.searchsorted(S, a, 'right')
+    j_hi = np.searchsorted(S, b, 'left')
+    nint = np.maximum(j_hi - j_lo, 0)
+    dcounts = nint + 2
+    _check_size(float(dcounts.sum()), 'dash points')
+    did, dl = _ranges(dcounts)
+    dstarts = _starts(dcounts)
+    out = np.empty((len(did), 2))
+    sm = np.zeros(len(did), bool)
+    inner = (dl > 0) & (dl < dcounts[did] - 1)
+    vi = j_lo[did[inner]] + dl[inner] - 1
+    out[inner] = U[vi]
+    sm[inner] = usmooth[vi]
+    out[dstarts] = pa
+    out[dstarts + dcounts - 1] = pb
+    tangent = _unit(da)
+    return _Lines(out, dstarts, dcounts, np.zeros(len(dcounts), bool), sm, tangent)
+
+
+def dash_polylines(polylines, dash, offset=0.0):
+    """Cut polylines into dashes.
+
+    Parameters
+    ----------
+    polylines : Polylines-like
+        Any object with ``points`` ((N, 2) float64), ``starts`` ((K,) int64,
+        first vertex of each polyline, ``starts[0] == 0``) and ``closed``
+        ((K,) bool), e.g. :class:`raster.flatten.Polylines`, in user units.
+    dash : sequence of float
+        SVG dash array (see :func:`dash_pattern`).
+    offset : float
+        Dash offset; negative or larger than the pattern length wraps.
+
+    Returns
+    -------
+    DashedLines
+        Open polylines, one per dash, in path order.  The pattern restarts
+        at each polyline; a closed polyline is dashed from its start point
+        around to the same point (dashes are not joined across the start).
+        With a solid pattern the polylines are returned unchanged (closed
+        ones stay closed).
+
+    >>> import numpy as np
+    >>> lines = DashedLines(np.array([[0., 0], [10, 0]]), np.array([0]),
+    ...                     np.array([False]), np.array([[1., 0]]))
+    >>> d = dash_polylines(lines, [3, 1])
+    >>> [p[:, 0].tolist() for p, c in d]
+    [[0.0, 3.0], [4.0, 7.0], [8.0, 10.0]]
+    """
+    lines = _as_lines(polylines)
+    pattern = dash_pattern(dash)
+    off = _finite('dash offset', offset)
+    if pattern is not None:
+        lines = _dash(_clean(lines, _eps(lines.points)), pattern, off)
+    return DashedLines(lines.points, lines.starts, lines.closed, lines.tangent)
+
+
+# ---------------------------------------------------------------------------
+# outline pieces
+# ---------------------------------------------------------------------------
+
+def _rot90(v):
+    """Rotate (.., 2) vectors by +90 degrees: (x, y) -> (-y, x)."""
+    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+
+
+def _arc_step(r, tol):
+    """Largest angle step (radians) whose chord stays within ``tol`` of a
+    circle of radius ``r``; at most pi/2."""
+    with np.errstate(divide='ignore', invalid='ignore'):
+        x = np.clip(1.0 - tol / r, -1.0, 1.0)
+    return np.minimum(2.0 * np.arccos(x), np.pi / 2)
+
+
+def _fans(center, u, sweep, r, tol):
+    """Fan polygons: centre, then the arc from ``center + u`` turning by
+    ``sweep`` radians (positive: from +x towards +y), within ``tol``.
+
+    Returns (points (M, 2), counts (F,))."""
+    F = len(center)
+    if F == 0:
+        return np.zeros((0, 2)), np.zeros(0, np.int64)
+    step = _arc_step(r, tol)
+    nf = np.maximum(np.ceil(np.abs(sweep) / step), 1.0)
+    _check_size(float(nf.sum()) + 2 * F, 'arc points')
+    n = nf.astype(np.int64)
+    counts = n + 2
+    fid, loc = _ranges(counts)
+    ang = sweep[fid] * (np.maximum(loc - 1, 0) / n[fid])
+    co, si = np.cos(ang), np.sin(ang)
+    uu = u[fid]
+    pts = center[fid] + np.stack([co * uu[:, 0] - si * uu[:, 1],
+                                  si * uu[:, 0] + co * uu[:, 1]], axis=1)
+    c0 = loc == 0
+    pts[c0] = center[fid[c0]]
+    return pts, counts
+
+
+def _outline(lines, style, tol):
+    """All pieces of the stroke of cleaned ``lines``: (points, counts)."""
+    P, starts, counts, closed = lines.points, lines.starts, lines.counts, lines.closed
+    hw = 0.5 * style.width
+    pieces = []                                     # (points (M, 2), counts)
+
+    def add(poly):                                  # poly: (M, k, 2)
+        if len(poly):
+            pieces.append((poly.reshape(-1, 2), np.full(len(poly), poly.shape[1], np.int64)))
+
+    N = len(P)
+    cid, loc = _ranges(counts)
+    m = counts[cid]
+    ring = closed[cid] & (m >= 2)
+    has_out = (loc < m - 1) | ring
+    has_in = (loc > 0) | ring
+    idx = np.arange(N)
+    nxt = np.where(loc < m - 1, idx + 1, starts[cid])
+    prv = np.where(loc > 0, idx - 1, starts[cid] + m - 1)
+
+    # segment quads
+    d_out = _unit(P[nxt] - P)                       # valid where has_out
+    n_out = _rot90(d_out) * hw
+    s0 = np.flatnonzero(has_out)
+    p0, p1, nn = P[s0], P[nxt[s0]], n_out[s0]
+    add(np.stack([p0 + nn, p1 + nn, p1 - nn, p0 - nn], axis=1))
+
+    # joins
+    jv = np.flatnonzero(has_in & has_out)
+    if len(jv):
+        d0, d1 = d_out[prv[jv]], d_out[jv]
+        v = P[jv]
+        cross = d0[:, 0] * d1[:, 1] - d0[:, 1] * d1[:, 0]
+        dot = np.clip(np.einsum('ij,ij->i', d0, d1), -1.0, 1.0)
+        theta = np.arccos(dot)                      # turning angle in [0, pi]
+        sgn = np.where(cross >= 0, 1.0, -1.0)
+        o0 = -sgn[:, None] * _rot90(d0)             # outer unit normals
+        o1 = -sgn[:, None] * _rot90(d1)
+        turn = theta > 1e-9
+        rnd = turn & (lines.smooth[jv] | (style.join == 'round'))
+        if style.join in ('miter', 'miter-clip', 'arcs'):
+            cos_half = np.sqrt(0.5 * (1.0 + dot))   # 1 / (miter length / width)
+            fits = cos_half * style.miterlimit >= 1.0
+            mit = turn & ~rnd & fits
+            tip = v[mit] + (o0[mit] + o1[mit]) * (hw / (1.0 + dot[mit]))[:, None]
+            add(np.stack([v[mit], v[mit] + hw * o0[mit], tip, v[mit] + hw * o1[mit]], axis=1))
+            over = turn & ~rnd & ~fits
+            if style.join == 'miter-clip':
+                c = over
+                bis = o0[c] + o1[c]
+                bl = np.hypot(bis[:, 0], bis[:, 1])
+                bis = np.where((bl > 1e-12)[:, None], bis / np.maximum(bl, 1e-300)[:, None], d0[c])
+                lim = style.miterlimit * hw
+                t = (lim - hw * np.einsum('ij,ij->i', o0[c], bis)) / \
+                    np.maximum(np.einsum('ij,ij->i', d0[c], bis), 1e-300)
+                e0 = v[c] + hw * o0[c]
+                e1 = v[c] + hw * o1[c]
+                add(np.stack([v[c], e0, e0 + t[:, None] * d0[c],
+                              e1 - t[:, None] * d1[c], e1], axis=1))
+                bev = np.zeros(len(jv), bool)
+            else:
+                bev = over
+        else:
+            bev = turn & ~rnd
+        add(np.stack([v[bev], v[bev] + hw * o0[bev], v[bev] + hw * o1[bev]], axis=1))
+        if np.any(rnd):
+            pieces.append(_fans(v[rnd], hw * o0[rnd], (sgn * theta)[rnd],
+                                np.full(int(rnd.sum()), hw), tol))
+
+    # caps of open contours with at least one segment
+    open_ = ~closed & (counts >= 2)
+    cs = starts[open_]
+    ce = starts[open_] + counts[open_] - 1
+    ds = d_out[cs]                                  # direction leaving the start
+    de = d_out[ce - 1]                              # direction arriving at the end
+    # subpaths of zero length: a disc or a square, oriented by their tangent
+    dots = starts[counts == 1]
+    dt = _unit(lines.tangent[counts == 1])
+    if style.cap == 'square':
+        for c, d in ((P[cs], -ds), (P[ce], de)):    # d points outwards
+            nrm = _rot90(d) * hw
+            add(np.stack([c + nrm, c + nrm + hw * d, c - nrm + hw * d, c - nrm], axis=1))
+        c, d = P[dots], dt * hw
+        nrm = _rot90(d)
+        add(np.stack([c + d + nrm, c - d + nrm, c - d - nrm, c + d - nrm], axis=1))
+    elif style.cap == 'round':
+        cen = np.concatenate([P[cs], P[ce], P[dots]])
+        u = np.concatenate([_rot90(ds), -_rot90(de), dt]) * hw
+        sweep = np.concatenate([np.full(len(cs) + len(ce), np.pi), np.full(len(dots), 2 * np.pi)])
+        pieces.append(_fans(cen, u, sweep, np.full(len(cen), hw), tol))
+
+    pieces = [p for p in pieces if len(p[1])]
+    if not pieces:
+        return np.zeros((0, 2)), np.zeros(0, np.int64)
+    return (np.concatenate([p[0] for p in pieces]),
+            np.concatenate([p[1] for p in pieces]))
+
+
+def _orient(points, counts):
+    """Reverse the polygons whose shoelace area is negative (in place copy)."""
+    if len(counts) == 0:
+        return points
+    starts = _starts(counts)
+    pid, loc = _ranges(counts)
+    rel = points - points[starts][pid]              # relative: no cancellation
+    nxt = np.where(loc < counts[pid] - 1, np.arange(len(points)) + 1, starts[pid])
+    cr = rel[:, 0] * rel[nxt, 1] - rel[nxt, 0] * rel[:, 1]
+    area = np.add.reduceat(cr, starts)
+    flip = (area < 0)[pid]
+    src = np.where(flip, starts[pid] + counts[pid] - 1 - loc, np.arange(len(points)))
+    return points[src]
+
+
+def _emit(points, counts):
+    """Path of closed polygons (M L ... Z per polygon)."""
+    K = len(counts)
+    if K == 0:
+        return Path.empty()
+    starts = _starts(counts)
+    verbs = np.full(len(points) + K, LINE, np.uint8)
+    ar = np.arange(K)
+    verbs[starts + ar] = MOVE
+    verbs[starts + counts + ar] = CLOSE
+    return Path(verbs, np.ascontiguousarray(points), _checked=True)
+
+
+# ---------------------------------------------------------------------------
+# front door
+# ---------------------------------------------------------------------------
+
+def stroke(path, style=None, *, transform=None, tolerance=0.25, **style_kwargs):
+    """Outline of the stroke of ``path``, to be filled with the nonzero rule.
+
+    Parameters
+    ----------
+    path : Path
+        In user units.
+    style : StrokeStyle or None
+        The stroke; keyword arguments (``width``, ``join``, ``cap``,
+        ``miterlimit``, ``dash``, ``dash_offset``) build one or override
+        fields of ``style``.
+    transform : Affine or None
+        User space to device space, applied to the finished outline.
+    tolerance : float
+        Largest distance, in device pixels, between the returned outline and
+        the exact stroke (curve flattening and arc polygonization).
+
+    Returns
+    -------
+    Path
+        Closed polygons only (``MOVE``, ``LINE``, ``CLOSE``), in device
+        space, all with the same orientation; their nonzero union is the
+        stroke.  Empty for a zero width, an empty path or a transform with
+        no scale.
+
+    Raises
+    ------
+    StrokeError
+        Invalid style values or tolerance, or ``path`` not a Path.
+    LimitError
+        When the outline would need more than
+        :data:`raster.limits.MAX_FLATTEN_POINTS` points or dashes.
+
+    Examples
+    --------
+    A 10 x 10 square stroked 2 wide with miter joins is four segment quads
+    and four miter wedges:
+
+    >>> from raster.path import Path
+    >>> sq = Path.polygon([(0, 0), (10, 0), (10, 10), (0, 10)])
+    >>> out = stroke(sq, width=2)
+    >>> int((out.verbs == 0).sum()), out.control_box()
+    (8, (-1.0, -1.0, 11.0, 11.0))
+    """
+    if not isinstance(path, Path):
+        raise StrokeError('stroke() needs a raster.Path, got %s' % type(path).__name__)
+    if style is None:
+        style = StrokeStyle(**style_kwargs)
+    elif style_kwargs:
+        style = dataclasses.replace(style, **style_kwargs)
+    elif not isinstance(style, StrokeStyle):
+        raise StrokeError('style must be a StrokeStyle, got %s' % type(style).__name__)
+    tol = _finite('tolerance', tolerance)
+    if tol <= 0:
+        raise StrokeError('tolerance must be > 0, got %r' % (tolerance,))
+    t = as_affine(transform)
+    scale = t.max_scale()
+    if style.width == 0 or len(path.verbs) == 0 or scale == 0:
+        return Path.empty()
+    tol_u = tol / scale
+    lines = _path_lines(path, tol_u)
+    lines = _clean(lines, _eps(lines.points))
+    pattern = dash_pattern(style.dash)
+    if pattern is not None:
+        lines = _clean(_dash(lines, pattern, style.dash_offset), _eps(lines.points))
+    pts, counts = _outline(lines, style, tol_u)
+    pts = _orient(pts, counts)
+    if not t.is_identity:
+        pts = t.apply(pts)
+    if not np.all(np.isfinite(pts)):
+        raise LimitError('stroke outline overflows (non-finite coordinates)')
+    return _emit(pts, counts)

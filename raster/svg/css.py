@@ -1,0 +1,794 @@
+"""A small CSS parser, selector matcher and the SVG style cascade.
+
+What is supported
+-----------------
+* Stylesheets: comments, ``<!--``/``-->`` tokens, rules
+  ``selector-list { name: value; name: value !important }``, at-rules
+  (``@media``, ``@import``, ``@font-face``, ... with or without a block)
+  skipped as a whole, invalid declarations skipped one by one, a rule with an
+  invalid selector dropped.
+* Selectors: type (matches the element's local name, case-sensitive as in
+  XML), ``*``, ``.class``, ``#id``, attribute selectors ``[a]``, ``[a=v]``,
+  ``[a~=v]``, ``[a|=v]``, ``[a^=v]``, ``[a$=v]``, ``[a*=v]`` (value quoted or
+  not, optional ``i`` flag), combinators descendant (whitespace), child
+  ``>``, adjacent sibling ``+`` and general sibling ``~``, the pseudo-class
+  ``:first-child``.  Any other pseudo-class or pseudo-element parses but
+  never matches.
+* Specificity ``(ids, classes + attributes + pseudo-classes, types)`` with
+  source order breaking ties.
+
+The cascade (:func:`declared_styles`), lowest priority first:
+
+1. presentation attributes (see :data:`raster.svg.properties.PRESENTATION_ATTRIBUTES`);
+2. normal stylesheet declarations, by specificity then source order;
+3. normal declarations of the ``style`` attribute;
+4. ``!important`` stylesheet declarations, by specificity then order;
+5. ``!important`` declarations of the ``style`` attribute.
+
+Only properties of :data:`raster.svg.properties.PROPERTIES` are kept (a
+``height`` in CSS is ignored, as resvg does for SVG 1.1 geometry).  The
+shorthands ``marker`` and ``font`` are expanded.  Values are trimmed strings;
+``inherit`` is kept as is for the tree builder to resolve.
+
+>>> from lxml import etree
+>>> root = etree.fromstring(
+...     '<svg xmlns="http://www.w3.org/2000/svg"><style>rect{fill:green}'
+...     '.a{fill:blue}</style><rect class="a" fill="red" stroke="black"/></svg>')
+>>> styles = declared_styles(root)
+>>> sorted(styles[root[1]].items())
+[('fill', 'blue'), ('stroke', 'black')]
+"""
+
+import functools
+import re
+from typing import NamedTuple
+
+from ..errors import SVGError
+from .properties import PROPERTIES, PRESENTATION_ATTRIBUTES
+
+__all__ = ['CSSError', 'Declaration', 'Rule', 'Selector', 'parse_stylesheet',
+           'parse_declarations', 'parse_selector', 'parse_selector_list', 'declared_styles',
+           'select', 'SVG_NS']
+
+SVG_NS = 'http://www.w3.org/2000/svg'
+
+
+class CSSError(SVGError, ValueError):
+    """Invalid selector syntax (raised by :func:`parse_selector_list` and
+    :func:`select` only; stylesheets skip what they cannot parse)."""
+
+
+class Declaration(NamedTuple):
+    """``name: value [!important]`` with `name` lower-cased, `value` trimmed."""
+    name: str
+    value: str
+    important: bool
+
+
+# --------------------------------------------------------------------------
+# tokenizing helpers
+# --------------------------------------------------------------------------
+
+_COMMENT_RE = re.compile(r'/\*.*?(?:\*/|$)', re.S)
+_STRING_OR_COMMENT_RE = re.compile(
+    r'"(?:[^"\\\n]|\\.)*"|\'(?:[^\'\\\n]|\\.)*\'|/\*.*?(?:\*/|\Z)', re.S)
+
+
+def _strip_comments(text):
+    """Remove comments (not inside strings) and the CDO/CDC tokens."""
+    if '/*' in text:
+        text = _STRING_OR_COMMENT_RE.sub(
+            lambda m: ' ' if m.group(0).startswith('/*') else m.group(0), text)
+    if '<!--' in text or '-->' in text:
+        text = text.replace('<!--', ' ').replace('-->', ' ')
+    return text
+
+
+def _scan_to(text, pos, stops):
+    """Index of the first character of `stops` at nesting depth 0 (outside
+    strings, parentheses and brackets) from `pos`, or ``len(text)``."""
+    n = len(text)
+    depth = 0
+    while pos < n:
+        ch = text[pos]
+        if ch == '"' or ch == "'":
+            end = text.find(ch, pos + 1)
+            while end != -1 and text[end - 1] == '\\':
+                end = text.find(ch, end + 1)
+            pos = n if end == -1 else end + 1
+            continue
+        if depth == 0 and ch in stops:
+            return pos
+        if ch in '([':
+            depth += 1
+        elif ch in ')]':
+            depth = max(depth - 1, 0)
+        pos += 1
+    return n
+
+
+def _skip_block(text, pos):
+    """`pos` is at '{': return the index after the matching '}'."""
+    n = len(text)
+    depth = 0
+    while pos < n:
+        ch = text[pos]
+        if ch == '"' or ch == "'":
+            end = text.find(ch, pos + 1)
+            pos = n if end == -1 else end + 1
+            continue
+        if ch == '{':
+            depth += 1
+        elif ch == '}':
+            depth -= 1
+            if depth == 0:
+                return pos + 1
+        pos += 1
+    return n
+
+
+# --------------------------------------------------------------------------
+# declarations
+# --------------------------------------------------------------------------
+
+_IMPORTANT_RE = re.compile(r'!\s*important\s*$', re.I)
+_PROP_NAME_RE = re.compile(r'-?[_a-zA-Z][_a-zA-Z0-9-]*')
+
+
+def _split_decls(text):
+    out = []
+    pos, n = 0, len(text)
+    while pos < n:
+        end = _scan_to(text, pos, ';')
+        out.append(text[pos:end])
+        pos = end + 1
+    return out
+
+
+@functools.lru_cache(maxsize=4096)
+def _parse_declarations(text):
+    out = []
+    if '"' in text or "'" in text or '(' in text or '/*' in text or '<!--' in text:
+        chunks = _split_decls(_strip_comments(text))
+    else:
+        chunks = text.split(';')
+    for chunk in chunks:
+        name, colon, value = chunk.partition(':')
+        if not colon:
+            continue
+        name = name.strip().lower()
+        if not _PROP_NAME_RE.fullmatch(name):
+            continue
+        important = False
+        m = _IMPORTANT_RE.search(value)
+        if m is not None:
+            important = True
+            value = value[:m.start()]
+        value = value.strip()
+        if not value or '!' in value:
+            continue
+        out.extend(_expand(name, value, important))
+    return tuple(out)
+
+
+def parse_declarations(text):
+    """Parse a declaration list (a ``style`` attribute or a rule body).
+
+    Shorthands (``marker``, ``font``) are expanded into their longhands;
+    declarations without a colon, with an empty value or a stray ``!`` are
+    skipped.
+
+    Parameters
+    ----------
+    text : str
+
+    Returns
+    -------
+    tuple of Declaration
+
+    >>> parse_declarations('fill: red !important; ; bogus; Stroke :blue')
+    (Declaration(name='fill', value='red', important=True), Declaration(name='stroke', value='blue', important=False))
+    """
+    if not isinstance(text, str):
+        raise CSSError('declarations must be a string, got %s' % type(text).__name__)
+    return _parse_declarations(text)
+
+
+_FONT_STYLE = {'italic', 'oblique'}
+_FONT_VARIANT = {'small-caps'}
+_FONT_WEIGHT = {'bold', 'bolder', 'lighter', '100', '200', '300', '400', '500',
+                '600', '700', '800', '900'}
+_FONT_STRETCH = {'ultra-condensed', 'extra-condensed', 'condensed',
+                 'semi-condensed', 'semi-expanded', 'expanded',
+                 'extra-expanded', 'ultra-expanded'}
+_FONT_SIZE_KW = {'xx-small', 'x-small', 'small', 'medium', 'large', 'x-large',
+                 'xx-large', 'xxx-large', 'larger', 'smaller'}
+_SIZE_RE = re.compile(r'(?:[+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?'
+                      r'(?:[a-zA-Z]+|%)?)$')
+
+
+def _expand_font(value, important):
+    """The CSS ``font`` shorthand: ``[style || variant || weight ||
+    stretch] size[/line-height] family``; ``None`` if not of that form
+    (system fonts such as ``caption`` are not supported)."""
+    if value.lower() == 'inherit':
+        return [Declaration(n, 'inherit', important) for n in _FONT_LONGHANDS]
+    words = []
+    pos, n = 0, len(value)
+    # split on whitespace outside quotes until the family starts
+    while pos < n:
+        while pos < n and value[pos].isspace():
+            pos += 1
+        end = pos
+        while end < n and not value[end].isspace() and value[end] not in '"\'':
+            end += 1
+        words.append((value[pos:end], pos))
+        if end < n and value[end] in '"\'':
+            break
+        pos = end
+    got = {}
+    for i, (w, start) in enumerate(words):
+        low = w.lower()
+        size = None
+        if '/' in w:
+            size, lh = w.split('/', 1)
+        else:
+            size, lh = w, None
+        if size and (size.lower() in _FONT_SIZE_KW or _SIZE_RE.match(size)) and \
+                'font-size' not in got and (lh is not None or low not in _FONT_WEIGHT):
+            got['font-size'] = size
+            if lh is not None:
+                if not lh:
+                    return None
+                got['line-height'] = lh
+            family = value[start + len(w):].strip()
+            if lh is None and family.startswith('/'):
+                return None
+            if not family:
+                return None
+            got['font-family'] = family
+            break
+        if low == 'normal':
+            continue
+        if low in _FONT_STYLE and 'font-style' not in got:
+            got['font-style'] = w
+        elif low in _FONT_VARIANT and 'font-variant' not in got:
+            got['font-variant'] = w
+        elif low in _FONT_WEIGHT and 'font-weight' not in got:
+            got['font-weight'] = w
+        elif low in _FONT_STRETCH and 'font-stretch' not in got:
+            got['font-stretch'] = w
+        else:
+            return None
+    if 'font-family' not in got:
+        return None
+    return [Declaration(name, got.get(name, PROPERTIES[name].initial
+                                      if name in ('font-size', 'font-family')
+                                      else 'normal'), important)
+            for name in _FONT_LONGHANDS]
+
+
+_FONT_LONGHANDS = ('font-style', 'font-variant', 'font-weight', 'font-stretch',
+                   'font-size', 'line-height', 'font-family')
+
+
+def _expand(name, value, important):
+    if name == 'marker':
+        return [Declaration(n, value, important)
+                for n in ('marker-start', 'marker-mid', 'marker-end')]
+    if name == 'font':
+        d = _expand_font(value, important)
+        return d if d is not None else []
+    return [Declaration(name, value, important)]
+
+
+# --------------------------------------------------------------------------
+# selectors
+# --------------------------------------------------------------------------
+
+_IDENT = r'-?(?:[_a-zA-Z]|[^\x00-\x7f]|\\.)(?:[_a-zA-Z0-9-]|[^\x00-\x7f]|\\.)*'
+_IDENT_RE = re.compile(_IDENT)
+_ATTR_RE = re.compile(
+    r'\[\s*(' + _IDENT + r')\s*(?:([~|^$*]?=)\s*(?:(' + _IDENT + r')|"((?:[^"\\]|\\.)*)"'
+    r'|\'((?:[^\'\\]|\\.)*)\')\s*(?:([iIsS])\s*)?)?\]')
+_ESC_RE = re.compile(r'\\(.)', re.S)
+
+
+def _unescape(s):
+    return _ESC_RE.sub(r'\1', s) if '\\' in s else s
+
+
+class _Compound:
+    """A compound selector: tag, id, classes, attribute tests, pseudos."""
+
+    __slots__ = ('tag', 'id', 'classes', 'attrs', 'first_child', 'never')
+
+    def __init__(self):
+        self.tag = None        # None = any
+        self.id = None
+        self.classes = ()
+        self.attrs = ()        # (name, op, value, case_insensitive)
+        self.first_child = False
+        self.never = False     # an unsupported pseudo-class
+
+    def specificity(self):
+        return (1 if self.id is not None else 0,
+                len(self.classes) + len(self.attrs) + self.first_child
+                + self.never,
+                1 if self.tag is not None else 0)
+
+    def matches(self, el, local):
+        if self.never:
+            return False
+        if self.tag is not None and self.tag != local:
+            return False
+        if self.id is not None and el.get('id') != self.id:
+            return False
+        if self.classes:
+            cls = el.get('class')
+            if cls is None:
+                return False
+            have = cls.split()
+            for c in self.classes:
+                if c not in have:
+                    return False
+        for name, op, val, ci in self.attrs:
+            v = el.get(name)
+            if v is None:
+                return False
+            if op is None:
+                continue
+            if ci:
+                v, val = v.lower(), val.lower()
+            if op == '=':
+                ok = v == val
+            elif op == '~=':
+                ok = bool(val) and val in v.split()
+            elif op == '|=':
+                ok = v == val or v.startswith(val + '-')
+            elif op == '^=':
+                ok = bool(val) and v.startswith(val)
+            elif op == '$=':
+                ok = bool(val) and v.endswith(val)
+            else:  # '*='
+                ok = bool(val) and val in v
+            if not ok:
+                return False
+        if self.first_child:
+            prev = el.getprevious()
+            while prev is not None:
+                if isinstance(prev.tag, str):
+                    return False
+                prev = prev.getprevious()
+        return True
+
+
+def _local(el):
+    tag = el.tag
+    return tag.rpartition('}')[2] if tag[0] == '{' else tag
+
+
+def _prev_element(el):
+    p = el.getprevious()
+    while p is not None and not isinstance(p.tag, str):
+        p = p.getprevious()
+    return p
+
+
+class Selector:
+    """One complex selector (no commas).
+
+    Attributes
+    ----------
+    text : str
+        The source text.
+    specificity : (int, int, int)
+    """
+
+    __slots__ = ('text', 'parts', 'specificity')
+
+    def __init__(self, text, parts):
+        # parts: [compound, (combinator, compound), ...] read right to left:
+        # parts[0] is the rightmost compound (the subject).
+        self.text = text
+        self.parts = parts
+        a = b = c = 0
+        for p in parts:
+            comp = p if isinstance(p, _Compound) else p[1]
+            sa, sb, sc = comp.specificity()
+            a, b, c = a + sa, b + sb, c + sc
+        self.specificity = (a, b, c)
+
+    def __repr__(self):
+        return 'Selector(%r)' % self.text
+
+    @property
+    def key(self):
+        """Index key of the subject compound: ``('id', v)``, ``('class',
+        v)``, ``('tag', v)`` or ``('*', None)``."""
+        c = self.parts[0]
+        if c.id is not None:
+            return ('id', c.id)
+        if c.classes:
+            return ('class', c.classes[0])
+        if c.tag is not None:
+            return ('tag', c.tag)
+        return ('*', None)
+
+    def matches(self, el):
+        """Whether lxml element `el` matches this selector.
+
+        >>> from lxml import etree
+        >>> r = etree.fromstring('<svg><g><rect/></g></svg>')
+        >>> parse_selector('svg rect').matches(r[0][0]), parse_selector('svg > rect').matches(r[0][0])
+        (True, False)
+        """
+        if not isinstance(el.tag, str):
+            return False
+        return self._match(el, 0)
+
+    def _match(self, el, i):
+        parts = self.parts
+        comp = parts[i] if i == 0 else parts[i][1]
+        if not comp.matches(el, _local(el)):
+            return False
+        if i + 1 == len(parts):
+            return True
+        comb = parts[i + 1][0]
+        if comb == '>':
+            p = el.getparent()
+            return p is not None and self._match(p, i + 1)
+        if comb == ' ':
+            p = el.getparent()
+            while p is not None:
+                if self._match(p, i + 1):
+                    return True
+                p = p.getparent()
+            return False
+        if comb == '+':
+            p = _prev_element(el)
+            return p is not None and self._match(p, i + 1)
+        # '~'
+        p = _prev_element(el)
+        while p is not None:
+            if self._match(p, i + 1):
+                return True
+            p = _prev_element(p)
+        return False
+
+
+def _parse_compound(text, pos):
+    """Parse a compound selector at `pos`; return (compound, new pos)."""
+    comp = _Compound()
+    n = len(text)
+    start = pos
+    classes, attrs = [], []
+    if pos < n and text[pos] == '*':
+        pos += 1
+    else:
+        m = _IDENT_RE.match(text, pos)
+        if m is not None:
+            comp.tag = _unescape(m.group(0))
+            pos = m.end()
+    while pos < n:
+        ch = text[pos]
+        if ch == '#':
+            m = _IDENT_RE.match(text, pos + 1)
+            if m is None:
+                m = re.compile(r'(?:[_a-zA-Z0-9-]|[^\x00-\x7f]|\\.)+').match(text, pos + 1)
+                if m is None:
+                    raise CSSError('bad id selector in %r' % text)
+            if comp.id is not None and comp.id != _unescape(m.group(0)):
+                comp.never = True
+            comp.id = _unescape(m.group(0))
+            pos = m.end()
+        elif ch == '.':
+            m = _IDENT_RE.match(text, pos + 1)
+            if m is None:
+                raise CSSError('bad class selector in %r' % text)
+            classes.append(_unescape(m.group(0)))
+            pos = m.end()
+        elif ch == '[':
+            m = _ATTR_RE.match(text, pos)
+            if m is None:
+                raise CSSError('bad attribute selector in %r' % text)
+            name, op = _unescape(m.group(1)), m.group(2)
+            val = next((g for g in m.group(3, 4, 5) if g is not None), None)
+            if op is not None:
+                val = _unescape(val)
+            attrs.append((name, op, val, (m.group(6) or '').lower() == 'i'))
+            pos = m.end()
+        elif ch == ':':
+            double = text.startswith('::', pos)
+            pos += 2 if double else 1
+            m = _IDENT_RE.match(text, pos)
+            if m is None:
+                raise CSSError('bad pseudo-class in %r' % text)
+            name = m.group(0).lower()
+            pos = m.end()
+            if pos < n and text[pos] == '(':
+                end = _scan_to(text, pos + 1, ')')
+                if end >= n:
+                    raise CSSError('unclosed pseudo-class argument in %r' % text)
+                pos = end + 1
+                comp.never = True
+            elif name == 'first-child' and not double:
+                comp.first_child = True
+            else:
+                comp.never = True
+        else:
+            break
+    if pos == start:
+        raise CSSError('expected a selector at %r' % text[start:start + 20])
+    comp.classes = tuple(classes)
+    comp.attrs = tuple(attrs)
+    return comp, pos
+
+
+_COMB_RE = re.compile(r'\s*([>+~])\s*|\s+')
+
+
+def _parse_complex(text):
+    text = text.strip()
+    if not text:
+        raise CSSError('empty selector')
+    comps, combs = [], []
+    pos, n = 0, len(text)
+    while True:
+        comp, pos = _parse_compound(text, pos)
+        comps.append(comp)
+        if pos >= n:
+            break
+        m = _COMB_RE.match(text, pos)
+        if m is None:
+            raise CSSError('unexpected %r in selector %r' % (text[pos], text))
+        combs.append(m.group(1) or ' ')
+        pos = m.end()
+        if pos >= n:
+            raise CSSError('selector %r ends with a combinator' % text)
+    parts = [comps[-1]]
+    for i in range(len(comps) - 2, -1, -1):
+        parts.append((combs[i], comps[i]))
+    return Selector(text, parts)
+
+
+@functools.lru_cache(maxsize=1024)
+def parse_selector_list(text):
+    """Parse a comma-separated selector list.
+
+    Raises
+    ------
+    CSSError
+        If any selector is invalid (CSS then drops the whole rule).
+
+    >>> [s.specificity for s in parse_selector_list('#a .b, svg > rect:first-child')]
+    [(1, 1, 0), (0, 1, 2)]
+    """
+    if not isinstance(text, str):
+        raise CSSError('selector must be a string')
+    out = []
+    pos, n = 0, len(text)
+    while pos <= n:
+        end = _scan_to(text, pos, ',')
+        out.append(_parse_complex(text[pos:end]))
+        pos = end + 1
+    return tuple(out)
+
+
+def parse_selector(text):
+    """Parse a single complex selector (helper for doctests and tests)."""
+    sels = parse_selector_list(text)
+    if len(sels) != 1:
+        raise CSSError('expected one selector, got %d' % len(sels))
+    return sels[0]
+
+
+# --------------------------------------------------------------------------
+# stylesheets
+# --------------------------------------------------------------------------
+
+class Rule(NamedTuple):
+    """One selector with its declarations; `order` is the source position of
+    the rule (shared by the selectors of one selector list)."""
+    selector: Selector
+    declarations: tuple
+    order: int
+
+
+def parse_stylesheet(text, start_order=0):
+    """Parse a stylesheet into rules, one per selector.
+
+    At-rules are skipped with their blocks; rules whose selector does not
+    parse are dropped; bad declarations are skipped.
+
+    Parameters
+    ----------
+    text : str
+    start_order : int
+        Order number of the first rule (to chain several sheets).
+
+    Returns
+    -------
+    list of Rule
+
+    >>> [(r.selector.text, r.declarations[0].value)
+    ...  for r in parse_stylesheet('@media print { a { fill: red } } a, b { fill: green }')]
+    [('a', 'green'), ('b', 'green')]
+    """
+    if not isinstance(text, str):
+        raise CSSError('stylesheet must be a string')
+    text = _strip_comments(text)
+    rules = []
+    order = start_order
+    pos, n = 0, len(text)
+    while pos < n:
+        while pos < n and text[pos].isspace():
+            pos += 1
+        if pos >= n:
+            break
+        if text[pos] == '@':
+            end = _scan_to(text, pos, ';{}')
+            if end < n and text[end] == '{':
+                pos = _skip_block(text, end)
+            else:
+                pos = end + 1
+            continue
+        if text[pos] == '}':  # stray closing brace
+            pos += 1
+            continue
+        brace = _scan_to(text, pos, '{}')
+        if brace >= n:
+            break
+        if text[brace] == '}':
+            pos = brace + 1
+            continue
+        prelude = text[pos:brace]
+        close = _scan_to(text, brace + 1, '}')
+        body = text[brace + 1:close]
+        pos = close + 1
+        try:
+            selectors = parse_selector_list(prelude.strip())
+        except CSSError:
+            continue
+        decls = parse_declarations(body)
+        for sel in selectors:
+            rules.append(Rule(sel, decls, order))
+        order += 1
+    return rules
+
+
+def select(root, selector):
+    """All elements under `root` (inclusive, document order) matching
+    `selector` (a selector list string).
+
+    >>> from lxml import etree
+    >>> r = etree.fromstring('<svg><rect id="a"/><circle/><rect/></svg>')
+    >>> [e.get('id') for e in select(r, 'circle + rect, #a')]
+    ['a', None]
+    """
+    sels = parse_selector_list(selector)
+    return [el for el in root.iter() if isinstance(el.tag, str)
+            and any(s.matches(el) for s in sels)]
+
+
+# --------------------------------------------------------------------------
+# cascade
+# --------------------------------------------------------------------------
+
+def _is_style_element(el):
+    tag = el.tag
+    if tag != 'style' and tag != '{%s}style' % SVG_NS:
+        return False
+    t = el.get('type')
+    return t is None or t.strip() == '' or t.strip().lower() == 'text/css'
+
+
+class _Index:
+    def __init__(self, rules):
+        self.by_id, self.by_class, self.by_tag = {}, {}, {}
+        self.universal = []
+        for r in rules:
+            kind, val = r.selector.key
+            if kind == '*':
+                self.universal.append(r)
+            else:
+                d = {'id': self.by_id, 'class': self.by_class, 'tag': self.by_tag}[kind]
+                d.setdefault(val, []).append(r)
+
+    def candidates(self, el, local):
+        out = list(self.universal)
+        i = el.get('id')
+        if i is not None and i in self.by_id:
+            out.extend(self.by_id[i])
+        c = el.get('class')
+        if c is not None and self.by_class:
+            seen = set()
+            for name in c.split():
+                if name in self.by_class and name not in seen:
+                    seen.add(name)
+                    out.extend(self.by_class[name])
+        t = self.by_tag.get(local)
+        if t:
+            out.extend(t)
+        return out
+
+
+def declared_styles(root, extra_css=''):
+    """The cascaded (declared) style of every element of a document.
+
+    Parameters
+    ----------
+    root : lxml element
+        The document root (usually ``<svg>``); every element of its tree is
+        styled.
+    extra_css : str
+        An additional author stylesheet, applied after the document's
+        ``<style>`` elements (so it wins ties).
+
+    Returns
+    -------
+    dict
+        lxml element -> ``{property: value string}``, for every element of
+        the tree (comments and processing instructions excluded).  Only known
+        properties appear; values are trimmed, ``inherit`` is kept.
+
+    Notes
+    -----
+    ``<style>`` elements with no ``type``, an empty one or ``text/css`` are
+    used, wherever they are in the tree; CDATA sections are plain text.
+    """
+    elements = [el for el in root.iter() if isinstance(el.tag, str)]
+    rules = []
+    for el in elements:
+        if _is_style_element(el):
+            rules.extend(parse_stylesheet(''.join(el.itertext()), len(rules)))
+    if extra_css:
+        rules.extend(parse_stylesheet(extra_css, len(rules) + 1_000_000))
+    index = _Index(rules) if rules else None
+    props = PROPERTIES
+    pres = PRESENTATION_ATTRIBUTES
+    out = {}
+    for el in elements:
+        d = {}
+        attrib = el.attrib
+        for k, v in attrib.items():
+            if k in pres:
+                d[k] = v.strip()
+        important = None
+        if index is not None:
+            tag = el.tag
+            local = tag.rpartition('}')[2] if tag[0] == '{' else tag
+            matched = [r for r in index.candidates(el, local)
+                       if r.selector.matches(el)]
+            if matched:
+                if len(matched) > 1:
+                    matched.sort(key=lambda r: (r.selector.specificity, r.order))
+                for r in matched:
+                    for decl in r.declarations:
+                        if decl.name in props:
+                            if decl.important:
+                                if important is None:
+                                    important = {}
+                                important[decl.name] = decl.value
+                            else:
+                                d[decl.name] = decl.value
+        style = attrib.get('style')
+        if style:
+            sdecl = _parse_declarations(style)
+            simp = None
+            for decl in sdecl:
+                if decl.name in props:
+                    if decl.important:
+                        if simp is None:
+                            simp = {}
+                        simp[decl.name] = decl.value
+                    else:
+                        d[decl.name] = decl.value
+            if important:
+                d.update(important)
+            if simp:
+                d.update(simp)
+        elif important:
+            d.update(important)
+        out[el] = d
+    return out

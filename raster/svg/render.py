@@ -1,0 +1,841 @@
+"""Render a resolved SVG tree (:mod:`raster.svg.tree`) onto a canvas.
+
+The renderer is a short loop over the tree: it never parses a string.
+
+Coordinates: the tree's root group maps user space to *document pixels*
+(the natural size ``tree.width x tree.height``).  :func:`output_size`
+chooses the output size in device pixels and the scale from document to
+device pixels; every node is drawn with its *current transformation matrix*
+(CTM), user space to device (or layer) pixels, x right and y down.
+
+Per node:
+
+* :class:`~raster.svg.tree.PathNode`: for each item of ``paint_order``, the
+  fill is flattened with the CTM (``tolerance`` device pixels), scan
+  converted with the node's fill rule and composited with the fill paint and
+  ``fill-opacity``; the stroke is outlined in device space
+  (:func:`raster.stroke.stroke`), scan converted with the nonzero rule and
+  composited likewise.  A stroke thinner than one device pixel is drawn one
+  pixel wide with its coverage scaled by its device width
+  (:func:`raster.stroke.hairline_scale`).  Markers are a group drawn with the
+  node's CTM.
+* :class:`~raster.svg.tree.Group`: a group that only transforms composes
+  its transform with the CTM.  A group that needs a layer (opacity, clip
+  path, mask, isolation, blend mode) renders its children into a transparent
+  layer covering only the group's device bounding box (clipped to the
+  target), applies the clip path and mask, and composites the layer with its
+  opacity.  Filters are not implemented: a filtered group is drawn without
+  its filter.  Blend modes other than ``normal`` composite as ``normal``.
+* :class:`~raster.svg.tree.ImageNode`: raster pixels are resampled
+  (bilinear when ``smooth``, else nearest) through the inverse of the CTM
+  and clipped to the image's viewport; an SVG image is rendered as a nested
+  tree.
+* :class:`~raster.svg.tree.TextNode`: not rendered yet.
+
+Paints: solid colours and linear and radial gradients (pad, reflect and
+repeat spreads; ``objectBoundingBox`` units).  Patterns are skipped.
+
+>>> from raster.path import Path
+>>> from raster.svg.tree import Tree, Group, PathNode, Fill, SolidPaint
+>>> sq = Path.polygon([(2, 2), (8, 2), (8, 8), (2, 8)])
+>>> tree = Tree(10, 10, Group(children=[PathNode(path=sq, fill=Fill(SolidPaint((1, 0, 0, 1))))]))
+>>> img = render_tree(tree).to_rgba8()
+>>> img.shape, img[5, 5].tolist(), img[0, 0].tolist()
+((10, 10, 4), [255, 0, 0, 255], [0, 0, 0, 0])
+"""
+
+import math
+
+import numpy as np
+
+from .. import limits
+from ..canvas import Canvas
+from ..errors import CanvasError, RasterError, SVGError
+from ..flatten import flatten
+from ..path import Path
+from ..scan import coverage
+from ..stroke import StrokeStyle, hairline_scale, stroke as stroke_outline
+from ..transform import IDENTITY, Affine
+from .tree import (Group, ImageNode, LinearGradient, PathNode, Pattern, RadialGradient,
+                   SolidPaint, Tree)
+
+__all__ = ['render_tree', 'output_size', 'DEFAULT_TOLERANCE']
+
+#: Default flattening tolerance in device pixels.
+DEFAULT_TOLERANCE = 0.25
+
+
+# ---------------------------------------------------------------------------
+# Output size
+# ---------------------------------------------------------------------------
+
+def _positive(name, v):
+    try:
+        f = float(v)
+    except (TypeError, ValueError):
+        raise CanvasError('%s must be a number, got %r' % (name, v)) from None
+    if not math.isfinite(f) or f <= 0:
+        raise CanvasError('%s must be positive and finite, got %r' % (name, v))
+    return f
+
+
+def output_size(doc_width, doc_height, width=None, height=None, zoom=None):
+    """Output size in pixels and the document-to-device scale.
+
+    Parameters
+    ----------
+    doc_width, doc_height : float
+        The document's natural size in px (> 0).
+    width, height : int or None
+        Requested output size.  Only ``width``: the height keeps the aspect
+        ratio of the natural pixel size (rounded up); only ``height``:
+        likewise for the width; both: non-uniform scale.
+    zoom : float or None
+        Scale factor of the natural size (not with ``width``/``height``).
+
+    Returns
+    -------
+    (w, h, sx, sy)
+        Integer output size and the scales mapping document px to device
+        px (``w / doc_width``, ``h / doc_height``).
+
+    Raises
+    ------
+    CanvasError
+        A size or zoom that is not positive and finite, both zoom and a
+        size, or an output of more than :data:`raster.limits.MAX_PIXELS`
+        pixels or a side above :data:`raster.limits.MAX_SIDE`.
+
+    >>> output_size(100, 50)
+    (100, 50, 1.0, 1.0)
+    >>> output_size(100, 50, width=300)
+    (300, 150, 3.0, 3.0)
+    >>> output_size(100, 50, zoom=1.5)
+    (150, 75, 1.5, 1.5)
+    >>> output_size(10.5, 10, width=20)[:2]          # natural pixel size 11 x 10
+    (20, 19)
+    """
+    dw = _positive('document width', doc_width)
+    dh = _positive('document height', doc_height)
+    if zoom is not None and (width is not None or height is not None):
+        raise CanvasError('give a zoom or an output size, not both')
+    nw, nh = math.ceil(dw), math.ceil(dh)
+    if zoom is not None:
+        z = _positive('zoom', zoom)
+        w, h = math.ceil(nw * z), math.ceil(nh * z)
+    elif width is not None and height is not None:
+        w, h = _positive('width', width), _positive('height', height)
+    elif width is not None:
+        w = _positive('width', width)
+        h = math.ceil(w * nh / nw)
+    elif height is not None:
+        h = _positive('height', height)
+        w = math.ceil(h * nw / nh)
+    else:
+        w, h = nw, nh
+    if w != int(w) or h != int(h):
+        raise CanvasError('output size must be whole pixels, got %r x %r' % (w, h))
+    w, h = int(w), int(h)
+    if w > limits.MAX_SIDE or h > limits.MAX_SIDE or w * h > limits.MAX_PIXELS:
+        raise CanvasError('output size %d x %d exceeds the limit (%d px per side, %d pixels)'
+                          % (w, h, limits.MAX_SIDE, limits.MAX_PIXELS))
+    return w, h, w / dw, h / dh
+
+
+# ---------------------------------------------------------------------------
+# Entry point
+# ---------------------------------------------------------------------------
+
+def render_tree(tree, width=None, height=None, zoom=None, background=None, node_id=None,
+                tolerance=DEFAULT_TOLERANCE):
+    """Render a resolved tree.
+
+    Parameters
+    ----------
+    tree : raster.svg.tree.Tree
+    width, height, zoom :
+        Output size, see :func:`output_size` (default: the natural size).
+    background : RGBA tuple of floats in [0, 1] (straight alpha) or None
+        Canvas background (None: transparent).
+    node_id : str or None
+        Render only the subtree of the node with this id, with the
+        transforms of its ancestors.
+    tolerance : float
+        Flattening tolerance in device pixels (> 0).
+
+    Returns
+    -------
+    raster.canvas.Canvas
+        Premultiplied float32 RGBA canvas of the output size.
+
+    Raises
+    ------
+    CanvasError
+        Bad output size (see :func:`output_size`) or tolerance.
+    SVGError
+        ``node_id`` names no node of the tree.
+    """
+    if not isinstance(tree, Tree):
+        raise SVGError('render_tree needs a raster.svg.tree.Tree, got %s' % type(tree).__name__)
+    tol = _positive('tolerance', tolerance)
+    w, h, sx, sy = output_size(tree.width, tree.height, width, height, zoom)
+    canvas = Canvas(w, h, background)
+    base = Affine.scale(sx, sy)
+    r = _Renderer(tol)
+    if node_id is None:
+        r.node(tree.root, base, canvas)
+    else:
+        node, t = _find(tree, node_id)
+        r.node(node, base @ t, canvas)
+    return canvas
+
+
+def _find(tree, node_id):
+    """The node with ``node_id`` and the transform of its ancestors (root
+    transform included) mapping its coordinates to document px."""
+    target = tree.ids.get(node_id) if isinstance(tree.ids, dict) else None
+    stack = [(tree.root, IDENTITY)]
+    while stack:
+        n, t = stack.pop()
+        if n is target or (target is None and getattr(n, 'id', '') == node_id and node_id):
+            return n, t
+        if isinstance(n, Group):
+            t2 = t @ n.transform
+            stack.extend((c, t2) for c in reversed(n.children))
+    raise SVGError('no element with id %r' % (node_id,))
+
+
+# ---------------------------------------------------------------------------
+# The renderer
+# ---------------------------------------------------------------------------
+
+_CLIP_FILL = SolidPaint((0.0, 0.0, 0.0, 1.0))
+
+
+class _Renderer:
+    def __init__(self, tolerance):
+        self.tol = tolerance
+
+    # -- dispatch ------------------------------------------------------------
+    def node(self, node, t, canvas, clip_mode=False):
+        if isinstance(node, Group):
+            self.group(node, t, canvas, clip_mode)
+        elif isinstance(node, PathNode):
+            self.path(node, t, canvas, clip_mode)
+        elif isinstance(node, ImageNode):
+            if not clip_mode:
+                self.image(node, t, canvas)
+        # TextNode and unknown nodes: nothing yet
+
+    # -- groups ----------------------------------------------------------------
+    def group(self, g, t, canvas, clip_mode=False):
+        ct = t @ g.transform
+        if clip_mode:
+            # inside a clip path only geometry counts; a clip-path on a child
+            # still restricts that child
+            if g.clip_path is not None:
+                self.layered(g, t, canvas, clip_mode=True)
+                return
+            for c in g.children:
+                self.node(c, ct, canvas, True)
+            return
+        if not g.needs_layer:
+            for c in g.children:
+                self.node(c, ct, canvas)
+            return
+        if g.opacity <= 0:
+            return
+        self.layered(g, t, canvas)
+
+    def layered(self, g, t, canvas, clip_mode=False):
+        ct = t @ g.transform
+        box = _group_box(g, ct)
+        if box is None:
+            return
+        px = _pixel_box(box, canvas.width, canvas.height)
+        if px is None:
+            return
+        x0, y0, x1, y1 = px
+        layer = Canvas(x1 - x0, y1 - y0)
+        lt = Affine.translate(-x0, -y0) @ ct
+        for c in g.children:
+            self.node(c, lt, layer, clip_mode)
+        if g.clip_path is not None:
+            cov = self.clip_coverage(g.clip_path, lt, layer.width, layer.height)
+            layer.data *= cov[..., None]
+        if g.mask is not None and not clip_mode:
+            m = self.mask_values(g.mask, lt, layer.width, layer.height)
+            layer.data *= m[..., None]
+        opacity = 1.0 if clip_mode else float(g.opacity)
+        if clip_mode or g.blend_mode in ('normal', '', None):
+            canvas.composite(layer.data, x0, y0, opacity)
+        else:
+            _blend(canvas, layer.data, x0, y0, opacity, g.blend_mode)
+
+    # -- clip paths and masks ------------------------------------------------
+    def clip_coverage(self, clip, t, w, h):
+        """(h, w) float32 coverage of a clip path (ClipPath) with CTM ``t``
+        (the clipped element's user space to layer pixels)."""
+        ct = t @ clip.transform
+        layer = Canvas(w, h)
+        self.node(clip.root, ct, layer, clip_mode=True)
+        cov = layer.data[..., 3].copy()
+        if clip.clip_path is not None:
+            cov *= self.clip_coverage(clip.clip_path, t, w, h)
+        return cov
+
+    def mask_values(self, mask, t, w, h):
+        """(h, w) float32 mask values of a Mask with CTM ``t``."""
+        layer = Canvas(w, h)
+        self.node(mask.root, t, layer)
+        d = layer.data
+        if mask.kind == 'alpha':
+            m = d[..., 3].copy()
+        else:
+            # luminance of the premultiplied colour = luminance * alpha
+            m = (0.2125 * d[..., 0] + 0.7154 * d[..., 1] + 0.0721 * d[..., 2]).astype(np.float32)
+        x, y, rw, rh = mask.rect
+        rect = Path.polygon([(x, y), (x + rw, y), (x + rw, y + rh), (x, y + rh)])
+        rc = _cover(rect, t, w, h, 'nonzero', True, self.tol)
+        if rc is None:
+            return np.zeros((h, w), np.float32)
+        m *= rc.full(w, h)
+        if mask.mask is not None:
+            m *= self.mask_values(mask.mask, t, w, h)
+        return np.clip(m, 0.0, 1.0)
+
+    # -- paths ---------------------------------------------------------------
+    def path(self, n, t, canvas, clip_mode=False):
+        if n.path is None or len(n.path.verbs) == 0:
+            return
+        if clip_mode:
+            if n.fill is not None:
+                m = _cover(n.path, t, canvas.width, canvas.height, n.fill.rule, n.antialias,
+                           self.tol)
+                if m is not None:
+                    canvas.fill(m, _CLIP_FILL.color, 1.0)
+            return
+        for item in n.paint_order:
+            if item == 'fill' and n.fill is not None:
+                self.fill(n, t, canvas)
+            elif item == 'stroke' and n.stroke is not None:
+                self.stroke(n, t, canvas)
+            elif item == 'markers' and n.markers is not None:
+                self.node(n.markers, t, canvas)
+
+    def fill(self, n, t, canvas):
+        f = n.fill
+        if f.opacity <= 0:
+            return
+        m = _cover(n.path, t, canvas.width, canvas.height, f.rule, n.antialias, self.tol)
+        if m is not None:
+            self.paint(canvas, m, f.paint, f.opacity, n.path, t)
+
+    def stroke(self, n, t, canvas):
+        s = n.stroke
+        if s.opacity <= 0 or s.width <= 0:
+            return
+        style = StrokeStyle(width=s.width, join=s.join, cap=s.cap, miterlimit=s.miterlimit,
+                            dash=s.dash, dash_offset=s.dash_offset)
+        opacity = s.opacity
+        hair = hairline_scale(style, t)
+        if hair is not None:
+            style = StrokeStyle(width=1.0 / t.mean_scale(), join=s.join, cap=s.cap,
+                                miterlimit=s.miterlimit, dash=s.dash, dash_offset=s.dash_offset)
+            opacity *= hair
+        outline = stroke_outline(n.path, style, transform=t, tolerance=self.tol)
+        if len(outline.verbs) == 0:
+            return
+        m = _cover(outline, IDENTITY, canvas.width, canvas.height, 'nonzero', n.antialias,
+                   self.tol)
+        if m is not None:
+            self.paint(canvas, m, s.paint, opacity, n.path, t)
+
+    def paint(self, canvas, mask, paint, opacity, path, t):
+        if isinstance(paint, SolidPaint):
+            canvas.fill(mask, paint.color, opacity)
+        elif isinstance(paint, (LinearGradient, RadialGradient)):
+            src = _gradient(paint, mask, path, t)
+            if src is not None:
+                canvas.composite(src, mask.x0, mask.y0, opacity)
+        elif isinstance(paint, Pattern):
+            src = self.pattern(paint, mask, path, t)
+            if src is not None:
+                canvas.composite(src, mask.x0, mask.y0, opacity)
+        # unknown paints: skipped
+
+    def pattern(self, p, mask, path, t):
+        """Premultiplied (h, w, 4) colours of a pattern over the mask window,
+        multiplied by the coverage; None when the tile is empty.
+
+        The tile is rendered once into a raster at device resolution and
+        sampled (bilinear, wrapping) through the inverse of the tile-to-device
+        transform, the way resvg paints patterns."""
+        bx = by = 0.0
+        bw = bh = 1.0
+        if p.units == 'objectBoundingBox' or p.content_units == 'objectBoundingBox':
+            bx, by, bw, bh = _user_bbox(path)
+            if bw <= 0 or bh <= 0:
+                return None
+        x, y, w, h = p.rect
+        if p.units == 'objectBoundingBox':
+            x, y, w, h = bx + x * bw, by + y * bh, w * bw, h * bh
+        if not (w > 0 and h > 0):
+            return None
+        tile_to_dev = t @ p.transform @ Affine.translate(x, y)
+        a, b, c, d = tile_to_dev.a, tile_to_dev.b, tile_to_dev.c, tile_to_dev.d
+        sx, sy = math.hypot(a, b), math.hypot(c, d)
+        tw = max(1, int(math.ceil(w * sx)))
+        th = max(1, int(math.ceil(h * sy)))
+        if tw * th > limits.MAX_PIXELS // 4:
+            return None
+        content = p.content_transform
+        if p.view_box is None and p.content_units == 'objectBoundingBox':
+            content = content @ Affine.scale(bw, bh)
+        tile = Canvas(tw, th)
+        self.node(p.root, Affine.scale(tw / w, th / h) @ content, tile)
+        try:
+            inv = (tile_to_dev @ Affine.scale(w / tw, h / th)).inverse()
+        except RasterError:
+            return None
+        hh, ww = mask.data.shape
+        jj, ii = np.meshgrid(np.arange(ww) + mask.x0 + 0.5, np.arange(hh) + mask.y0 + 0.5)
+        uv = inv.apply(np.stack([jj, ii], -1))
+        col = _sample(tile.data, uv[..., 0], uv[..., 1], smooth=True, wrap=True)
+        return (col * mask.data[..., None]).astype(np.float32)
+
+    # -- images ----------------------------------------------------------------
+    def image(self, n, t, canvas):
+        if n.opacity <= 0:
+            return
+        if n.tree is not None:
+            self.svg_image(n, t, canvas)
+        elif n.pixels is not None:
+            _draw_pixels(n, t, canvas, self.tol)
+
+    def svg_image(self, n, t, canvas):
+        sub = n.tree
+        it = t @ n.transform
+        g = Group(children=[sub.root])
+        if n.clip is not None:
+            x, y, w, h = n.clip
+            box = t.apply(np.array([[x, y], [x + w, y], [x + w, y + h], [x, y + h]], float))
+            px = _pixel_box((box[:, 0].min(), box[:, 1].min(), box[:, 0].max(), box[:, 1].max()),
+                            canvas.width, canvas.height)
+            if px is None:
+                return
+            x0, y0, x1, y1 = px
+            layer = Canvas(x1 - x0, y1 - y0)
+            lt = Affine.translate(-x0, -y0)
+            self.node(g, lt @ it, layer)
+            rect = Path.polygon([(x, y), (x + w, y), (x + w, y + h), (x, y + h)])
+            rc = _cover(rect, lt @ t, layer.width, layer.height, 'nonzero', True, self.tol)
+            if rc is None:
+                return
+            layer.data *= rc.full(layer.width, layer.height)[..., None]
+            canvas.composite(layer.data, x0, y0, n.opacity)
+        else:
+            self.node(g, it, canvas)
+
+
+# ---------------------------------------------------------------------------
+# Geometry helpers
+# ---------------------------------------------------------------------------
+
+def _cover(path, t, w, h, rule, antialias, tol):
+    """Coverage Mask of ``path`` filled under ``t`` on a w x h target."""
+    pl = flatten(path, tol, transform=t)
+    edges = pl.edges(close_all=True)
+    if len(edges) == 0:
+        return None
+    return coverage(edges, w, h, rule, antialias)
+
+
+def _pixel_box(box, w, h, margin=1):
+    """Float device box -> integer pixel box clipped to the target, or None."""
+    x0, y0, x1, y1 = box
+    if not all(math.isfinite(v) for v in box):
+        return None
+    px0 = max(0, int(math.floor(x0)) - margin)
+    py0 = max(0, int(math.floor(y0)) - margin)
+    px1 = min(w, int(math.ceil(x1)) + margin)
+    py1 = min(h, int(math.ceil(y1)) + margin)
+    if px1 <= px0 or py1 <= py0:
+        return None
+    return px0, py0, px1, py1
+
+
+def _union(a, b):
+    if a is None:
+        return b
+    if b is None:
+        return a
+    return (min(a[0], b[0]), min(a[1], b[1]), max(a[2], b[2]), max(a[3], b[3]))
+
+
+def _points_box(pts):
+    if len(pts) == 0:
+        return None
+    lo, hi = pts.min(0), pts.max(0)
+    return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+
+
+def _stroke_reach(s):
+    """How far (in user units) a stroke can reach beyond the path."""
+    r = s.width / 2.0
+    k = 1.0
+    if s.join in ('miter', 'miter-clip', 'arcs'):
+        k = max(k, s.miterlimit)
+    if s.cap == 'square':
+        k = max(k, math.sqrt(2.0))
+    return r * k
+
+
+def _node_box(n, t):
+    """Conservative device bounding box (x0, y0, x1, y1) of what ``n``
+    draws under the CTM ``t``, or None when it draws nothing."""
+    if isinstance(n, Group):
+        ct = t @ n.transform
+        box = None
+        for c in n.children:
+            box = _union(box, _node_box(c, ct))
+        if box is not None and n.mask is not None:
+            x, y, w, h = n.mask.rect
+            mb = _points_box(ct.apply(np.array([[x, y], [x + w, y], [x + w, y + h], [x, y + h]],
+                                               float)))
+            box = (max(box[0], mb[0]), max(box[1], mb[1]), min(box[2], mb[2]), min(box[3], mb[3]))
+            if box[2] <= box[0] or box[3] <= box[1]:
+                return None
+        return box
+    if isinstance(n, PathNode):
+        if n.path is None or len(n.path.points) == 0:
+            return None
+        pts = t.apply(n.path.points)
+        box = _points_box(pts) if (n.fill is not None or n.stroke is not None) else None
+        if box is not None and n.stroke is not None:
+            reach = _stroke_reach(n.stroke) * max(t.max_scale(), 1e-12) + 1.0
+            box = (box[0] - reach, box[1] - reach, box[2] + reach, box[3] + reach)
+        if n.markers is not None:
+            box = _union(box, _node_box(n.markers, t))
+        return box
+    if isinstance(n, ImageNode):
+        x, y, w, h = n.clip if n.clip is not None else n.view_rect
+        return _points_box(t.apply(np.array([[x, y], [x + w, y], [x + w, y + h], [x, y + h]],
+                                            float)))
+    return None
+
+
+def _group_box(g, ct):
+    box = None
+    for c in g.children:
+        box = _union(box, _node_box(c, ct))
+    return box
+
+
+# ---------------------------------------------------------------------------
+# Gradients
+# ---------------------------------------------------------------------------
+
+def _user_bbox(path):
+    """Bounding box (x, y, w, h) of a path in its own units, for
+    objectBoundingBox paints."""
+    try:
+        from ..bbox import bbox as exact_bbox
+        x0, y0, x1, y1 = exact_bbox(path)
+    except (ImportError, RasterError, TypeError, ValueError):
+        x0, y0, x1, y1 = path.control_box()
+    return x0, y0, x1 - x0, y1 - y0
+
+
+def _stop_table(stops):
+    offs = np.array([s.offset for s in stops], np.float64)
+    cols = np.array([s.color for s in stops], np.float64).reshape(-1, 4)
+    offs = np.maximum.accumulate(np.clip(offs, 0.0, 1.0))
+    return offs, cols
+
+
+def _gradient(paint, mask, path, t):
+    """Premultiplied (h, w, 4) float32 colours of a gradient over the mask's
+    window, already multiplied by the mask's coverage; None if nothing."""
+    stops = paint.stops
+    if not stops:
+        return None
+    offs, cols = _stop_table(stops)
+    h, w = mask.data.shape
+    # paint space -> device
+    pt = t
+    if paint.units == 'objectBoundingBox':
+        bx, by, bw, bh = _user_bbox(path)
+        if bw <= 0 or bh <= 0:
+            return None
+        pt = pt @ Affine(bw, 0, 0, bh, bx, by)
+    pt = pt @ paint.transform
+    try:
+        inv = pt.inverse()
+    except RasterError:
+        return None
+    if len(stops) == 1:
+        col = np.broadcast_to(cols[0], (h, w, 4))
+        return _premul_cover(np.array(col), mask)
+    jj, ii = np.meshgrid(np.arange(w) + mask.x0 + 0.5, np.arange(h) + mask.y0 + 0.5)
+    pts = inv.apply(np.stack([jj, ii], -1))
+    x, y = pts[..., 0], pts[..., 1]
+    if isinstance(paint, LinearGradient):
+        dx, dy = paint.x2 - paint.x1, paint.y2 - paint.y1
+        dd = dx * dx + dy * dy
+        if dd == 0:
+            return _premul_cover(np.broadcast_to(cols[-1], (h, w, 4)).copy(), mask)
+        s = ((x - paint.x1) * dx + (y - paint.y1) * dy) / dd
+    else:
+        s = _radial_param(paint, x, y)
+        if s is None:
+            return _premul_cover(np.broadcast_to(cols[-1], (h, w, 4)).copy(), mask)
+    s = _spread(s, paint.spread)
+    # interpolate straight colours per stop interval, then premultiply
+    col = np.empty(s.shape + (4,), np.float64)
+    for k in range(4):
+        col[..., k] = np.interp(s, offs, cols[:, k]) if len(np.unique(offs)) == len(offs) \
+            else _interp_steps(s, offs, cols[:, k])
+    return _premul_cover(col, mask)
+
+
+def _interp_steps(s, offs, vals):
+    """np.interp that handles repeated offsets (hard colour stops): at an
+    offset shared by several stops, the value jumps from the first stop's
+    to the last stop's."""
+    idx = np.searchsorted(offs, s, side='right')          # stops with offset <= s
+    idx = np.clip(idx, 1, len(offs) - 1)
+    o0, o1 = offs[idx - 1], offs[idx]
+    v0, v1 = vals[idx - 1], vals[idx]
+    span = o1 - o0
+    f = np.where(span > 0, (s - o0) / np.where(span > 0, span, 1.0), 1.0)
+    out = v0 + (v1 - v0) * np.clip(f, 0.0, 1.0)
+    out = np.where(s <= offs[0], vals[0], out)
+    out = np.where(s >= offs[-1], vals[-1], out)
+    return out
+
+
+def _spread(s, mode):
+    if mode == 'repeat':
+        return s - np.floor(s)
+    if mode == 'reflect':
+        m = np.mod(s, 2.0)
+        return np.where(m > 1.0, 2.0 - m, m)
+    return np.clip(s, 0.0, 1.0)
+
+
+def _radial_param(p, x, y):
+    """Gradient parameter of a two-point conical gradient: focal circle
+    (fx, fy, fr) at s = 0 to the end circle (cx, cy, r) at s = 1; the
+    largest s with a positive radius."""
+    cx, cy, r, fx, fy, fr = p.cx, p.cy, p.r, p.fx, p.fy, p.fr
+    if r <= 0:
+        return None
+    cdx, cdy, dr = cx - fx, cy - fy, r - fr
+    px, py = x - fx, y - fy
+    a = cdx * cdx + cdy * cdy - dr * dr
+    b = px * cdx + py * cdy + fr * dr
+    c = px * px + py * py - fr * fr
+    if abs(a) < 1e-9:
+        with np.errstate(divide='ignore', invalid='ignore'):
+            s = c / (2.0 * b)
+        ok = (fr + s * dr >= 0) & np.isfinite(s)
+        return np.where(ok, s, 0.0)
+    disc = b * b - a * c
+    sq = np.sqrt(np.maximum(disc, 0.0))
+    s1 = (b + sq) / a
+    s2 = (b - sq) / a
+    hi = np.maximum(s1, s2)
+    lo = np.minimum(s1, s2)
+    s = np.where(fr + hi * dr >= 0, hi, lo)
+    return np.where(disc >= 0, s, 0.0)
+
+
+def _premul_cover(col, mask):
+    col = np.asarray(col, np.float32)
+    out = np.empty(col.shape, np.float32)
+    a = col[..., 3] * mask.data
+    out[..., :3] = col[..., :3] * a[..., None]
+    out[..., 3] = a
+    return out
+
+
+# ---------------------------------------------------------------------------
+# Raster images
+# ---------------------------------------------------------------------------
+
+def _draw_pixels(n, t, canvas, tol):
+    pix = np.asarray(n.pixels)
+    if pix.ndim != 3 or pix.shape[2] != 4 or pix.shape[0] == 0 or pix.shape[1] == 0:
+        return
+    ih, iw = pix.shape[:2]
+    it = t @ n.transform                                 # image px -> device
+    try:
+        inv = it.inverse()
+    except RasterError:
+        return
+    # the drawn region: the image rectangle, clipped to the viewport
+    img_rect = n.transform.apply(np.array([[0, 0], [iw, 0], [iw, ih], [0, ih]], float))
+    region = Path.polygon(img_rect)
+    m = _cover(region, t, canvas.width, canvas.height, 'nonzero', True, tol)
+    if m is None:
+        return
+    cov = m.data
+    if n.clip is not None:
+        x, y, w, h = n.clip
+        rect = Path.polygon([(x, y), (x + w, y), (x + w, y + h), (x, y + h)])
+        cm = _cover(rect, t, canvas.width, canvas.height, 'nonzero', True, tol)
+        if cm is None:
+            return
+        cov = cov * cm.full(canvas.width, canvas.height)[m.y0:m.y0 + cov.shape[0],
+                                                         m.x0:m.x0 + cov.shape[1]]
+    h, w = cov.shape
+    jj, ii = np.meshgrid(np.arange(w) + m.x0 + 0.5, np.arange(h) + m.y0 + 0.5)
+    src = inv.apply(np.stack([jj, ii], -1))
+    p = pix.astype(np.float32) / 255.0
+    pm = np.empty_like(p)
+    pm[..., :3] = p[..., :3] * p[..., 3:4]
+    pm[..., 3] = p[..., 3]
+    col = _sample(pm, src[..., 0], src[..., 1], smooth=n.smooth, wrap=False)
+    col = col * cov[..., None]
+    canvas.composite(col.astype(np.float32), m.x0, m.y0, n.opacity)
+
+
+def _sample(img, u, v, smooth=True, wrap=False):
+    """Sample an (H, W, 4) float32 image at continuous pixel coordinates
+    (u right, v down; pixel (i, j) is centred at (j + 0.5, i + 0.5)).
+
+    Bilinear when ``smooth`` else nearest; ``wrap`` repeats the image
+    (tiling), otherwise coordinates clamp to the edge pixels."""
+    ih, iw = img.shape[:2]
+    if smooth:
+        fu, fv = u - 0.5, v - 0.5
+        u0 = np.floor(fu)
+        v0 = np.floor(fv)
+        au = (fu - u0).astype(np.float32)[..., None]
+        av = (fv - v0).astype(np.float32)[..., None]
+        u0 = u0.astype(np.int64)
+        v0 = v0.astype(np.int64)
+        u1, v1 = u0 + 1, v0 + 1
+        if wrap:
+            u0, u1, v0, v1 = u0 % iw, u1 % iw, v0 % ih, v1 % ih
+        else:
+            u0, u1 = np.clip(u0, 0, iw - 1), np.clip(u1, 0, iw - 1)
+            v0, v1 = np.clip(v0, 0, ih - 1), np.clip(v1, 0, ih - 1)
+        top = img[v0, u0] * (1 - au) + img[v0, u1] * au
+        bot = img[v1, u0] * (1 - au) + img[v1, u1] * au
+        return top * (1 - av) + bot * av
+    ui = np.floor(u).astype(np.int64)
+    vi = np.floor(v).astype(np.int64)
+    if wrap:
+        ui, vi = ui % iw, vi % ih
+    else:
+        ui, vi = np.clip(ui, 0, iw - 1), np.clip(vi, 0, ih - 1)
+    return img[vi, ui]
+
+
+# ---------------------------------------------------------------------------
+# Blend modes (W3C Compositing and Blending Level 1)
+# ---------------------------------------------------------------------------
+
+def _soft_light(cb, cs):
+    d = np.where(cb <= 0.25, ((16 * cb - 12) * cb + 4) * cb, np.sqrt(cb))
+    return np.where(cs <= 0.5, cb - (1 - 2 * cs) * cb * (1 - cb), cb + (2 * cs - 1) * (d - cb))
+
+
+def _hard_light(cb, cs):
+    s2 = 2 * cs
+    return np.where(cs <= 0.5, cb * s2, cb + (s2 - 1) - cb * (s2 - 1))
+
+
+def _dodge(cb, cs):
+    with np.errstate(divide='ignore', invalid='ignore'):
+        r = np.minimum(1.0, cb / np.maximum(1 - cs, 1e-12))
+    return np.where(cb <= 0, 0.0, np.where(cs >= 1, 1.0, r))
+
+
+def _burn(cb, cs):
+    with np.errstate(divide='ignore', invalid='ignore'):
+        r = 1 - np.minimum(1.0, (1 - cb) / np.maximum(cs, 1e-12))
+    return np.where(cb >= 1, 1.0, np.where(cs <= 0, 0.0, r))
+
+
+_SEPARABLE = {
+    'multiply': lambda cb, cs: cb * cs,
+    'screen': lambda cb, cs: cb + cs - cb * cs,
+    'overlay': lambda cb, cs: _hard_light(cs, cb),
+    'darken': np.minimum,
+    'lighten': np.maximum,
+    'color-dodge': _dodge,
+    'color-burn': _burn,
+    'hard-light': _hard_light,
+    'soft-light': _soft_light,
+    'difference': lambda cb, cs: np.abs(cb - cs),
+    'exclusion': lambda cb, cs: cb + cs - 2 * cb * cs,
+}
+
+
+def _lum(c):
+    return 0.3 * c[..., 0] + 0.59 * c[..., 1] + 0.11 * c[..., 2]
+
+
+def _clip_color(c):
+    lum = _lum(c)[..., None]
+    n = c.min(-1, keepdims=True)
+    x = c.max(-1, keepdims=True)
+    with np.errstate(divide='ignore', invalid='ignore'):
+        lo = np.where(n < 0, lum + (c - lum) * lum / np.maximum(lum - n, 1e-12), c)
+        hi = np.where(x > 1, lum + (lo - lum) * (1 - lum) / np.maximum(x - lum, 1e-12), lo)
+    return hi
+
+
+def _set_lum(c, lum):
+    d = lum - _lum(c)
+    return _clip_color(c + d[..., None])
+
+
+def _sat(c):
+    return c.max(-1) - c.min(-1)
+
+
+def _set_sat(c, s):
+    mx = c.max(-1, keepdims=True)
+    mn = c.min(-1, keepdims=True)
+    rng = mx - mn
+    with np.errstate(divide='ignore', invalid='ignore'):
+        out = np.where(rng > 0, (c - mn) * s[..., None] / np.maximum(rng, 1e-12), 0.0)
+    return out
+
+
+_NON_SEPARABLE = {
+    'hue': lambda cb, cs: _set_lum(_set_sat(cs, _sat(cb)), _lum(cb)),
+    'saturation': lambda cb, cs: _set_lum(_set_sat(cb, _sat(cs)), _lum(cb)),
+    'color': lambda cb, cs: _set_lum(cs, _lum(cb)),
+    'luminosity': lambda cb, cs: _set_lum(cb, _lum(cs)),
+}
+
+
+def _blend(canvas, src, x0, y0, opacity, mode):
+    """Composite premultiplied ``src`` at (x0, y0) with a blend mode:
+    ``result = S (1 - Da) + D (1 - Sa) + Sa Da B(Dc, Sc)``."""
+    fn = _SEPARABLE.get(mode)
+    fn2 = _NON_SEPARABLE.get(mode)
+    if fn is None and fn2 is None:
+        canvas.composite(src, x0, y0, opacity)
+        return
+    h, w = src.shape[:2]
+    cx0, cy0 = max(x0, 0), max(y0, 0)
+    cx1, cy1 = min(x0 + w, canvas.width), min(y0 + h, canvas.height)
+    if cx1 <= cx0 or cy1 <= cy0:
+        return
+    s = src[cy0 - y0:cy1 - y0, cx0 - x0:cx1 - x0].astype(np.float64) * opacity
+    d = canvas.data[cy0:cy1, cx0:cx1].astype(np.float64)
+    sa, da = s[..., 3:4], d[..., 3:4]
+    with np.errstate(divide='ignore', invalid='ignore'):
+        sc = np.where(sa > 0, s[..., :3] / np.maximum(sa, 1e-12), 0.0)
+        dc = np.where(da > 0, d[..., :3] / np.maximum(da, 1e-12), 0.0)
+    b = fn(dc, sc) if fn is not None else fn2(dc, sc)
+    out = np.empty_like(d)
+    out[..., :3] = s[..., :3] * (1 - da) + d[..., :3] * (1 - sa) + sa * da * np.clip(b, 0, 1)
+    out[..., 3:4] = sa + da - sa * da
+    canvas.data[cy0:cy1, cx0:cx1] = np.clip(out, 0, 1).astype(np.float32)

@@ -1,0 +1,1024 @@
+"""SVG path data and SVG basic shapes to :class:`raster.Path`.
+
+Coordinates are user units, x right and y down, as in SVG.  Elliptical arcs
+are converted to cubic Beziers within ``tolerance`` (path units: a caller
+that knows its device transform divides its device tolerance by the
+transform's scale); quadratic segments (``Q``/``T``) stay quadratic.
+
+>>> p = parse_path('M10 10 h 20 v 20 q -10 10 -20 0 z')
+>>> p.to_svg()
+'M 10 10 L 30 10 L 30 30 Q 20 40 10 30 Z'
+
+The parser is vectorized: one regular-expression pass splits the data into
+numbers and everything else, and the command structure is checked by a second
+regular expression over a one-byte-per-token string; the geometry (relative
+coordinates, ``S``/``T`` reflections, arcs) is then computed with numpy over
+all commands at once.
+
+Errors: with ``strict=True`` a malformed string raises
+:class:`~raster.errors.PathError` naming the character position; with
+``strict=False`` the path is kept up to the last complete command, which is
+what SVG renderers draw.
+
+>>> parse_path('M0 0 L10 0 L', strict=False).to_svg()
+'M 0 0 L 10 0'
+"""
+
+import math
+import re
+
+import numpy as np
+
+from .errors import LimitError, PathError
+from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
+
+__all__ = ['parse_path', 'arc_to_cubics', 'parse_points', 'rect_path',
+           'circle_path', 'ellipse_path', 'line_path', 'polyline_path']
+
+#: Most cubic pieces one elliptical arc may be split into; beyond this
+#: (a radius astronomically larger than the tolerance) :class:`LimitError`.
+MAX_ARC_PIECES = 100_000
+
+# -- lexical grammar -----------------------------------------------------------
+_WS = ' \t\n\r\f'
+_WSP = '[ \\t\\n\\r\\f]'
+_NUM = r'[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?'
+_SEP = _WSP + '*,?' + _WSP + '*'          # comma-wsp, possibly empty
+_NUM_SPLIT = re.compile('(' + _NUM + ')')
+_NUM_RE = re.compile(_NUM)
+_TOKEN_RE = re.compile(_NUM + '|[^ \\t\\n\\r\\f]')
+_CMD_LETTERS = 'MmZzLlHhVvCcSsQqTtAa'
+
+
+def _atomic(name):
+    # a number that the regex engine may not shorten by backtracking (SVG
+    # numbers are read greedily); lookahead + backreference works on 3.10
+    return '(?=(?P<%s>%s))(?P=%s)' % (name, _NUM, name)
+
+
+# an arc command up to the next command letter; inside it, the three numbers
+# before each pair of flags, and the two numbers after them
+_ARC_CMD_RE = re.compile('[Aa][^%s]*' % _CMD_LETTERS)
+_ARC_FLAGS_RE = re.compile(_SEP + _atomic('a') + _SEP + _atomic('b') + _SEP
+                           + _atomic('c') + _SEP + '(?P<f1>[01])(?:' + _SEP
+                           + '(?P<f2>[01]))?')
+_ARC_TAIL_RE = re.compile(_SEP + _atomic('x') + _SEP + _atomic('y'))
+_POINTS_RE = re.compile(_WSP + '*(?:' + _atomic('n') + '(?:' + _SEP
+                        + _atomic('m') + ')*)?')
+
+# -- token-level grammar ---------------------------------------------------------
+# The data is reduced to one byte per token: '#' a number, b'\x00' / b'\x01'
+# an arc flag, ',' a comma, a command letter, anything else is junk.
+_GROUP = {'M': '##', 'L': '##', 'T': '##', 'H': '#', 'V': '#', 'C': '######',
+          'S': '####', 'Q': '####', 'A': '###ff##', 'Z': ''}
+_GROUP.update({k.lower(): v for k, v in _GROUP.items()})
+_CMD = (rb'(?:[MmLlTt](?:##)+|[HhVv]#+|[Cc](?:######)+|[SsQq](?:####)+'
+        rb'|[Aa](?:###[\x00\x01][\x00\x01]##)+|[Zz])')
+_VALID = re.compile(rb'(?:[Mm](?:##)+' + _CMD + rb'*)?')
+_COMMA_AFTER_BAD = re.compile(rb'(?<![#\x00\x01]),')
+_COMMA_BEFORE_BAD = re.compile(rb',(?![#\x00\x01])')
+
+# per command letter (byte value): tokens per group, verb, end-point offsets
+_ARITY = np.zeros(128, np.int64)
+_EX = np.zeros(128, np.int64)
+_EY = np.zeros(128, np.int64)
+for _c, _n, _ex, _ey in (('M', 2, 0, 1), ('L', 2, 0, 1), ('T', 2, 0, 1),
+                         ('H', 1, 0, 0), ('V', 1, 0, 0), ('C', 6, 4, 5),
+                         ('S', 4, 2, 3), ('Q', 4, 2, 3), ('A', 7, 5, 6),
+                         ('Z', 0, 0, 0)):
+    for _l in (_c, _c.lower()):
+        _ARITY[ord(_l)] = _n
+        _EX[ord(_l)] = _ex
+        _EY[ord(_l)] = _ey
+_M, _L, _H, _V, _C, _S, _Q, _T, _A, _Z = (ord(c) for c in 'MLHVCSQTAZ')
+_SET, _ADD, _CLOSE = 0, 1, 2
+
+
+def _check_tolerance(tolerance):
+    try:
+        tol = float(tolerance)
+    except (TypeError, ValueError):
+        raise PathError('tolerance must be a number, got %r' % (tolerance,)) from None
+    if not (math.isfinite(tol) and tol > 0):
+        raise PathError('tolerance must be a positive finite number, got %r' % (tolerance,))
+    return tol
+
+
+# -- parse_path ------------------------------------------------------------------------
+def parse_path(d, tolerance=0.01, strict=True):
+    """Parse SVG path data into a :class:`~raster.path.Path`.
+
+    Parameters
+    ----------
+    d : str
+        SVG path data (the ``d`` attribute): commands ``M m L l H h V v C c
+        S s Q q T t A a Z z`` with SVG number syntax (``"1.5.5"`` is two
+        numbers, ``"-1-2"`` too; arc flags need no separator).
+    tolerance : float, optional
+        Largest distance, in path units, between an elliptical arc and the
+        cubic Beziers that replace it.  Must be positive and finite.
+    strict : bool, optional
+        ``True``: malformed data raises :class:`~raster.errors.PathError`
+        (``"path data error at 12: expected number"``, 12 being the
+        0-based character index).  ``False``: return the path up to the last
+        complete command before the error (SVG's rendering rule); data that
+        does not start with ``M``/``m`` gives an empty path.
+
+    Returns
+    -------
+    Path
+        ``M`` becomes ``MOVE``; ``L H V`` ``LINE``; ``C S`` ``CUBIC``; ``Q T``
+        ``QUAD``; ``A`` one or more ``CUBIC`` (``LINE`` for a zero radius,
+        nothing when its end points coincide); ``Z`` ``CLOSE``.  Drawing
+        after ``Z`` starts a new contour at the closed contour's first point.
+        Zero-length segments and lone ``M Z`` contours are kept.
+
+    Raises
+    ------
+    PathError
+        Malformed data (strict mode), a number too large for float64, a
+        coordinate that overflows, or a bad ``tolerance``.
+    LimitError
+        An arc needs more than :data:`MAX_ARC_PIECES` cubic pieces.
+
+    Examples
+    --------
+    >>> parse_path('m1 2 3 4').to_svg()
+    'M 1 2 L 4 6'
+    >>> parse_path('M0 0 C1 1 2 1 3 0 S5 -1 6 0').points[-3:].tolist()
+    [[4.0, -1.0], [5.0, -1.0], [6.0, 0.0]]
+    >>> try:
+    ...     parse_path('M0 0 L1 1 2')
+    ... except PathError as e:
+    ...     print(e)
+    path data error at 11: expected number
+    >>> len(parse_path('   '))
+    0
+    """
+    tol = _check_tolerance(tolerance)
+    if not isinstance(d, str):
+        raise PathError('path data must be a string, got %s' % type(d).__name__)
+    d2, nums, kb = _lex(d)
+    vals = list(map(float, nums))
+    kinds = kb.replace(b',', b'') if b',' in kb else kb
+    if (len(kinds) == len(kb) or not (_COMMA_AFTER_BAD.search(kb)
+                                     or _COMMA_BEFORE_BAD.search(kb))) \
+            and _VALID.fullmatch(kinds) is not None \
+            and (not vals or max(map(abs, vals)) < math.inf):
+        return _build(kinds, vals, tol)
+    vals = np.array(vals, dtype=np.float64)
+    at, what = _first_error(kb, kinds, vals)
+    if strict:
+        pos = _char_position(d2, at)
+        if what is None:
+            what = ('unexpected character %r' % d[pos] if pos < len(d)
+                    else 'unexpected end of data')
+        raise PathError('path data error at %d: %s' % (pos, what))
+    cut = at - kb.count(b',', 0, at)              # token index without commas
+    end = _VALID.match(kinds, 0, cut).end()
+    return _build(kinds[:end], vals[:kinds.count(b'#', 0, end)].tolist(), tol)
+
+
+def _lex(d):
+    """Return ``(d2, numbers, kinds)``: ``d2`` is ``d`` with arc flags
+    replaced by the marker characters ``\\x00``/``\\x01`` (same length),
+    ``numbers`` the number strings in order and ``kinds`` one byte per token
+    (whitespace dropped)."""
+    if '#' in d or '\x00' in d or '\x01' in d:
+        # characters used internally as token markers are junk in the input
+        d = d.replace('#', '\ufffd').replace('\x00', '\ufffd').replace('\x01', '\ufffd')
+    if 'A' in d or 'a' in d:
+        d = _ARC_CMD_RE.sub(_mark_flags, d)
+    parts = _NUM_SPLIT.split(d)
+    shape = '#'.join(parts[0::2])
+    kinds = shape.encode('ascii', 'replace').translate(None, _WS.encode())
+    return d, parts[1::2], kinds
+
+
+def _mark_flags(m):
+    """Replace the flag characters of one arc command by marker characters,
+    so that ``"00"`` in flag position reads as two flags, not a number."""
+    text = m.group()
+    marks = []
+    pos = 1
+    while True:
+        f = _ARC_FLAGS_RE.match(text, pos)
+        if f is None:
+            break
+        marks.append(f.start('f1'))
+        if f.group('f2') is None:
+            break
+        marks.append(f.start('f2'))
+        t = _ARC_TAIL_RE.match(text, f.end())
+        if t is None:
+            break
+        pos = t.end()
+    if not marks:
+        return text
+    chars = list(text)
+    for i in marks:
+        chars[i] = '\x00' if chars[i] == '0' else '\x01'
+    return ''.join(chars)
+
+
+def _first_error(kb, kinds, vals):
+    """Index into ``kb`` (tokens with commas) of the first error, and a
+    message (``None``: unexpected character)."""
+    errors = []
+    m = _COMMA_AFTER_BAD.search(kb)
+    if m:
+        errors.append((m.start(), 'unexpected comma'))
+    m = _COMMA_BEFORE_BAD.search(kb)
+    if m:
+        errors.append((m.start() + 1, _expected('#', kb, m.start() + 1)))
+    nonfinite = np.flatnonzero(~np.isfinite(vals))
+    if len(nonfinite):
+        k = _nth(kinds, b'#', int(nonfinite[0]))
+        errors.append((_with_commas(kb, k), 'number out of range'))
+    k, what = _structure_error(kinds)
+    if k is not None:
+        errors.append((_with_commas(kb, k), what))
+    return min(errors, key=lambda e: e[0])
+
+
+def _structure_error(kinds):
+    """First token of ``kinds`` (no commas) that breaks the command grammar."""
+    n = len(kinds)
+    if n == 0:
+        return None, None
+    if kinds[0] not in b'Mm':
+        return 0, _expected('M', kinds, 0)
+    e = _VALID.match(kinds).end()
+    if e == n:
+        return None, None
+    c = chr(kinds[e])
+    if c in _GROUP and c not in 'Zz':
+        cmd, start = c, e + 1                    # a command without arguments
+    else:
+        j = max(kinds.rfind(ch.encode(), 0, e) for ch in _CMD_LETTERS)
+        cmd, start = chr(kinds[j]), e             # inside an incomplete group
+    pattern = _GROUP[cmd]
+    if not pattern:
+        return e, _expected('cmd', kinds, e)
+    for i, want in enumerate(pattern):
+        k = start + i
+        ok = k < n and (kinds[k] == 35 if want == '#' else kinds[k] in (0, 1))
+        if not ok:
+            return k, _expected(want, kinds, k)
+    return e, None                                # not reached for valid input
+
+
+def _expected(want, toks, k):
+    """Message for token ``k`` of ``toks`` where ``want`` was expected, or
+    ``None`` when the token is junk (the caller names the character)."""
+    if k < len(toks):
+        t = toks[k]
+        if not (t in (0, 1) or chr(t) in '#,' + _CMD_LETTERS):
+            return None
+    return {'#': 'expected number', 'f': 'expected arc flag (0 or 1)',
+            'M': 'expected moveto (M or m)', 'cmd': 'expected command'}[want]
+
+
+def _nth(s, byte, n):
+    """Index of the ``n``-th (0-based) occurrence of ``byte`` in ``s``."""
+    hits = np.flatnonzero(np.frombuffer(s, np.uint8) == byte[0])
+    return int(hits[n])
+
+
+def _with_commas(kb, k):
+    """Map token index ``k`` of the comma-free kinds to an index in ``kb``."""
+    if b',' not in kb:
+        return k
+    keep = np.flatnonzero(np.frombuffer(kb, np.uint8) != 44)
+    return int(keep[k]) if k < len(keep) else len(kb)
+
+
+def _char_position(d2, k):
+    """Character index of token ``k`` (``len(d2)`` past the last token)."""
+    for i, m in enumerate(_TOKEN_RE.finditer(d2)):
+        if i == k:
+            return m.start()
+    return len(d2)
+
+
+_CMD_SPAN = re.compile(rb'([MmZzLlHhVvCcSsQqTtAa])([^MmZzLlHhVvCcSsQqTtAa]*)')
+
+#: Paths with fewer tokens than this are built by a plain loop over their
+#: commands (numpy's per-call overhead dominates on short paths); longer
+#: ones by the vectorized builder.  Both give the same path (tested).
+SMALL_PATH_TOKENS = 2000
+
+
+def _build(kinds, vals, tol):
+    """Path from a validated token string and its numbers."""
+    if len(kinds) < SMALL_PATH_TOKENS:
+        return _build_loop(kinds, vals, tol)
+    return _build_vector(kinds, np.array(vals, dtype=np.float64), tol)
+
+
+def _build_loop(kinds, vals, tol):
+    """Command-by-command builder (reference semantics, used for short
+    paths).  Arcs are collected and converted in one batch at the end."""
+    v = vals                                # list of floats
+    verbs, pts, arcs = [], [], []           # pts: flat x, y list
+    k = 0                                   # next number in v
+    x = y = sx = sy = 0.0                   # current point, contour start
+    qx = qy = cx = cy = 0.0                 # last quadratic / cubic control
+    last = 0                                # previous command (upper case)
+    for letter, args in _CMD_SPAN.findall(kinds):
+        c = letter[0]
+        up = c & 0xDF
+        if up == _Z:
+            if last != _Z:
+                verbs.append(CLOSE)
+            x, y, last = sx, sy, _Z
+            continue
+        rel = c >= 97
+        for g in range(len(args) // int(_ARITY[c])):
+            if last == _Z and not (up == _M and g == 0):
+                verbs.append(MOVE)          # drawing after Z: implicit move
+                pts += (x, y)
+            ox, oy = (x, y) if rel else (0.0, 0.0)
+            if up == _M or up == _L:
+                x, y = ox + v[k], oy + v[k + 1]
+                k += 2
+                if up == _M and g == 0:
+                    verbs.append(MOVE)
+                    sx, sy, last = x, y, _M
+                else:
+                    verbs.append(LINE)
+                    last = _L
+                pts += (x, y)
+            elif up == _H or up == _V:
+                if up == _H:
+                    x = ox + v[k]
+                else:
+                    y = oy + v[k]
+                k += 1
+                verbs.append(LINE)
+                pts += (x, y)
+                last = up
+            elif up == _C or up == _S:
+                if up == _C:
+                    c1 = (ox + v[k], oy + v[k + 1])
+                    k += 2
+                elif last == _C or last == _S:
+                    c1 = (2 * x - cx, 2 * y - cy)
+                else:
+                    c1 = (x, y)
+                cx, cy = ox + v[k], oy + v[k + 1]
+                x, y = ox + v[k + 2], oy + v[k + 3]
+                k += 4
+                verbs.append(CUBIC)
+                pts += (c1[0], c1[1], cx, cy, x, y)
+                last = up
+            elif up == _Q or up == _T:
+                if up == _Q:
+                    qx, qy = ox + v[k], oy + v[k + 1]
+                    k += 2
+                elif last == _Q or last == _T:
+                    qx, qy = 2 * x - qx, 2 * y - qy
+                else:
+                    qx, qy = x, y
+                x, y = ox + v[k], oy + v[k + 1]
+                k += 2
+                verbs.append(QUAD)
+                pts += (qx, qy, x, y)
+                last = up
+            else:                           # arc: placeholder, converted below
+                f = args[7 * g + 3: 7 * g + 5]
+                end = (ox + v[k + 3], oy + v[k + 4])
+                arcs.append((len(verbs), len(pts) // 2, x, y, v[k], v[k + 1], v[k + 2],
+                             f[0], f[1], end[0], end[1]))
+                k += 5
+                x, y = end
+                verbs.append(LINE)
+                pts += end
+                last = _A
+    verbs = np.array(verbs, np.uint8)
+    points = np.array(pts, np.float64).reshape(-1, 2)
+    if arcs:
+        verbs, points = _splice_arcs(verbs, points, arcs, tol)
+    if not np.isfinite(points).all():
+        raise PathError('path coordinates overflow float64')
+    return Path(verbs, points, _checked=True)
+
+
+def _splice_arcs(verbs, points, arcs, tol):
+    """Replace the placeholder ``LINE`` of every arc by its conversion."""
+    a = np.array(arcs, np.float64)
+    kind, count, ctrl = _arc_batch(a[:, 2:4], a[:, 9:11], a[:, 4], a[:, 5], a[:, 6],
+                                   a[:, 7], a[:, 8], tol)
+    vs, ps = [], []
+    pv = pp = off = 0
+    for (vi, pi), kd, n in zip(a[:, :2].astype(np.int64).tolist(), kind.tolist(),
+                               count.tolist()):
+        vs.append(verbs[pv:vi])
+        ps.append(points[pp:pi])
+        if kd == 1:
+            vs.append(verbs[vi:vi + 1])
+            ps.append(points[pi:pi + 1])
+        elif kd == 2:
+            vs.append(np.full(n, CUBIC, np.uint8))
+            ps.append(ctrl[off:off + n].reshape(-1, 2))
+            off += n
+        pv, pp = vi + 1, pi + 1
+    vs.append(verbs[pv:])
+    ps.append(points[pp:])
+    return np.concatenate(vs), np.concatenate(ps)
+
+
+def _resolve(mode, val, is_move):
+    """One coordinate of the current point after every command.
+
+    ``mode`` is ``_SET`` (absolute value), ``_ADD`` (relative) or ``_CLOSE``
+    (back to the start of the contour, i.e. the latest move).  Runs of
+    relative commands are cumulative sums from the last set/close; a close
+    refers to the position of an earlier move, which may itself hang off an
+    earlier close: those chains are resolved by pointer jumping (log n
+    rounds)."""
+    n = len(mode)
+    bound = mode != _ADD
+    seg = np.cumsum(bound) - 1
+    starts = np.flatnonzero(bound)
+    cs = np.cumsum(np.where(bound, 0.0, val))
+    local = cs - cs[starts][seg]
+    smode = mode[starts]
+    base = np.where(smode == _SET, val[starts], 0.0)
+    close = smode == _CLOSE
+    if close.any():
+        last_move = np.maximum.accumulate(np.where(is_move, np.arange(n), 0))
+        m = last_move[starts[close]]
+        ref = np.full(len(starts), -1, np.int64)
+        ref[close] = seg[m]
+        base[close] = local[m]
+        act = np.flatnonzero(ref >= 0)
+        while len(act):
+            r = ref[act]
+            base[act] = base[act] + base[r]
+            ref[act] = ref[r]
+            act = act[ref[act] >= 0]
+    return base[seg] + local
+
+
+def _build_vector(kinds, vals, tol):
+    """Vectorized builder: all commands at once (used for long paths)."""
+    if not kinds:
+        return Path.empty()
+    codes = np.frombuffer(kinds, np.uint8)
+    cmd_at = np.flatnonzero(codes >= 65)
+    letters = codes[cmd_at]
+    arity = _ARITY[letters]
+    ntok = np.diff(cmd_at, append=len(codes)) - 1
+    ngroups = np.where(arity > 0, ntok // np.maximum(arity, 1), 1)
+    first = np.cumsum(ngroups) - ngroups
+    cmd = np.repeat(np.arange(len(letters)), ngroups)
+    j = np.arange(len(cmd)) - first[cmd]
+    letter = letters[cmd]
+    tok = cmd_at[cmd] + 1 + j * arity[cmd]         # first argument token
+    rel = letter >= 97
+    kind = letter & 0xDF                           # upper case
+    kind[(kind == _M) & (j > 0)] = _L              # implicit lineto after moveto
+
+    tokval = np.zeros(len(codes) + 8)
+    tokval[:len(codes)][codes == 35] = vals
+    if b'A' in kinds or b'a' in kinds:
+        isflag = codes < 2
+        tokval[:len(codes)][isflag] = codes[isflag]
+
+    # end point of every command
+    ex = tokval[tok + _EX[kind]]
+    ey = tokval[tok + _EY[kind]]
+    mx = np.where(rel, _ADD, _SET)
+    my = mx.copy()
+    isV, isH, isZ = kind == _V, kind == _H, kind == _Z
+    mx[isV] = _ADD
+    ex[isV] = 0.0
+    my[isH] = _ADD
+    ey[isH] = 0.0
+    mx[isZ] = _CLOSE
+    my[isZ] = _CLOSE
+    mx[0] = my[0] = _SET                           # a leading 'm' is absolute
+    is_move = kind == _M
+    pos = np.empty((len(kind), 2))
+    pos[:, 0] = _resolve(mx, ex, is_move)
+    pos[:, 1] = _resolve(my, ey, is_move)
+    prev = np.empty_like(pos)
+    prev[0] = 0.0
+    prev[1:] = pos[:-1]
+    prevkind = np.empty_like(kind)
+    prevkind[0] = 0
+    prevkind[1:] = kind[:-1]
+
+    def arg2(k, idx):                              # absolute point from 2 args
+        p = np.stack([tokval[tok[idx] + k], tokval[tok[idx] + k + 1]], 1)
+        r = rel[idx]
+        p[r] += prev[idx][r]
+        return p
+
+    # Z after Z closes nothing; drawing after Z starts with a move
+    drop = isZ & (prevkind == _Z)
+    need_move = (prevkind == _Z) & ~isZ & ~is_move
+    own = np.ones(len(kind), np.int64)
+    own[drop] = 0
+
+    isA = kind == _A
+    arcs = None
+    if isA.any():
+        ai = np.flatnonzero(isA)
+        arcs = ai, _arc_batch(prev[ai], pos[ai], tokval[tok[ai]], tokval[tok[ai] + 1],
+                              tokval[tok[ai] + 2], tokval[tok[ai] + 3],
+                              tokval[tok[ai] + 4], tol)
+        own[ai] = arcs[1][1]
+
+    nitem = own + need_move
+    item_at = np.cumsum(nitem) - nitem
+    at = item_at + need_move                        # index of the command's own item
+    total = int(nitem.sum())
+    iverb = np.empty(total, np.uint8)
+    ipts = np.zeros((total, 3, 2))
+    inpt = np.zeros(total, np.int64)
+
+    mi = item_at[need_move]
+    iverb[mi] = MOVE
+    ipts[mi, 0] = prev[need_move]
+    inpt[mi] = 1
+
+    simple = is_move | (kind == _L) | isH | isV
+    k = at[simple]
+    iverb[k] = np.where(is_move[simple], MOVE, LINE)
+    ipts[k, 0] = pos[simple]
+    inpt[k] = 1
+
+    keepz = isZ & ~drop
+    iverb[at[keepz]] = CLOSE
+
+    isC, isS = kind == _C, kind == _S
+    if isC.any() or isS.any():
+        c2 = np.zeros_like(pos)                     # second control points
+        ci = np.flatnonzero(isC)
+        k = at[ci]
+        iverb[k] = CUBIC
+        inpt[k] = 3
+        ipts[k, 0] = arg2(0, ci)
+        ipts[k, 1] = c2[ci] = arg2(2, ci)
+        ipts[k, 2] = pos[ci]
+        si = np.flatnonzero(isS)
+        if len(si):
+            c2[si] = arg2(0, si)
+            pk = prevkind[si]
+            smooth = (pk == _C) | (pk == _S)
+            c1 = prev[si].copy()
+            c1[smooth] = 2 * prev[si][smooth] - c2[si - 1][smooth]
+            k = at[si]
+            iverb[k] = CUBIC
+            inpt[k] = 3
+            ipts[k, 0] = c1
+            ipts[k, 1] = c2[si]
+            ipts[k, 2] = pos[si]
+
+    isQ, isT = kind == _Q, kind == _T
+    if isQ.any() or isT.any():
+        qc = np.zeros_like(pos)                     # quadratic control points
+        qi = np.flatnonzero(isQ)
+        qc[qi] = arg2(0, qi)
+        ti = np.flatnonzero(isT)
+        if len(ti):
+            qc[ti] = _t_controls(ti, prev, prevkind, qc)
+        qt = np.flatnonzero(isQ | isT)
+        k = at[qt]
+        iverb[k] = QUAD
+        inpt[k] = 2
+        ipts[k, 0] = qc[qt]
+        ipts[k, 1] = pos[qt]
+
+    if arcs is not None:
+        ai, (akind, acount, actrl) = arcs
+        li = ai[akind == 1]
+        k = at[li]
+        iverb[k] = LINE
+        inpt[k] = 1
+        ipts[k, 0] = pos[li]
+        cub = akind == 2
+        if cub.any():
+            n = acount[cub]
+            k = np.repeat(at[ai[cub]], n) + (np.arange(int(n.sum()))
+                                              - np.repeat(np.cumsum(n) - n, n))
+            iverb[k] = CUBIC
+            inpt[k] = 3
+            ipts[k] = actrl
+
+    points = ipts[np.arange(3) < inpt[:, None]]
+    if not np.isfinite(points).all():
+        raise PathError('path coordinates overflow float64')
+    return Path(iverb, points, _checked=True)
+
+
+def _t_controls(ti, prev, prevkind, qc):
+    """Control points of the ``T`` commands at indices ``ti``.
+
+    Each reflects the previous control point about the current point when
+    the previous command was ``Q``/``T``, else it is the current point.  In
+    a run of ``T`` commands ``c[k] = 2 P[k] - c[k-1]``; with
+    ``u[k] = (-1)**k c[k]`` that becomes ``u[k] = u[k-1] + 2 (-1)**k P[k]``,
+    a cumulative sum per run."""
+    P = prev[ti]
+    pk = prevkind[ti]
+    start = pk != _T
+    r = P.copy()                                   # reflected point at a run start
+    fromq = start & (pk == _Q)
+    r[fromq] = qc[ti[fromq] - 1]
+    sgn = np.where(ti % 2 == 0, 1.0, -1.0)[:, None]
+    term = 2 * sgn * P
+    cs = np.cumsum(term, axis=0)
+    run = np.cumsum(start) - 1
+    s = np.flatnonzero(start)
+    base = -sgn[s] * r[s] - (cs[s] - term[s])
+    return sgn * (cs + base[run])
+
+
+# -- elliptical arcs ---------------------------------------------------------------------
+def _arc_error(theta):
+    """Upper bound of the radial error of the standard cubic approximation
+    (control arms ``4/3 tan(theta/4)``) of a unit-circle arc of ``theta``
+    radians: ``(2/27) sin(theta/4)**6 / cos(theta/4)**2`` (the true maximum
+    is this to within 0.1% for theta <= pi/2)."""
+    q = theta / 4
+    return (2.0 / 27.0) * np.sin(q) ** 6 / np.cos(q) ** 2
+
+
+def _pieces(sweep, radius, tol):
+    """Number of cubic pieces for arcs of ``sweep`` radians (absolute) on
+    ellipses whose larger radius is ``radius``: at most 90 degrees each and
+    radial error at most ``tol``."""
+    n = np.maximum(np.ceil(sweep / (np.pi / 2) - 1e-9), 1.0)
+    with np.errstate(divide='ignore', over='ignore', invalid='ignore'):
+        theta = 4.0 * (13.5 * tol / radius) ** (1.0 / 6.0)   # small-angle inverse
+        n = np.maximum(n, np.ceil(sweep / theta))
+    n = np.where(np.isfinite(n), n, float(MAX_ARC_PIECES + 1))
+    if np.any(n > MAX_ARC_PIECES):
+        raise LimitError('elliptical arc needs more than %d cubic pieces at '
+                         'tolerance %g' % (MAX_ARC_PIECES, tol))
+    for _ in range(8):                             # the estimate is close: fix up
+        bad = _arc_error(sweep / n) * radius > tol
+        if not bad.any():
+            break
+        n[bad] += 1
+    return n.astype(np.int64)
+
+
+def _arc_batch(p0, p1, rx, ry, phi_deg, large, sweep, tol):
+    """Convert N SVG arcs (endpoint form) at once.
+
+    Returns ``kind`` ((N,) 0: omitted, 1: straight line, 2: cubics),
+    ``count`` ((N,) pieces per arc; 1 for lines) and ``ctrl`` ((K, 3, 2)
+    control points of all cubic pieces, arc by arc)."""
+    rx, ry = np.abs(rx), np.abs(ry)
+    same = np.all(p0 == p1, axis=1)
+    line = ~same & ((rx == 0) | (ry == 0))
+    arc = ~same & ~line
+    ctrl = np.zeros((0, 3, 2))
+    count = line.astype(np.int64)
+    if arc.any():
+        i = np.flatnonzero(arc)
+        ok, n, ctrl = _arc_cubics(p0[i], p1[i], rx[i], ry[i], phi_deg[i],
+                                  large[i] != 0, sweep[i] != 0, tol)
+        line[i[~ok]] = True                        # radius too large to matter
+        arc[i[~ok]] = False
+        count[i] = np.where(ok, n, 1)
+    kind = np.where(same, 0, np.where(line, 1, 2))
+    return kind, count, ctrl
+
+
+def _arc_cubics(p0, p1, rx, ry, phi_deg, large, sweep, tol):
+    """Centre parameterization (SVG implementation notes, F.6.5/F.6.6)
+    computed in the unit-circle frame of each ellipse, then cubic pieces.
+
+    Returns ``ok`` ((N,) False where the chord is negligible against the
+    radii, to be drawn as a line), ``n`` ((N,) pieces) and ``ctrl``
+    ((sum n over ok, 3, 2))."""
+    phi = np.radians(np.mod(phi_deg, 360.0))
+    co, si = np.cos(phi), np.sin(phi)
+    h = (p0 - p1) * 0.5
+    X = (co * h[:, 0] + si * h[:, 1]) / rx          # half chord in unit frame
+    Y = (-si * h[:, 0] + co * h[:, 1]) / ry
+    lam = X * X + Y * Y
+    ok = (lam > 0) & np.isfinite(lam)
+    scale = np.sqrt(np.where(lam > 1, lam, 1.0))    # radii too small: scale up
+    rx, ry, X, Y = rx * scale, ry * scale, X / scale, Y / scale
+    lam = np.where(ok, X * X + Y * Y, 1.0)
+    s = np.sqrt(np.maximum(0.0, (1.0 - lam) / lam))
+    s = np.where(large != sweep, s, -s)
+    ucx, ucy = s * Y, -s * X                        # centre in unit frame
+    t1 = np.arctan2(Y - ucy, X - ucx)
+    dt = np.mod(np.arctan2(-Y - ucy, -X - ucx) - t1, 2 * np.pi)
+    dt = np.where(sweep, dt, dt - 2 * np.pi)
+    n = np.zeros(len(p0), np.int64)
+    n[ok] = _pieces(np.abs(dt[ok]), np.maximum(rx, ry)[ok], tol)
+    sel = np.flatnonzero(ok)
+    n_sel = n[sel]
+    a = np.repeat(sel, n_sel)                        # arc of every piece
+    jj = np.arange(len(a)) - np.repeat(np.cumsum(n_sel) - n_sel, n_sel)
+    step = (dt / np.maximum(n, 1))[a]
+    a0 = t1[a] + step * jj
+    a1 = t1[a] + step * (jj + 1)
+    k = (4.0 / 3.0) * np.tan(step / 4)
+    c0, s0, c1, s1 = np.cos(a0), np.sin(a0), np.cos(a1), np.sin(a1)
+    ux = np.stack([c0 - k * s0, c1 + k * s1, c1], 1) + ucx[a][:, None]
+    uy = np.stack([s0 + k * c0, s1 - k * c1, s1], 1) + ucy[a][:, None]
+    ex, ey = ux * rx[a][:, None], uy * ry[a][:, None]
+    mid = (p0 + p1)[a] * 0.5
+    ctrl = np.empty((len(a), 3, 2))
+    ctrl[:, :, 0] = co[a][:, None] * ex - si[a][:, None] * ey + mid[:, 0:1]
+    ctrl[:, :, 1] = si[a][:, None] * ex + co[a][:, None] * ey + mid[:, 1:2]
+    if len(a):
+        ctrl[np.cumsum(n_sel) - 1, 2] = p1[sel]      # end exactly on p1
+    return ok, n, ctrl
+
+
+def _finite(name, *vals):
+    out = []
+    for v in vals:
+        try:
+            f = float(v)
+        except (TypeError, ValueError):
+            raise PathError('%s must be numbers, got %r' % (name, v)) from None
+        if not math.isfinite(f):
+            raise PathError('%s must be finite, got %r' % (name, v))
+        out.append(f)
+    return out
+
+
+def arc_to_cubics(p0, rx, ry, phi_deg, large_arc, sweep, p1, tolerance=0.01):
+    """Cubic Beziers of an SVG elliptical arc given in endpoint form.
+
+    Follows the SVG implementation notes: negative radii use their absolute
+    value, radii too small to reach ``p1`` are scaled up uniformly, the
+    x-axis rotation is in degrees, ``sweep`` true means the positive-angle
+    direction (clockwise on screen, y down).
+
+    Parameters
+    ----------
+    p0, p1 : pair of float
+        Start and end point.
+    rx, ry, phi_deg : float
+        Radii and x-axis rotation in degrees.
+    large_arc, sweep : bool
+        The SVG flags.
+    tolerance : float, optional
+        Largest distance between the arc and the cubics, in path units.  No
+        piece spans more than 90 degrees.
+
+    Returns
+    -------
+    (K, 3, 2) float64 ndarray
+        Control points of each piece after its start point; piece ``i``
+        starts at ``p0`` (``i == 0``) or at the end of piece ``i-1``, and the
+        last piece ends exactly at ``p1``.  ``K == 0`` when ``p0 == p1`` (the
+        arc is omitted); a zero radius gives one cubic along the straight
+        line.
+
+    Examples
+    --------
+    >>> c = arc_to_cubics((0, 0), 5, 5, 0, False, True, (10, 0))
+    >>> c.shape
+    (2, 3, 2)
+    >>> c[0, 2].round(12).tolist()   # sweep 1 passes above the chord (y down)
+    [5.0, -5.0]
+    """
+    tol = _check_tolerance(tolerance)
+    x0, y0, x1, y1 = _finite('arc end points', p0[0], p0[1], p1[0], p1[1])
+    rx, ry, phi = _finite('arc radii and rotation', rx, ry, phi_deg)
+    a = np.array([[x0, y0]])
+    b = np.array([[x1, y1]])
+    kind, count, ctrl = _arc_batch(a, b, np.array([rx]), np.array([ry]),
+                                   np.array([phi]), np.array([bool(large_arc)]),
+                                   np.array([bool(sweep)]), tol)
+    if kind[0] == 0:
+        return np.zeros((0, 3, 2))
+    if kind[0] == 1:
+        return np.array([[a[0] + (b[0] - a[0]) / 3, a[0] + (b[0] - a[0]) * (2 / 3), b[0]]])
+    return ctrl
+
+
+# -- basic shapes ----------------------------------------------------------------------
+_QUADRANT = np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]])
+
+
+def _quarters(centres, rx, ry, quadrants, tol):
+    """Cubics of quarter-ellipse arcs, each from angle ``q * 90`` to
+    ``(q + 1) * 90`` degrees (positive direction) about its centre.
+
+    Returns (Q * n, 3, 2) control points, quarter by quarter; quarter end
+    points are exact."""
+    n = int(_pieces(np.array([np.pi / 2]), np.array([max(rx, ry)]), tol)[0])
+    q = np.repeat(np.asarray(quadrants), n)
+    j = np.tile(np.arange(n), len(quadrants))
+    step = (np.pi / 2) / n
+    a0 = q * (np.pi / 2) + j * step
+    a1 = a0 + step
+    k = (4.0 / 3.0) * math.tan(step / 4)
+    c0, s0, c1, s1 = np.cos(a0), np.sin(a0), np.cos(a1), np.sin(a1)
+    last = j == n - 1
+    end = _QUADRANT[(q + 1) % 4]
+    c1 = np.where(last, end[:, 0], c1)
+    s1 = np.where(last, end[:, 1], s1)
+    first = j == 0
+    c0 = np.where(first, _QUADRANT[q][:, 0], c0)
+    s0 = np.where(first, _QUADRANT[q][:, 1], s0)
+    ux = np.stack([c0 - k * s0, c1 + k * s1, c1], 1)
+    uy = np.stack([s0 + k * c0, s1 - k * c1, s1], 1)
+    cen = np.repeat(np.asarray(centres, dtype=np.float64), n, axis=0)
+    out = np.empty((len(q), 3, 2))
+    out[:, :, 0] = cen[:, 0:1] + rx * ux
+    out[:, :, 1] = cen[:, 1:2] + ry * uy
+    out[last, 2] = cen[last] + np.array([rx, ry]) * end[last]   # exact corners
+    return out, n
+
+
+def _auto_radii(rx, ry):
+    if rx is None and ry is None:
+        return 0.0, 0.0
+    if rx is None:
+        rx = ry
+    if ry is None:
+        ry = rx
+    return _finite('radii', rx, ry)
+
+
+def rect_path(x, y, w, h, rx=None, ry=None, tolerance=0.01):
+    """Path of an SVG ``<rect>`` (SVG 2 equivalent path).
+
+    Square corners: ``M x,y H x+w V y+h H x Z``.  Rounded corners start at
+    ``(x+rx, y)`` and go right (clockwise on screen): line, quarter arc,
+    line, quarter arc, ... , ``Z``; lines of zero length are kept.  One of
+    ``rx``/``ry`` given (``None`` is SVG's ``auto``) sets the other; each is
+    clamped to half the width/height; a negative radius counts as 0.
+    ``w <= 0`` or ``h <= 0`` gives an empty path.  Corner arcs are within
+    ``tolerance`` (path units) of the true ellipse.
+
+    Returns
+    -------
+    Path
+
+    Examples
+    --------
+    >>> rect_path(0, 0, 10, 5).to_svg()
+    'M 0 0 L 10 0 L 10 5 L 0 5 Z'
+    >>> p = rect_path(0, 0, 10, 6, rx=2)
+    >>> p.points[0].tolist(), p.verbs.tolist()[:3]
+    ([2.0, 0.0], [0, 1, 3])
+    """
+    _check_tolerance(tolerance)
+    x, y, w, h = _finite('rect geometry', x, y, w, h)
+    if w <= 0 or h <= 0:
+        return Path.empty()
+    rx, ry = _auto_radii(rx, ry)
+    rx = min(max(rx, 0.0), w / 2)
+    ry = min(max(ry, 0.0), h / 2)
+    if rx == 0 or ry == 0:
+        pts = np.array([[x, y], [x + w, y], [x + w, y + h], [x, y + h]])
+        return Path(np.array([MOVE, LINE, LINE, LINE, CLOSE], np.uint8), pts, _checked=True)
+    x0, x1, y0, y1 = x + rx, x + w - rx, y + ry, y + h - ry
+    arcs, n = _quarters([[x1, y0], [x1, y1], [x0, y1], [x0, y0]], rx, ry, [3, 0, 1, 2],
+                        _check_tolerance(tolerance))
+    arcs = arcs.reshape(4, n, 3, 2)
+    lines = [[x1, y], [x + w, y1], [x0, y + h], [x, y0]]
+    pts = [np.array([[x0, y]])]
+    for i in range(4):
+        pts.append(np.array([lines[i]]))
+        pts.append(arcs[i].reshape(-1, 2))
+    pts = np.concatenate(pts)
+    ends = np.arange(1, 5) * (1 + 3 * n)             # exact corner-arc ends
+    pts[ends] = [[x + w, y0], [x1, y + h], [x, y1], [x0, y]]
+    corner = [LINE] + [CUBIC] * n
+    verbs = np.array([MOVE] + corner * 4 + [CLOSE], np.uint8)
+    return Path(verbs, pts, _checked=True)
+
+
+def ellipse_path(cx, cy, rx=None, ry=None, tolerance=0.01):
+    """Path of an SVG ``<ellipse>``: starts at ``(cx+rx, cy)``, four quarter
+    arcs in the positive-angle direction (clockwise on screen, through
+    ``(cx, cy+ry)`` first), then ``Z``.  Each quarter may be split further to
+    stay within ``tolerance`` (path units).  ``None`` is SVG's ``auto`` (the
+    other radius); a radius ``<= 0`` gives an empty path.
+
+    Returns
+    -------
+    Path
+
+    Examples
+    --------
+    >>> p = ellipse_path(0, 0, 4, 2)
+    >>> p.points[[0, 3, 6, 9, 12]].tolist()
+    [[4.0, 0.0], [0.0, 2.0], [-4.0, 0.0], [0.0, -2.0], [4.0, 0.0]]
+    """
+    tol = _check_tolerance(tolerance)
+    cx, cy = _finite('ellipse centre', cx, cy)
+    rx, ry = _auto_radii(rx, ry)
+    if rx <= 0 or ry <= 0:
+        return Path.empty()
+    arcs, n = _quarters([[cx, cy]] * 4, rx, ry, [0, 1, 2, 3], tol)
+    pts = np.concatenate([[[cx + rx, cy]], arcs.reshape(-1, 2)])
+    verbs = np.array([MOVE] + [CUBIC] * (4 * n) + [CLOSE], np.uint8)
+    return Path(verbs, pts, _checked=True)
+
+
+def circle_path(cx, cy, r, tolerance=0.01):
+    """Path of an SVG ``<circle>``: :func:`ellipse_path` with ``rx = ry = r``
+    (empty for ``r <= 0``).
+
+    Examples
+    --------
+    >>> circle_path(0, 0, 1).verbs.tolist()
+    [0, 3, 3, 3, 3, 4]
+    """
+    (r,) = _finite('circle radius', r)
+    return ellipse_path(cx, cy, r, r, tolerance)
+
+
+def line_path(x1, y1, x2, y2, tolerance=0.01):
+    """Path of an SVG ``<line>``: ``M x1,y1 L x2,y2`` (kept when of zero
+    length, for caps).  ``tolerance`` is accepted for uniformity.
+
+    Examples
+    --------
+    >>> line_path(0, 0, 3, 4).to_svg()
+    'M 0 0 L 3 4'
+    """
+    _check_tolerance(tolerance)
+    pts = np.array([_finite('line end points', x1, y1, x2, y2)]).reshape(2, 2)
+    return Path(np.array([MOVE, LINE], np.uint8), pts, _checked=True)
+
+
+def parse_points(s):
+    """Parse an SVG ``points`` attribute.
+
+    Numbers use SVG syntax with comma/whitespace separators.  Parsing stops
+    at the first error (the pairs before it are kept); an odd count drops
+    the last number.
+
+    Returns
+    -------
+    (N, 2) float64 ndarray
+
+    Examples
+    --------
+    >>> parse_points('0,0 10-5 20 .5 7').tolist()
+    [[0.0, 0.0], [10.0, -5.0], [20.0, 0.5]]
+    >>> parse_points('1 2 3 4 x 5 6').shape
+    (2, 2)
+    """
+    if not isinstance(s, str):
+        raise PathError('points must be a string, got %s' % type(s).__name__)
+    end = _POINTS_RE.match(s).end()
+    vals = np.array(_NUM_RE.findall(s, 0, end), dtype=np.float64)
+    bad = np.flatnonzero(~np.isfinite(vals))
+    if len(bad):
+        vals = vals[:bad[0]]
+    return vals[:len(vals) // 2 * 2].reshape(-1, 2)
+
+
+def polyline_path(points, closed=False, tolerance=0.01):
+    """Path of an SVG ``<polyline>`` (``closed=True``: ``<polygon>``):
+    ``M`` to the first point, ``L`` to the others, ``Z`` when closed.
+
+    Parameters
+    ----------
+    points : (N, 2) array_like or str
+        The vertices, or an SVG ``points`` string (see :func:`parse_points`).
+    closed : bool, optional
+    tolerance : float, optional
+        Accepted for uniformity (nothing is approximated).
+
+    Returns
+    -------
+    Path
+        Empty when there are no points.
+
+    Examples
+    --------
+    >>> polyline_path('0,0 10,0 10,10', closed=True).to_svg()
+    'M 0 0 L 10 0 L 10 10 Z'
+    """
+    _check_tolerance(tolerance)
+    if isinstance(points, str):
+        pts = parse_points(points)
+    else:
+        try:
+            pts = np.array(points, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise PathError('points must be an (N, 2) array of numbers') from None
+        if pts.size == 0:
+            pts = pts.reshape(0, 2)
+        if pts.ndim != 2 or pts.shape[1] != 2:
+            raise PathError('points must have shape (N, 2), got %s' % (pts.shape,))
+        if not np.isfinite(pts).all():
+            raise PathError('points must be finite')
+    if len(pts) == 0:
+        return Path.empty()
+    verbs = np.full(len(pts) + bool(closed), LINE, np.uint8)
+    verbs[0] = MOVE
+    if closed:
+        verbs[-1] = CLOSE
+    return Path(verbs, pts.copy(), _checked=True)

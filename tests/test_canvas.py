@@ -1,0 +1,166 @@
+"""Tests of raster.canvas: premultiplied compositing, conversion, PNG."""
+
+import io
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+from PIL import Image
+
+from raster.canvas import DEFAULT_COMPRESS_LEVEL, Canvas
+from raster.errors import CanvasError
+from raster.scan import Mask, coverage
+
+
+def mask(values, x0=0, y0=0):
+    return Mask(np.asarray(values, np.float32).reshape(np.shape(values)), x0, y0)
+
+
+def test_background_is_premultiplied():
+    c = Canvas(2, 3, background=(1.0, 0.5, 0.0, 0.5))
+    assert c.data.shape == (3, 2, 4) and c.data.dtype == np.float32
+    assert np.allclose(c.data, [0.5, 0.25, 0.0, 0.5])
+    assert np.all(Canvas(4, 4).data == 0)
+
+
+def test_source_over_known_values():
+    # 50% red over opaque blue: (0.5, 0, 0.5, 1)
+    c = Canvas(1, 1, background=(0, 0, 1))
+    c.fill(mask([[1.0]]), (1, 0, 0, 0.5))
+    assert np.allclose(c.data[0, 0], [0.5, 0.0, 0.5, 1.0])
+    # 50% green over 50% red on transparent: a = 0.5 + 0.5 * 0.5 = 0.75
+    c = Canvas(1, 1)
+    c.fill(mask([[1.0]]), (1, 0, 0, 0.5))
+    c.fill(mask([[1.0]]), (0, 1, 0, 0.5))
+    assert np.allclose(c.data[0, 0], [0.25, 0.5, 0.0, 0.75])
+    # straight colour of the result: red 1/3, green 2/3
+    assert c.to_rgba8()[0, 0].tolist() == [85, 170, 0, 191]
+
+
+def test_coverage_and_opacity_multiply():
+    c = Canvas(3, 1)
+    c.fill(mask([[1.0, 0.5, 0.25]]), (0, 0, 1, 0.8), opacity=0.5)
+    assert np.allclose(c.data[0, :, 3], [0.4, 0.2, 0.1])
+    assert np.allclose(c.data[0, :, 2], [0.4, 0.2, 0.1])
+    c.fill(mask([[1.0, 1.0, 1.0]]), (1, 1, 1), opacity=0.0)   # no-op
+    assert np.allclose(c.data[0, :, 3], [0.4, 0.2, 0.1])
+
+
+def test_opaque_fill_replaces():
+    c = Canvas(2, 2, background=(0.2, 0.4, 0.6, 0.7))
+    c.fill(mask(np.ones((2, 2))), (1, 0, 0))
+    assert np.array_equal(c.data, np.tile(np.array([1, 0, 0, 1], np.float32), (2, 2, 1)))
+
+
+def test_mask_clipped_at_canvas_edges():
+    c = Canvas(4, 3)
+    m = mask(np.ones((3, 3)), x0=-1, y0=2)       # only row 2, columns 0..1 land
+    c.fill(m, (1, 1, 1))
+    alpha = c.data[..., 3]
+    assert alpha.sum() == 2 and alpha[2, 0] == 1 and alpha[2, 1] == 1
+    c.fill(mask(np.ones((2, 2)), x0=10, y0=0), (1, 1, 1))   # fully outside
+    c.fill(mask(np.ones((2, 2)), x0=-5, y0=-5), (1, 1, 1))
+    c.fill(None, (1, 1, 1))
+    assert c.data[..., 3].sum() == 2
+
+
+def test_fill_only_touches_mask_box():
+    c = Canvas(10, 10, background=(0, 1, 0, 0.5))
+    before = c.data.copy()
+    c.fill(mask(np.full((2, 3), 0.5), x0=4, y0=5), (1, 0, 0))
+    changed = np.any(c.data != before, axis=2)
+    assert changed.sum() == 6 and changed[5:7, 4:7].all()
+
+
+def test_composite_layer():
+    c = Canvas(3, 3, background=(0, 0, 1))
+    layer = np.zeros((2, 2, 4), np.float32)
+    layer[...] = (0.5, 0, 0, 0.5)
+    c.composite(layer, 2, 2, opacity=0.5)       # one pixel lands, at (2, 2)
+    assert np.allclose(c.data[2, 2], [0.25, 0, 0.75, 1.0])
+    assert np.allclose(c.data[0, 0], [0, 0, 1, 1])
+    c.composite(layer, -5, 0)
+    assert np.allclose(c.data[0, 0], [0, 0, 1, 1])
+    with pytest.raises(CanvasError):
+        c.composite(np.zeros((2, 2, 3)), 0, 0)
+
+
+def test_fill_equals_composite_of_premultiplied_layer():
+    rng = np.random.default_rng(1)
+    cov = rng.uniform(0, 1, (5, 6)).astype(np.float32)
+    a = Canvas(8, 8, background=(0.3, 0.2, 0.1, 0.6))
+    b = Canvas(8, 8, background=(0.3, 0.2, 0.1, 0.6))
+    a.fill(Mask(cov, 1, 2), (0.9, 0.5, 0.2, 0.7), opacity=0.8)
+    layer = cov[..., None] * np.float32(0.7 * 0.8) * np.array([0.9, 0.5, 0.2, 1.0], np.float32)
+    b.composite(layer, 1, 2)
+    assert np.abs(a.data - b.data).max() < 1e-6
+
+
+def test_to_rgba8_rounding_and_transparent():
+    c = Canvas(4, 1)
+    c.data[0, 0] = (0.1, 0.2, 0.3, 0.5)          # straight (0.2, 0.4, 0.6)
+    c.data[0, 1] = (0.5 / 255, 0, 0, 1.0 / 255)  # alpha rounds to 1
+    c.data[0, 2] = (0.001, 0.001, 0.001, 0.001)  # alpha rounds to 0
+    c.data[0, 3] = (0.5, 0.5, 0.5, 1.0)          # 127.5 rounds half up
+    out = c.to_rgba8()
+    assert out.dtype == np.uint8
+    assert out[0, 0].tolist() == [51, 102, 153, 128]
+    assert out[0, 1].tolist() == [128, 0, 0, 1]
+    assert out[0, 2].tolist() == [0, 0, 0, 0]
+    assert out[0, 3].tolist() == [128, 128, 128, 255]
+    pre = c.to_rgba8(premultiplied=True)
+    assert pre[0, 0].tolist() == [26, 51, 77, 128]
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(st.floats(0, 1), min_size=4, max_size=4), st.floats(0.004, 1))
+def test_property_rgba8_round_trip(rgb_a, cov):
+    # a straight colour filled at full coverage comes back within rounding
+    r, g, b, a = rgb_a
+    a = max(a, 0.05)
+    c = Canvas(1, 1)
+    c.fill(mask([[1.0]]), (r, g, b, a))
+    px = c.to_rgba8()[0, 0].astype(int)
+    assert abs(px[3] - a * 255) <= 0.5 + 1e-3
+    # demultiplying an 8-bit-rounded alpha can move colour by 255 * 0.5 / a8
+    tol = 0.5 + 1e-3
+    assert np.all(np.abs(px[:3] - np.array([r, g, b]) * 255) <= tol)
+    # partial coverage keeps colour, scales alpha
+    c = Canvas(1, 1)
+    c.fill(mask([[cov]]), (r, g, b))
+    assert abs(float(c.data[0, 0, 3]) - cov) < 1e-6
+
+
+def test_png_round_trip(tmp_path):
+    c = Canvas(5, 4, background=(1, 1, 1, 0.25))
+    edges = np.array([[[1, 1], [4, 1]], [[4, 1], [4, 3]], [[4, 3], [1, 3]], [[1, 3], [1, 1]]], float)
+    c.fill(coverage(edges + 0.5, 5, 4), (0.0, 0.5, 1.0))
+    p = tmp_path / 'a.png'
+    c.save_png(p)
+    back = np.asarray(Image.open(p))
+    assert back.shape == (4, 5, 4) and np.array_equal(back, c.to_rgba8())
+    buf = io.BytesIO()
+    c.save_png(buf, compress_level=9)
+    assert np.array_equal(np.asarray(Image.open(io.BytesIO(buf.getvalue()))), back)
+    assert c.to_image().mode == 'RGBA'
+    assert 0 <= DEFAULT_COMPRESS_LEVEL <= 9
+    with pytest.raises(CanvasError):
+        c.save_png(buf, compress_level=11)
+
+
+@pytest.mark.parametrize('w, h', [(0, 1), (-3, 4), (1.5, 2), ('x', 2), (100_001, 1), (20000, 20000)])
+def test_bad_sizes(w, h):
+    with pytest.raises(CanvasError):
+        Canvas(w, h)
+
+
+def test_bad_colours():
+    c = Canvas(2, 2)
+    m = mask(np.ones((2, 2)))
+    for bad in [(1, 0), (1, 2, 3, 4, 5), ('a', 0, 0), (np.nan, 0, 0), None]:
+        with pytest.raises(CanvasError):
+            c.fill(m, bad)
+    with pytest.raises(CanvasError):
+        c.fill(m, (1, 0, 0), opacity=float('nan'))
+    with pytest.raises(CanvasError):
+        Canvas(2, 2, background=(1, 1))

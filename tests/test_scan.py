@@ -1,0 +1,382 @@
+"""Tests of raster.scan: exact-area coverage masks."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+
+import raster.scan as scan
+from raster.errors import CanvasError, LimitError, PathError, RasterError
+from raster.scan import Mask, coverage
+
+
+# -- helpers ------------------------------------------------------------------
+
+def poly_edges(*polys):
+    """Closed polygons ((N, 2) vertex arrays) -> (E, 2, 2) edges."""
+    out = []
+    for p in polys:
+        p = np.asarray(p, float)
+        out.append(np.stack([p, np.roll(p, -1, 0)], 1))
+    return np.concatenate(out)
+
+
+def shoelace(p):
+    p = np.asarray(p, float)
+    x, y = p[:, 0], p[:, 1]
+    return 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+
+
+def reference(edges, w, h, rule, n=64):
+    """Point sampling on an n x n grid per pixel (sample centres), winding by
+    signed crossings of each sample row (half-open in y, crossing counts for
+    samples strictly right of it)."""
+    s = (np.arange(n) + 0.5) / n
+    ys = (np.arange(h)[:, None] + s[None, :]).ravel()
+    xs = (np.arange(w)[:, None] + s[None, :]).ravel()
+    e = np.asarray(edges, float)
+    x0, y0, x1, y1 = e[:, 0, 0], e[:, 0, 1], e[:, 1, 0], e[:, 1, 1]
+    hit = ((np.minimum(y0, y1)[:, None] <= ys[None, :])
+           & (ys[None, :] < np.maximum(y0, y1)[:, None]))
+    ei, ri = np.nonzero(hit)
+    xc = x0[ei] + (ys[ri] - y0[ei]) * (x1[ei] - x0[ei]) / (y1[ei] - y0[ei])
+    col = np.searchsorted(xs, xc, side='right')
+    sign = np.where(y1[ei] > y0[ei], 1, -1)
+    acc = np.bincount(ri * (len(xs) + 1) + col, weights=sign,
+                      minlength=len(ys) * (len(xs) + 1)).reshape(len(ys), -1)
+    wind = np.rint(np.cumsum(acc, axis=1)[:, :len(xs)]).astype(int)
+    f = (wind != 0) if rule == 'nonzero' else (wind & 1).astype(bool)
+    return f.reshape(h, n, w, n).mean((1, 3))
+
+
+def full(edges, w, h, **kw):
+    m = coverage(edges, w, h, **kw)
+    return np.zeros((h, w), np.float32) if m is None else m.full(w, h)
+
+
+def pentagram(cx, cy, r):
+    a = np.pi / 2 + np.arange(5) * 4 * np.pi / 5
+    return np.c_[cx + r * np.cos(a), cy - r * np.sin(a)]
+
+
+def circle(cx, cy, r, n=256):
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    return np.c_[cx + r * np.cos(a), cy + r * np.sin(a)]
+
+
+def random_convex_polygon(rng, n, cx, cy, r):
+    """Convex polygon: points on a circle at sorted random angles."""
+    a = np.sort(rng.uniform(0, 2 * np.pi, n))
+    return np.c_[cx + r * np.cos(a), cy + r * np.sin(a)]
+
+
+def random_star_polygon(rng, n, cx, cy, rmin, rmax):
+    """Simple polygon: vertices at sorted random angles around a centre."""
+    a = np.sort(rng.uniform(0, 2 * np.pi, n))
+    r = rng.uniform(rmin, rmax, n)
+    return np.c_[cx + r * np.cos(a), cy + r * np.sin(a)]
+
+
+STAR = poly_edges(pentagram(20.3, 21.1, 17.7))
+CIRCLES = poly_edges(circle(15.2, 20.1, 10.3), circle(24.7, 19.6, 9.1))
+
+
+# -- exact answers ------------------------------------------------------------
+
+def test_pixel_aligned_rectangle_is_exactly_binary():
+    rect = poly_edges([[3, 2], [9, 2], [9, 7], [3, 7]])
+    m = coverage(rect, 12, 10)
+    assert m.box == (3, 2, 9, 7)
+    assert m.data.dtype == np.float32
+    assert np.array_equal(m.data, np.ones((5, 6), np.float32))
+    f = m.full(12, 10)
+    assert f.sum() == 30.0 and set(np.unique(f)) == {0.0, 1.0}
+
+
+def test_vertical_edge_at_half_pixel_gives_half_coverage():
+    rect = poly_edges([[10.5, 0], [30, 0], [30, 20], [10.5, 20]])
+    f = full(rect, 20, 20)
+    assert np.all(f[:, 10] == 0.5)
+    assert np.all(f[:, 11:] == 1.0) and np.all(f[:, :10] == 0.0)
+
+
+def test_unit_square_offset_by_half_splits_into_quarters():
+    sq = poly_edges([[1.5, 1.5], [2.5, 1.5], [2.5, 2.5], [1.5, 2.5]])
+    m = coverage(sq, 4, 4)
+    assert m.box == (1, 1, 3, 3)
+    assert np.array_equal(m.data, np.full((2, 2), 0.25, np.float32))
+
+
+def test_right_triangle_diagonal_pixels_are_half():
+    # triangle (0,0) (6,0) (0,6): the hypotenuse x + y = 6 halves the
+    # pixels it passes through (diagonals of those pixels)
+    tri = poly_edges([[0, 0], [6, 0], [0, 6]])
+    f = full(tri, 8, 8)
+    i, j = np.indices((8, 8))
+    expect = np.where(i + j < 5, 1.0, np.where(i + j == 5, 0.5, 0.0))
+    assert np.allclose(f, expect, atol=1e-6)
+
+
+@pytest.mark.parametrize('seed', range(6))
+def test_total_coverage_equals_shoelace_area(seed):
+    rng = np.random.default_rng(seed)
+    p = random_star_polygon(rng, 40, 32.3, 30.7, 3.0, 28.0)
+    m = coverage(poly_edges(p), 64, 64)
+    assert abs(float(m.data.astype(np.float64).sum()) - shoelace(p)) < 1e-4 * shoelace(p)
+
+
+def test_circle_area_converges_to_pi_r_squared():
+    # a regular 4096-gon of radius 20 has area (n/2) r^2 sin(2 pi / n)
+    n, r = 4096, 20.0
+    m = coverage(poly_edges(circle(25.25, 24.75, r, n)), 50, 50)
+    expect = 0.5 * n * r * r * np.sin(2 * np.pi / n)
+    assert abs(float(m.data.sum(dtype=np.float64)) - expect) < 1e-3
+
+
+# -- crossings and overlaps against a supersampled reference ------------------
+
+@pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
+@pytest.mark.parametrize('name', ['pentagram', 'two_circles'])
+def test_self_intersecting_and_overlapping_match_supersampling(name, rule):
+    edges = STAR if name == 'pentagram' else CIRCLES
+    got = full(edges, 40, 40, fill_rule=rule)
+    ref = reference(edges, 40, 40, rule)
+    assert np.abs(got - ref).max() <= 0.02
+    assert got.min() >= 0 and got.max() <= 1
+
+
+def test_pentagram_areas_differ_by_the_inner_pentagon():
+    # the evenodd hole is the inner pentagon; its circumradius is
+    # r * cos(72 deg) / cos(36 deg) for a pentagram of circumradius r
+    r = 17.7
+    nz = full(STAR, 40, 40).sum(dtype=np.float64)
+    eo = full(STAR, 40, 40, fill_rule='evenodd').sum(dtype=np.float64)
+    ri = r * np.cos(np.radians(72)) / np.cos(np.radians(36))
+    inner = 2.5 * ri * ri * np.sin(np.radians(72))
+    assert abs((nz - eo) - inner) < 0.01 * inner
+
+
+def test_recompute_is_needed_for_overlaps():
+    # without the recompute of flagged cells the accumulated area is wrong
+    # by far more than the tolerance: this checks the test above can fail
+    edges = CIRCLES
+    old = scan._run_summary
+    try:
+        scan._run_summary = lambda xa, ya, xb, yb, cell: (
+            np.arange(len(cell)), np.zeros(len(cell), bool))
+        bad = full(edges, 40, 40)
+    finally:
+        scan._run_summary = old
+    assert np.abs(bad - reference(edges, 40, 40, 'nonzero')).max() > 0.1
+
+
+def test_coincident_squares():
+    sq = [[2.3, 2.6], [7.7, 2.6], [7.7, 8.2], [2.3, 8.2]]
+    one = full(poly_edges(sq), 10, 10)
+    two = full(poly_edges(sq, sq), 10, 10)
+    # sub-scanline error at a horizontal edge is at most 1 / (2 S)
+    assert np.abs(one - two).max() <= 0.5 / scan.SUBSCANLINES + 1e-6
+    assert abs(two.sum() - one.sum()) < 0.05
+    assert coverage(poly_edges(sq, sq), 10, 10, fill_rule='evenodd') is None
+    # opposite orientation cancels under both rules
+    assert coverage(poly_edges(sq, sq[::-1]), 10, 10) is None
+
+
+def test_nested_squares_evenodd_hole():
+    outer = [[1, 1], [9, 1], [9, 9], [1, 9]]
+    inner = [[3.5, 3.5], [6.5, 3.5], [6.5, 6.5], [3.5, 6.5]]
+    eo = full(poly_edges(outer, inner), 10, 10, fill_rule='evenodd')
+    nz = full(poly_edges(outer, inner), 10, 10)
+    assert abs(eo.sum() - (64 - 9)) < 1e-4 and abs(nz.sum() - 64) < 1e-4
+    assert eo[5, 5] == 0 and eo[3, 3] == 0.75 and nz[3, 3] == 1
+
+
+# -- invariances --------------------------------------------------------------
+
+@pytest.mark.parametrize('seed', range(3))
+def test_transpose_invariance(seed):
+    rng = np.random.default_rng(seed)
+    e = poly_edges(random_convex_polygon(rng, 30, 20.4, 17.9, 15.3))
+    a = full(e, 40, 36)
+    b = full(e[:, :, ::-1], 36, 40)
+    assert np.abs(a - b.T).max() < 1e-5
+    # with crossings, flagged cells are resampled along rows: still close
+    s = full(STAR, 40, 40)
+    t = full(STAR[:, :, ::-1], 40, 40)
+    assert np.abs(s - t.T).max() < 0.02
+
+
+@pytest.mark.parametrize('seed', range(3))
+def test_rotation_180_invariance(seed):
+    rng = np.random.default_rng(seed + 10)
+    e = poly_edges(random_convex_polygon(rng, 30, 20.4, 17.9, 15.3))
+    a = full(e, 40, 36)
+    b = full(np.array([40.0, 36.0]) - e, 40, 36)
+    assert np.abs(a - b[::-1, ::-1]).max() < 1e-5
+    s = full(STAR, 40, 40, fill_rule='evenodd')
+    t = full(np.array([40.0, 40.0]) - STAR, 40, 40, fill_rule='evenodd')
+    assert np.abs(s - t[::-1, ::-1]).max() < 0.02
+
+
+@pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
+def test_orientation_does_not_matter(rule):
+    rng = np.random.default_rng(5)
+    p = random_star_polygon(rng, 25, 15, 15, 2, 13)
+    cw = full(poly_edges(p), 30, 30, fill_rule=rule)
+    ccw = full(poly_edges(p[::-1]), 30, 30, fill_rule=rule)
+    assert np.abs(cw - ccw).max() < 1e-6
+    s1 = full(STAR, 40, 40, fill_rule=rule)
+    s2 = full(poly_edges(pentagram(20.3, 21.1, 17.7)[::-1]), 40, 40, fill_rule=rule)
+    assert np.abs(s1 - s2).max() < 1e-6
+
+
+def test_translation_by_whole_pixels():
+    rng = np.random.default_rng(3)
+    e = poly_edges(random_star_polygon(rng, 30, 12.2, 11.9, 1, 10))
+    a = coverage(e, 50, 50)
+    b = coverage(e + [17, 9], 50, 50)
+    assert b.box == (a.x0 + 17, a.y0 + 9, a.box[2] + 17, a.box[3] + 9)
+    assert np.abs(a.data - b.data).max() < 1e-5
+
+
+# -- clipping and edges outside the canvas ------------------------------------
+
+def test_edges_far_left_still_count():
+    rect = poly_edges([[-1e6, -1e6], [10.5, -1e6], [10.5, 1e6], [-1e6, 1e6]])
+    m = coverage(rect, 20, 20)
+    assert m.box == (0, 0, 11, 20)
+    assert np.all(m.data[:, :10] == 1) and np.all(m.data[:, 10] == 0.5)
+
+
+def test_polygon_clipped_on_all_sides_equals_window():
+    # a big triangle; the canvas window must equal the same window of a
+    # large canvas that contains everything
+    tri = poly_edges([[-37.3, -20.1], [80.2, 10.7], [5.5, 95.3]])
+    big = coverage(tri + 100, 300, 300).full(300, 300)
+    small = full(tri, 40, 30)
+    assert np.abs(big[100:130, 100:140] - small).max() < 1e-5
+
+
+def test_polygon_entirely_left_or_outside_is_none():
+    tri = poly_edges([[-50, 2], [-10, 5], [-30, 9]])
+    assert coverage(tri, 20, 20) is None
+    assert coverage(tri + [0, 100], 20, 20) is None
+    assert coverage(tri + [100, 0], 20, 20) is None
+
+
+def test_clip_rectangle_equals_slice():
+    got = coverage(CIRCLES, 40, 40, clip=(10.2, 5, 30, 33.5))
+    ref = full(CIRCLES, 40, 40)
+    # the circles span rows 9..30: the box is the intersection
+    assert got.box == (10, 9, 30, 31)
+    assert np.abs(got.data - ref[9:31, 10:30]).max() < 1e-6
+    assert coverage(CIRCLES, 40, 40, clip=(35, 35, 36, 36)) is None
+
+
+def test_huge_but_allowed_coordinates():
+    # a thin wedge from far away: only the part on the canvas matters
+    tri = poly_edges([[-9e8, 5.0], [10.0, 5.0], [10.0, 6.0]])
+    m = coverage(tri, 20, 20)
+    assert m is not None and 0.4 < m.data.sum() < 10.1
+
+
+def test_chunked_processing_matches(monkeypatch):
+    a = full(CIRCLES, 40, 40, fill_rule='evenodd')
+    s = full(STAR, 40, 40)
+    monkeypatch.setattr(scan, '_CHUNK_PIECES', 97)
+    monkeypatch.setattr(scan, '_CHUNK_EVENTS', 500)
+    b = full(CIRCLES, 40, 40, fill_rule='evenodd')
+    t = full(STAR, 40, 40)
+    # chains cut at chunk boundaries flag a few more cells for resampling
+    tol = 0.5 / scan.SUBSCANLINES
+    assert np.abs(a - b).max() < tol and np.abs(s - t).max() < tol
+    assert abs(a.sum() - b.sum()) < 0.05 and abs(s.sum() - t.sum()) < 0.05
+
+
+# -- errors -------------------------------------------------------------------
+
+@pytest.mark.parametrize('w, h', [(0, 10), (10, -1), (2.5, 3), ('a', 3), (10**6, 10**6), (None, 4)])
+def test_bad_canvas(w, h):
+    with pytest.raises(CanvasError):
+        coverage(STAR, w, h)
+
+
+def test_bad_edges():
+    bad = STAR.copy()
+    bad[3, 1, 0] = np.nan
+    with pytest.raises(PathError):
+        coverage(bad, 10, 10)
+    bad[3, 1, 0] = np.inf
+    with pytest.raises(PathError):
+        coverage(bad, 10, 10)
+    with pytest.raises(LimitError):
+        coverage(STAR * 1e9, 10, 10)
+    with pytest.raises(PathError):
+        coverage(np.zeros((3, 3)), 10, 10)
+    with pytest.raises(PathError):
+        coverage([['a', 'b']], 10, 10)
+    with pytest.raises(PathError):
+        coverage(STAR, 10, 10, fill_rule='winding')
+    with pytest.raises(CanvasError):
+        coverage(STAR, 10, 10, clip=(0, 0, 1))
+    assert issubclass(CanvasError, RasterError)
+
+
+def test_empty_and_degenerate():
+    assert coverage(np.zeros((0, 2, 2)), 10, 10) is None
+    assert coverage([], 10, 10) is None
+    # zero-area polygon (a line traced back and forth)
+    assert coverage(poly_edges([[1, 1], [8, 7]]), 10, 10) is None
+
+
+def test_mask_helpers():
+    m = Mask(np.ones((2, 2), np.float32), -1, 3)
+    assert m.box == (-1, 3, 1, 5)
+    f = m.full(4, 4)          # only pixel (3, 0) is on the canvas
+    assert f.sum() == 1 and f[3, 0] == 1
+
+
+# -- aliased (pixel centre) mode ----------------------------------------------
+
+def test_crisp_rectangle_centres():
+    rect = poly_edges([[2.4, 1.6], [7.6, 1.6], [7.6, 4.4], [2.4, 4.4]])
+    f = full(rect, 10, 6, antialias=False)
+    expect = np.zeros((6, 10))
+    expect[2:4, 2:8] = 1
+    assert np.array_equal(f, expect)
+
+
+@pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
+def test_crisp_matches_centre_sampling(rule):
+    for edges in (STAR, CIRCLES):
+        got = full(edges, 40, 40, antialias=False, fill_rule=rule)
+        ref = reference(edges, 40, 40, rule, n=1)
+        assert np.array_equal(got, ref)
+
+
+# -- properties ---------------------------------------------------------------
+
+polygons = st.lists(st.tuples(st.floats(-5, 35), st.floats(-5, 35)), min_size=3, max_size=12)
+
+
+@settings(max_examples=120, deadline=None)
+@given(polygons, st.sampled_from(['nonzero', 'evenodd']))
+def test_property_coverage_in_unit_interval_and_close_to_sampling(pts, rule):
+    e = poly_edges(np.array(pts))
+    got = full(e, 30, 30, fill_rule=rule)
+    assert got.min() >= 0 and got.max() <= 1
+    ref = reference(e, 30, 30, rule, n=16)
+    # 16x16 sampling is itself off by up to ~1/32 per edge in a pixel
+    assert np.abs(got - ref).mean() < 0.01
+
+
+@settings(max_examples=120, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(3, 60),
+       st.floats(0.5, 25), st.floats(5.0, 25.0), st.floats(5.0, 25.0))
+def test_property_area_conservation_simple_polygons(seed, n, rmax, cx, cy):
+    rng = np.random.default_rng(seed)
+    p = random_star_polygon(rng, n, cx, cy, 0.0, min(rmax, cx, cy, 30 - cx, 30 - cy))
+    m = coverage(poly_edges(p), 30, 30)
+    total = 0.0 if m is None else float(m.data.sum(dtype=np.float64))
+    assert abs(total - shoelace(p)) < 1e-4 * max(1.0, shoelace(p))
+    if m is not None:
+        assert m.data.min() >= 0 and m.data.max() <= 1

@@ -1,0 +1,617 @@
+"""Tests of raster.svgpath: SVG path data, arcs and basic shapes."""
+
+import math
+
+import numpy as np
+import pytest
+import svgelements
+from hypothesis import HealthCheck, given, settings, strategies as st
+
+import raster
+from raster.errors import LimitError, PathError, RasterError
+from raster.path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path, PathBuilder
+from raster.svgpath import (_build_loop, _build_vector, _lex, arc_to_cubics,
+                            circle_path, ellipse_path, line_path, parse_path,
+                            parse_points, polyline_path, rect_path)
+
+SETTINGS = settings(max_examples=150, deadline=None,
+                    suppress_health_check=[HealthCheck.too_slow])
+
+
+def svg(d, **kw):
+    return parse_path(d, **kw).to_svg()
+
+
+def bezier_points(path, n=64):
+    """(S, n, 2) points sampled on every drawing segment of ``path``."""
+    seg = path.segments()
+    t = np.linspace(0, 1, n)[None, :, None]
+    c = seg.ctrl
+    deg = seg.degree[:, None, None]
+    p0, p1, p2, p3 = (c[:, k][:, None, :] for k in range(4))
+    lin = p0 + (p3 - p0) * t
+    quad = (1 - t) ** 2 * p0 + 2 * (1 - t) * t * p1 + t ** 2 * p2
+    cub = ((1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * p1 + 3 * (1 - t) * t ** 2 * p2
+           + t ** 3 * p3)
+    return np.where(deg == 1, lin, np.where(deg == 2, quad, cub))
+
+
+def cubic_samples(p0, ctrl, n=201):
+    """Points sampled densely on the cubics of ``arc_to_cubics``."""
+    starts = np.concatenate([np.asarray(p0, float)[None], ctrl[:-1, 2]])
+    t = np.linspace(0, 1, n)[None, :, None]
+    P = [starts[:, None]] + [ctrl[:, k][:, None] for k in range(3)]
+    return ((1 - t) ** 3 * P[0] + 3 * (1 - t) ** 2 * t * P[1]
+            + 3 * (1 - t) * t ** 2 * P[2] + t ** 3 * P[3]).reshape(-1, 2)
+
+
+# -- commands ------------------------------------------------------------------------
+@pytest.mark.parametrize('d, expected', [
+    ('M1 2', 'M 1 2'),
+    ('m1 2', 'M 1 2'),
+    ('M1 2 L3 4', 'M 1 2 L 3 4'),
+    ('M1 2 l3 4', 'M 1 2 L 4 6'),
+    ('M1 2 H5', 'M 1 2 L 5 2'),
+    ('M1 2 h5', 'M 1 2 L 6 2'),
+    ('M1 2 V5', 'M 1 2 L 1 5'),
+    ('M1 2 v5', 'M 1 2 L 1 7'),
+    ('M1 2 C3 4 5 6 7 8', 'M 1 2 C 3 4 5 6 7 8'),
+    ('M1 2 c3 4 5 6 7 8', 'M 1 2 C 4 6 6 8 8 10'),
+    ('M1 2 Q3 4 5 6', 'M 1 2 Q 3 4 5 6'),
+    ('M1 2 q3 4 5 6', 'M 1 2 Q 4 6 6 8'),
+    ('M1 2 S5 6 7 8', 'M 1 2 C 1 2 5 6 7 8'),
+    ('M1 2 s5 6 7 8', 'M 1 2 C 1 2 6 8 8 10'),
+    ('M1 2 T5 6', 'M 1 2 Q 1 2 5 6'),
+    ('M1 2 t5 6', 'M 1 2 Q 1 2 6 8'),
+    ('M1 2 L3 4 Z', 'M 1 2 L 3 4 Z'),
+    ('M1 2 L3 4 z', 'M 1 2 L 3 4 Z'),
+    ('M1 2 A0 0 0 0 1 5 6', 'M 1 2 L 5 6'),
+    ('M1 2 a0 5 0 0 1 5 6', 'M 1 2 L 6 8'),
+])
+def test_every_command_absolute_and_relative(d, expected):
+    assert svg(d) == expected
+
+
+@pytest.mark.parametrize('d, expected', [
+    ('M0 0 1 1 2 2', 'M 0 0 L 1 1 L 2 2'),               # implicit L after M
+    ('m1 1 1 1 2 2', 'M 1 1 L 2 2 L 4 4'),               # implicit l after m
+    ('M0 0 L1 1 2 2 3 3', 'M 0 0 L 1 1 L 2 2 L 3 3'),
+    ('M0 0 h1 2 3', 'M 0 0 L 1 0 L 3 0 L 6 0'),
+    ('M0 0 V1 2', 'M 0 0 L 0 1 L 0 2'),
+    ('M0 0 c1 1 2 2 3 3 1 1 2 2 3 3', 'M 0 0 C 1 1 2 2 3 3 C 4 4 5 5 6 6'),
+    ('M0 0 q1 1 2 0 1 1 2 0', 'M 0 0 Q 1 1 2 0 Q 3 1 4 0'),
+    ('M0 0 M5 5 m1 1 2 2', 'M 0 0 M 5 5 M 6 6 L 8 8'),
+])
+def test_implicit_repeats(d, expected):
+    assert svg(d) == expected
+
+
+@pytest.mark.parametrize('d, c1', [
+    ('M0 0 C1 2 3 4 5 5 S 8 8 9 9', [7, 6]),       # after C: reflect (3,4) about (5,5)
+    ('M0 0 C1 2 3 4 5 5 S 8 8 9 9 S 0 0 1 1', [10, 10]),  # after S: reflect (8,8) about (9,9)
+    ('M0 0 c1 2 3 4 5 5 s 3 3 4 4', [7, 6]),
+    ('M0 0 L5 5 S 8 8 9 9', [5, 5]),               # after L: current point
+    ('M0 0 Q1 2 5 5 S 8 8 9 9', [5, 5]),           # after Q: no reflection for S
+    ('M0 0 C1 2 3 4 5 5 Z S 8 8 9 9', [0, 0]),      # after Z: current point
+])
+def test_smooth_cubic_reflection(d, c1):
+    p = parse_path(d)
+    last = p.points[-3]
+    assert last.tolist() == c1
+
+
+@pytest.mark.parametrize('d, ctrl', [
+    ('M0 0 Q1 2 5 5 T 9 9', [9, 8]),               # after Q: reflect (1,2) about (5,5)
+    ('M0 0 Q1 2 5 5 T 9 9 T 10 10', [9, 10]),      # after T: reflect (9,8) about (9,9)
+    ('M0 0 Q1 2 5 5 T 9 9 T 10 10 t 1 1', [11, 12]),
+    ('M0 0 L5 5 T 9 9', [5, 5]),                   # after L: current point
+    ('M0 0 C1 2 3 4 5 5 T 9 9', [5, 5]),           # after C: no reflection for T
+    ('M0 0 L5 5 T 9 9 T 10 10', [13, 13]),         # chain started at the point
+    ('M0 0 Q1 2 5 5 Z T 9 9', [0, 0]),
+])
+def test_smooth_quadratic_reflection(d, ctrl):
+    p = parse_path(d)
+    assert p.points[-2].tolist() == ctrl
+
+
+def test_long_t_chain_matches_sequential_rule():
+    # the vectorized builder solves the T recurrence with a cumulative sum
+    rng = np.random.default_rng(1)
+    pts = rng.uniform(-50, 50, (600, 2)).round(3)
+    d = 'M0 0 Q 3 7 1 1 ' + ' '.join('T %r %r' % tuple(p) for p in pts)
+    p = parse_path(d)
+    ctrl, cur = np.array([3.0, 7.0]), np.array([1.0, 1.0])
+    for i, q in enumerate(pts):
+        ctrl = 2 * cur - ctrl
+        cur = q
+        assert np.allclose(p.points[3 + 2 * i], ctrl, atol=1e-9)
+
+
+@pytest.mark.parametrize('d, expected', [
+    ('M10 10 Z', 'M 10 10 Z'),                      # kept (caps)
+    ('M10 10 L10 10', 'M 10 10 L 10 10'),           # zero length kept
+    ('M10 10 L20 10 Z l5 5', 'M 10 10 L 20 10 Z M 10 10 L 15 15'),
+    ('M10 10 L20 10 z m5 5 l1 0', 'M 10 10 L 20 10 Z M 15 15 L 16 15'),
+    ('M10 10 L20 10 Z Z', 'M 10 10 L 20 10 Z'),
+    ('M1 1 L2 2 Z L3 3 Z h1', 'M 1 1 L 2 2 Z M 1 1 L 3 3 Z M 1 1 L 2 1'),
+    ('m1 1 z m1 1 z m1 1 z', 'M 1 1 Z M 2 2 Z M 3 3 Z'),
+    ('M0 0 L5 0 M1 1 L6 6 Z v1', 'M 0 0 L 5 0 M 1 1 L 6 6 Z M 1 1 L 1 2'),
+])
+def test_close_and_subpaths(d, expected):
+    assert svg(d) == expected
+
+
+def test_relative_after_close_chain():
+    # each m is relative to the start of the previous (closed) contour
+    d = 'M0 0 ' + ' '.join('L7 7 Z m1 2' for _ in range(300)) + ' l1 1'
+    p = parse_path(d)
+    moves = p.points[np.cumsum(np.r_[0, [1, 1, 1, 0] * 0])] if False else None
+    assert moves is None
+    starts = p.segments().contour_start
+    assert np.allclose(starts[1:301], np.arange(1, 301)[:, None] * [1, 2])
+    assert p.points[-1].tolist() == [301, 601]
+
+
+@pytest.mark.parametrize('d', ['', '   ', '\n\t ', ' \r\f'])
+def test_empty(d):
+    p = parse_path(d)
+    assert len(p) == 0 and p.is_empty
+    assert len(parse_path(d, strict=False)) == 0
+
+
+# -- numbers -----------------------------------------------------------------------------------
+@pytest.mark.parametrize('d, pts', [
+    ('M1.5.5', [[1.5, 0.5]]),
+    ('M-1-2', [[-1, -2]]),
+    ('M1e-3 2E2', [[0.001, 200]]),
+    ('M.5 +1', [[0.5, 1]]),
+    ('M1e+2-.5e1', [[100, -5]]),
+    ('M1.e2 3.', [[100, 3]]),
+    ('M0.5.5.5.5', [[0.5, 0.5], [0.5, 0.5]]),
+    ('M 1 , 2', [[1, 2]]),
+    ('M1,2,3,4', [[1, 2], [3, 4]]),
+    ('M1-.5-.5+2', [[1, -0.5], [-0.5, 2]]),
+    ('\tM\n1\r2\f', [[1, 2]]),
+    ('M007 08', [[7, 8]]),
+    ('M1e-400 2', [[0, 2]]),                        # underflow is fine
+])
+def test_number_grammar(d, pts):
+    assert parse_path(d).points.tolist() == pts
+
+
+# -- errors ------------------------------------------------------------------------------------
+@pytest.mark.parametrize('d, pos, msg', [
+    ('M0 0 L1 1 2', 11, 'expected number'),
+    ('L1 1', 0, 'expected moveto'),
+    ('1 1', 0, 'expected moveto'),
+    ('M', 1, 'expected number'),
+    ('M1', 2, 'expected number'),
+    ('M1 2 L', 6, 'expected number'),
+    ('M1 2 L M3 4', 7, 'expected number'),
+    ('M1,2,3', 6, 'expected number'),
+    ('M1 2 x3', 5, "unexpected character 'x'"),
+    ('M1 2 L 3 4 ,', 12, 'expected number'),
+    ('M1 2 L,3 4', 6, 'unexpected comma'),
+    ('M1 2 L3,,4', 8, 'unexpected comma'),
+    ('M1 2 Z 3', 7, 'expected command'),
+    ('M1 2 Z,', 6, 'unexpected comma'),
+    ('M 1e999 2', 2, 'number out of range'),
+    ('M 1 2 L 3 -1e400', 11, 'number out of range'),
+    ('M1 2 A 1 1 0 2 0 5 5', 13, 'expected arc flag'),
+    ('M1 2 A 1 1 0 0 1 5 5 1 1 0 0 1 5', 32, 'expected number'),
+    ('M1 2 A 1 1 0 0', 14, 'expected arc flag'),
+    ('M1 2 A 1 1 00 1 5 5', 15, 'expected arc flag'),   # "00" is the rotation
+    ('M1 2 A 1 1 0 1.5 5 5', 14, 'expected arc flag'),
+    ('M1 2e', 4, "unexpected character 'e'"),
+    ('M1 2 L3 4 #', 10, "unexpected character '#'"),
+    ('M1 2 \u00e9', 5, "unexpected character '\u00e9'"),
+    ('M1 2\x00', 4, 'unexpected character'),
+    ('M1 2 \v', 5, 'unexpected character'),
+])
+def test_error_positions(d, pos, msg):
+    with pytest.raises(PathError, match='^path data error at %d: %s' % (pos, msg)):
+        parse_path(d)
+
+
+@pytest.mark.parametrize('d, expected', [
+    ('M0 0 L10 0 L', 'M 0 0 L 10 0'),
+    ('M0 0 L10 0 20', 'M 0 0 L 10 0'),
+    ('M0 0 L10 0 20 30 40', 'M 0 0 L 10 0 L 20 30'),
+    ('M0 0 C1 1 2 2 3 3 4 4', 'M 0 0 C 1 1 2 2 3 3'),
+    ('M0 0 L1 1 x L2 2', 'M 0 0 L 1 1'),
+    ('M0 0 L1 1 Z 5', 'M 0 0 L 1 1 Z'),
+    ('L1 1', ''),
+    ('x', ''),
+    ('M1', ''),
+    ('M1 2 L 3 1e999', 'M 1 2'),
+    ('M1 2 A1 1 0 0 1 3 2 A 1 1 0 2 0 5 5', None),
+    ('M0 0 L1 1,', 'M 0 0 L 1 1'),
+])
+def test_non_strict_prefix(d, expected):
+    p = parse_path(d, strict=False)
+    if expected is None:                       # the first arc survives
+        assert p.verbs.tolist()[:2] == [MOVE, CUBIC] and p.points[-1].tolist() == [3, 2]
+    else:
+        assert p.to_svg() == expected
+    with pytest.raises(PathError):
+        parse_path(d)
+
+
+def test_errors_are_raster_errors():
+    for bad in [dict(d=3), dict(d='M0 0', tolerance=0), dict(d='M0 0', tolerance=float('nan')),
+                dict(d='M0 0', tolerance='x'), dict(d='M0 0', tolerance=-1)]:
+        with pytest.raises(RasterError):
+            parse_path(**bad)
+
+
+def test_overflowing_coordinates():
+    with pytest.raises(PathError, match='overflow'):
+        parse_path('M1e308 0 l1e308 0')
+
+
+@SETTINGS
+@given(st.text(alphabet='MmLlHhVvCcSsQqTtAaZz0123456789.,-+eE x', max_size=40))
+def test_fuzz_never_crashes(d):
+    # any string: either a Path or a PathError, and non-strict never raises
+    try:
+        p = parse_path(d)
+    except PathError as e:
+        assert str(e).startswith('path data error at ')
+        pos = int(str(e).split()[4].rstrip(':'))
+        assert 0 <= pos <= len(d)
+        q = parse_path(d, strict=False)
+        # the non-strict result is a prefix: it parses strictly from its svg
+        assert parse_path(q.to_svg()) == q
+    else:
+        assert parse_path(d, strict=False) == p
+
+
+# -- arcs -------------------------------------------------------------------------------------
+def test_arc_flags_without_separators():
+    a = parse_path('M0 0 a1 1 0 00 1 1')
+    b = parse_path('M0 0 a1 1 0 0 0 1 1')
+    assert a == b and len(a) > 1
+    c = parse_path('M0 0 a1 1 0 0110 10')              # flags 0 1, end (10, 10)
+    d = parse_path('M0 0 a1 1 0 0 1 10 10')
+    assert c == d
+    e = parse_path('M0 0a5,5,0,1,1,10,0')
+    assert np.allclose(e.points[-1], [10, 0])
+
+
+def test_arc_radii_correction_half_circle():
+    # radius 1 cannot span 10 units: scaled up to 5, half circle about (5, 0)
+    p = parse_path('M0 0 A1 1 0 0 1 10 0', tolerance=0.001)
+    q = bezier_points(p, 200).reshape(-1, 2)
+    r = np.hypot(q[:, 0] - 5, q[:, 1])
+    assert np.abs(r - 5).max() <= 0.001
+    assert q[:, 1].min() < -4.99 and q[:, 1].max() <= 1e-12     # sweep 1: above
+    p2 = parse_path('M0 0 A1 1 0 0 0 10 0')
+    assert bezier_points(p2).reshape(-1, 2)[:, 1].max() > 4.99   # sweep 0: below
+
+
+def test_arc_zero_radius_and_same_endpoints():
+    assert svg('M0 0 A0 5 0 1 1 10 0') == 'M 0 0 L 10 0'
+    assert svg('M0 0 A5 0 0 1 1 10 0') == 'M 0 0 L 10 0'
+    assert svg('M3 4 A5 5 0 1 1 3 4') == 'M 3 4'
+    assert svg('M3 4 A5 5 0 1 1 3 4 L 5 5') == 'M 3 4 L 5 5'
+    assert arc_to_cubics((1, 1), 3, 3, 0, 1, 1, (1, 1)).shape == (0, 3, 2)
+    line = arc_to_cubics((0, 0), 0, 3, 0, 1, 1, (3, 6))
+    assert np.allclose(line, [[[1, 2], [2, 4], [3, 6]]])
+
+
+def test_arc_negative_radii_use_absolute_value():
+    assert parse_path('M0 0 A-5 -5 0 0 1 10 0') == parse_path('M0 0 A5 5 0 0 1 10 0')
+
+
+@pytest.mark.parametrize('large, sweep, centre_y, far', [
+    (0, 0, -8, False), (0, 1, 8, False), (1, 0, 8, True), (1, 1, -8, True)])
+def test_arc_flag_combinations(large, sweep, centre_y, far):
+    # circle of radius 10 through (0,0) and (16,0): centres (8, +-6)
+    p = parse_path('M0 0 A10 10 0 %d %d 16 0' % (large, sweep), tolerance=1e-4)
+    q = bezier_points(p, 100).reshape(-1, 2)
+    cy = 6 if centre_y > 0 else -6
+    assert np.abs(np.hypot(q[:, 0] - 8, q[:, 1] - cy) - 10).max() <= 1e-4
+    span = q[:, 1].max() - q[:, 1].min()
+    assert (span > 10) == far                        # the large arc goes round
+
+
+def test_arc_rotation():
+    # an ellipse rotated by 90 degrees is the swapped ellipse
+    a = parse_path('M0 0 A4 2 90 0 1 0 4')
+    b = parse_path('M0 0 A2 4 0 0 1 0 4')
+    assert np.allclose(a.points, b.points, atol=1e-12)
+    c = parse_path('M0 0 A4 2 450 0 1 0 4')          # 450 = 90 mod 360
+    assert np.allclose(c.points, b.points, atol=1e-12)
+
+
+@SETTINGS
+@given(x0=st.floats(-100, 100), y0=st.floats(-100, 100), x1=st.floats(-100, 100),
+       y1=st.floats(-100, 100), rx=st.floats(0.01, 200), ry=st.floats(0.01, 200),
+       phi=st.floats(-360, 360), large=st.booleans(), sweep=st.booleans(),
+       tol=st.sampled_from([1e-4, 1e-3, 0.01, 0.25, 2.0]))
+def test_arc_accuracy_against_exact_ellipse(x0, y0, x1, y1, rx, ry, phi, large, sweep, tol):
+    if x0 == x1 and y0 == y1:
+        return
+    ctrl = arc_to_cubics((x0, y0), rx, ry, phi, large, sweep, (x1, y1), tol)
+    assert ctrl.shape[1:] == (3, 2) and len(ctrl) >= 1
+    assert ctrl[-1, 2].tolist() == [x1, y1]
+    # the centre and radii svgelements computes (independent implementation)
+    arc = svgelements.Path('M%r %r A%r %r %r %d %d %r %r' % (
+        x0, y0, rx, ry, phi, large, sweep, x1, y1))[1]
+    c = np.array(arc.center)
+    u = (np.array(arc.prx) - c) / arc.rx             # ellipse axis directions
+    v = (np.array(arc.pry) - c) / arc.ry
+    q = cubic_samples((x0, y0), ctrl) - c
+    radial = np.hypot(q @ u / arc.rx, q @ v / arc.ry)
+    scale = max(arc.rx, arc.ry)
+    assert np.abs(radial - 1).max() * scale <= tol * (1 + 1e-6) + 1e-9 * scale
+    # at most 90 degrees per piece
+    assert len(ctrl) >= math.ceil(abs(arc.sweep) / (math.pi / 2) - 1e-9)
+    # the arc goes the same way round: its midpoint lies on our cubics
+    mid = np.array(arc.point(0.5)) - c
+    assert np.hypot(*(q - mid).T).min() <= max(tol, 1e-6) + 0.02 * scale * 2 * math.pi / 200 * 4
+
+
+def test_arc_tolerance_controls_piece_count():
+    counts = [len(arc_to_cubics((0, 0), 100, 100, 0, 0, 1, (200, 0), tol))
+              for tol in (10, 1, 0.1, 0.01, 0.001, 1e-4)]
+    assert counts[0] == 2                                  # 90-degree cap
+    assert counts == sorted(counts) and counts[-1] > counts[0]
+    with pytest.raises(LimitError):
+        arc_to_cubics((0, 0), 1e8, 1e8, 0, 1, 1, (1e8, 1e8), 1e-300)
+    with pytest.raises(PathError):
+        arc_to_cubics((0, 0), float('inf'), 1, 0, 0, 1, (1, 1))
+
+
+def test_arc_tolerance_in_parse_path():
+    coarse = parse_path('M0 0 A100 100 0 0 1 200 0', tolerance=1)
+    fine = parse_path('M0 0 A100 100 0 0 1 200 0', tolerance=1e-4)
+    for p, tol in ((coarse, 1), (fine, 1e-4)):
+        q = bezier_points(p, 300).reshape(-1, 2)
+        assert np.abs(np.hypot(q[:, 0] - 100, q[:, 1]) - 100).max() <= tol
+    assert len(fine) > len(coarse)
+
+
+# -- builders agree; svgelements agrees ------------------------------------------------------
+_CMD_ARGS = {'M': 2, 'L': 2, 'H': 1, 'V': 1, 'C': 6, 'S': 4, 'Q': 4, 'T': 2, 'A': 7, 'Z': 0}
+
+
+@st.composite
+def path_strings(draw, arcs=True):
+    letters = 'MLHVCSQTZ' + ('A' if arcs else '')
+    n = draw(st.integers(1, 25))
+    parts = ['M %d %d' % (draw(st.integers(-50, 50)), draw(st.integers(-50, 50)))]
+    for _ in range(n):
+        c = draw(st.sampled_from(letters))
+        if draw(st.booleans()):
+            c = c.lower()
+        k = _CMD_ARGS[c.upper()]
+        reps = 1 if k == 0 else draw(st.integers(1, 3))
+        nums = []
+        for _ in range(reps):
+            g = [draw(st.integers(-40, 40)) for _ in range(k)]
+            if c in 'Aa':
+                g[0], g[1] = abs(g[0]) + 1, abs(g[1]) + 1
+                g[3], g[4] = draw(st.integers(0, 1)), draw(st.integers(0, 1))
+            nums += g
+        parts.append(c + ' '.join(map(str, nums)))
+    return ' '.join(parts)
+
+
+@SETTINGS
+@given(path_strings())
+def test_loop_and_vector_builders_agree(d):
+    _, nums, kb = _lex(d)
+    kinds = kb.replace(b',', b'')
+    vals = [float(x) for x in nums]
+    a = _build_loop(kinds, vals, 0.01)
+    b = _build_vector(kinds, np.array(vals), 0.01)
+    assert a.verbs.tolist() == b.verbs.tolist()
+    assert np.allclose(a.points, b.points, rtol=0, atol=1e-9)
+
+
+def test_long_path_uses_vector_builder_and_agrees():
+    rng = np.random.default_rng(7)
+    parts = ['M 0 0']
+    for i in range(3000):
+        c = 'lcsqtLhvZmaA'[rng.integers(12)]
+        k = _CMD_ARGS[c.upper()]
+        nums = rng.integers(-30, 30, k).tolist()
+        if c in 'aA':
+            nums[0], nums[1], nums[3], nums[4] = abs(nums[0]) + 1, 3, 1, i % 2
+        parts.append(c + ' '.join(map(str, nums)))
+    d = ' '.join(parts)
+    _, nums, kb = _lex(d)
+    vals = [float(x) for x in nums]
+    a = _build_loop(kb, vals, 0.01)
+    b = parse_path(d)                        # > SMALL_PATH_TOKENS: vectorized
+    assert a.verbs.tolist() == b.verbs.tolist()
+    assert np.allclose(a.points, b.points, rtol=1e-12, atol=1e-9)
+
+
+def _svgelements_ends(d):
+    out = []
+    for s in svgelements.Path(d):
+        if isinstance(s, svgelements.Close):
+            continue
+        out.append((type(s).__name__, (s.end.x, s.end.y)))
+    return out
+
+
+@SETTINGS
+@given(path_strings())
+def test_end_points_match_svgelements(d):
+    ours = parse_path(d)
+    seg = ours.segments()
+    # our end points in order: contour starts (moves) and segment ends
+    verbs = ours.verbs
+    npts = np.array([1, 1, 2, 3, 0])[verbs]
+    last_pt = np.cumsum(npts) - 1
+    ends = [tuple(ours.points[i]) for v, i in zip(verbs.tolist(), last_pt) if v != CLOSE]
+    theirs = _svgelements_ends(d)
+    # svgelements' ends must be a subsequence of ours (arcs are split in pieces;
+    # we add a move after Z where svgelements does not)
+    it = iter(ends)
+    for name, e in theirs:
+        if name == 'Arc' or name == 'Move':
+            ok = any(np.allclose(e, f, atol=1e-6) for f in it)
+        else:
+            ok = np.allclose(e, next(it), atol=1e-6) or False
+        assert ok, (name, e)
+    assert seg is not None
+
+
+def test_end_points_match_svgelements_on_corpus_sample():
+    import lxml.etree as ET
+    from pathlib import Path as FsPath
+    f = FsPath(__file__).resolve().parents[1].parent / 'shared/corpus/tiger.svg'
+    if not f.exists():
+        pytest.fail('corpus file missing: %s' % f)
+    ds = [e.get('d') for e in ET.parse(str(f)).iter() if e.get('d')]
+    assert len(ds) > 100
+    for d in ds[::7]:
+        ours = parse_path(d)
+        verbs = ours.verbs
+        npts = np.array([1, 1, 2, 3, 0])[verbs]
+        last_pt = np.cumsum(npts) - 1
+        ends = np.array([ours.points[i] for v, i in zip(verbs.tolist(), last_pt)
+                         if v != CLOSE])
+        theirs = np.array([e for _, e in _svgelements_ends(d)])
+        assert ends.shape == theirs.shape and np.allclose(ends, theirs, atol=1e-9)
+
+
+# -- round trip --------------------------------------------------------------------------------
+@st.composite
+def random_paths(draw):
+    b = PathBuilder()
+    fl = st.floats(-1e6, 1e6, allow_nan=False, allow_infinity=False)
+    pt = st.tuples(fl, fl)
+    b.moveTo(draw(pt))
+    for _ in range(draw(st.integers(0, 12))):
+        v = draw(st.sampled_from('MLQCZ'))
+        if v == 'M':
+            b.moveTo(draw(pt))
+        elif v == 'L':
+            b.lineTo(draw(pt))
+        elif v == 'Q':
+            b.qCurveTo(draw(pt), draw(pt))
+        elif v == 'C':
+            b.curveTo(draw(pt), draw(pt), draw(pt))
+        else:
+            b.closePath()
+    return b.path()
+
+
+@SETTINGS
+@given(random_paths())
+def test_round_trip_to_svg(p):
+    assert parse_path(p.to_svg()) == p
+
+
+def test_round_trip_of_parsed_arcs_and_shapes():
+    for p in (parse_path('M0 0 A3 5 20 1 0 7 2 T 3 3 Z m1 1 s 1 2 3 4'),
+              rect_path(1, 2, 30, 20, 4, 3), ellipse_path(5, 5, 3, 9)):
+        assert parse_path(p.to_svg()) == p
+
+
+# -- shapes --------------------------------------------------------------------------------------
+def test_rect_square_corners():
+    p = rect_path(1, 2, 10, 5)
+    assert p.to_svg() == 'M 1 2 L 11 2 L 11 7 L 1 7 Z'
+    assert rect_path(0, 0, 0, 5).is_empty and len(rect_path(0, 0, 5, -1)) == 0
+
+
+def test_rect_rounded_corners():
+    x, y, w, h, rx, ry = 1.0, 2.0, 30.0, 20.0, 4.0, 3.0
+    p = rect_path(x, y, w, h, rx, ry)
+    n = (len(p.verbs) - 2 - 4) // 4
+    assert p.verbs.tolist() == [MOVE] + ([LINE] + [CUBIC] * n) * 4 + [CLOSE]
+    seg = p.segments()
+    ends = seg.end[seg.degree == 1]
+    assert p.points[0].tolist() == [x + rx, y]
+    assert ends.tolist() == [[x + w - rx, y], [x + w, y + h - ry], [x + rx, y + h], [x, y + ry]]
+    arc_ends = seg.end[np.flatnonzero(seg.degree == 1) + n]
+    assert arc_ends.tolist() == [[x + w, y + ry], [x + w - rx, y + h], [x, y + h - ry],
+                                 [x + rx, y]]
+    # corner arcs lie on their quarter ellipses within tolerance
+    for tol in (0.01, 1e-4):
+        p = rect_path(x, y, w, h, 40, 30, tolerance=tol)     # clamped to 15, 10
+        assert p.points[0].tolist() == [x + 15, y]
+        q = bezier_points(p, 100)[p.segments().degree == 3]
+        centres = [(x + 15, y + 10)]
+        assert len(centres) == 1
+        # every cubic point is on the ellipse of its own corner
+        ok = []
+        for cx_, cy_ in [(x + 15, y + 10), (x + 15, y + 10)]:
+            ok.append(np.abs(np.hypot((q[..., 0] - cx_) / 15, (q[..., 1] - cy_) / 10) - 1))
+        assert (np.minimum(*ok) * 15).max() <= tol
+
+
+def test_rect_auto_radii():
+    assert rect_path(0, 0, 10, 10, rx=2) == rect_path(0, 0, 10, 10, 2, 2)
+    assert rect_path(0, 0, 10, 10, ry=3) == rect_path(0, 0, 10, 10, 3, 3)
+    assert rect_path(0, 0, 10, 4, rx=3) == rect_path(0, 0, 10, 4, 3, 2)   # ry clamped
+    assert rect_path(0, 0, 10, 10, rx=-1) == rect_path(0, 0, 10, 10)
+    with pytest.raises(PathError):
+        rect_path(0, 0, float('nan'), 1)
+
+
+@pytest.mark.parametrize('tol', [0.5, 0.01, 1e-5])
+def test_circle_points_on_circle_and_direction(tol):
+    cx, cy, r = 3.0, -2.0, 50.0
+    p = circle_path(cx, cy, r, tolerance=tol)
+    assert p.points[0].tolist() == [cx + r, cy] and p.verbs[-1] == CLOSE
+    q = bezier_points(p, 200)
+    assert np.abs(np.hypot(q[..., 0] - cx, q[..., 1] - cy) - r).max() <= tol
+    ends = p.segments().end
+    n = len(ends) // 4
+    assert ends[[n - 1, 2 * n - 1, 3 * n - 1, 4 * n - 1]].tolist() == [
+        [cx, cy + r], [cx - r, cy], [cx, cy - r], [cx + r, cy]]
+    # positive-angle direction: angles increase along the path (y down)
+    ang = np.unwrap(np.arctan2(q[..., 1] - cy, q[..., 0] - cx).reshape(-1))
+    assert np.all(np.diff(ang) >= -1e-12) and ang[-1] - ang[0] == pytest.approx(2 * np.pi)
+
+
+def test_ellipse_path():
+    p = ellipse_path(0, 0, 8, 2, tolerance=1e-3)
+    q = bezier_points(p, 200).reshape(-1, 2)
+    assert np.abs(np.hypot(q[:, 0] / 8, q[:, 1] / 2) - 1).max() * 8 <= 1e-3
+    assert ellipse_path(0, 0, 0, 5).is_empty and len(circle_path(1, 1, -1)) == 0
+    assert ellipse_path(1, 2, rx=3) == ellipse_path(1, 2, 3, 3) == circle_path(1, 2, 3)
+    assert len(ellipse_path(1, 2)) == 0
+
+
+def test_line_and_polyline():
+    assert line_path(1, 2, 1, 2).to_svg() == 'M 1 2 L 1 2'
+    assert polyline_path([[0, 0], [1, 0], [1, 1]]).to_svg() == 'M 0 0 L 1 0 L 1 1'
+    assert polyline_path('0,0 1,0 1,1', closed=True).to_svg() == 'M 0 0 L 1 0 L 1 1 Z'
+    assert len(polyline_path(np.zeros((0, 2)))) == 0 and len(polyline_path('')) == 0
+    with pytest.raises(PathError):
+        polyline_path([[0, 0, 0]])
+    with pytest.raises(PathError):
+        polyline_path([[0, float('inf')]])
+    with pytest.raises(PathError):
+        polyline_path('0 0', tolerance=0)
+
+
+@pytest.mark.parametrize('s, pts', [
+    ('0,0 10,0 10,10', [[0, 0], [10, 0], [10, 10]]),
+    ('1-2-3-4', [[1, -2], [-3, -4]]),
+    ('1 2 3', [[1, 2]]),                           # odd count: last dropped
+    ('1 2 3 4 x 5 6', [[1, 2], [3, 4]]),           # stop at the error
+    ('1 2,,3 4', [[1, 2]]),
+    (',1 2', []),
+    ('1 2 1e999 4', [[1, 2]]),
+    ('  .5.5  ', [[0.5, 0.5]]),
+    ('', []),
+])
+def test_parse_points(s, pts):
+    out = parse_points(s)
+    assert out.dtype == np.float64 and out.shape == (len(pts), 2)
+    assert out.tolist() == pts
+
+
+def test_public_name():
+    assert raster.parse_path is parse_path
+    with pytest.raises(PathError):
+        parse_points(5)
