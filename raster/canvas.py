@@ -27,6 +27,9 @@ __all__ = ['Canvas', 'DEFAULT_COMPRESS_LEVEL']
 #: about the same time, and 6 costs twice the time of 3.
 DEFAULT_COMPRESS_LEVEL = 3
 
+# Pixels per block of rows in fill / composite (bounds temporaries).
+_BLOCK = 1 << 16
+
 
 def _color(color, opacity):
     """Straight RGB/RGBA + opacity -> (r, g, b) float64, alpha*opacity."""
@@ -132,17 +135,22 @@ class Canvas:
             return
         dst_sl, src_sl = win
         k = cov[src_sl]
-        if a != 1.0:
-            k = k * np.float32(a)
         region = self.data[dst_sl]
-        # region = region * (1 - k) + k * (r, g, b, 1), channel by channel to
-        # avoid a (h, w, 4) temporary
-        inv = np.float32(1.0) - k
-        for ch, v in enumerate((r, g, b, 1.0)):
-            plane = region[..., ch]
-            plane *= inv
-            if v:
-                plane += k * np.float32(v)
+        vec = np.array([r, g, b, 1.0], np.float32)
+        alpha = np.float32(a)
+        # region += k * (vec - region), in blocks of rows to keep the
+        # (rows, w, 4) temporaries small; blocks with no coverage are skipped
+        step = max(1, _BLOCK // max(1, k.shape[1]))
+        for i0 in range(0, k.shape[0], step):
+            kk = k[i0:i0 + step]
+            if not kk.any():
+                continue
+            if alpha != 1.0:
+                kk = kk * alpha
+            reg = region[i0:i0 + step]
+            t = vec - reg
+            t *= kk[..., None]
+            reg += t
 
     def composite(self, src_premul, x0=0, y0=0, opacity=1.0):
         """Source-over of a premultiplied RGBA layer onto the canvas.
@@ -179,11 +187,15 @@ class Canvas:
             return
         dst_sl, src_sl = win
         s = src[src_sl]
-        if op != 1.0:
-            s = s * np.float32(op)
         region = self.data[dst_sl]
-        region *= (np.float32(1.0) - s[..., 3:4])
-        region += s
+        step = max(1, _BLOCK // max(1, s.shape[1]))
+        for i0 in range(0, s.shape[0], step):
+            ss = s[i0:i0 + step]
+            if op != 1.0:
+                ss = ss * np.float32(op)
+            reg = region[i0:i0 + step]
+            reg *= (np.float32(1.0) - ss[..., 3:4])
+            reg += ss
 
     def to_rgba8(self, premultiplied=False):
         """8-bit RGBA image, (H, W, 4) uint8.

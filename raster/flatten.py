@@ -50,7 +50,7 @@ subdivision always terminates.
 >>> quad = np.array([[[0.0, 0.0], [50.0, 100.0], [100.0, 0.0]]])
 >>> pts, counts = flatten_beziers(quad, tolerance=0.25)
 >>> counts.tolist(), pts[0].tolist(), pts[-1].tolist()
-([16], [0.0, 0.0], [100.0, 0.0])
+([14], [0.0, 0.0], [100.0, 0.0])
 """
 
 import math
@@ -198,7 +198,7 @@ def _deviation(Q):
 
 # Local parameters where the deviation density is sampled (midpoint rule)
 # when planning how to split a rejected piece.
-_G = 16
+_G = 32
 _SG = (np.arange(_G) + 0.5) / _G
 
 
@@ -267,7 +267,7 @@ def _plan_split(Q, e, tol):
 
 
 # Margin on the estimated piece count (the density model is approximate).
-_SAFETY = 1.0
+_SAFETY = 1.05
 
 
 def _split_points(k, cdf):
@@ -295,21 +295,18 @@ def _split_points(k, cdf):
     if cdf is not None:
         rows = np.flatnonzero(~np.isnan(cdf[:, 0]))
         if len(rows):
-            sel = np.isin(rep, rows)
-            # invert each piecewise-linear CDF: make rows one increasing
-            # sequence by adding the row number
-            pos = np.full(len(k), -1, np.int64)
-            pos[rows] = np.arange(len(rows))
+            sel = ~np.isnan(cdf[rep, 0])
+            # invert each piecewise-linear CDF: the cell of a target is the
+            # number of CDF values below it (rows have _G + 1 entries)
+            C = cdf[rep[sel]]                         # (t, _G + 1)
+            target = frac[sel]
             G1 = cdf.shape[1]
-            flat = (cdf[rows] + np.arange(len(rows))[:, None] * 2.0).ravel()
-            target = frac[sel] + pos[rep[sel]] * 2.0
-            idx = np.searchsorted(flat, target, side='left')
-            idx = np.clip(idx, 1, len(flat) - 1)
-            f0, f1 = flat[idx - 1], flat[idx]
+            idx = np.clip((C < target[:, None]).sum(axis=1), 1, G1 - 1)
+            rows_t = np.arange(len(target))
+            f0, f1 = C[rows_t, idx - 1], C[rows_t, idx]
             with np.errstate(all='ignore'):
                 r = np.where(f1 > f0, (target - f0) / (f1 - f0), 1.0)
-            cell = (idx - 1) % G1
-            s_end[sel] = np.clip((cell + r) / (G1 - 1), 0.0, 1.0)
+            s_end[sel] = np.clip((idx - 1 + np.clip(r, 0.0, 1.0)) / (G1 - 1), 0.0, 1.0)
     return rep, s_end
 
 

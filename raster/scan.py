@@ -22,8 +22,12 @@ How it works
    to the nearest even integer) is applied to that integral.  This equals the
    integral of ``f(w)`` -- the true coverage -- whenever ``w`` takes at most
    two adjacent integer values inside the cell, because ``f`` is linear
-   between adjacent integers.  Cells where that might fail are recomputed
-   exactly along 32 sub-scanlines per pixel (see :func:`coverage`).
+   between adjacent integers.  The few cells where that might fail (where
+   separate chains of edges meet) are recomputed exactly, each on its own
+   set of horizontal sample lines (see :func:`coverage`).
+4. The output is assembled from the cells holding pieces: along a row the
+   coverage is constant between them, so the running sum runs over those
+   cells only and the mask is written with one ``np.repeat``.
 
 >>> import numpy as np
 >>> square = np.array([[[1, 1], [3, 1]], [[3, 1], [3, 3]],
@@ -42,18 +46,24 @@ import numpy as np
 from . import limits
 from .errors import CanvasError, LimitError, PathError
 
-__all__ = ['Mask', 'coverage', 'check_canvas_size', 'SUBSCANLINES']
+__all__ = ['Mask', 'coverage', 'path_coverage', 'check_canvas_size', 'SUBSCANLINES']
 
-#: Sub-scanlines per pixel used to recompute the cells where edges of
-#: different chains meet (crossings, overlaps, coincident edges).
+#: Evenly spaced sample heights per pixel added in pixels crowded with more
+#: than ``_PAIR_LIMIT`` pieces (the only non-exact case).
 SUBSCANLINES = 32
 
 # Coverage below this is float64 rounding residue and is set to 0.
 _RESIDUE = 1e-9
 # Most pieces generated at once; longer inputs are processed in chunks.
 _CHUNK_PIECES = 1 << 21
-# Most sub-scanline events sorted at once in the recompute pass.
-_CHUNK_EVENTS = 1 << 22
+# Largest box (cells) for which flagged cells are found through a dense
+# int32 map rather than a binary search.
+_CELLMAP_MAX = 1 << 25
+# Most work items (pairs, pieces, heights) per batch of recomputed cells.
+_CHUNK_WORK = 1 << 21
+# Cells with more pieces than this are resampled on a fixed grid of
+# SUBSCANLINES heights instead of at all pairwise intersections.
+_PAIR_LIMIT = 64
 
 
 class Mask:
@@ -219,21 +229,24 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
 
     Notes
     -----
-    Antialiased coverage is exact (up to float64 rounding) in every pixel
-    where the winding number takes at most two adjacent values.  A pixel
-    can hold more only where edges of different chains meet: a *chain* is
-    a run of consecutive pieces of consecutive edges (edge ``e`` ends where
-    edge ``e+1`` starts) inside that pixel.  A single chain that does not
-    cross itself cuts the pixel into two sides whose windings differ by one;
-    a chain with at most two pieces, or monotone in x or in y, cannot cross
-    itself.  So every pixel that holds two or more chains, or one chain of
-    three or more pieces that is monotone in neither axis, is recomputed
-    exactly along :data:`SUBSCANLINES` horizontal sub-scanlines: for each
-    sub-scanline the crossings of all edges left of and in the pixel are
-    sorted, the winding is accumulated left to right and the fill rule is
-    applied to each span.  The remaining error is that of the midpoint rule
-    in y, at most ``1 / (2 * SUBSCANLINES)`` per pixel at a horizontal edge
-    and far less elsewhere.
+    Antialiased coverage is exact up to float64 rounding, for any
+    overlaps, crossings and coincident edges.  The running-sum pass is
+    exact in every pixel where the winding number takes at most two
+    adjacent values.  A pixel can hold more only where separate chains
+    meet: a *chain* is a run of pieces in the pixel, each starting exactly
+    where the previous one (in edge order) ends.  A chain that does not
+    cross itself cuts the pixel into two sides whose windings differ by
+    one; a chain of at most two pieces, or monotone in x or in y, cannot
+    cross itself (the two pieces at a closed contour's start vertex count
+    as one chain).  So every pixel holding two or more chains, or one chain
+    of three or more pieces monotone in neither axis, is recomputed by an
+    exact method (see :func:`_exact_cells`): the covered width of a
+    horizontal line through the pixel is linear in its height between the
+    piece end points and pairwise intersections, so the midpoint rule over
+    those heights is exact.  Only pixels holding more than ``_PAIR_LIMIT``
+    (64) pieces skip the pairwise intersections and add
+    :data:`SUBSCANLINES` evenly spaced heights instead (then close, not
+    exact).
 
     >>> tri = np.array([[[0, 0], [4, 0]], [[4, 0], [0, 4]], [[0, 4], [0, 0]]], float)
     >>> float(coverage(tri, 8, 8).data.sum())
@@ -267,6 +280,38 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
     if data is None or not data.any():
         return None
     return Mask(data, X0, Y0)
+
+
+def path_coverage(path, width, height, fill_rule='nonzero', antialias=True, clip=None,
+                  tolerance=0.25, transform=None):
+    """Coverage of a :class:`~raster.path.Path` filled on a canvas.
+
+    The path is flattened with :func:`raster.flatten.flatten` (every contour
+    closed) and scan converted with :func:`coverage`.
+
+    Parameters
+    ----------
+    path : raster.path.Path
+    width, height, fill_rule, antialias, clip
+        As for :func:`coverage`.
+    tolerance : float
+        Largest distance in device pixels between a curve and its flattened
+        polyline (default 0.25); the scan conversion itself is exact.
+    transform : raster.transform.Affine or None
+        User space to device space.
+
+    Returns
+    -------
+    Mask or None
+
+    >>> from raster.path import Path
+    >>> m = path_coverage(Path.polygon([(1, 1), (3, 1), (3, 2)]), 4, 4)
+    >>> m.box, float(m.data.sum())
+    ((1, 1, 3, 2), 1.0)
+    """
+    from .flatten import flatten
+    edges = flatten(path, tolerance=tolerance, transform=transform).edges(close_all=True)
+    return coverage(edges, width, height, fill_rule=fill_rule, antialias=antialias, clip=clip)
 
 
 # -- exact area ---------------------------------------------------------------
@@ -319,10 +364,11 @@ def _split(ua, va, ub, vb, hi):
 def _pieces(loc, w, h):
     """Cell pieces of local edges ``loc`` ((E, 2, 2), box origin at 0).
 
-    Returns xa, ya, xb, yb (float64) and col, row (int64) for
-    every piece inside the box rows, with x clamped to >= 0 (the part of an
-    edge left of the box acts as a vertical edge on its left side) and the
-    part right of the box dropped.
+    Returns xa, ya, xb, yb (float64) and col, row (int64) for every piece
+    inside the box rows.  The part of an edge left of the box goes to a
+    virtual column -1 (x set to -0.5): it changes the winding of every cell
+    to its right like a vertical edge.  The part right of the box is
+    dropped.  Consecutive pieces share their split points bitwise.
     """
     xa, ya = loc[:, 0, 0], loc[:, 0, 1]
     xb, yb = loc[:, 1, 0], loc[:, 1, 1]
@@ -342,10 +388,12 @@ def _pieces(loc, w, h):
         xa, ya, xb, yb, xm = xa[keep], ya[keep], xb[keep], yb[keep], xm[keep]
     if len(xa) == 0:
         return None
-    np.maximum(xa, 0.0, out=xa)
-    np.maximum(xb, 0.0, out=xb)
     col = np.floor(xm).astype(np.int64)
-    np.clip(col, 0, w - 1, out=col)
+    np.clip(col, -1, w - 1, out=col)
+    left = col < 0
+    if left.any():
+        xa[left] = -0.5
+        xb[left] = -0.5
     row = np.floor(0.5 * (ya + yb)).astype(np.int64)
     np.clip(row, 0, h - 1, out=row)
     return xa, ya, xb, yb, col, row
@@ -354,6 +402,9 @@ def _pieces(loc, w, h):
 def _chunks(loc, w, h):
     """Edge index ranges whose pieces number about _CHUNK_PIECES at most."""
     n_e = len(loc)
+    d = np.abs(loc[:, 1] - loc[:, 0])
+    if 3 * n_e + d.sum() <= _CHUNK_PIECES:     # cheap upper bound
+        return [(0, n_e)]
     xs, ys = loc[:, :, 0], loc[:, :, 1]
     ny = np.clip(np.ceil(ys.max(1)), 0, h) - np.clip(np.floor(ys.min(1)), 0, h)
     nx = np.clip(np.ceil(xs.max(1)), 0, w) - np.clip(np.floor(xs.min(1)), 0, w)
@@ -377,7 +428,10 @@ def _run_summary(xa, ya, xb, yb, cell):
     are bitwise equal).  A run is a maximal sequence of continuing pieces in
     one cell; a closed chain whose first and last pieces meet in one cell
     has those two runs merged.  Returns the cell of every run and whether
-    the run has three or more pieces and is monotone in neither x nor y.
+    the run may cross itself: it has three or more pieces and is not
+    strictly monotone along x, along y or along its own chord (first point
+    to last point; every piece advancing along one direction makes the
+    projection on it strictly increasing, so no two points coincide).
     """
     n = len(cell)
     conn = np.zeros(n, bool)
@@ -391,6 +445,18 @@ def _run_summary(xa, ya, xb, yb, cell):
             | ((dx > 0).astype(np.uint8) << 2) | ((dx < 0).astype(np.uint8) << 3))
     rbits = np.bitwise_or.reduceat(bits, ridx)
     rlen = np.diff(np.append(ridx, n))
+    tangled = (rlen >= 3) & ((rbits & 3) == 3) & ((rbits & 12) == 12)
+    if tangled.any():
+        # monotone along the chord?  (only for the candidate runs)
+        tr = np.flatnonzero(tangled)
+        first, last = ridx[tr], ridx[tr] + rlen[tr] - 1
+        cx, cy = xb[last] - xa[first], yb[last] - ya[first]
+        owner = np.repeat(np.arange(len(tr)), rlen[tr])
+        idx = np.repeat(first, rlen[tr]) + (np.arange(len(owner))
+                                            - np.repeat(np.cumsum(rlen[tr]) - rlen[tr], rlen[tr]))
+        dots = dx[idx] * cx[owner] + dy[idx] * cy[owner]
+        mono = np.minimum.reduceat(dots, np.cumsum(rlen[tr]) - rlen[tr]) > 0
+        tangled[tr[mono]] = False
     # closed chains: merge the run at the chain's start into the run at its end
     heads = np.flatnonzero(~conn)
     tails = np.append(heads[1:], n) - 1
@@ -403,10 +469,11 @@ def _run_summary(xa, ya, xb, yb, cell):
         rh, rt = rh[two], rt[two]
         rbits[rt] |= rbits[rh]
         rlen[rt] += rlen[rh]
+        # the merged run is judged by its axis monotonicity only
+        tangled[rt] = (rlen[rt] >= 3) & ((rbits[rt] & 3) == 3) & ((rbits[rt] & 12) == 12)
         keep = np.ones(len(ridx), bool)
         keep[rh] = False
-        ridx, rbits, rlen = ridx[keep], rbits[keep], rlen[keep]
-    tangled = (rlen >= 3) & ((rbits & 3) == 3) & ((rbits & 12) == 12)
+        ridx, tangled = ridx[keep], tangled[keep]
     return cell[ridx], tangled
 
 
@@ -422,9 +489,12 @@ def _area_coverage(e, loc, w, h, evenodd):
         if pc is None:
             continue
         xa, ya, xb, yb, col, row = pc
-        cell = row * w + col
+        real = col >= 0
+        cacc = np.maximum(col, 0)
+        cell = row * w + cacc
         dy = yb - ya
-        fx = 0.5 * (xa + xb) - col
+        # mean x offset inside the cell; virtual pieces act as if at x = 0
+        fx = np.where(real, 0.5 * (xa + xb) - col, 0.0)
         c1 = np.bincount(cell, weights=dy, minlength=ncell)
         p1 = np.bincount(cell, weights=dy * fx, minlength=ncell)
         if cover is None:
@@ -432,154 +502,309 @@ def _area_coverage(e, loc, w, h, evenodd):
         else:
             cover += c1
             partial += p1
-        rc, tg = _run_summary(xa, ya, xb, yb, cell)
-        run_cells.append(rc)
-        tangled_cells.append(rc[tg])
+        # virtual pieces get cell ids < 0 (never flagged)
+        rc, tg = _run_summary(xa, ya, xb, yb, np.where(real, cell, -1 - row))
+        run_cells.append(rc[rc >= 0])
+        tangled_cells.append(rc[tg & (rc >= 0)])
         if len(chunks) == 1:
             saved = (xa, ya, xb, yb, col, row)
     if cover is None:
         return None
-    acc = np.cumsum(cover.reshape(h, w), axis=1)
-    acc -= partial.reshape(h, w)
+    data = _resolve(cover, partial, w, h, evenodd)
     del cover, partial
-    if evenodd:
-        # distance to the nearest even integer
-        acc *= 0.5
-        acc -= np.rint(acc)
-        np.abs(acc, out=acc)
-        acc *= 2.0
-    else:
-        np.abs(acc, out=acc)
-        np.minimum(acc, 1.0, out=acc)
-    data = acc.astype(np.float32)
-    del acc
 
     # cells where two or more chains meet, or a chain may cross itself
-    rc = np.sort(np.concatenate(run_cells))
-    multi = rc[1:][rc[1:] == rc[:-1]]
-    flagged = np.unique(np.concatenate([multi] + tangled_cells))
+    nruns = np.bincount(np.concatenate(run_cells), minlength=ncell)
+    for tg in tangled_cells:
+        nruns[tg] = 2
+    flagged = np.flatnonzero(nruns >= 2)
+    del nruns
     if len(flagged):
         if saved is None:
             saved = _collect_rows(loc, w, h, flagged)
-        vals = _subscan(saved, flagged, w, h, evenodd)
+        vals = _exact_cells(saved, flagged, w, h, evenodd)
+        np.clip(vals, 0.0, 1.0, out=vals)
+        # rounding residue of cancelling edges (a path traced back on itself)
+        vals[vals < _RESIDUE] = 0.0
         data.reshape(-1)[flagged] = vals
-    np.clip(data, 0.0, 1.0, out=data)
-    # rounding residue of cancelling edges (e.g. a path traced back on itself)
-    data[data < _RESIDUE] = 0.0
     return data
+
+
+def _rule(v, evenodd):
+    """Fill rule applied to winding integrals (float64 array, in place)."""
+    if evenodd:
+        # distance to the nearest even integer
+        v *= 0.5
+        v -= np.rint(v)
+        np.abs(v, out=v)
+        v *= 2.0
+    else:
+        np.abs(v, out=v)
+        np.minimum(v, 1.0, out=v)
+    v[v < _RESIDUE] = 0.0
+    return v
+
+
+def _resolve(cover, partial, w, h, evenodd):
+    """Coverage (h, w) float32 from the flat cover / partial accumulators.
+
+    Only cells holding pieces have cover or partial terms; along a row the
+    winding is constant between them.  So the running sum is taken over
+    those cells only, and the output is assembled with one ``np.repeat`` of
+    runs in flat order: for every touched cell, the cell itself, then the
+    rest of its row up to the next touched cell at the winding after it,
+    then (when the row ends first) zeros up to the next touched cell.
+    """
+    touched = np.flatnonzero((cover != 0) | (partial != 0))
+    n = w * h
+    if len(touched) == 0:
+        return np.zeros((h, w), np.float32)
+    cv = cover[touched]
+    tr = touched // w
+    cs = np.cumsum(cv)
+    first = np.empty(len(touched), bool)
+    first[0] = True
+    first[1:] = tr[1:] != tr[:-1]
+    base = (cs - cv)[first][np.cumsum(first) - 1]
+    run = cs - base                           # winding right of the cell
+    cell = run - partial[touched]             # winding integral over the cell
+    row_end = (tr + 1) * w
+    nxt = np.append(touched[1:], n)
+    gap = np.minimum(nxt, row_end) - touched - 1
+    zeros = np.maximum(nxt - row_end, 0)
+    vals = np.zeros(3 * len(touched) + 1)
+    lens = np.empty(3 * len(touched) + 1, np.int64)
+    lens[0] = touched[0]
+    vals[1::3] = cell
+    lens[1::3] = 1
+    vals[2::3] = run
+    lens[2::3] = gap
+    lens[3::3] = zeros
+    _rule(vals, evenodd)
+    return np.repeat(vals.astype(np.float32), lens).reshape(h, w)
 
 
 def _collect_rows(loc, w, h, flagged):
     """Pieces (of all chunks) in rows holding flagged cells, left of or in the
     rightmost flagged cell of their row."""
-    maxcol = np.full(h, -1, np.int64)
+    maxcol = np.full(h, -2, np.int64)
     np.maximum.at(maxcol, flagged // w, flagged % w)
     parts = []
     for lo, hi in _chunks(loc, w, h):
         pc = _pieces(loc[lo:hi], w, h)
         if pc is None:
             continue
-        xa, ya, xb, yb, col, row = pc
-        sel = (col <= maxcol[row]) & (ya != yb)
-        parts.append([a[sel] for a in (xa, ya, xb, yb, col, row)])
+        col, row = pc[4], pc[5]
+        sel = col <= maxcol[row]
+        parts.append([a[sel] for a in pc])
     return [np.concatenate([p[i] for p in parts]) for i in range(6)]
 
 
-def _subscan(pieces, flagged, w, h, evenodd):
-    """Coverage of the flagged cells (sorted flat indices) by exact horizontal
-    coverage on SUBSCANLINES sub-scanlines per pixel."""
-    S = SUBSCANLINES
+def _exact_cells(pieces, flagged, w, h, evenodd):
+    """Exact coverage of the flagged cells (sorted flat indices).
+
+    In a cell, the covered length ``g(y)`` of the horizontal line at height
+    ``y`` is linear in ``y`` between *critical heights*: the cell's top and
+    bottom, the end points of the pieces in the cell (which include every
+    point where an edge crosses the cell's left side) and the heights where
+    two pieces in the cell intersect.  The midpoint rule on those intervals
+    is therefore exact.  On each sample line the winding at the cell's left
+    side is the winding at its top-left corner (signed crossings of the top
+    grid line left of the cell) plus the crossings of the left side above the
+    sample; crossings inside the cell are sorted and the fill rule is applied
+    span by span.  Cells with more than _PAIR_LIMIT pieces skip the pairwise
+    intersections and add SUBSCANLINES evenly spaced heights instead.
+    """
     xa, ya, xb, yb, col, row = pieces
+    F = len(flagged)
     frow = flagged // w
     fcol = flagged % w
-    maxcol = np.full(h, -1, np.int64)
-    np.maximum.at(maxcol, frow, fcol)
-    sel = (col <= maxcol[row]) & (ya != yb)
-    xa, ya, xb, yb, row = xa[sel], ya[sel], xb[sel], yb[sel], row[sel]
-    # sub-scanline s of row r is at y = r + (s + 0.5) / S; a piece crosses it
-    # when min(ya, yb) <= y < max(ya, yb)
-    ylo = (np.minimum(ya, yb) - row) * S - 0.5
-    yhi = (np.maximum(ya, yb) - row) * S - 0.5
-    s_lo = np.ceil(ylo).astype(np.int64)
-    cnt = np.ceil(yhi).astype(np.int64) - s_lo
-    np.maximum(cnt, 0, out=cnt)
-    # rows in batches so that the sorted event arrays stay bounded
-    rows_f, fstart = np.unique(frow, return_index=True)
-    ev_row = np.bincount(row, weights=cnt, minlength=h)[rows_f]
-    ev_row += 2 * S * np.diff(np.append(fstart, len(flagged)))
-    cum = np.cumsum(ev_row)
-    out = np.empty(len(flagged), np.float64)
-    b0 = 0
-    while b0 < len(rows_f):
-        base = cum[b0 - 1] if b0 else 0.0
-        b1 = int(np.searchsorted(cum, base + _CHUNK_EVENTS, side='right'))
-        b1 = min(max(b1, b0 + 1), len(rows_f))
-        r_lo, r_hi = rows_f[b0], rows_f[b1 - 1]
-        f_lo = fstart[b0]
-        f_hi = fstart[b1] if b1 < len(rows_f) else len(flagged)
-        ps = (row >= r_lo) & (row <= r_hi)
-        out[f_lo:f_hi] = _subscan_batch(
-            xa[ps], ya[ps], xb[ps], yb[ps], row[ps], s_lo[ps], cnt[ps],
-            frow[f_lo:f_hi], fcol[f_lo:f_hi], r_lo, r_hi, w, evenodd)
-        b0 = b1
+
+    if h * (w + 1) <= _CELLMAP_MAX:
+        # flagged index of every cell, -1 elsewhere (extra column for c = w)
+        cellmap = np.full(h * (w + 1), -1, np.int32)
+        cellmap[frow * (w + 1) + fcol] = np.arange(F)
+
+        def lookup(r, c):
+            i = cellmap[r * (w + 1) + np.maximum(c, 0)]
+            ok = (i >= 0) & (c >= 0)
+            return i.astype(np.int64), ok
+    else:
+        def lookup(r, c):
+            key = r * w + c
+            i = np.searchsorted(flagged, key)
+            np.minimum(i, F - 1, out=i)
+            return i, (flagged[i] == key) & (c >= 0) & (c < w)
+
+    dy = yb - ya
+    # -- winding at each flagged cell's top-left corner ------------------------
+    # pieces starting on their row's top line (not horizontal) cross it; the
+    # crossing counts for cells right of the piece's column
+    ymin = np.minimum(ya, yb)
+    top = (ymin == row) & (dy != 0)
+    tkey = row[top] * (w + 1) + (col[top] + 1)
+    torder = np.argsort(tkey, kind='stable')
+    tkey = tkey[torder]
+    tcs = np.concatenate([[0], np.cumsum(np.sign(dy[top])[torder])])
+    qrow = frow * (w + 1)
+    corner = (tcs[np.searchsorted(tkey, qrow + fcol + 1, side='left')]
+              - tcs[np.searchsorted(tkey, qrow, side='left')])
+
+    # -- changes of the left-side winding inside each cell --------------------
+    # every piece contributes +1 at its start height and -1 at its end height
+    # (for either direction); summed over the pieces left of the cell these
+    # cancel except where a chain crosses the cell's left side, so only the
+    # pieces of the left neighbour ending on that side (or, for column 0, the
+    # virtual column) need to be counted
+    fl, okl = lookup(row, col + 1)
+    virt = col < 0
+    s_on = okl & (virt | (xa == col + 1))
+    e_on = okl & (virt | (xb == col + 1))
+    ev_f = np.concatenate([fl[s_on], fl[e_on]])
+    ev_y = np.concatenate([ya[s_on] - row[s_on], yb[e_on] - row[e_on]])
+    ev_c = np.concatenate([np.ones(int(s_on.sum())), -np.ones(int(e_on.sum()))])
+    inner = ev_y > 0
+    ev_f, ev_y, ev_c = ev_f[inner], ev_y[inner], ev_c[inner]
+    eorder = np.argsort(ev_f * 2.0 + ev_y)
+    ev_f, ev_y, ev_c = ev_f[eorder], ev_y[eorder], ev_c[eorder]
+    ecount = np.bincount(ev_f, minlength=F)
+    efirst = np.cumsum(ecount) - ecount
+
+    # -- the pieces inside each flagged cell, grouped by cell -----------------
+    fi, oki = lookup(row, col)
+    sel = np.flatnonzero(oki)
+    order = sel[np.argsort(fi[sel], kind='stable')]
+    pf = fi[order]
+    pxa, pya, pxb, pyb = xa[order], ya[order] - row[order], xb[order], yb[order] - row[order]
+    pc0 = fcol[pf].astype(np.float64)
+    pxa = pxa - pc0
+    pxb = pxb - pc0
+    gcount = np.bincount(pf, minlength=F)
+    gfirst = np.cumsum(gcount) - gcount
+
+    # -- cells in batches of bounded work -------------------------------------
+    cost = (np.where(gcount <= _PAIR_LIMIT, gcount * (gcount - 1) // 2, SUBSCANLINES)
+            + 4 * gcount + ecount + 4)
+    ccum = np.cumsum(cost)
+    out = np.empty(F)
+    f_lo = 0
+    while f_lo < F:
+        base = ccum[f_lo - 1] if f_lo else 0
+        f_hi = int(np.searchsorted(ccum, base + _CHUNK_WORK, side='right'))
+        f_hi = min(max(f_hi, f_lo + 1), F)
+        p_lo, p_hi = gfirst[f_lo], gfirst[f_hi - 1] + gcount[f_hi - 1]
+        e_lo, e_hi = efirst[f_lo], efirst[f_hi - 1] + ecount[f_hi - 1]
+        ps = slice(p_lo, p_hi)
+        es = slice(e_lo, e_hi)
+        out[f_lo:f_hi] = _exact_batch(
+            pf[ps] - f_lo, pxa[ps], pya[ps], pxb[ps], pyb[ps],
+            gcount[f_lo:f_hi], gfirst[f_lo:f_hi] - p_lo,
+            ev_f[es] - f_lo, ev_y[es], ev_c[es], corner[f_lo:f_hi], evenodd)
+        f_lo = f_hi
     return out
 
 
-def _subscan_batch(xa, ya, xb, yb, row, s_lo, cnt, frow, fcol, r_lo, r_hi, w, evenodd):
-    """Sub-scanline coverage of the flagged cells (frow, fcol) of rows
-    r_lo..r_hi from the pieces of those rows (float64 (F,))."""
-    S = SUBSCANLINES
-    span = float(w + 2)                      # key = group * span + x, x in [0, w]
-    # crossings of every piece with the sub-scanlines it spans
+def _exact_batch(pf, pxa, pya, pxb, pyb, gcount, gfirst, ev_f, ev_y, ev_c, corner, evenodd):
+    """Exact coverage of cells 0..F-1 of a batch (see :func:`_exact_cells`).
+
+    pf : cell of each piece (sorted); pxa.. : piece ends in cell units
+    (x - column, y - row); gcount, gfirst : pieces per cell and first piece;
+    ev_* : left-side winding changes sorted by (cell, height); corner :
+    winding at each cell's top-left corner.
+    """
+    F = len(gcount)
+    # keys cell * 2 + height sort by cell, then height (heights closer than
+    # the key's float resolution may tie; such intervals have no weight)
+    ev_key = ev_f * 2.0 + ev_y
+    ev_cs = np.concatenate([[0.0], np.cumsum(ev_c)])
+
+    # -- critical heights -----------------------------------------------------
+    hf = [np.arange(F), np.arange(F), pf, pf, ev_f]
+    hy = [np.zeros(F), np.ones(F), pya, pyb, ev_y]
+    k = gcount[pf]
+    pos = np.arange(len(pf)) - gfirst[pf]
+    small = k <= _PAIR_LIMIT
+    npair = np.where(small, k - 1 - pos, 0)
+    n_pairs = int(npair.sum())
+    if n_pairs:
+        i = np.repeat(np.arange(len(pf)), npair)
+        j = i + 1 + (np.arange(n_pairs) - np.repeat(np.cumsum(npair) - npair, npair))
+        ax, ay = pxa[i], pya[i]
+        ux, uy = pxb[i] - ax, pyb[i] - ay
+        vx, vy = pxb[j] - pxa[j], pyb[j] - pya[j]
+        qx, qy = pxa[j] - ax, pya[j] - ay
+        den = ux * vy - uy * vx
+        with np.errstate(divide='ignore', invalid='ignore'):
+            t = (qx * vy - qy * vx) / den
+            u = (qx * uy - qy * ux) / den
+        eps = 1e-9
+        hit = (den != 0) & (t >= -eps) & (t <= 1 + eps) & (u >= -eps) & (u <= 1 + eps)
+        hf.append(pf[i[hit]])
+        hy.append(np.clip(ay[hit] + t[hit] * uy[hit], 0.0, 1.0))
+    big = np.flatnonzero(gcount > _PAIR_LIMIT)
+    if len(big):
+        grid = (np.arange(1, SUBSCANLINES) / SUBSCANLINES)
+        hf.append(np.repeat(big, len(grid)))
+        hy.append(np.tile(grid, len(big)))
+    hf = np.concatenate(hf)
+    hy = np.clip(np.concatenate(hy), 0.0, 1.0)
+    hkey = np.sort(hf * 2.0 + hy)
+    hid = np.floor(hkey * 0.5).astype(np.int64)
+    hy = hkey - 2.0 * hid
+    same = hid[1:] == hid[:-1]
+    lo, hi = hy[:-1][same], hy[1:][same]
+    sfid = hid[:-1][same]
+    weight = hi - lo
+    keep = weight > 0
+    sfid, weight = sfid[keep], weight[keep]
+    sy = 0.5 * (lo[keep] + hi[keep])            # sample heights (cell units)
+    skey = sfid * 2.0 + sy                      # sorted ascending
+
+    # -- left-side winding at each sample -------------------------------------
+    wl = (corner[sfid]
+          + ev_cs[np.searchsorted(ev_key, skey, side='right')]
+          - ev_cs[np.searchsorted(ev_key, sfid * 2.0, side='left')])
+    wl = np.rint(wl).astype(np.int64)
+
+    # -- crossings of the sample lines by the pieces in the cell ---------------
+    moving = pya != pyb
+    mi = np.flatnonzero(moving)
+    pmin = np.minimum(pya[mi], pyb[mi])
+    pmax = np.maximum(pya[mi], pyb[mi])
+    base = pf[mi] * 2.0
+    s_lo = np.searchsorted(skey, base + pmin, side='right')
+    s_hi = np.searchsorted(skey, base + pmax, side='left')
+    cnt = np.maximum(s_hi - s_lo, 0)
     m_total = int(cnt.sum())
-    nf = len(frow)
-    if m_total == 0:
-        return np.zeros(nf)
-    owner = np.repeat(np.arange(len(xa)), cnt)
-    m = np.arange(m_total) - np.repeat(np.cumsum(cnt) - cnt, cnt)
-    s = s_lo[owner] + m
-    r = row[owner]
-    a_y, a_x = ya[owner], xa[owner]
-    dyo = yb[owner] - a_y
-    xc = a_x + ((r - a_y) + (s + 0.5) / S) * ((xb[owner] - a_x) / dyo)
-    np.clip(xc, 0.0, float(w), out=xc)
-    grp = (r - r_lo) * S + s
-    keys = grp * span + xc
-    order = np.argsort(keys)
-    keys = keys[order]
-    grp = grp[order]
-    x = xc[order]
-    sign = np.where(dyo[order] > 0, 1, -1).astype(np.int32)
-    del owner, m, s, r, a_y, a_x, dyo, xc, order
-    # winding after each crossing, restarting at 0 on each sub-scanline
-    newg = np.empty(m_total, bool)
-    newg[0] = True
-    newg[1:] = grp[1:] != grp[:-1]
-    gid = np.cumsum(newg) - 1
-    gfirst = np.flatnonzero(newg)
-    cs = np.cumsum(sign)
-    wind = cs - (cs[gfirst] - sign[gfirst])[gid]
-    if evenodd:
-        f = (wind & 1).astype(np.float64)
-    else:
-        f = (wind != 0).astype(np.float64)
-    # Fc[i]: integral of f(w) dx from the sub-scanline's start to x[i]
-    inc = np.zeros(m_total)
-    inc[1:] = f[:-1] * (x[1:] - x[:-1])
-    inc[newg] = 0.0
-    Fc = np.cumsum(inc)
-    Fc -= Fc[gfirst][gid]
-
-    def F(q_grp, q_x):
-        i = np.searchsorted(keys, q_grp * span + q_x, side='right') - 1
-        ic = np.maximum(i, 0)
-        ok = (i >= 0) & (grp[ic] == q_grp)
-        return np.where(ok, Fc[ic] + f[ic] * (q_x - x[ic]), 0.0)
-
-    qg = (((frow - r_lo) * S)[:, None] + np.arange(S)[None, :]).ravel()
-    qx = np.repeat(fcol.astype(np.float64), S)
-    val = F(qg, qx + 1.0) - F(qg, qx)
-    return val.reshape(nf, S).sum(1) / S
+    g = (wl != 0) if not evenodd else (wl & 1).astype(bool)
+    g = g.astype(np.float64)                      # covered length per sample
+    if m_total:
+        owner = np.repeat(mi, cnt)
+        smp = np.repeat(s_lo, cnt) + (np.arange(m_total) - np.repeat(np.cumsum(cnt) - cnt, cnt))
+        oya = pya[owner]
+        oxa = pxa[owner]
+        ody = pyb[owner] - oya
+        xc = oxa + (sy[smp] - oya) * ((pxb[owner] - oxa) / ody)
+        np.clip(xc, 0.0, 1.0, out=xc)
+        sgn = np.where(ody > 0, 1, -1)
+        corder = np.argsort(smp * 2.0 + xc, kind='stable')
+        smp, xc, sgn = smp[corder], xc[corder], sgn[corder]
+        newg = np.empty(m_total, bool)
+        newg[0] = True
+        newg[1:] = smp[1:] != smp[:-1]
+        cs = np.cumsum(sgn)
+        gstart = np.flatnonzero(newg)
+        before = (cs[gstart] - sgn[gstart])[np.cumsum(newg) - 1]
+        w_after = wl[smp] + cs - before
+        w_before = w_after - sgn
+        if evenodd:
+            fa, fb = w_after & 1, w_before & 1
+        else:
+            fa, fb = (w_after != 0), (w_before != 0)
+        # telescoping: each crossing changes f for the rest of the cell
+        delta = (fa.astype(np.float64) - fb) * (1.0 - xc)
+        g += np.bincount(smp, weights=delta, minlength=len(g))
+    return np.bincount(sfid, weights=g * weight, minlength=F)
 
 
 # -- pixel centres ----------------------------------------------------------

@@ -558,48 +558,124 @@ def _rot90(v):
 
 
 def _arc_step(r, tol):
-    """Largest angle step (radians) whose chord stays within ``tol`` of a
-    circle of radius ``r``; at most pi/2."""
+    """Largest angle step (radians, at most pi/2) for an arc of radius ``r``
+    polygonized by :func:`_fans` within ``tol``.
+
+    The vertices sit at the area-preserving radius ``R = r * sqrt(a / sin a)``
+    (``a`` the step), so each fan triangle has exactly the area of its circle
+    sector: round caps and dots are not systematically too small.  The
+    outward error ``R - r`` is about ``r a^2 / 12`` and the inward error (at
+    the chord midpoints) about ``r a^2 / 24``; the factor 0.9 covers the
+    higher-order terms up to ``a = pi/2``.
+    """
     with np.errstate(divide='ignore', invalid='ignore'):
-        x = np.clip(1.0 - tol / r, -1.0, 1.0)
-    return np.minimum(2.0 * np.arccos(x), np.pi / 2)
+        a = 0.9 * np.sqrt(12.0 * tol / r)
+    return np.where(np.isfinite(a), np.minimum(a, np.pi / 2), np.pi / 2)
 
 
-def _fans(center, u, sweep, r, tol):
-    """Fan polygons: centre, then the arc from ``center + u`` turning by
-    ``sweep`` radians (positive: from +x towards +y), within ``tol``.
+def _arcs(center, u, sweep, tol, full=False):
+    """Polygonized circle arcs, within ``tol``.
 
-    Returns (points (M, 2), counts (F,))."""
+    Arc ``f`` has centre ``center[f]``, starts in the direction of ``u[f]``
+    (whose length is the radius) and turns by ``sweep[f]`` radians (positive:
+    from +x towards +y).  Its vertices sit at the area-preserving radius (see
+    :func:`_arc_step`).  Returns ``(points (M, 2), counts (F,))``: ``n + 1``
+    points per arc (both ends included), or ``n`` when ``full`` (a whole
+    circle, the end point omitted).
+    """
     F = len(center)
     if F == 0:
         return np.zeros((0, 2)), np.zeros(0, np.int64)
-    step = _arc_step(r, tol)
-    nf = np.maximum(np.ceil(np.abs(sweep) / step), 1.0)
-    _check_size(float(nf.sum()) + 2 * F, 'arc points')
+    r = np.hypot(u[:, 0], u[:, 1])
+    nf = np.maximum(np.ceil(np.abs(sweep) / _arc_step(r, tol)), 1.0)
+    _check_size(float(nf.sum()) + F, 'arc points')
     n = nf.astype(np.int64)
-    counts = n + 2
-    fid, loc = _ranges(counts)
-    ang = sweep[fid] * (np.maximum(loc - 1, 0) / n[fid])
+    a = np.abs(sweep) / nf
+    with np.errstate(divide='ignore', invalid='ignore'):
+        grow = np.where(a > 0, np.sqrt(a / np.sin(a)), 1.0)
+    counts = n if full else n + 1
+    fid, k = _ranges(counts)
+    ang = sweep[fid] * (k / nf[fid])
     co, si = np.cos(ang), np.sin(ang)
-    uu = u[fid]
+    uu = u[fid] * grow[fid, None]
     pts = center[fid] + np.stack([co * uu[:, 0] - si * uu[:, 1],
                                   si * uu[:, 0] + co * uu[:, 1]], axis=1)
-    c0 = loc == 0
-    pts[c0] = center[fid[c0]]
     return pts, counts
 
 
+class _Items:
+    """Runs of outline points ("items"), each destined for one polygon at one
+    sort key.  Item points live in a pool; an item may read its run in
+    reverse.  :meth:`polygons` sorts the items and gathers the points."""
+
+    def __init__(self):
+        self.pool, self.npool = [], 0
+        self.cols = []                    # (poly, key, start, count, reverse)
+
+    def put(self, pts):
+        """Add (M, 2) points to the pool; returns the start index."""
+        start = self.npool
+        if len(pts):
+            self.pool.append(pts)
+            self.npool += len(pts)
+        return start
+
+    def add(self, poly, key, start, count, reverse=False):
+        n = len(poly)
+        self.cols.append((poly, key, np.broadcast_to(start, n), np.broadcast_to(count, n),
+                          np.broadcast_to(reverse, n)))
+
+    def polygons(self):
+        if not self.cols:
+            return np.zeros((0, 2)), np.zeros(0, np.int64)
+        poly, key, start, cnt, rev = (np.concatenate([c[i] for c in self.cols])
+                                      for i in range(5))
+        keep = cnt > 0
+        poly, key, start, cnt, rev = poly[keep], key[keep], start[keep], cnt[keep], rev[keep]
+        order = np.lexsort((key, poly))
+        poly, start, cnt, rev = poly[order], start[order], cnt[order], rev[order]
+        _check_size(float(cnt.sum()), 'outline points')
+        pool = np.concatenate(self.pool) if self.pool else np.zeros((0, 2))
+        iid, k = _ranges(cnt)
+        src = start[iid] + np.where(rev[iid], cnt[iid] - 1 - k, k)
+        pts = pool[src]
+        pid = poly[iid]
+        # drop repeated points (collinear vertices, coincident join ends)
+        same = np.zeros(len(pts), bool)
+        same[1:] = (pid[1:] == pid[:-1]) & np.all(pts[1:] == pts[:-1], axis=1)
+        pts, pid = pts[~same], pid[~same]
+        _, counts = np.unique(pid, return_counts=True)
+        # reverse every polygon: the winding number becomes +1 per covering
+        # piece (positive shoelace areas, x right and y down)
+        pp, k = _ranges(counts)
+        starts = _starts(counts)
+        return pts[starts[pp] + counts[pp] - 1 - k], counts.astype(np.int64)
+
+
 def _outline(lines, style, tol):
-    """All pieces of the stroke of cleaned ``lines``: (points, counts)."""
+    """Outline polygons of the stroke of cleaned ``lines``: (points, counts).
+
+    Think of the stroke as a union of convex pieces: one rectangle per
+    segment, one wedge per join on the outer side of the turn, one piece per
+    cap, all with the same orientation (negative shoelace area), so the
+    winding number of a point is minus the number of pieces covering it.
+    Adding the pieces' boundaries as cycles, the edges shared by neighbours
+    cancel, and what remains is, per open subpath, one polygon: the left
+    offsets forward (with the outer join points where the left side is
+    outer), the end cap, the right offsets backward, the start cap; per
+    closed subpath two loops (left and right).  At an inner join the cycle
+    sum passes through the vertex itself (the "pivot").  The pivot may be
+    skipped when the triangle it spans is covered by both neighbouring
+    rectangles (``r * sin(turn) <= both segment lengths``): that changes the
+    winding by one only where it is at least two.  So these polygons have
+    exactly the winding numbers of the pieces, and nonzero fills the union.
+    """
     P, starts, counts, closed = lines.points, lines.starts, lines.counts, lines.closed
-    hw = 0.5 * style.width
-    pieces = []                                     # (points (M, 2), counts)
-
-    def add(poly):                                  # poly: (M, k, 2)
-        if len(poly):
-            pieces.append((poly.reshape(-1, 2), np.full(len(poly), poly.shape[1], np.int64)))
-
-    N = len(P)
+    r = 0.5 * style.width
+    N, C = len(P), len(counts)
+    items = _Items()
+    if N == 0:
+        return items.polygons()
     cid, loc = _ranges(counts)
     m = counts[cid]
     ring = closed[cid] & (m >= 2)
@@ -608,19 +684,33 @@ def _outline(lines, style, tol):
     idx = np.arange(N)
     nxt = np.where(loc < m - 1, idx + 1, starts[cid])
     prv = np.where(loc > 0, idx - 1, starts[cid] + m - 1)
+    vec = P[nxt] - P
+    seglen = np.hypot(vec[:, 0], vec[:, 1])
+    d = _unit(vec)                                  # valid where has_out
+    nrm = _rot90(d) * r
 
-    # segment quads
-    d_out = _unit(P[nxt] - P)                       # valid where has_out
-    n_out = _rot90(d_out) * hw
-    s0 = np.flatnonzero(has_out)
-    p0, p1, nn = P[s0], P[nxt[s0]], n_out[s0]
-    add(np.stack([p0 + nn, p1 + nn, p1 - nn, p0 - nn], axis=1))
+    is_ring = closed & (counts >= 2)
+    is_open = ~closed & (counts >= 2)
+    is_dot = (counts == 1) & (style.cap != 'butt')
+    npoly = np.where(is_ring, 2, (is_open | is_dot).astype(np.int64))
+    pbase = _starts(npoly)
+    nseg = np.where(is_ring, counts, counts - 1)
+
+    # segments: left run [a+n, b+n], right run [b-n, a-n]
+    s = np.flatnonzero(has_out)
+    c, k, S = cid[s], loc[s], nseg[cid[s]]
+    a, b, nn = P[s], P[nxt[s]], nrm[s]
+    base = items.put(np.stack([a + nn, b + nn, b - nn, a - nn], axis=1).reshape(-1, 2))
+    rs = np.arange(len(s)) * 4 + base
+    items.add(pbase[c], 4 * k, rs, 2)
+    items.add(pbase[c] + is_ring[c], np.where(is_ring[c], 4 * (S - 1 - k), 4 * S + 2 + 4 * (S - 1 - k)),
+              rs + 2, 2)
 
     # joins
     jv = np.flatnonzero(has_in & has_out)
     if len(jv):
-        d0, d1 = d_out[prv[jv]], d_out[jv]
-        v = P[jv]
+        c, l, S = cid[jv], loc[jv], nseg[cid[jv]]
+        d0, d1, v = d[prv[jv]], d[jv], P[jv]
         cross = d0[:, 0] * d1[:, 1] - d0[:, 1] * d1[:, 0]
         dot = np.clip(np.einsum('ij,ij->i', d0, d1), -1.0, 1.0)
         theta = np.arccos(dot)                      # turning angle in [0, pi]
@@ -628,78 +718,80 @@ def _outline(lines, style, tol):
         o0 = -sgn[:, None] * _rot90(d0)             # outer unit normals
         o1 = -sgn[:, None] * _rot90(d1)
         turn = theta > 1e-9
-        rnd = turn & (lines.smooth[jv] | (style.join == 'round'))
-        if style.join in ('miter', 'miter-clip', 'arcs'):
+        join = style.join
+        rnd = turn & (lines.smooth[jv] | (join == 'round'))
+        # round joins that a bevel approximates within tol need no points
+        rnd &= r * (1.0 - np.cos(0.5 * theta)) > tol
+        ostart = np.zeros(len(jv), np.int64)        # outer points, from o0 to o1
+        ocnt = np.zeros(len(jv), np.int64)
+        if join in ('miter', 'miter-clip', 'arcs'):
             cos_half = np.sqrt(0.5 * (1.0 + dot))   # 1 / (miter length / width)
             fits = cos_half * style.miterlimit >= 1.0
-            mit = turn & ~rnd & fits
-            tip = v[mit] + (o0[mit] + o1[mit]) * (hw / (1.0 + dot[mit]))[:, None]
-            add(np.stack([v[mit], v[mit] + hw * o0[mit], tip, v[mit] + hw * o1[mit]], axis=1))
-            over = turn & ~rnd & ~fits
-            if style.join == 'miter-clip':
-                c = over
-                bis = o0[c] + o1[c]
+            sharp = turn & ~rnd & ~(lines.smooth[jv] | (join == 'round'))
+            mit = sharp & fits
+            tip = v[mit] + (o0[mit] + o1[mit]) * (r / (1.0 + dot[mit]))[:, None]
+            ostart[mit] = items.put(tip) + np.arange(int(mit.sum()))
+            ocnt[mit] = 1
+            if join == 'miter-clip':
+                q = sharp & ~fits
+                bis = o0[q] + o1[q]
                 bl = np.hypot(bis[:, 0], bis[:, 1])
-                bis = np.where((bl > 1e-12)[:, None], bis / np.maximum(bl, 1e-300)[:, None], d0[c])
-                lim = style.miterlimit * hw
-                t = (lim - hw * np.einsum('ij,ij->i', o0[c], bis)) / \
-                    np.maximum(np.einsum('ij,ij->i', d0[c], bis), 1e-300)
-                e0 = v[c] + hw * o0[c]
-                e1 = v[c] + hw * o1[c]
-                add(np.stack([v[c], e0, e0 + t[:, None] * d0[c],
-                              e1 - t[:, None] * d1[c], e1], axis=1))
-                bev = np.zeros(len(jv), bool)
-            else:
-                bev = over
-        else:
-            bev = turn & ~rnd
-        add(np.stack([v[bev], v[bev] + hw * o0[bev], v[bev] + hw * o1[bev]], axis=1))
+                bis = np.where((bl > 1e-12)[:, None], bis / np.maximum(bl, 1e-300)[:, None], d0[q])
+                t = (style.miterlimit * r - r * np.einsum('ij,ij->i', o0[q], bis)) / \
+                    np.maximum(np.einsum('ij,ij->i', d0[q], bis), 1e-300)
+                e0 = v[q] + r * o0[q] + t[:, None] * d0[q]
+                e1 = v[q] + r * o1[q] - t[:, None] * d1[q]
+                ostart[q] = items.put(np.stack([e0, e1], axis=1).reshape(-1, 2)) + \
+                    2 * np.arange(int(q.sum()))
+                ocnt[q] = 2
         if np.any(rnd):
-            pieces.append(_fans(v[rnd], hw * o0[rnd], (sgn * theta)[rnd],
-                                np.full(int(rnd.sum()), hw), tol))
+            pts, cnt = _arcs(v[rnd], r * o0[rnd], (sgn * theta)[rnd], tol)
+            ostart[rnd] = items.put(pts) + _starts(cnt)
+            ocnt[rnd] = cnt
+        pivot = r * np.sin(theta) > np.minimum(seglen[prv[jv]], seglen[jv])
+        pstart = np.zeros(len(jv), np.int64)
+        pstart[pivot] = items.put(v[pivot]) + np.arange(int(pivot.sum()))
+        pcnt = pivot.astype(np.int64)
+        left_outer = sgn < 0                         # outer normal = +n
+        lkey = 4 * ((l - 1) % S) + 2
+        rkey = np.where(is_ring[c], 4 * (S - 1 - l) + 2, 4 * S + 4 + 4 * (S - 1 - l))
+        items.add(pbase[c], lkey, np.where(left_outer, ostart, pstart),
+                  np.where(left_outer, ocnt, pcnt))
+        items.add(pbase[c] + is_ring[c], rkey, np.where(left_outer, pstart, ostart),
+                  np.where(left_outer, pcnt, ocnt), ~left_outer)
 
-    # caps of open contours with at least one segment
-    open_ = ~closed & (counts >= 2)
-    cs = starts[open_]
-    ce = starts[open_] + counts[open_] - 1
-    ds = d_out[cs]                                  # direction leaving the start
-    de = d_out[ce - 1]                              # direction arriving at the end
-    # subpaths of zero length: a disc or a square, oriented by their tangent
-    dots = starts[counts == 1]
-    dt = _unit(lines.tangent[counts == 1])
-    if style.cap == 'square':
-        for c, d in ((P[cs], -ds), (P[ce], de)):    # d points outwards
-            nrm = _rot90(d) * hw
-            add(np.stack([c + nrm, c + nrm + hw * d, c - nrm + hw * d, c - nrm], axis=1))
-        c, d = P[dots], dt * hw
-        nrm = _rot90(d)
-        add(np.stack([c + d + nrm, c - d + nrm, c - d - nrm, c + d - nrm], axis=1))
-    elif style.cap == 'round':
-        cen = np.concatenate([P[cs], P[ce], P[dots]])
-        u = np.concatenate([_rot90(ds), -_rot90(de), dt]) * hw
-        sweep = np.concatenate([np.full(len(cs) + len(ce), np.pi), np.full(len(dots), 2 * np.pi)])
-        pieces.append(_fans(cen, u, sweep, np.full(len(cen), hw), tol))
+    # caps of open subpaths: end cap from b+n to b-n, start cap from a-n to a+n
+    co = np.flatnonzero(is_open)
+    if len(co) and style.cap != 'butt':
+        S = nseg[co]
+        fa, lb = starts[co], starts[co] + counts[co] - 1
+        ds, de = d[fa], d[lb - 1]
+        ns, ne = nrm[fa], nrm[lb - 1]
+        if style.cap == 'square':
+            end = np.stack([P[lb] + ne + r * de, P[lb] - ne + r * de], axis=1)
+            beg = np.stack([P[fa] - ns - r * ds, P[fa] + ns - r * ds], axis=1)
+            items.add(pbase[co], 4 * S, items.put(end.reshape(-1, 2)) + 2 * np.arange(len(co)), 2)
+            items.add(pbase[co], 8 * S + 2, items.put(beg.reshape(-1, 2)) + 2 * np.arange(len(co)), 2)
+        else:
+            half = np.full(len(co), -np.pi)
+            pts, cnt = _arcs(P[lb], ne, half, tol)
+            items.add(pbase[co], 4 * S, items.put(pts) + _starts(cnt), cnt)
+            pts, cnt = _arcs(P[fa], -ns, half, tol)
+            items.add(pbase[co], 8 * S + 2, items.put(pts) + _starts(cnt), cnt)
 
-    pieces = [p for p in pieces if len(p[1])]
-    if not pieces:
-        return np.zeros((0, 2)), np.zeros(0, np.int64)
-    return (np.concatenate([p[0] for p in pieces]),
-            np.concatenate([p[1] for p in pieces]))
-
-
-def _orient(points, counts):
-    """Reverse the polygons whose shoelace area is negative (in place copy)."""
-    if len(counts) == 0:
-        return points
-    starts = _starts(counts)
-    pid, loc = _ranges(counts)
-    rel = points - points[starts][pid]              # relative: no cancellation
-    nxt = np.where(loc < counts[pid] - 1, np.arange(len(points)) + 1, starts[pid])
-    cr = rel[:, 0] * rel[nxt, 1] - rel[nxt, 0] * rel[:, 1]
-    area = np.add.reduceat(cr, starts)
-    flip = (area < 0)[pid]
-    src = np.where(flip, starts[pid] + counts[pid] - 1 - loc, np.arange(len(points)))
-    return points[src]
+    # subpaths of zero length: a disc or a square oriented by the tangent
+    cd = np.flatnonzero(is_dot)
+    if len(cd):
+        ctr = P[starts[cd]]
+        h = _unit(lines.tangent[cd]) * r
+        if style.cap == 'square':
+            q = _rot90(h)
+            sq = np.stack([ctr + h - q, ctr - h - q, ctr - h + q, ctr + h + q], axis=1)
+            items.add(pbase[cd], 0, items.put(sq.reshape(-1, 2)) + 4 * np.arange(len(cd)), 4)
+        else:
+            pts, cnt = _arcs(ctr, h, np.full(len(cd), -2 * np.pi), tol, full=True)
+            items.add(pbase[cd], 0, items.put(pts) + _starts(cnt), cnt)
+    return items.polygons()
 
 
 def _emit(points, counts):
@@ -785,7 +877,6 @@ def stroke(path, style=None, *, transform=None, tolerance=0.25, **style_kwargs):
     if pattern is not None:
         lines = _clean(_dash(lines, pattern, style.dash_offset), _eps(lines.points))
     pts, counts = _outline(lines, style, tol_u)
-    pts = _orient(pts, counts)
     if not t.is_identity:
         pts = t.apply(pts)
     if not np.all(np.isfinite(pts)):

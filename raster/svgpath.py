@@ -26,6 +26,7 @@ what SVG renderers draw.
 
 import math
 import re
+import sys
 
 import numpy as np
 
@@ -43,7 +44,9 @@ MAX_ARC_PIECES = 100_000
 _WS = ' \t\n\r\f'
 _WSP = '[ \\t\\n\\r\\f]'
 _NUM = r'[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?'
-_SEP = _WSP + '*,?' + _WSP + '*'          # comma-wsp, possibly empty
+# comma-wsp, possibly empty; written so that a run of whitespace can be
+# matched one way only (no quadratic backtracking on long blank runs)
+_SEP = _WSP + '*(?:,' + _WSP + '*)?'
 _NUM_SPLIT = re.compile('(' + _NUM + ')')
 _NUM_RE = re.compile(_NUM)
 _TOKEN_RE = re.compile(_NUM + '|[^ \\t\\n\\r\\f]')
@@ -72,13 +75,19 @@ _POINTS_RE = re.compile(_WSP + '*(?:' + _atomic('n') + '(?:' + _SEP
 _GROUP = {'M': '##', 'L': '##', 'T': '##', 'H': '#', 'V': '#', 'C': '######',
           'S': '####', 'Q': '####', 'A': '###ff##', 'Z': ''}
 _GROUP.update({k.lower(): v for k, v in _GROUP.items()})
-_CMD = (rb'(?:[MmLlTt](?:##)+|[HhVv]#+|[Cc](?:######)+|[SsQq](?:####)+'
-        rb'|[Aa](?:###[\x00\x01][\x00\x01]##)+|[Zz])')
-_VALID = re.compile(rb'(?:[Mm](?:##)+' + _CMD + rb'*)?')
+# Possessive repeats (Python 3.11+) accept the same language; they only stop
+# the engine from keeping backtracking state, which made matching a
+# megabyte-long path superlinear.
+_P = b'+' if sys.version_info >= (3, 11) else b''
+_CMD = (rb'(?:[MmLlTt](?:##)+%s|[HhVv]#+%s|[Cc](?:######)+%s|[SsQq](?:####)+%s'
+        rb'|[Aa](?:###[\x00\x01][\x00\x01]##)+%s|[Zz])' % ((_P,) * 5))
+_VALID = re.compile(rb'(?:[Mm](?:##)+' + _P + _CMD + rb'*' + _P + rb')?')
+_CMD_SPAN = re.compile(rb'([MmZzLlHhVvCcSsQqTtAa])([^MmZzLlHhVvCcSsQqTtAa]*)')
 _COMMA_AFTER_BAD = re.compile(rb'(?<![#\x00\x01]),')
 _COMMA_BEFORE_BAD = re.compile(rb',(?![#\x00\x01])')
 
-# per command letter (byte value): tokens per group, verb, end-point offsets
+# per command letter (byte value): tokens per group, and the offsets of the
+# end point's x and y among them
 _ARITY = np.zeros(128, np.int64)
 _EX = np.zeros(128, np.int64)
 _EY = np.zeros(128, np.int64)
@@ -161,10 +170,7 @@ def parse_path(d, tolerance=0.01, strict=True):
     d2, nums, kb = _lex(d)
     vals = list(map(float, nums))
     kinds = kb.replace(b',', b'') if b',' in kb else kb
-    if (len(kinds) == len(kb) or not (_COMMA_AFTER_BAD.search(kb)
-                                     or _COMMA_BEFORE_BAD.search(kb))) \
-            and _VALID.fullmatch(kinds) is not None \
-            and (not vals or max(map(abs, vals)) < math.inf):
+    if _is_valid(kb, kinds, vals):
         return _build(kinds, vals, tol)
     vals = np.array(vals, dtype=np.float64)
     at, what = _first_error(kb, kinds, vals)
@@ -177,6 +183,17 @@ def parse_path(d, tolerance=0.01, strict=True):
     cut = at - kb.count(b',', 0, at)              # token index without commas
     end = _VALID.match(kinds, 0, cut).end()
     return _build(kinds[:end], vals[:kinds.count(b'#', 0, end)].tolist(), tol)
+
+
+def _is_valid(kb, kinds, vals):
+    """Fast check of the whole token string (commas, command grammar,
+    finite numbers); the slow search for the first error runs only when this
+    fails."""
+    if len(kinds) != len(kb) and (_COMMA_AFTER_BAD.search(kb) or _COMMA_BEFORE_BAD.search(kb)):
+        return False
+    if _VALID.fullmatch(kinds) is None:
+        return False
+    return not vals or max(map(abs, vals)) < math.inf
 
 
 def _lex(d):
@@ -238,6 +255,8 @@ def _first_error(kb, kinds, vals):
     k, what = _structure_error(kinds)
     if k is not None:
         errors.append((_with_commas(kb, k), what))
+    if not errors:                                # defensive: never expected
+        errors.append((len(kb), 'invalid path data'))
     return min(errors, key=lambda e: e[0])
 
 
@@ -301,8 +320,6 @@ def _char_position(d2, k):
     return len(d2)
 
 
-_CMD_SPAN = re.compile(rb'([MmZzLlHhVvCcSsQqTtAa])([^MmZzLlHhVvCcSsQqTtAa]*)')
-
 #: Paths with fewer tokens than this are built by a plain loop over their
 #: commands (numpy's per-call overhead dominates on short paths); longer
 #: ones by the vectorized builder.  Both give the same path (tested).
@@ -313,14 +330,15 @@ def _build(kinds, vals, tol):
     """Path from a validated token string and its numbers."""
     if len(kinds) < SMALL_PATH_TOKENS:
         return _build_loop(kinds, vals, tol)
-    return _build_vector(kinds, np.array(vals, dtype=np.float64), tol)
+    with np.errstate(over='ignore', invalid='ignore'):   # overflow: checked at the end
+        return _build_vector(kinds, np.array(vals, dtype=np.float64), tol)
 
 
 def _build_loop(kinds, vals, tol):
     """Command-by-command builder (reference semantics, used for short
-    paths).  Arcs are collected and converted in one batch at the end."""
+    paths)."""
     v = vals                                # list of floats
-    verbs, pts, arcs = [], [], []           # pts: flat x, y list
+    verbs, pts = [], []                     # pts: flat x, y list
     k = 0                                   # next number in v
     x = y = sx = sy = 0.0                   # current point, contour start
     qx = qy = cx = cy = 0.0                 # last quadratic / cubic control
@@ -385,47 +403,25 @@ def _build_loop(kinds, vals, tol):
                 verbs.append(QUAD)
                 pts += (qx, qy, x, y)
                 last = up
-            else:                           # arc: placeholder, converted below
+            else:                           # elliptical arc
                 f = args[7 * g + 3: 7 * g + 5]
-                end = (ox + v[k + 3], oy + v[k + 4])
-                arcs.append((len(verbs), len(pts) // 2, x, y, v[k], v[k + 1], v[k + 2],
-                             f[0], f[1], end[0], end[1]))
+                ex, ey = ox + v[k + 3], oy + v[k + 4]
+                ctrl = _arc_scalar(x, y, v[k], v[k + 1], v[k + 2], f[0], f[1], ex, ey, tol)
                 k += 5
-                x, y = end
-                verbs.append(LINE)
-                pts += end
-                last = _A
+                x, y, last = ex, ey, _A
+                if ctrl is None:            # same end points: omitted
+                    continue
+                if ctrl:
+                    verbs += [CUBIC] * (len(ctrl) // 6)
+                    pts += ctrl
+                else:                       # zero radius: straight line
+                    verbs.append(LINE)
+                    pts += (x, y)
     verbs = np.array(verbs, np.uint8)
     points = np.array(pts, np.float64).reshape(-1, 2)
-    if arcs:
-        verbs, points = _splice_arcs(verbs, points, arcs, tol)
     if not np.isfinite(points).all():
         raise PathError('path coordinates overflow float64')
     return Path(verbs, points, _checked=True)
-
-
-def _splice_arcs(verbs, points, arcs, tol):
-    """Replace the placeholder ``LINE`` of every arc by its conversion."""
-    a = np.array(arcs, np.float64)
-    kind, count, ctrl = _arc_batch(a[:, 2:4], a[:, 9:11], a[:, 4], a[:, 5], a[:, 6],
-                                   a[:, 7], a[:, 8], tol)
-    vs, ps = [], []
-    pv = pp = off = 0
-    for (vi, pi), kd, n in zip(a[:, :2].astype(np.int64).tolist(), kind.tolist(),
-                               count.tolist()):
-        vs.append(verbs[pv:vi])
-        ps.append(points[pp:pi])
-        if kd == 1:
-            vs.append(verbs[vi:vi + 1])
-            ps.append(points[pi:pi + 1])
-        elif kd == 2:
-            vs.append(np.full(n, CUBIC, np.uint8))
-            ps.append(ctrl[off:off + n].reshape(-1, 2))
-            off += n
-        pv, pp = vi + 1, pi + 1
-    vs.append(verbs[pv:])
-    ps.append(points[pp:])
-    return np.concatenate(vs), np.concatenate(ps)
 
 
 def _resolve(mode, val, is_move):
@@ -639,10 +635,10 @@ def _t_controls(ti, prev, prevkind, qc):
 
 # -- elliptical arcs ---------------------------------------------------------------------
 def _arc_error(theta):
-    """Upper bound of the radial error of the standard cubic approximation
-    (control arms ``4/3 tan(theta/4)``) of a unit-circle arc of ``theta``
-    radians: ``(2/27) sin(theta/4)**6 / cos(theta/4)**2`` (the true maximum
-    is this to within 0.1% for theta <= pi/2)."""
+    """Radial error of the standard cubic approximation (control arms
+    ``4/3 tan(theta/4)``) of a unit-circle arc of ``theta`` radians:
+    ``(2/27) sin(theta/4)**6 / cos(theta/4)**2``.  For theta <= pi/2 the
+    true maximum is within 0.01% of this (measured); callers add 1%."""
     q = theta / 4
     return (2.0 / 27.0) * np.sin(q) ** 6 / np.cos(q) ** 2
 
@@ -653,14 +649,14 @@ def _pieces(sweep, radius, tol):
     radial error at most ``tol``."""
     n = np.maximum(np.ceil(sweep / (np.pi / 2) - 1e-9), 1.0)
     with np.errstate(divide='ignore', over='ignore', invalid='ignore'):
-        theta = 4.0 * (13.5 * tol / radius) ** (1.0 / 6.0)   # small-angle inverse
+        theta = 4.0 * (13.5 / 1.01 * tol / radius) ** (1.0 / 6.0)   # small-angle inverse
         n = np.maximum(n, np.ceil(sweep / theta))
     n = np.where(np.isfinite(n), n, float(MAX_ARC_PIECES + 1))
     if np.any(n > MAX_ARC_PIECES):
         raise LimitError('elliptical arc needs more than %d cubic pieces at '
                          'tolerance %g' % (MAX_ARC_PIECES, tol))
     for _ in range(8):                             # the estimate is close: fix up
-        bad = _arc_error(sweep / n) * radius > tol
+        bad = 1.01 * _arc_error(sweep / n) * radius > tol
         if not bad.any():
             break
         n[bad] += 1
@@ -707,7 +703,8 @@ def _arc_cubics(p0, p1, rx, ry, phi_deg, large, sweep, tol):
     scale = np.sqrt(np.where(lam > 1, lam, 1.0))    # radii too small: scale up
     rx, ry, X, Y = rx * scale, ry * scale, X / scale, Y / scale
     lam = np.where(ok, X * X + Y * Y, 1.0)
-    s = np.sqrt(np.maximum(0.0, (1.0 - lam) / lam))
+    # radicand of F.6.5.2 in the unit frame; exactly 0 once radii were scaled
+    s = np.where(scale > 1, 0.0, np.sqrt(np.maximum(0.0, (1.0 - lam) / lam)))
     s = np.where(large != sweep, s, -s)
     ucx, ucy = s * Y, -s * X                        # centre in unit frame
     t1 = np.arctan2(Y - ucy, X - ucx)
@@ -734,6 +731,70 @@ def _arc_cubics(p0, p1, rx, ry, phi_deg, large, sweep, tol):
     if len(a):
         ctrl[np.cumsum(n_sel) - 1, 2] = p1[sel]      # end exactly on p1
     return ok, n, ctrl
+
+
+def _piece_count(sweep, radius, tol):
+    """Scalar :func:`_pieces` (pure Python: no numpy call overhead)."""
+    n = max(math.ceil(sweep / (math.pi / 2) - 1e-9), 1)
+    theta = 4.0 * (13.5 / 1.01 * tol / radius) ** (1.0 / 6.0)
+    if theta == 0 or sweep / theta > MAX_ARC_PIECES:
+        raise LimitError('elliptical arc needs more than %d cubic pieces at '
+                         'tolerance %g' % (MAX_ARC_PIECES, tol))
+    n = max(n, math.ceil(sweep / theta))
+    for _ in range(8):
+        q = sweep / n / 4
+        if 1.01 * (2.0 / 27.0) * math.sin(q) ** 6 / math.cos(q) ** 2 * radius <= tol:
+            break
+        n += 1
+    return n
+
+
+def _arc_scalar(x0, y0, rx, ry, phi_deg, large, sweep, x1, y1, tol):
+    """One arc, same mathematics as :func:`_arc_cubics` in plain Python.
+
+    Returns ``None`` (end points equal: omit the arc), ``[]`` (zero radius,
+    or a chord negligible against the radii: a straight line) or the flat
+    list ``[x, y, ...]`` of the control points of its cubic pieces."""
+    if x0 == x1 and y0 == y1:
+        return None
+    rx, ry = abs(rx), abs(ry)
+    if rx == 0 or ry == 0:
+        return []
+    phi = math.radians(phi_deg % 360.0)
+    co, si = math.cos(phi), math.sin(phi)
+    hx, hy = (x0 - x1) * 0.5, (y0 - y1) * 0.5
+    X = (co * hx + si * hy) / rx
+    Y = (-si * hx + co * hy) / ry
+    lam = X * X + Y * Y
+    if not (lam > 0 and math.isfinite(lam)):
+        return []
+    if lam > 1:
+        scale = math.sqrt(lam)
+        rx, ry, X, Y, s = rx * scale, ry * scale, X / scale, Y / scale, 0.0
+    else:
+        s = math.sqrt(max(0.0, (1.0 - lam) / lam))
+        if bool(large) == bool(sweep):
+            s = -s
+    ucx, ucy = s * Y, -s * X
+    t1 = math.atan2(Y - ucy, X - ucx)
+    dt = (math.atan2(-Y - ucy, -X - ucx) - t1) % (2 * math.pi)
+    if not sweep:
+        dt -= 2 * math.pi
+    n = _piece_count(abs(dt), max(rx, ry), tol)
+    step = dt / n
+    k = (4.0 / 3.0) * math.tan(step / 4)
+    mx, my = (x0 + x1) * 0.5, (y0 + y1) * 0.5
+    out = []
+    c1, s1 = math.cos(t1), math.sin(t1)
+    for j in range(n):
+        c0, s0 = c1, s1
+        a1 = t1 + step * (j + 1)
+        c1, s1 = math.cos(a1), math.sin(a1)
+        for ux, uy in ((c0 - k * s0, s0 + k * c0), (c1 + k * s1, s1 - k * c1), (c1, s1)):
+            ex, ey = (ux + ucx) * rx, (uy + ucy) * ry
+            out += (co * ex - si * ey + mx, si * ex + co * ey + my)
+    out[-2:] = (x1, y1)                             # end exactly on p1
+    return out
 
 
 def _finite(name, *vals):
@@ -789,16 +850,13 @@ def arc_to_cubics(p0, rx, ry, phi_deg, large_arc, sweep, p1, tolerance=0.01):
     tol = _check_tolerance(tolerance)
     x0, y0, x1, y1 = _finite('arc end points', p0[0], p0[1], p1[0], p1[1])
     rx, ry, phi = _finite('arc radii and rotation', rx, ry, phi_deg)
-    a = np.array([[x0, y0]])
-    b = np.array([[x1, y1]])
-    kind, count, ctrl = _arc_batch(a, b, np.array([rx]), np.array([ry]),
-                                   np.array([phi]), np.array([bool(large_arc)]),
-                                   np.array([bool(sweep)]), tol)
-    if kind[0] == 0:
+    ctrl = _arc_scalar(x0, y0, rx, ry, phi, bool(large_arc), bool(sweep), x1, y1, tol)
+    if ctrl is None:
         return np.zeros((0, 3, 2))
-    if kind[0] == 1:
-        return np.array([[a[0] + (b[0] - a[0]) / 3, a[0] + (b[0] - a[0]) * (2 / 3), b[0]]])
-    return ctrl
+    if not ctrl:
+        a, b = np.array([x0, y0]), np.array([x1, y1])
+        return np.array([[a + (b - a) / 3, a + (b - a) * (2 / 3), b]])
+    return np.array(ctrl).reshape(-1, 3, 2)
 
 
 # -- basic shapes ----------------------------------------------------------------------
@@ -849,13 +907,21 @@ def _auto_radii(rx, ry):
 def rect_path(x, y, w, h, rx=None, ry=None, tolerance=0.01):
     """Path of an SVG ``<rect>`` (SVG 2 equivalent path).
 
-    Square corners: ``M x,y H x+w V y+h H x Z``.  Rounded corners start at
-    ``(x+rx, y)`` and go right (clockwise on screen): line, quarter arc,
-    line, quarter arc, ... , ``Z``; lines of zero length are kept.  One of
-    ``rx``/``ry`` given (``None`` is SVG's ``auto``) sets the other; each is
-    clamped to half the width/height; a negative radius counts as 0.
-    ``w <= 0`` or ``h <= 0`` gives an empty path.  Corner arcs are within
-    ``tolerance`` (path units) of the true ellipse.
+    Square corners: ``M x,y H x+w V y+h H x Z`` (the closing edge is drawn
+    by ``Z``).  Rounded corners start at ``(x+rx, y)`` and go right
+    (clockwise on screen): line, quarter arc, line, quarter arc, ... ,
+    ``Z``; lines of zero length are kept.
+
+    Parameters
+    ----------
+    x, y, w, h : float
+        Position and size; ``w <= 0`` or ``h <= 0`` gives an empty path.
+    rx, ry : float or None, optional
+        Corner radii.  ``None`` is SVG's ``auto``: one given sets the other.
+        Each is then clamped to half the width/height; a negative radius
+        counts as 0.
+    tolerance : float, optional
+        Largest distance (path units) between a corner arc and its cubics.
 
     Returns
     -------
@@ -899,9 +965,18 @@ def rect_path(x, y, w, h, rx=None, ry=None, tolerance=0.01):
 def ellipse_path(cx, cy, rx=None, ry=None, tolerance=0.01):
     """Path of an SVG ``<ellipse>``: starts at ``(cx+rx, cy)``, four quarter
     arcs in the positive-angle direction (clockwise on screen, through
-    ``(cx, cy+ry)`` first), then ``Z``.  Each quarter may be split further to
-    stay within ``tolerance`` (path units).  ``None`` is SVG's ``auto`` (the
-    other radius); a radius ``<= 0`` gives an empty path.
+    ``(cx, cy+ry)`` first), then ``Z``.
+
+    Parameters
+    ----------
+    cx, cy : float
+        Centre.
+    rx, ry : float or None, optional
+        Radii; ``None`` is SVG's ``auto`` (the other radius).  A radius
+        ``<= 0`` (or both ``None``) gives an empty path.
+    tolerance : float, optional
+        Largest distance (path units) between the ellipse and the cubics;
+        each quarter is split into equal pieces as needed.
 
     Returns
     -------
@@ -954,9 +1029,12 @@ def line_path(x1, y1, x2, y2, tolerance=0.01):
 def parse_points(s):
     """Parse an SVG ``points`` attribute.
 
-    Numbers use SVG syntax with comma/whitespace separators.  Parsing stops
-    at the first error (the pairs before it are kept); an odd count drops
-    the last number.
+    Parameters
+    ----------
+    s : str
+        Numbers in SVG syntax with comma/whitespace separators.  Parsing
+        stops at the first error or non-finite number (the pairs before it
+        are kept); an odd count drops the last number.
 
     Returns
     -------

@@ -309,11 +309,12 @@ class _Renderer:
         if n.path is None or len(n.path.verbs) == 0:
             return
         if clip_mode:
-            if n.fill is not None:
-                m = _cover(n.path, t, canvas.width, canvas.height, n.fill.rule, n.antialias,
-                           self.tol)
-                if m is not None:
-                    canvas.fill(m, _CLIP_FILL.color, 1.0)
+            # a clip path uses the geometry whatever the paint (fill="none"
+            # has no effect); the fill rule carries clip-rule
+            rule = n.fill.rule if n.fill is not None else 'nonzero'
+            m = _cover(n.path, t, canvas.width, canvas.height, rule, n.antialias, self.tol)
+            if m is not None:
+                canvas.fill(m, _CLIP_FILL.color, 1.0)
             return
         for item in n.paint_order:
             if item == 'fill' and n.fill is not None:
