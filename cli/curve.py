@@ -97,7 +97,7 @@ def build_parser():
     o.add_argument('--blend', action='store_true', help='print blending-function values')
     o.add_argument('--json', action='store_true', help='print JSON instead of tables')
     o.add_argument('--plot', metavar='OUT', help='draw the curve to OUT.png or OUT.svg')
-    o.add_argument('--size', default='640', help='plot width in pixels (default 640)')
+    o.add_argument('--size', default='640', help='plot width in pixels, 100-4000 (default 640)')
     o.add_argument('--continuity', nargs='?', const=True, default=None,
                    help='report joint continuity (kochanek-bartels: with a value, the '
                    'continuity parameter)')
@@ -388,8 +388,8 @@ def main(argv=None):
         if args.plot:
             from raster.curves.plot import plot_curve
             size = _number(args.size, 'size')
-            if size != int(size) or not 16 <= size <= 8000:
-                raise UsageError('--size must be an integer between 16 and 8000')
+            if size != int(size) or not 100 <= size <= 4000:
+                raise UsageError('--size must be an integer between 100 and 4000')
             plot_curve(curve, args.plot, params=res['t'], width=int(size),
                        label_var='x' if res['function'] else 't')
         if args.json:

@@ -43,7 +43,8 @@ def shape_box(node, t, with_stroke=False):
         box = None
         try:
             from raster.bbox import bbox as exact
-            box = tuple(exact(path, transform=t, stroke=style))
+            box = tuple(float(v) for v in exact(path, transform=t, stroke=style,
+                                                tolerance=STROKE_TOLERANCE))
         except (ImportError, TypeError, RasterError, AttributeError):
             out = stroke(path, style, transform=t, tolerance=STROKE_TOLERANCE)
             if len(out.points):

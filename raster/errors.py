@@ -32,3 +32,8 @@ class LimitError(RasterError):
 
 class SVGError(RasterError):
     """The document cannot be rendered: unreadable XML, not SVG, invalid size."""
+
+
+class RasterWarning(UserWarning):
+    """Something in the input was ignored or not supported (issued with
+    :func:`warnings.warn`; the result is still usable)."""

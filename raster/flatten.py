@@ -21,24 +21,37 @@ The curve parameter range is cut into pieces ``[a, b]``.  For a piece, its
 own control points ``Q_0 .. Q_n`` are computed from the *original* control
 points by blossoming (a de Casteljau scheme with ``a`` and ``b`` as
 arguments: stable, no accumulated error).  The piece is accepted when a
-rigorous bound on its distance to the chord ``Q_0 Q_n`` is ``<= tolerance``:
+rigorous bound on its Hausdorff distance to the chord ``Q_0 Q_n`` is
+``<= tolerance``:
 
-* if every control point projects inside the chord (the curve's projection
-  then stays inside it too), the distance of the curve to the chord is the
-  perpendicular distance, a Bernstein polynomial vanishing at both ends, so
-  it is at most ``(1 - 2**(1-n)) * max_i |perp(Q_i)|`` (``1/2`` of the
-  largest control point offset for quadratics, ``3/4`` for cubics);
-* otherwise the convex-hull bound: the largest distance of a control point
-  to the chord *segment* (to the point ``Q_0`` when the chord has zero
-  length).
+* for planar quadratics and cubics, exactly: the signed offset of the curve
+  from the chord line and its position along the chord are Bernstein
+  polynomials of degree <= 3 whose extrema come from a quadratic equation;
+  the bound is ``sqrt(offset**2 + overshoot**2)``, ``overshoot`` being how
+  far the curve's projection leaves the chord's ends (usually 0);
+* for higher degrees (or ``D != 2``) the same with Bernstein bounds: the
+  offset is at most ``(1 - 2**(1-n)) * max_i |offset(Q_i)|`` (it vanishes at
+  both ends) and the projection stays within the control points' range;
+* in every case at most the convex-hull bound: the largest distance of a
+  control point to the chord *segment* (to the point ``Q_0`` when the chord
+  has zero length).
 
-Either bound also gives the other direction (each chord point is within the
-bound of the curve), because the curve joins the chord's ends while staying
-in the bound's neighbourhood of the chord.  A rejected piece with bound
-``e`` is cut into ``k = ceil(sqrt(e / tolerance))`` equal parameter pieces
-at once (the deviation of a piece falls like ``1/k**2``), which are tested
-again in the next round.  Rounds are a Python loop; each round is
-vectorized over all pieces of all curves.
+Each bound also covers the other direction (every chord point is within
+the bound of the curve): the curve joins the chord's ends, so it crosses the
+perpendicular to the chord through any chord point, at a point whose
+distance is an offset.
+
+A rejected piece is cut into several pieces at once, not halved: the chord
+deviation over a short parameter step ``h`` is about ``kappa h**2 / 8``
+(``kappa = |B' x B''| / |B'|``), so the piece is cut where the integral of
+``sqrt(kappa / (8 tolerance))`` (midpoint rule on 32 cells) passes whole
+numbers, i.e. into pieces of roughly equal error just under the tolerance
+(a uniform split into ``ceil(sqrt(e / tolerance))`` pieces when that
+estimate is useless, e.g. along a straight line that folds back).  The new
+pieces are tested again in the next round.  Rounds are a Python loop; each
+round is vectorized over all pieces of all curves.  Measured point counts
+are within ~1.15x (tolerance 0.01) to ~1.3x (tolerance 2, a few pieces per
+curve) of a greedy near-minimal reference.
 
 Conventions: coordinates are float64 user units (x right, y down);
 ``tolerance`` is in the same units (device pixels after a transform).
@@ -105,14 +118,21 @@ def _blossom(P, a, b):
     """
     m, n1, D = P.shape
     n = n1 - 1
-    i = np.arange(n1)
-    W = np.broadcast_to(P[:, None], (m, n1, n1, D))
-    a = a[:, None]
-    b = b[:, None]
-    for level in range(n):
-        t = np.where((level < n - i)[None, :], a, b)[:, :, None, None]
-        W = (1.0 - t) * W[:, :, :-1] + t * W[:, :, 1:]
-    return W[:, :, 0]
+    a = a[:, None, None]
+    b = b[:, None, None]
+    ca, cb = 1.0 - a, 1.0 - b
+    # de Casteljau pyramid at a: A[l] has n+1-l points
+    A = [P]
+    for _ in range(n):
+        X = A[-1]
+        A.append(ca * X[:, :-1] + a * X[:, 1:])
+    Q = np.empty((m, n1, D))
+    for i in range(n1):
+        X = A[n - i]                                   # i+1 points
+        for _ in range(i):
+            X = cb * X[:, :-1] + b * X[:, 1:]
+        Q[:, i] = X[:, 0]
+    return Q
 
 
 def _bernstein_max(c):
@@ -128,26 +148,29 @@ def _bernstein_max(c):
     lo, hi : (m,) float64 ndarray
     """
     n = c.shape[1] - 1
-    w = n * np.diff(c, axis=1)                        # derivative, degree n-1
+    c0, c1, c2 = c[:, 0], c[:, 1], c[:, 2]
+    lo = np.minimum(c0, c[:, n])
+    hi = np.maximum(c0, c[:, n])
     if n == 2:
-        A = np.zeros(len(c))
-        B = w[:, 1] - w[:, 0]
-        C = w[:, 0]
-    else:
-        A = w[:, 0] - 2.0 * w[:, 1] + w[:, 2]
-        B = 2.0 * (w[:, 1] - w[:, 0])
-        C = w[:, 0]
-    r = quadratic_roots(A, B, C)                      # (m, 2)
-    r = np.where((r > 0.0) & (r < 1.0), r, 0.0)       # t = 0 is a candidate anyway
-    vals = [c[:, 0], c[:, n]]
+        # derivative / 2 = (c1 - c0) + t (c0 - 2 c1 + c2): one root
+        den = c0 - 2.0 * c1 + c2
+        with np.errstate(all='ignore'):
+            t = np.where(den != 0, (c0 - c1) / den, 0.0)
+        t = np.where((t > 0.0) & (t < 1.0), t, 0.0)   # t = 0 is a candidate anyway
+        s = 1.0 - t
+        v = s * s * c0 + 2.0 * s * t * c1 + t * t * c2
+        return np.minimum(lo, v), np.maximum(hi, v)
+    c3 = c[:, 3]
+    # derivative / 3 = A t**2 + B t + C
+    r = quadratic_roots(c3 - c0 + 3.0 * (c1 - c2), 2.0 * (c0 - 2.0 * c1 + c2), c1 - c0)
     for j in range(2):
-        t = r[:, j:j + 1]
-        W = c
-        for _ in range(n):
-            W = (1.0 - t) * W[:, :-1] + t * W[:, 1:]
-        vals.append(W[:, 0])
-    V = np.stack(vals, axis=1)
-    return V.min(axis=1), V.max(axis=1)
+        t = r[:, j]
+        t = np.where((t > 0.0) & (t < 1.0), t, 0.0)
+        s = 1.0 - t
+        v = s * s * s * c0 + 3.0 * s * t * (s * c1 + t * c2) + t * t * t * c3
+        lo = np.minimum(lo, v)
+        hi = np.maximum(hi, v)
+    return lo, hi
 
 
 def _deviation(Q):
@@ -168,6 +191,8 @@ def _deviation(Q):
     n = n1 - 1
     if n < 2:
         return np.zeros(m)
+    if D == 2 and n <= 3:
+        return _deviation_planar(Q)
     A = Q[:, 0]
     d = Q[:, n] - A                                   # (m, D)
     L2 = np.einsum('md,md->m', d, d)
@@ -179,19 +204,42 @@ def _deviation(Q):
     seg = rel - uc[:, :, None] * d[:, None]
     hull = np.sqrt(np.einsum('mkd,mkd->mk', seg, seg)).max(axis=1)
     L = np.sqrt(L2)
-    if D == 2 and n <= 3:
-        # signed perpendicular offsets and chord parameters as Bernstein
-        # polynomials with exact extrema
-        s = (d[:, None, 0] * rel[:, :, 1] - d[:, None, 1] * rel[:, :, 0]) / L2s[:, None] * L[:, None]
-        z = np.zeros((m, 1))
-        slo, shi = _bernstein_max(np.concatenate([z, s, z], axis=1))
-        ulo, uhi = _bernstein_max(np.concatenate([z, u, z + 1.0], axis=1))
-        perp = np.maximum(-slo, shi)
-    else:
-        pv = rel - u[:, :, None] * d[:, None]
-        perp = (1.0 - 2.0 ** (1 - n)) * np.sqrt(np.einsum('mkd,mkd->mk', pv, pv)).max(axis=1)
-        ulo, uhi = u.min(axis=1), u.max(axis=1)
+    pv = rel - u[:, :, None] * d[:, None]
+    perp = (1.0 - 2.0 ** (1 - n)) * np.sqrt(np.einsum('mkd,mkd->mk', pv, pv)).max(axis=1)
+    ulo, uhi = u.min(axis=1), u.max(axis=1)
     over = np.maximum(np.maximum(-ulo, uhi - 1.0), 0.0) * L
+    e = np.minimum(np.sqrt(perp * perp + over * over), hull)
+    return np.where(nz, e, hull)
+
+
+def _deviation_planar(Q):
+    """:func:`_deviation` for planar quadratics and cubics, with the exact
+    extrema of the offset and chord-parameter polynomials."""
+    m, n1, _ = Q.shape
+    n = n1 - 1
+    ax, ay = Q[:, 0, 0], Q[:, 0, 1]
+    dx, dy = Q[:, n, 0] - ax, Q[:, n, 1] - ay         # chord
+    rx = Q[:, 1:n, 0] - ax[:, None]                   # (m, n-1)
+    ry = Q[:, 1:n, 1] - ay[:, None]
+    L2 = dx * dx + dy * dy
+    nz = L2 > 0
+    L2s = np.where(nz, L2, 1.0)
+    L = np.sqrt(L2s)
+    u = (rx * dx[:, None] + ry * dy[:, None]) / L2s[:, None]
+    off = (dx[:, None] * ry - dy[:, None] * rx) / L[:, None]
+    uc = np.clip(u, 0.0, 1.0)
+    hx = rx - uc * dx[:, None]
+    hy = ry - uc * dy[:, None]
+    h2 = hx * hx + hy * hy
+    hull = np.sqrt(h2[:, 0] if n == 2 else np.maximum(h2[:, 0], h2[:, 1]))
+    # Bernstein coefficients: offset (0, off.., 0), chord parameter (0, u.., 1)
+    c = np.zeros((2 * m, n1))
+    c[:m, 1:n] = off
+    c[m:, 1:n] = u
+    c[m:, n] = 1.0
+    lo, hi = _bernstein_max(c)
+    perp = np.maximum(-lo[:m], hi[:m])
+    over = np.maximum(np.maximum(-lo[m:], hi[m:] - 1.0), 0.0) * L
     e = np.minimum(np.sqrt(perp * perp + over * over), hull)
     return np.where(nz, e, hull)
 
@@ -288,22 +336,30 @@ def _split_points(k, cdf):
         parent is replaced by the exact parent end by the caller).
     """
     tot = int(k.sum())
+    first = np.cumsum(k) - k
     rep = np.repeat(np.arange(len(k)), k)
-    j = np.arange(tot) - (np.cumsum(k) - k)[rep] + 1  # 1 .. k
+    j = np.arange(tot) - first[rep] + 1               # 1 .. k
     frac = j / k[rep].astype(np.float64)
     s_end = frac.copy()                               # uniform split
     if cdf is not None:
         rows = np.flatnonzero(~np.isnan(cdf[:, 0]))
         if len(rows):
-            sel = ~np.isnan(cdf[rep, 0])
-            # invert each piecewise-linear CDF: the cell of a target is the
-            # number of CDF values below it (rows have _G + 1 entries)
-            C = cdf[rep[sel]]                         # (t, _G + 1)
-            target = frac[sel]
+            # invert each piecewise-linear CDF.  The cell of target j / k is
+            # the number of CDF values c with c k < j; count them by marking,
+            # for every CDF value, the first target above it (O(m _G + tot),
+            # and independent of the other rows)
             G1 = cdf.shape[1]
-            idx = np.clip((C < target[:, None]).sum(axis=1), 1, G1 - 1)
-            rows_t = np.arange(len(target))
-            f0, f1 = C[rows_t, idx - 1], C[rows_t, idx]
+            kr = k[rows]
+            f = np.floor(cdf[rows] * kr[:, None]).astype(np.int64) + 1   # (r, G1)
+            ok = f <= kr[:, None]
+            pos = (first[rows][:, None] + f - 1)[ok]
+            cs = np.cumsum(np.bincount(pos, minlength=tot))
+            before = np.concatenate([[0], cs])[first]          # count before each row
+            sel = ~np.isnan(cdf[rep, 0])
+            idx = np.clip(cs[sel] - before[rep[sel]], 1, G1 - 1)
+            rsel = rep[sel]
+            f0, f1 = cdf[rsel, idx - 1], cdf[rsel, idx]
+            target = frac[sel]
             with np.errstate(all='ignore'):
                 r = np.where(f1 > f0, (target - f0) / (f1 - f0), 1.0)
             s_end[sel] = np.clip((idx - 1 + np.clip(r, 0.0, 1.0)) / (G1 - 1), 0.0, 1.0)
@@ -423,7 +479,9 @@ def flatten_beziers(ctrl, tolerance=DEFAULT_TOLERANCE):
     ac = np.concatenate(acc_cur)
     at = np.concatenate(acc_t)
     ap = np.concatenate(acc_pt)
-    order = np.lexsort((at, ac))
+    # every round appends runs already in (curve, t) order; a stable sort of
+    # the complex key curve + i t (lexicographic) merges them quickly
+    order = np.argsort(ac.astype(np.float64) + 1j * at, kind='stable')
     ac, ap = ac[order], ap[order]
     per = np.bincount(ac, minlength=S).astype(np.int64)
     counts = per + 1
@@ -511,26 +569,26 @@ class Polylines:
             or has a single vertex) are left out.
         """
         P = self.points
-        N = len(P)
-        if N == 0:
+        if len(P) == 0:
             return np.zeros((0, 2, 2))
         starts, ends = self.starts, self.ends
-        # inner edges i -> i+1 for i not the last vertex of its polyline
-        last = np.zeros(N, bool)
-        last[ends - 1] = True
-        src = np.flatnonzero(~last)
-        inner = np.stack([P[src], P[src + 1]], axis=1)
+        sizes = ends - starts
         want = np.ones(len(starts), bool) if close_all else self.closed.copy()
-        cs, ce = starts[want], ends[want] - 1
-        nonzero = np.any(P[cs] != P[ce], axis=1)
-        cs, ce = cs[nonzero], ce[nonzero]
-        closing = np.stack([P[ce], P[cs]], axis=1)
-        # order: inner edges keyed by source index, closing edge after the
-        # polyline's last inner edge (key = last vertex index)
-        keys = np.concatenate([src, ce]).astype(np.float64)
-        keys[len(src):] += 0.5
-        order = np.argsort(keys, kind='stable')
-        return np.concatenate([inner, closing])[order]
+        want &= np.any(P[starts] != P[ends - 1], axis=1)   # zero length: left out
+        ne = sizes - 1 + want                              # edges per polyline
+        off = np.cumsum(ne) - ne
+        out = np.empty((int(ne.sum()), 2, 2))
+        # inner edges i -> i+1: polyline k's vertex i goes to off[k] + i - starts[k]
+        k_of = np.repeat(np.arange(len(starts)), sizes)
+        src = np.arange(len(P))
+        inner = src != (ends - 1)[k_of]
+        dst = (off - starts)[k_of] + src
+        out[dst[inner], 0] = P[src[inner]]
+        out[dst[inner], 1] = P[src[inner] + 1]
+        w = np.flatnonzero(want)
+        out[off[w] + sizes[w] - 1, 0] = P[ends[w] - 1]
+        out[off[w] + sizes[w] - 1, 1] = P[starts[w]]
+        return out
 
 
 def flatten(path, tolerance=DEFAULT_TOLERANCE, transform=None):
@@ -558,8 +616,10 @@ def flatten(path, tolerance=DEFAULT_TOLERANCE, transform=None):
     Raises
     ------
     PathError
-        Bad tolerance, or coordinates that become non-finite after the
-        transform.
+        Not a path, bad tolerance, or coordinates that become non-finite
+        after the transform.
+    TransformError
+        A transform that cannot be interpreted.
     LimitError
         More than :data:`raster.limits.MAX_FLATTEN_POINTS` points needed.
 
@@ -571,6 +631,8 @@ def flatten(path, tolerance=DEFAULT_TOLERANCE, transform=None):
     ([[0.0, 0.0], [8.0, 0.0], [8.0, 6.0]], [0], [True])
     """
     tol = _check_tolerance(tolerance)
+    if not callable(getattr(path, 'segments', None)):
+        raise PathError('flatten needs a raster.path.Path, got %s' % type(path).__name__)
     seg = path.segments()
     t = as_affine(transform)
     ctrl = seg.ctrl

@@ -14,3 +14,9 @@ MAX_COORD = 1e9
 
 #: Most line segments a single flatten call may produce.
 MAX_FLATTEN_POINTS = 50_000_000
+
+#: Deepest nesting of ``use`` instantiations the SVG tree builder follows.
+MAX_USE_DEPTH = 64
+
+#: Most nodes the SVG tree builder creates for one document (``use`` bombs).
+MAX_ELEMENTS = 1_000_000

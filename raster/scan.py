@@ -48,7 +48,7 @@ from .errors import CanvasError, LimitError, PathError
 
 __all__ = ['Mask', 'coverage', 'path_coverage', 'check_canvas_size', 'SUBSCANLINES']
 
-#: Evenly spaced sample heights per pixel added in pixels crowded with more
+#: Evenly spaced sample lines per pixel used in pixels crowded with more
 #: than ``_PAIR_LIMIT`` pieces (the only non-exact case).
 SUBSCANLINES = 32
 
@@ -59,11 +59,14 @@ _CHUNK_PIECES = 1 << 21
 # Largest box (cells) for which flagged cells are found through a dense
 # int32 map rather than a binary search.
 _CELLMAP_MAX = 1 << 25
+# Longest stretch of a chain checked for monotonicity when it visits one
+# cell several times.
+_STRETCH_MAX = 256
 # Most work items (pairs, pieces, heights) per batch of recomputed cells.
 _CHUNK_WORK = 1 << 21
-# Cells with more pieces than this are resampled on a fixed grid of
-# SUBSCANLINES heights instead of at all pairwise intersections.
-_PAIR_LIMIT = 64
+# Cells with more pieces than this are sampled on a fixed grid of
+# SUBSCANLINES heights instead of at all end points and intersections.
+_PAIR_LIMIT = 32
 
 
 class Mask:
@@ -244,9 +247,10 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
     horizontal line through the pixel is linear in its height between the
     piece end points and pairwise intersections, so the midpoint rule over
     those heights is exact.  Only pixels holding more than ``_PAIR_LIMIT``
-    (64) pieces skip the pairwise intersections and add
-    :data:`SUBSCANLINES` evenly spaced heights instead (then close, not
-    exact).
+    (32) pieces skip the pairwise intersections, and if they have many
+    distinct end point heights are sampled at :data:`SUBSCANLINES` evenly
+    spaced heights instead (close, not exact; it bounds the work per
+    pixel).
 
     >>> tri = np.array([[[0, 0], [4, 0]], [[4, 0], [0, 4]], [[0, 4], [0, 0]]], float)
     >>> float(coverage(tri, 8, 8).data.sum())
@@ -264,7 +268,6 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
         raise PathError("fill_rule must be 'nonzero' or 'evenodd', got %r" % (fill_rule,))
     evenodd = fill_rule == 'evenodd'
     e = _check_edges(edges)
-    # edges with no vertical extent never change any winding number
     if len(e) == 0:
         return None
     box = _box(e, width, height, clip, antialias)
@@ -274,7 +277,7 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
     w, h = X1 - X0, Y1 - Y0
     local = e - np.array([X0, Y0], np.float64)
     if antialias:
-        data = _area_coverage(e, local, w, h, evenodd)
+        data = _area_coverage(local, w, h, evenodd)
     else:
         data = _centre_coverage(local, w, h, evenodd)
     if data is None or not data.any():
@@ -420,18 +423,29 @@ def _chunks(loc, w, h):
     return list(zip(bounds[:-1], bounds[1:]))
 
 
-def _run_summary(xa, ya, xb, yb, cell):
-    """Cells of chain runs, and which runs may cross themselves.
+def _flag_cells(xa, ya, xb, yb, cell):
+    """Cells whose winding may take more than two adjacent values.
+
+    Parameters are the pieces of one chunk in path order; ``cell`` is < 0
+    for pieces outside the box.  Returns (cells touched, cells flagged),
+    both sorted int64 arrays of flat cell indices.
 
     A piece *continues* the previous piece of the array when it starts
     exactly where that one ends (split points and shared polygon vertices
-    are bitwise equal).  A run is a maximal sequence of continuing pieces in
-    one cell; a closed chain whose first and last pieces meet in one cell
-    has those two runs merged.  Returns the cell of every run and whether
-    the run may cross itself: it has three or more pieces and is not
-    strictly monotone along x, along y or along its own chord (first point
-    to last point; every piece advancing along one direction makes the
-    projection on it strictly increasing, so no two points coincide).
+    are bitwise equal); a *run* is a maximal sequence of continuing pieces
+    in one cell (a closed chain whose first and last pieces meet in one
+    cell has those two runs merged).  A cell is left alone (it is exact)
+    when all its pieces lie on one curve that is strictly monotone along
+    some direction ``d``: for any two points p, q of the cell, the
+    crossings of the segment pq with such a curve are consecutive along it
+    (their order along d is their order along pq), so their signs
+    alternate and the winding changes by at most one.  Tested here:
+
+    * one run of at most two pieces, or monotone in x or in y;
+    * otherwise, the directions of all pieces from the cell's first piece
+      to its last one in path order (at most _STRETCH_MAX pieces, no break
+      of the chain, possibly leaving and re-entering the cell) lie in an
+      open half-plane (zero-length pieces are ignored).
     """
     n = len(cell)
     conn = np.zeros(n, bool)
@@ -439,24 +453,13 @@ def _run_summary(xa, ya, xb, yb, cell):
     start = ~conn
     start[1:] |= cell[1:] != cell[:-1]
     ridx = np.flatnonzero(start)
+    rlen = np.diff(np.append(ridx, n))
     dx = xb - xa
     dy = yb - ya
     bits = ((dy > 0).astype(np.uint8) | ((dy < 0).astype(np.uint8) << 1)
             | ((dx > 0).astype(np.uint8) << 2) | ((dx < 0).astype(np.uint8) << 3))
     rbits = np.bitwise_or.reduceat(bits, ridx)
-    rlen = np.diff(np.append(ridx, n))
-    tangled = (rlen >= 3) & ((rbits & 3) == 3) & ((rbits & 12) == 12)
-    if tangled.any():
-        # monotone along the chord?  (only for the candidate runs)
-        tr = np.flatnonzero(tangled)
-        first, last = ridx[tr], ridx[tr] + rlen[tr] - 1
-        cx, cy = xb[last] - xa[first], yb[last] - ya[first]
-        owner = np.repeat(np.arange(len(tr)), rlen[tr])
-        idx = np.repeat(first, rlen[tr]) + (np.arange(len(owner))
-                                            - np.repeat(np.cumsum(rlen[tr]) - rlen[tr], rlen[tr]))
-        dots = dx[idx] * cx[owner] + dy[idx] * cy[owner]
-        mono = np.minimum.reduceat(dots, np.cumsum(rlen[tr]) - rlen[tr]) > 0
-        tangled[tr[mono]] = False
+    merged = np.zeros(len(ridx), bool)
     # closed chains: merge the run at the chain's start into the run at its end
     heads = np.flatnonzero(~conn)
     tails = np.append(heads[1:], n) - 1
@@ -469,15 +472,64 @@ def _run_summary(xa, ya, xb, yb, cell):
         rh, rt = rh[two], rt[two]
         rbits[rt] |= rbits[rh]
         rlen[rt] += rlen[rh]
-        # the merged run is judged by its axis monotonicity only
-        tangled[rt] = (rlen[rt] >= 3) & ((rbits[rt] & 3) == 3) & ((rbits[rt] & 12) == 12)
+        merged[rt] = True
         keep = np.ones(len(ridx), bool)
         keep[rh] = False
-        ridx, tangled = ridx[keep], tangled[keep]
-    return cell[ridx], tangled
+        ridx, rlen, rbits, merged = ridx[keep], rlen[keep], rbits[keep], merged[keep]
+    rcell = cell[ridx]
+    inside = rcell >= 0
+    if not inside.any():
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    ridx, rlen, rbits, merged, rcell = (ridx[inside], rlen[inside], rbits[inside],
+                                        merged[inside], rcell[inside])
+    # group the runs by cell (runs of a cell stay in path order)
+    order = np.argsort(rcell, kind='stable')
+    ridx, rlen, rbits, merged, rcell = (ridx[order], rlen[order], rbits[order],
+                                        merged[order], rcell[order])
+    gstart = np.flatnonzero(np.r_[True, rcell[1:] != rcell[:-1]])
+    gcnt = np.diff(np.append(gstart, len(rcell)))
+    cells = rcell[gstart]
+    single = gcnt == 1
+    axis_ok = (rlen[gstart] <= 2) | ((rbits[gstart] & 3) != 3) | ((rbits[gstart] & 12) != 12)
+    ok = single & axis_ok
+    # the rest (no merged run involved): monotone along the chord?
+    has_merged = np.logical_or.reduceat(merged, gstart)
+    glast = gstart + gcnt - 1
+    s_first = ridx[gstart]
+    s_last = np.minimum(ridx[glast] + rlen[glast] - 1, n - 1)   # (merged runs wrap)
+    breaks = np.cumsum(~conn)
+    cand = (~ok & ~has_merged & (s_last - s_first < _STRETCH_MAX)
+            & (breaks[s_last] == breaks[s_first]))
+    ci = np.flatnonzero(cand)
+    if len(ci):
+        # the piece directions fit in an open half-plane iff, sorted by
+        # angle, some circular gap between consecutive ones exceeds pi
+        sf, sl = s_first[ci], s_last[ci]
+        L = sl - sf + 1
+        owner = np.repeat(np.arange(len(ci)), L)
+        idx = np.repeat(sf, L) + (np.arange(len(owner)) - np.repeat(np.cumsum(L) - L, L))
+        pdx, pdy = dx[idx], dy[idx]
+        moving = (pdx != 0) | (pdy != 0)
+        owner = owner[moving]
+        ang = np.arctan2(pdy[moving], pdx[moving]) + np.pi          # [0, 2 pi]
+        ang = np.sort(owner * 8.0 + ang) - owner * 8.0               # sorted per stretch
+        m = len(ang)
+        if m:
+            gfirst = np.flatnonzero(np.r_[True, owner[1:] != owner[:-1]])
+            glast = np.append(gfirst[1:], m) - 1
+            gap = np.empty(m)
+            gap[1:] = ang[1:] - ang[:-1]
+            gap[gfirst] = ang[gfirst] + 2 * np.pi - ang[glast]
+            fits = np.maximum.reduceat(gap, gfirst) > np.pi * (1 + 1e-9)
+            good = np.ones(len(ci), bool)          # stretches of points only
+            good[owner[gfirst]] = fits
+        else:
+            good = np.ones(len(ci), bool)
+        ok[ci] = True
+    return cells, cells[~ok]
 
 
-def _area_coverage(e, loc, w, h, evenodd):
+def _area_coverage(loc, w, h, evenodd):
     ncell = w * h
     cover = None
     partial = None
@@ -503,9 +555,9 @@ def _area_coverage(e, loc, w, h, evenodd):
             cover += c1
             partial += p1
         # virtual pieces get cell ids < 0 (never flagged)
-        rc, tg = _run_summary(xa, ya, xb, yb, np.where(real, cell, -1 - row))
-        run_cells.append(rc[rc >= 0])
-        tangled_cells.append(rc[tg & (rc >= 0)])
+        touched, bad = _flag_cells(xa, ya, xb, yb, np.where(real, cell, -1))
+        run_cells.append(touched)
+        tangled_cells.append(bad)
         if len(chunks) == 1:
             saved = (xa, ya, xb, yb, col, row)
     if cover is None:
@@ -513,12 +565,16 @@ def _area_coverage(e, loc, w, h, evenodd):
     data = _resolve(cover, partial, w, h, evenodd)
     del cover, partial
 
-    # cells where two or more chains meet, or a chain may cross itself
-    nruns = np.bincount(np.concatenate(run_cells), minlength=ncell)
-    for tg in tangled_cells:
-        nruns[tg] = 2
-    flagged = np.flatnonzero(nruns >= 2)
-    del nruns
+    # flagged cells, and cells touched by pieces of several chunks (a chain
+    # cut at a chunk boundary is not followed across it)
+    if len(run_cells) == 1:
+        flagged = tangled_cells[0]
+    else:
+        nruns = np.bincount(np.concatenate(run_cells), minlength=ncell)
+        for tg in tangled_cells:
+            nruns[tg] = 2
+        flagged = np.flatnonzero(nruns >= 2)
+        del nruns
     if len(flagged):
         if saved is None:
             saved = _collect_rows(loc, w, h, flagged)
@@ -613,7 +669,9 @@ def _exact_cells(pieces, flagged, w, h, evenodd):
     grid line left of the cell) plus the crossings of the left side above the
     sample; crossings inside the cell are sorted and the fill rule is applied
     span by span.  Cells with more than _PAIR_LIMIT pieces skip the pairwise
-    intersections and add SUBSCANLINES evenly spaced heights instead.
+    intersections (exact only if their pieces do not cross) and, when they
+    also have more than SUBSCANLINES + 2 distinct heights, use SUBSCANLINES
+    evenly spaced heights instead (the midpoint rule is then approximate).
     """
     xa, ya, xb, yb, col, row = pieces
     F = len(flagged)
@@ -683,7 +741,7 @@ def _exact_cells(pieces, flagged, w, h, evenodd):
     gfirst = np.cumsum(gcount) - gcount
 
     # -- cells in batches of bounded work -------------------------------------
-    cost = (np.where(gcount <= _PAIR_LIMIT, gcount * (gcount - 1) // 2, SUBSCANLINES)
+    cost = (np.where(gcount <= _PAIR_LIMIT, gcount * (gcount - 1) // 2, SUBSCANLINES * gcount)
             + 4 * gcount + ecount + 4)
     ccum = np.cumsum(cost)
     out = np.empty(F)
@@ -719,11 +777,15 @@ def _exact_batch(pf, pxa, pya, pxb, pyb, gcount, gfirst, ev_f, ev_y, ev_c, corne
     ev_cs = np.concatenate([[0.0], np.cumsum(ev_c)])
 
     # -- critical heights -----------------------------------------------------
+    # crowded cells (more than _PAIR_LIMIT pieces) skip the pairwise
+    # intersections; if they also have more than SUBSCANLINES distinct end
+    # point heights, an even grid replaces those, so crossings stay <= k * S
+    crowded = gcount > _PAIR_LIMIT
+    k = gcount[pf]
+    small = k <= _PAIR_LIMIT
     hf = [np.arange(F), np.arange(F), pf, pf, ev_f]
     hy = [np.zeros(F), np.ones(F), pya, pyb, ev_y]
-    k = gcount[pf]
     pos = np.arange(len(pf)) - gfirst[pf]
-    small = k <= _PAIR_LIMIT
     npair = np.where(small, k - 1 - pos, 0)
     n_pairs = int(npair.sum())
     if n_pairs:
@@ -741,14 +803,21 @@ def _exact_batch(pf, pxa, pya, pxb, pyb, gcount, gfirst, ev_f, ev_y, ev_c, corne
         hit = (den != 0) & (t >= -eps) & (t <= 1 + eps) & (u >= -eps) & (u <= 1 + eps)
         hf.append(pf[i[hit]])
         hy.append(np.clip(ay[hit] + t[hit] * uy[hit], 0.0, 1.0))
-    big = np.flatnonzero(gcount > _PAIR_LIMIT)
-    if len(big):
-        grid = (np.arange(1, SUBSCANLINES) / SUBSCANLINES)
-        hf.append(np.repeat(big, len(grid)))
-        hy.append(np.tile(grid, len(big)))
     hf = np.concatenate(hf)
     hy = np.clip(np.concatenate(hy), 0.0, 1.0)
     hkey = np.sort(hf * 2.0 + hy)
+    distinct = np.empty(len(hkey), bool)
+    distinct[0] = True
+    distinct[1:] = hkey[1:] != hkey[:-1]
+    hkey = hkey[distinct]
+    if crowded.any():
+        hid = np.floor(hkey * 0.5).astype(np.int64)
+        gridded = crowded & (np.bincount(hid, minlength=F) > SUBSCANLINES + 2)
+        big = np.flatnonzero(gridded)
+        if len(big):
+            grid = np.arange(SUBSCANLINES + 1) / SUBSCANLINES
+            extra = (np.repeat(big * 2.0, len(grid)) + np.tile(grid, len(big)))
+            hkey = np.sort(np.concatenate([hkey[~gridded[hid]], extra]))
     hid = np.floor(hkey * 0.5).astype(np.int64)
     hy = hkey - 2.0 * hid
     same = hid[1:] == hid[:-1]

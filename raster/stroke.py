@@ -13,43 +13,59 @@ mapped by ``transform``.  Curves are flattened and arcs are polygonized with
 ``tolerance / transform.max_scale()`` user units, so the error measured in
 device pixels stays within ``tolerance``.
 
-Instead of tracing one offset curve around the stroke (which needs a
-self-intersection clean-up), the outline is a *union of small convex
-pieces*, all built at once as numpy arrays:
+The outline is the boundary of a *union of convex pieces*:
 
-* one quadrilateral per segment (the segment swept by the pen's width);
+* one rectangle per segment (the segment swept by the pen's width);
 * one wedge per join, on the outer side of the turn: a triangle (bevel), a
   quadrilateral (miter), a pentagon (clipped miter) or a fan (round);
-* one piece per cap (a rectangle for ``square``, a half-disc fan for
+* one piece per cap (a rectangle for ``square``, a half-disc for
   ``round``), and a disc or a square for a subpath of zero length.
 
-Every piece is oriented the same way (positive shoelace area in user space;
-a transform with a negative determinant flips them all together), so the
-winding number of a point is the number of pieces covering it, and the
-nonzero rule fills exactly their union: overlapping joins, inner corners,
-cusps and self-overlapping strokes need no special case.
+All pieces have the same orientation, so the winding number of a point is
+the number of pieces covering it and the nonzero rule fills exactly their
+union: overlapping joins, inner corners, cusps and self-overlapping strokes
+need no special case.  The pieces are not emitted one by one: adding their
+boundaries as cycles, the edges shared by neighbours cancel, and what is left
+is traced directly (all subpaths at once, as numpy arrays) as one polygon
+per open subpath -- left offsets forward with the outer join points, end
+cap, right offsets backward, start cap -- and two loops per closed subpath.
+At an inner join the cycle sum passes through the vertex (the "pivot"); the
+pivot is left out where the neighbouring rectangles both cover the triangle
+it spans, which changes the winding only where it is at least two.  The
+outline polygons therefore cross themselves at inner joins ("ears"), which
+the nonzero rule fills correctly; their winding is positive (positive
+shoelace area in user space, negative after a mirroring transform).
 
 Joins *inside* a flattened curve (between the chords of one Bezier segment)
-are always round, whatever the join style, so curves stay smooth; since a
-round join is polygonized within the tolerance, such joins are usually single
-bevel triangles.
+are always round, whatever the join style, so curves stay smooth; a round
+join that a bevel approximates within the tolerance is a bevel.  Round joins,
+caps and dots are polygonized with their vertices at the area-preserving
+radius ``r * sqrt(a / sin a)`` (``a`` the angle step), so round caps are not
+systematically too small.  For butt and square caps and sharp joins on fat
+strokes, the flattening is refined near the curve ends so that the end
+chords leave the curve along its tangent (see :func:`_refine_ends`).
 
 Dashes
 ------
 :func:`dash_polylines` cuts the flattened polylines (user space) at the dash
 boundaries, with cumulative arc length and :func:`numpy.searchsorted`, for
 all subpaths at once.  The pattern restarts at the start of every subpath.  A
-closed subpath is dashed as one line running from its start point around to
-its start point again (closing segment included); the pieces are open, so a
-dash that runs through the start point becomes two dashes, each with its own
-caps (as in resvg).  Zero-length dashes are kept: they draw a dot (round cap)
-or a square oriented along the path (square cap).
+closed subpath is dashed as one line from its start point around to the same
+point (closing segment included); when a dash reaches that point and another
+dash leaves it, the two are one dash, joined there (as resvg does).  A closed
+subpath covered by a single dash stays closed (no caps).  Zero-length dashes
+are kept: they draw a dot (round cap) or a square oriented along the path
+(square cap).  Dash positions follow the arc length of the flattened curve,
+which is shorter than the curve's by up to about ``e / 3`` per radian of
+turning for a flattening within ``e`` (chords of sagitta ``e`` on a circle of
+radius ``R`` lose ``e / (3 R)`` of its length); dashed paths are therefore
+flattened within ``tolerance / 4``.
 
 Coordinates are float64, x right and y down, as everywhere in raster.
 
 >>> from raster.path import Path
 >>> out = stroke(Path.polygon([(0, 0), (10, 0)], closed=False), width=2)
->>> out.verbs.tolist()                       # one quad: M L L L Z
+>>> out.verbs.tolist()                       # one rectangle: M L L L Z
 [0, 1, 1, 1, 4]
 >>> out.control_box()
 (0.0, -1.0, 10.0, 1.0)
@@ -74,7 +90,7 @@ CAPS = ('butt', 'round', 'square')
 
 #: Relative size (of the largest coordinate) below which two consecutive
 #: points are treated as one and a segment has no direction.
-_EPS_REL = 1e-10
+_EPS_REL = 1e-12
 
 
 class StrokeError(RasterError, ValueError):
@@ -253,7 +269,7 @@ def hairline_scale(style, transform=None):
 # ---------------------------------------------------------------------------
 
 class DashedLines(NamedTuple):
-    """Open polylines produced by :func:`dash_polylines`.
+    """Polylines produced by :func:`dash_polylines`, one per dash.
 
     Attributes
     ----------
@@ -262,7 +278,8 @@ class DashedLines(NamedTuple):
     starts : (K,) int64 ndarray
         Index of each polyline's first vertex in ``points``.
     closed : (K,) bool ndarray
-        Always False (dashes are open).
+        False for dashes (open); True only for a closed polyline covered
+        entirely by one dash.
     tangent : (K, 2) float64 ndarray
         Unit direction of the path where each dash starts (orients the
         square cap of a zero-length dash).
@@ -303,11 +320,98 @@ def _ranges(counts):
 
 def _check_size(n, what):
     if n > MAX_FLATTEN_POINTS:
-        raise LimitError('stroke needs %d %s, more than the limit of %d'
+        raise LimitError('stroke needs %.3g %s, more than the limit of %d'
                          % (n, what, MAX_FLATTEN_POINTS))
 
 
-def _path_lines(path, tol):
+def _bezier_at(ctrl, t):
+    """Points of Bezier curves ``ctrl`` (M, k+1, 2) at parameters ``t`` (M,)
+    (de Casteljau)."""
+    q = ctrl.copy()
+    tt = t[:, None]
+    for k in range(ctrl.shape[1] - 1, 0, -1):
+        q = q[:, :k] + tt[:, None] * (q[:, 1:k + 1] - q[:, :k])
+    return q[:, 0]
+
+
+def _refine_ends(ctrl, points, counts, r, tol):
+    """Refine the flattening of curves near their ends for a pen of
+    half-width ``r``, so that butt and square caps and miter or bevel joins
+    built on the end chords stay within ``tol`` of the exact stroke.
+
+    A chord turned by ``a`` from the curve's normal at its end pokes its
+    rectangle out past the cap (or join) line by about ``r * a`` minus its
+    distance from the end along the curve.  Where the first chord turns
+    too much (``r * a > tol``), curve points are added at parameters in
+    geometric progression towards the end, ``t_a / rho**j``, so that every
+    chord near the end satisfies ``r * a <= tol + distance``; ``t_a`` is
+    found by halving (a loop over halvings, vectorized over the curves).
+    Round caps and joins need none of this: the stroke of the polyline with
+    round joins is within ``tol`` of the exact one anyway.
+
+    Parameters
+    ----------
+    ctrl : (M, k+1, 2) float64 ndarray
+    points, counts : as returned by :func:`raster.flatten.flatten_beziers`.
+    r, tol : float
+
+    Returns
+    -------
+    points, counts
+        Each curve gains at most 64 points at each end.
+    """
+    M = len(ctrl)
+    first = _starts(counts)
+    last = first + counts - 1
+    scale = np.abs(ctrl).reshape(M, -1).max(axis=1)
+    tiny = (_EPS_REL * np.maximum(scale, 1e-300))[:, None]
+    ar = np.arange(M)
+    ds = ctrl[:, 1:] - ctrl[:, :1]                   # start tangent candidates
+    de = ctrl[:, -2::-1] - ctrl[:, -1:]              # end (reversed) candidates
+    sides = []
+    for side, (q0i, q1i, cand) in enumerate(((first, first + 1, ds), (last, last - 1, de))):
+        tan = _unit(cand[ar, np.argmax(np.hypot(cand[..., 0], cand[..., 1]) > tiny, axis=1)])
+        q0, ch = points[q0i], points[q1i] - points[q0i]
+        c1 = np.hypot(ch[:, 0], ch[:, 1])
+        ang = np.arctan2(np.abs(ch[:, 0] * tan[:, 1] - ch[:, 1] * tan[:, 0]),
+                         np.einsum('ij,ij->i', ch, tan))
+        todo = np.flatnonzero(r * ang > tol)
+        ta = np.zeros(M)
+        t = np.full(len(todo), 0.5) / np.maximum(counts[todo] - 1, 1)
+        for _ in range(60):                          # a parameter short of q1
+            if len(todo) == 0:
+                break
+            v = _bezier_at(ctrl[todo], t if side == 0 else 1.0 - t) - q0[todo]
+            ok = np.hypot(v[:, 0], v[:, 1]) < c1[todo]
+            ta[todo[ok]] = t[ok]
+            todo, t = todo[~ok], 0.5 * t[~ok]
+        need = ta > 0
+        rho = 1.0 + np.minimum(1.0, c1 / np.maximum(r * ang, 1e-300))
+        need &= rho > 1.0
+        lr = np.log(np.where(need, rho, 2.0))
+        J = np.where(need, np.minimum(64, np.ceil(np.log(np.maximum(r * ang / tol, 1.0)) / lr) + 1),
+                     0).astype(np.int64)
+        cid, j = _ranges(J)
+        if side == 0:
+            j = J[cid] - 1 - j                        # increasing parameter
+        tt = ta[cid] * rho[cid] ** (-j.astype(np.float64))
+        pts = _bezier_at(ctrl[cid], tt if side == 0 else 1.0 - tt)
+        sides.append((J, pts))
+    (J0, p0), (J1, p1) = sides
+    new_counts = counts + J0 + J1
+    ns = _starts(new_counts)
+    cid, j = _ranges(counts)
+    pos = ns[cid] + j + np.where(j >= 1, J0[cid], 0) + np.where(j == counts[cid] - 1, J1[cid], 0)
+    out = np.empty((int(new_counts.sum()), 2))
+    out[pos] = points
+    c0, k0 = _ranges(J0)
+    out[ns[c0] + 1 + k0] = p0
+    c1_, k1 = _ranges(J1)
+    out[(ns + new_counts - 1 - J1)[c1_] + k1] = p1
+    return out, new_counts
+
+
+def _path_lines(path, tol, r=0.0):
     """Flatten every segment of ``path`` within ``tol`` (user units) with
     :func:`raster.flatten.flatten_beziers`, keeping track of which vertices
     lie inside a curve (smooth joins).  Lone ``MOVE`` contours are dropped
@@ -324,6 +428,8 @@ def _path_lines(path, tol):
         sel = deg == k
         if np.any(sel):
             p, cnt = flatten_beziers(seg.ctrl[sel, :k + 1], tol)
+            if r > 0:
+                p, cnt = _refine_ends(seg.ctrl[sel, :k + 1], p, cnt, r, tol)
             n[sel] = cnt - 1
             first = _starts(cnt)
             keep = np.ones(len(p), bool)
@@ -435,19 +541,23 @@ def _as_lines(polylines):
 
 
 def _dash(lines, pattern, offset):
-    """Dash cleaned lines; returns open _Lines (tangent set per dash)."""
+    """Dash cleaned lines; returns _Lines, one per dash (tangent set per dash).
+
+    A closed contour is unrolled twice around (two laps), so that the dash
+    through its start point -- from the last dash start ``a`` to ``L`` and on
+    from 0 -- is the single interval ``[a, L + b]``.  A closed contour that
+    one dash covers entirely stays closed."""
     P, starts, counts, closed = lines.points, lines.starts, lines.counts, lines.closed
     C = len(counts)
     if C == 0:
         return lines
-    # unroll closed contours: append the first point to draw the closing segment
     cl = closed & (counts >= 2)
-    ucounts = counts + cl
+    ucounts = np.where(cl, 2 * counts + 1, counts)
     ustarts = _starts(ucounts)
     cid, loc = _ranges(ucounts)
-    src = starts[cid] + np.where(loc < counts[cid], loc, 0)
+    src = starts[cid] + loc % counts[cid]
     U = P[src]
-    usmooth = lines.smooth[src] & (loc < counts[cid]) & (loc > 0)
+    usmooth = lines.smooth[src]
     ulast = ustarts + ucounts - 1
     # global arc length with a gap of 1 between contours (strictly increasing)
     seglen = np.zeros(len(U))
@@ -456,7 +566,7 @@ def _dash(lines, pattern, offset):
     seglen[0] = 0.0
     S = np.cumsum(seglen)
     base = S[ustarts]
-    L = S[ulast] - base
+    L = S[np.where(cl, ustarts + counts, ulast)] - base      # one lap
 
     period = float(pattern.sum())
     cum = np.concatenate([[0.0], np.cumsum(pattern)])
@@ -474,8 +584,23 @@ def _dash(lines, pattern, offset):
     Lc = L[dc]
     keep = ((a < Lc) & (b > 0)) | ((a == b) & (a >= 0) & (a <= Lc))
     a, b, dc, Lc = a[keep], b[keep], dc[keep], Lc[keep]
-    a = np.clip(a, 0.0, Lc) + base[dc]
-    b = np.clip(b, 0.0, Lc) + base[dc]
+    a = np.clip(a, 0.0, Lc)
+    b = np.clip(b, 0.0, Lc)
+    # closed contours: the last dash runs on into the first when both touch
+    # the start point (intervals are in order, so first/last are run ends)
+    whole = np.zeros(len(dc), bool)
+    if np.any(cl) and len(dc):
+        head = np.flatnonzero(np.r_[True, dc[1:] != dc[:-1]])
+        tail = np.r_[head[1:] - 1, len(dc) - 1]
+        touch = cl[dc[head]] & (a[head] == 0) & (b[tail] == Lc[tail])
+        whole[head[touch & (head == tail)]] = True
+        mh, mt = head[touch & (head != tail)], tail[touch & (head != tail)]
+        b[mt] = Lc[mt] + b[mh]
+        drop = np.zeros(len(dc), bool)
+        drop[mh] = True
+        a, b, dc, whole = a[~drop], b[~drop], dc[~drop], whole[~drop]
+    a = a + base[dc]
+    b = b + base[dc]
 
     lo_i = ustarts[dc]
     hi_i = np.maximum(ulast[dc] - 1, lo_i)
@@ -507,7 +632,7 @@ def _dash(lines, pattern, offset):
     out[dstarts] = pa
     out[dstarts + dcounts - 1] = pb
     tangent = _unit(da)
-    return _Lines(out, dstarts, dcounts, np.zeros(len(dcounts), bool), sm, tangent)
+    return _Lines(out, dstarts, dcounts, whole, sm, tangent)
 
 
 def dash_polylines(polylines, dash, offset=0.0):
@@ -527,11 +652,12 @@ def dash_polylines(polylines, dash, offset=0.0):
     Returns
     -------
     DashedLines
-        Open polylines, one per dash, in path order.  The pattern restarts
-        at each polyline; a closed polyline is dashed from its start point
-        around to the same point (dashes are not joined across the start).
-        With a solid pattern the polylines are returned unchanged (closed
-        ones stay closed).
+        Polylines, one per dash, in path order.  The pattern restarts at
+        each polyline; a closed polyline is dashed from its start point
+        around to the same point, and a dash running through that point is
+        one polyline (its last part first).  Dashes are open, except a closed
+        polyline covered by one dash, which stays closed.  With a solid
+        pattern the polylines are returned unchanged.
 
     >>> import numpy as np
     >>> lines = DashedLines(np.array([[0., 0], [10, 0]]), np.array([0]),
@@ -622,8 +748,7 @@ class _Items:
 
     def add(self, poly, key, start, count, reverse=False):
         n = len(poly)
-        self.cols.append((poly, key, np.broadcast_to(start, n), np.broadcast_to(count, n),
-                          np.broadcast_to(reverse, n)))
+        self.cols.append(tuple(np.broadcast_to(x, n) for x in (poly, key, start, count, reverse)))
 
     def polygons(self):
         if not self.cols:
@@ -846,14 +971,14 @@ def stroke(path, style=None, *, transform=None, tolerance=0.25, **style_kwargs):
 
     Examples
     --------
-    A 10 x 10 square stroked 2 wide with miter joins is four segment quads
-    and four miter wedges:
+    A closed 10 x 10 square stroked 2 wide gives two loops, the outer and
+    the inner edge of the stroke:
 
     >>> from raster.path import Path
     >>> sq = Path.polygon([(0, 0), (10, 0), (10, 10), (0, 10)])
     >>> out = stroke(sq, width=2)
     >>> int((out.verbs == 0).sum()), out.control_box()
-    (8, (-1.0, -1.0, 11.0, 11.0))
+    (2, (-1.0, -1.0, 11.0, 11.0))
     """
     if not isinstance(path, Path):
         raise StrokeError('stroke() needs a raster.Path, got %s' % type(path).__name__)
@@ -868,12 +993,18 @@ def stroke(path, style=None, *, transform=None, tolerance=0.25, **style_kwargs):
         raise StrokeError('tolerance must be > 0, got %r' % (tolerance,))
     t = as_affine(transform)
     scale = t.max_scale()
+    if not math.isfinite(scale):
+        raise LimitError('transform scale is too large (%r)' % (t,))
     if style.width == 0 or len(path.verbs) == 0 or scale == 0:
         return Path.empty()
     tol_u = tol / scale
-    lines = _path_lines(path, tol_u)
-    lines = _clean(lines, _eps(lines.points))
     pattern = dash_pattern(style.dash)
+    sharp = style.cap != 'round' or style.join != 'round'
+    # dash positions follow the arc length of the flattening, which falls
+    # short of the curve's by up to tol/3 per radian: flatten 4x finer
+    tol_f = tol_u if pattern is None else 0.25 * tol_u
+    lines = _path_lines(path, tol_f, 0.5 * style.width if sharp else 0.0)
+    lines = _clean(lines, _eps(lines.points))
     if pattern is not None:
         lines = _clean(_dash(lines, pattern, style.dash_offset), _eps(lines.points))
     pts, counts = _outline(lines, style, tol_u)

@@ -9,11 +9,19 @@ transform's scale); quadratic segments (``Q``/``T``) stay quadratic.
 >>> p.to_svg()
 'M 10 10 L 30 10 L 30 30 Q 20 40 10 30 Z'
 
-The parser is vectorized: one regular-expression pass splits the data into
-numbers and everything else, and the command structure is checked by a second
-regular expression over a one-byte-per-token string; the geometry (relative
-coordinates, ``S``/``T`` reflections, arcs) is then computed with numpy over
-all commands at once.
+How it works: one regular-expression pass splits the data into numbers and
+everything else (arc flags are marked first, since ``"00"`` in flag position
+is two flags); the rest becomes one byte per token (``'#'`` a number), and a
+second regular expression checks the whole command grammar at once.  Only
+invalid data takes the slower path that locates the first error.  The
+geometry (relative coordinates, ``S``/``T`` reflections, arcs) is then
+computed by numpy over all commands at once for long paths, or by a plain
+loop over commands for short ones, where numpy's per-call overhead would
+dominate (:data:`SMALL_PATH_TOKENS`); the two agree (tested).
+
+Basic shapes (:func:`rect_path`, :func:`circle_path`, :func:`ellipse_path`,
+:func:`line_path`, :func:`polyline_path`) follow the equivalent paths of
+SVG 2, whose start point and direction matter for markers and dashes.
 
 Errors: with ``strict=True`` a malformed string raises
 :class:`~raster.errors.PathError` naming the character position; with
@@ -860,6 +868,8 @@ def arc_to_cubics(p0, rx, ry, phi_deg, large_arc, sweep, p1, tolerance=0.01):
 
 
 # -- basic shapes ----------------------------------------------------------------------
+# All shape functions raise PathError for non-numeric or non-finite geometry
+# and for a tolerance that is not a positive finite number.
 _QUADRANT = np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]])
 
 
@@ -869,7 +879,7 @@ def _quarters(centres, rx, ry, quadrants, tol):
 
     Returns (Q * n, 3, 2) control points, quarter by quarter; quarter end
     points are exact."""
-    n = int(_pieces(np.array([np.pi / 2]), np.array([max(rx, ry)]), tol)[0])
+    n = _piece_count(np.pi / 2, max(rx, ry), tol)
     q = np.repeat(np.asarray(quadrants), n)
     j = np.tile(np.arange(n), len(quadrants))
     step = (np.pi / 2) / n

@@ -130,3 +130,16 @@ def test_errors():
         BetaSpline(P[:3])
     with pytest.raises(CurveError):
         BetaSpline(P).eval(1.5)
+
+
+@settings(max_examples=40, deadline=None)
+@given(seeds, beta1s, beta2s)
+def test_reversal_maps_bias_to_its_inverse(seed, b1, b2):
+    # traversing the control points backwards gives the same curve with
+    # beta1 -> 1 / beta1 and beta2 -> beta2 / beta1^3 (the G1/G2 conditions
+    # read from the other side of each joint)
+    P = np.random.default_rng(seed).normal(size=(7, 2))
+    s = BetaSpline(P, b1, b2)
+    r = BetaSpline(P[::-1], 1 / b1, b2 / b1**3)
+    t = np.linspace(0, 4, 41)
+    np.testing.assert_allclose(r.eval(4 - t), s.eval(t), atol=1e-9)

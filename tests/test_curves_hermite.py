@@ -5,7 +5,8 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from raster.curves import (Hermite, HermiteSpline, hermite_blend, hermite_basis_matrix,
-                           CardinalSpline, CatmullRom, KochanekBartels, CurveError)
+                           CardinalSpline, CatmullRom, KochanekBartels, CurveError,
+                           cardinal_matrix)
 
 seeds = st.integers(0, 2**32 - 1)
 
@@ -94,6 +95,25 @@ def test_cardinal_properties(seed, n, c, ends):
     # the tension scales every tangent by (1 - c) relative to Catmull-Rom
     np.testing.assert_allclose(s.out_tangents, (1 - c) * CatmullRom(p, ends=ends).out_tangents,
                                atol=1e-12)
+
+
+def test_catmull_rom_matrix_closed_form():
+    # the classic Catmull-Rom matrix (1/2)[[-1,3,-3,1],[2,-5,4,-1],[-1,0,1,0],[0,2,0,0]]
+    np.testing.assert_allclose(cardinal_matrix(0.0) * 2, [[-1, 3, -3, 1], [2, -5, 4, -1],
+                                                          [-1, 0, 1, 0], [0, 2, 0, 0]])
+
+
+@settings(max_examples=40, deadline=None)
+@given(seeds, st.floats(-1, 1))
+def test_cardinal_blending_reproduces_curve(seed, c):
+    p = pts(seed, 7)
+    s = CardinalSpline(p, c, ends='interior')
+    t = np.linspace(0, 4, 37)
+    w = s.blending(t)
+    i = np.clip(np.floor(t), 0, 3).astype(int)
+    np.testing.assert_allclose(np.einsum('mk,mkd->md', w, p[i[:, None] + np.arange(4)]),
+                               s.eval(t), atol=1e-12)
+    np.testing.assert_allclose(w.sum(1), 1.0, atol=1e-12)
 
 
 def test_tension_one_gives_zero_tangents():

@@ -57,41 +57,52 @@ def hausdorff_lower(ctrl, poly, tol):
     """Both directed distances between a Bezier curve and a polyline, as
     lower bounds of the true values (so exceeding ``tol`` is a real failure).
 
-    Curve side: ``T`` true curve points.  Polyline side: points along the
-    polyline, measured against the dense curve polyline minus its sagitta
-    bound ``max|B''| dt**2 / 8``.
+    Curve to polyline: 4001 true curve points.  Polyline to curve: points
+    along the polyline (``tol / 4`` apart) against the nearest of dense curve
+    samples, minus half the largest sample gap (``n max|P_i+1 - P_i| dt``).
     """
+    from scipy.spatial import cKDTree
     ctrl = np.asarray(ctrl, float)
     n = len(ctrl) - 1
-    T = 4001
-    curve = bez_eval(ctrl, np.linspace(0, 1, T))
+    curve = bez_eval(ctrl, np.linspace(0, 1, 4001))
     h1 = dist_to_polyline(curve, poly).max()
-    if n >= 2:
-        d2 = np.diff(ctrl, 2, axis=0)
-        sag = n * (n - 1) * np.linalg.norm(d2, axis=1).max() / (T - 1) ** 2 / 8
-    else:
-        sag = 0.0
-    h2 = dist_to_polyline(densify(poly, tol / 8), curve).max() - sag
+    speed = n * np.linalg.norm(np.diff(ctrl, axis=0), axis=1).max()
+    T = int(min(max(4001, speed / (tol / 20)), 100_000))
+    gap = speed / (T - 1)
+    samples = bez_eval(ctrl, np.linspace(0, 1, T))
+    d, _ = cKDTree(samples).query(densify(poly, tol / 4))
+    h2 = d.max() - gap / 2
     return h1, h2
 
 
 def greedy_count(samples, tol):
-    """Near-minimal piece count: greedily the longest chord between samples
-    with every sample in between within ``tol`` of it."""
+    """Near-minimal piece count: greedily a long chord between samples with
+    every sample in between within ``tol`` of it (exponential then binary
+    search for the farthest feasible end)."""
+    def feasible(i, j):
+        A, B = samples[i], samples[j]
+        d = B - A
+        L2 = d @ d
+        rel = samples[i:j + 1] - A
+        u = np.clip(rel @ d / (L2 if L2 > 0 else 1.0), 0, 1)
+        return np.linalg.norm(rel - u[:, None] * d, axis=1).max() <= tol
+
     N = len(samples)
     i = pieces = 0
     while i < N - 1:
-        rest = samples[i:]
-        M = len(rest)
-        A, B = rest[0], rest[1:]
-        d = B - A
-        L2 = (d * d).sum(1)
-        rel = rest - A
-        u = np.clip(np.einsum('kd,jd->jk', rel, d) / np.where(L2 > 0, L2, 1)[:, None], 0, 1)
-        dist = np.linalg.norm(rel[None] - u[:, :, None] * d[:, None, :], axis=2)
-        j = np.arange(1, M)
-        dmax = np.where(np.arange(M)[None, :] <= j[:, None], dist, 0).max(1)
-        i += int(j[np.flatnonzero(dmax <= tol).max()])
+        step = 1
+        while i + 2 * step < N and feasible(i, i + 2 * step):
+            step *= 2
+        lo, hi = i + step, min(i + 2 * step, N - 1)     # lo feasible
+        if hi == N - 1 and feasible(i, hi):
+            lo = hi
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            if feasible(i, mid):
+                lo = mid
+            else:
+                hi = mid
+        i = lo
         pieces += 1
     return pieces
 
@@ -189,13 +200,13 @@ coord = st.floats(0, 100, allow_nan=False, allow_infinity=False)
 point = st.tuples(coord, coord)
 
 
-@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.lists(point, min_size=4, max_size=4), st.sampled_from([0.05, 0.25, 1.0]))
 def test_random_cubics_within_tolerance(ctrl, tol):
     check_curve(ctrl, tol)
 
 
-@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.lists(point, min_size=3, max_size=3), st.sampled_from([0.05, 0.25, 1.0]))
 def test_random_quadratics_within_tolerance(ctrl, tol):
     check_curve(ctrl, tol)
@@ -205,8 +216,8 @@ def test_random_quadratics_within_tolerance(ctrl, tol):
 def test_tolerance_honoured_at_several_levels(tol):
     rng = np.random.default_rng(7)
     counts = []
-    for _ in range(6):
-        ctrl = rng.uniform(0, 200, (4, 2))
+    for _ in range(4):
+        ctrl = rng.uniform(0, 100, (4, 2))
         counts.append(len(check_curve(ctrl, tol)))
     assert min(counts) >= 2
 
@@ -302,7 +313,7 @@ def test_svg_arcs():
 
 # -- near-minimal point counts ---------------------------------------------------
 def test_point_count_near_greedy_minimum():
-    # greedy reference on 1500 curve samples: the fewest chords (between
+    # greedy reference on 2000 curve samples: the fewest chords (between
     # samples) with every sample within tolerance.  Our pieces are cut with an
     # equal-error density estimate and verified with exact (quadratic,
     # cubic) deviation bounds: measured ratios are <= 1.14 at 0.01 and
@@ -313,7 +324,7 @@ def test_point_count_near_greedy_minimum():
         for _ in range(12):
             ctrl = rng.uniform(0, 100, (4, 2))
             pts, _ = flatten_beziers(ctrl[None], tol)
-            g = greedy_count(bez_eval(ctrl, np.linspace(0, 1, 1500)), tol)
+            g = greedy_count(bez_eval(ctrl, np.linspace(0, 1, 2000)), tol)
             assert len(pts) - 1 <= 1.5 * g + 1
             ours += len(pts) - 1
             ref += g
@@ -344,7 +355,7 @@ def test_bad_tolerance(tol):
 def test_point_limit(monkeypatch):
     monkeypatch.setattr(limits, 'MAX_FLATTEN_POINTS', 10_000)
     with pytest.raises(LimitError):
-        flatten_beziers([[[0, 0], [5e5, 1e6], [1e6, 0]]], 0.01)
+        flatten_beziers([[[0, 0], [5e7, 1e8], [1e8, 0]]], 0.01)
 
 
 def test_tiny_tolerance_at_huge_coordinates_terminates(monkeypatch):
@@ -392,7 +403,14 @@ def test_flatten_path_structure():
 
 
 def test_flatten_public_name():
-    assert raster.flatten is flatten and raster.Polylines is Polylines
+    assert raster.Polylines is Polylines
+    # the lazy public name resolves to the function when accessed before the
+    # submodule is imported by name (fresh interpreter)
+    import subprocess
+    import sys
+    code = ('import raster; f = raster.flatten; from raster.flatten import flatten; '
+            'assert f is flatten and raster.flatten is flatten')
+    subprocess.run([sys.executable, '-c', code], check=True)
 
 
 def test_flatten_transform_is_applied_to_control_points():
@@ -453,5 +471,21 @@ def test_flatten_empty_and_lone_moves():
 
 def test_flatten_non_finite_after_transform():
     p = Path.polygon([[0, 0], [1e200, 1e200], [0, 1]])
-    with pytest.raises(PathError):
+    with np.errstate(over='ignore'), pytest.raises(PathError):
         flatten(p, transform=Affine.scale(1e200))
+
+
+def test_closing_edge_omitted_when_polyline_returns_to_start():
+    p = raster.parse_path('M0 0 L10 0 L10 10 L0 0 Z M20 0 L30 0 L30 10')
+    pl = flatten(p)
+    assert pl.sizes.tolist() == [4, 3]
+    e = pl.edges()
+    # 3 edges for the first (no zero-length closing edge), 2 + closing for the second
+    assert len(e) == 6
+    assert e[-1].tolist() == [[30, 10], [20, 0]]
+    assert len(pl.edges(close_all=False)) == 5
+
+
+def test_flatten_rejects_non_paths():
+    with pytest.raises(PathError):
+        flatten([[0, 0], [1, 1]])

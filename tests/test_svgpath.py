@@ -10,7 +10,7 @@ from hypothesis import HealthCheck, assume, given, settings, strategies as st
 import raster
 from raster import svgpath
 from raster.errors import LimitError, PathError, RasterError
-from raster.path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path, PathBuilder
+from raster.path import CLOSE, CUBIC, LINE, MOVE, Path, PathBuilder
 from raster.svgpath import (_arc_batch, _build_loop, _build_vector, _lex, arc_to_cubics,
                             circle_path, ellipse_path, line_path, parse_path,
                             parse_points, polyline_path, rect_path)
@@ -199,6 +199,7 @@ def test_number_grammar(d, pts):
     ('M1 2 Z,', 6, 'unexpected comma'),
     ('M 1e999 2', 2, 'number out of range'),
     ('M 1 2 L 3 -1e400', 10, 'number out of range'),
+    ('M 1,2 L3,1e999', 9, 'number out of range'),
     ('M1 2 A 1 1 0 2 0 5 5', 13, 'expected arc flag'),
     ('M1 2 A 1 1 0 0 1 5 5 1 1 0 0 1 5', 32, 'expected number'),
     ('M1 2 A 1 1 0 0', 14, 'expected arc flag'),
@@ -341,8 +342,9 @@ def _svg_centre(x1, y1, rx, ry, phi, fa, fs, x2, y2):
     den = rx ** 2 * y1p ** 2 + ry ** 2 * x1p ** 2
     k = 0.0 if lam > 1 else math.sqrt(max(0.0, num / den)) * (1 if fa != fs else -1)
     cxp, cyp = k * rx * y1p / ry, -k * ry * x1p / rx
-    return lam, (np.array([co * cxp - si * cyp + (x1 + x2) / 2, si * cxp + co * cyp + (y1 + y2) / 2]),
-            rx, ry)
+    centre = np.array([co * cxp - si * cyp + (x1 + x2) / 2,
+                       si * cxp + co * cyp + (y1 + y2) / 2])
+    return lam, (centre, rx, ry)
 
 
 @SETTINGS
@@ -453,10 +455,11 @@ def test_long_path_uses_vector_builder_and_agrees():
             nums[0], nums[1], nums[3], nums[4] = abs(nums[0]) + 1, 3, 1, i % 2
         parts.append(c + ' '.join(map(str, nums)))
     d = ' '.join(parts)
-    _, nums, kb = _lex(d)
+    _, nums, kinds = _lex(d)                 # no commas in d
+    assert len(kinds) > svgpath.SMALL_PATH_TOKENS
     vals = [float(x) for x in nums]
-    a = _build_loop(kb, vals, 0.01)
-    b = parse_path(d)                        # > SMALL_PATH_TOKENS: vectorized
+    a = _build_loop(kinds, vals, 0.01)
+    b = parse_path(d)                        # vectorized builder
     assert a.verbs.tolist() == b.verbs.tolist()
     assert np.allclose(a.points, b.points, rtol=1e-12, atol=1e-9)
 
@@ -466,6 +469,8 @@ def _svgelements_ends(d):
     for s in svgelements.Path(d):
         if isinstance(s, svgelements.Close):
             continue
+        if isinstance(s, svgelements.Arc) and s.start == s.end:
+            continue                      # SVG omits it; svgelements keeps it
         out.append((type(s).__name__, (s.end.x, s.end.y)))
     return out
 
@@ -730,3 +735,26 @@ def test_scaling_by_powers_of_two_is_exact(d, k):
     p = parse_path(d, tolerance=0.01)
     q = parse_path(d2, tolerance=0.01 * k)
     assert q == p.transform(raster.Affine.scale(k))
+
+
+@SETTINGS
+@given(absolute_commands(), st.integers(-1000, 1000), st.integers(-1000, 1000))
+def test_translation_invariance(cmds, tx, ty):
+    def moved(cmds):
+        out = []
+        for c, a in cmds:
+            a = list(a)
+            if c == 'H':
+                a = [a[0] + tx]
+            elif c == 'V':
+                a = [a[0] + ty]
+            elif c == 'A':
+                a[5], a[6] = a[5] + tx, a[6] + ty
+            elif c != 'Z':
+                a = [v + (tx if i % 2 == 0 else ty) for i, v in enumerate(a)]
+            out.append((c, a))
+        return out
+    p = parse_path(_spell(cmds, False)).transform(raster.Affine.translate(tx, ty))
+    q = parse_path(_spell(moved(cmds), False))
+    assert p.verbs.tolist() == q.verbs.tolist()
+    assert np.allclose(p.points, q.points, rtol=0, atol=1e-9)

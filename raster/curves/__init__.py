@@ -9,6 +9,16 @@ and ``continuity()`` -- and converts exactly to Bezier segments, so curves
 can be flattened, bounded, stroked, rendered and exported with the rest of
 raster.
 
+Parameters: a :class:`Bezier` lives on ``t in [0, 1]`` and its
+``subsegment(t0, t1)`` is again a Bezier on [0, 1] (as in kurbo); splines
+have a ``domain`` (uniform splines ``[0, S]`` with joints at integers,
+B-splines their knot range, natural splines [0, 1] or the x range) and
+their ``subsegment`` keeps the global parameter.  ``deriv()`` is the
+derivative with respect to that parameter (a Bezier, a B-spline, or a
+:class:`PiecewiseBezier`).  ``to_path()`` projects onto (x, y); degrees
+above 3 become cubics within ``tolerance`` (an exact error bound, see
+:meth:`PiecewiseBezier.to_cubics`).
+
 =====================  ==============================================
 module                 classes and functions
 =====================  ==============================================
@@ -16,7 +26,8 @@ module                 classes and functions
                        :func:`bernstein`, :func:`bernstein_matrix`
 ``hermite``            :class:`Hermite`, :class:`HermiteSpline`,
                        :func:`hermite_blend`, :func:`hermite_basis_matrix`
-``cardinal``           :class:`CardinalSpline`, :class:`CatmullRom`
+``cardinal``           :class:`CardinalSpline`, :class:`CatmullRom`,
+                       :func:`cardinal_matrix`
 ``kochanek``           :class:`KochanekBartels`
 ``bspline``            :class:`BSpline`, :func:`basis_functions`,
                        :func:`clamped_uniform_knots`
@@ -24,6 +35,7 @@ module                 classes and functions
 ``natural``            :class:`NaturalSpline`, :class:`FunctionSpline`,
                        :func:`solve_tridiagonal`
 ``continuity``         :func:`continuity`, :class:`Joint`
+(``raster.hull``)      :func:`convex_hull` (monotone chain), re-exported
 =====================  ==============================================
 
 Errors are :class:`CurveError` (a :class:`raster.errors.RasterError`).
@@ -36,24 +48,18 @@ Errors are :class:`CurveError` (a :class:`raster.errors.RasterError`).
 from ._base import CurveError
 from .bezier import Bezier, PiecewiseBezier, bernstein, bernstein_matrix
 from .hermite import Hermite, HermiteSpline, hermite_blend, hermite_basis_matrix
-from .cardinal import CardinalSpline, CatmullRom
+from .cardinal import CardinalSpline, CatmullRom, cardinal_matrix
 from .kochanek import KochanekBartels
 from .bspline import BSpline, basis_functions, clamped_uniform_knots
 from .beta import BetaSpline, beta_basis_matrix, beta_blend
 from .natural import NaturalSpline, FunctionSpline, solve_tridiagonal
 from .continuity import continuity, Joint, format_joints
-
-
-def convex_hull(points):
-    """Convex hull of a 2-D point set (monotone chain), shared with the
-    flattener: :func:`raster.hull.convex_hull`."""
-    from ..hull import convex_hull as _hull
-    return _hull(points)
+from ..hull import convex_hull   # re-exported: the hull shared with flattening
 
 
 __all__ = ['CurveError', 'Bezier', 'PiecewiseBezier', 'bernstein', 'bernstein_matrix',
            'Hermite', 'HermiteSpline', 'hermite_blend', 'hermite_basis_matrix',
-           'CardinalSpline', 'CatmullRom', 'KochanekBartels', 'BSpline', 'basis_functions',
+           'CardinalSpline', 'CatmullRom', 'cardinal_matrix', 'KochanekBartels', 'BSpline', 'basis_functions',
            'clamped_uniform_knots', 'BetaSpline', 'beta_basis_matrix', 'beta_blend',
            'NaturalSpline', 'FunctionSpline', 'solve_tridiagonal', 'continuity', 'Joint',
            'format_joints', 'convex_hull']

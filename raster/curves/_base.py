@@ -15,6 +15,10 @@ from ..errors import RasterError
 #: Most control points / samples a curve call accepts (guards memory and time).
 MAX_CURVE_POINTS = 10_000_000
 
+#: Largest coordinate magnitude accepted: cubes of coordinates and of
+#: parameters stay far from float64 overflow.
+MAX_CURVE_COORD = 1e100
+
 
 class CurveError(RasterError, ValueError):
     """Invalid curve input: too few or non-finite control points, a parameter
@@ -53,6 +57,8 @@ def as_points(points, min_points=1, name='control points', dims=(2, 3)):
         raise CurveError('too many %s (%d)' % (name, len(p)))
     if not np.all(np.isfinite(p)):
         raise CurveError('%s must be finite' % name)
+    if p.size and np.abs(p).max() > MAX_CURVE_COORD:
+        raise CurveError('%s exceed the coordinate limit %g' % (name, MAX_CURVE_COORD))
     return p
 
 
@@ -73,6 +79,8 @@ def as_params(t, lo, hi, name='t', slack=1e-12):
         raise CurveError('too many %s values (%d)' % (name, a.size))
     if not np.all(np.isfinite(a)):
         raise CurveError('%s must be finite' % name)
+    if a.size and np.abs(a).max() > MAX_CURVE_COORD:
+        raise CurveError('%s exceeds the limit %g' % (name, MAX_CURVE_COORD))
     eps = slack * max(1.0, abs(lo), abs(hi))
     if a.size and (a.min() < lo - eps or a.max() > hi + eps):
         bad = a[(a < lo - eps) | (a > hi + eps)][0]

@@ -24,6 +24,7 @@ import math
 
 import numpy as np
 
+from ..errors import LimitError
 from ..path import PathBuilder
 from ._base import CurveError, as_params, as_points, as_scalar, shape_out
 
@@ -32,6 +33,9 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
 _GL_X = 0.5 * (_GL_X + 1.0)
 _GL_W = 0.5 * _GL_W
 
+#: Most parameter intervals an arc-length computation may keep active.
+MAX_ARC_INTERVALS = 1 << 22
+
 #: Highest degree accepted (Bernstein recurrences are O(n^2) per parameter).
 MAX_DEGREE = 200
 
@@ -39,8 +43,9 @@ MAX_DEGREE = 200
 def bernstein(n, t):
     """Bernstein blending functions ``B(n, i)(t)`` for many ``t`` at once.
 
-    Computed with the stable recurrence
-    ``B(k, i) = (1 - t) B(k-1, i) + t B(k-1, i-1)``.
+    Evaluated as the product ``C(n, i) * t**i * (1 - t)**(n - i)``: every
+    factor is non-negative, so there is no cancellation and the relative
+    error is a few ulps times ``n``.
 
     Parameters
     ----------
@@ -62,14 +67,13 @@ def bernstein(n, t):
     ta = np.asarray(t, dtype=np.float64)
     scalar = ta.ndim == 0
     ta = ta.reshape(-1, 1)
-    s = 1.0 - ta
-    out = np.zeros((ta.shape[0], n + 1))
-    out[:, 0] = 1.0
-    for k in range(1, n + 1):
-        prev = out[:, :k].copy()
-        out[:, :k] = prev * s
-        out[:, 1:k + 1] += prev * ta
+    i = np.arange(n + 1)
+    out = _binomials(n) * np.power(ta, i) * np.power(1.0 - ta, n - i)
     return out[0] if scalar else out
+
+
+def _binomials(n):
+    return np.array([math.comb(n, k) for k in range(n + 1)], dtype=np.float64)
 
 
 def bernstein_matrix(n):
@@ -148,8 +152,9 @@ def _real_roots_unit(coef):
 
     coef : (K, m+1) float64, ``coef[:, k]`` multiplies ``u**k``.
     Returns (roots, owner) 1-D arrays.  Degrees <= 2 are solved in closed
-    form for all rows at once; higher degrees use companion-matrix
-    eigenvalues per row.
+    form for all rows at once; higher degrees use batched companion-matrix
+    eigenvalues (one LAPACK call for all rows) polished by Newton steps, and
+    ``numpy.roots`` only for rows whose leading coefficient nearly vanishes.
     """
     K, m1 = coef.shape
     m = m1 - 1
@@ -159,7 +164,33 @@ def _real_roots_unit(coef):
     roots, owner = [], []
     eps = 1e-12
     if m >= 3:
-        for k in np.nonzero(live)[0].tolist():
+        lead = coef[:, m]
+        batch = live & (np.abs(lead) > 1e-8)
+        rows = np.nonzero(batch)[0]
+        if len(rows):
+            # companion matrices of all well-conditioned rows, one batched eigvals
+            comp = np.zeros((len(rows), m, m))
+            comp[:, 0, :] = -coef[rows, m - 1::-1] / lead[rows, None]
+            comp[:, np.arange(1, m), np.arange(m - 1)] = 1.0
+            ev = np.linalg.eigvals(comp)
+            ok = np.abs(ev.imag) <= 1e-7 * np.maximum(1.0, np.abs(ev.real))
+            r = ev.real[ok]
+            own = np.repeat(rows, m).reshape(-1, m)[ok]
+            near = (r > -1e-6) & (r < 1 + 1e-6)
+            r, own = r[near], own[near]
+            c = coef[own]
+            for _ in range(3):                  # Newton polish
+                val = np.zeros_like(r)
+                der = np.zeros_like(r)
+                for k in range(m, -1, -1):
+                    der = der * r + val
+                    val = val * r + c[:, k]
+                step = np.where(der != 0, val / np.where(der != 0, der, 1.0), 0.0)
+                r = np.where(np.abs(step) < 1e-3, r - step, r)
+            sel = (r > eps) & (r < 1 - eps)
+            roots.append(r[sel])
+            owner.append(own[sel])
+        for k in np.nonzero(live & ~batch)[0].tolist():     # nearly degenerate rows
             c = coef[k].copy()
             c[np.abs(c) < 1e-14] = 0.0
             nz = np.nonzero(c)[0]
@@ -598,10 +629,18 @@ class PiecewiseBezier:
 
         An interval is accepted when its 16-point estimate and the sum of
         its halves' estimates differ by at most its share of ``tolerance``
-        (or by rounding, ``1e-15`` relative), so the result is within
+        (or by rounding, ``4e-14`` relative), so the result is within
         ``tolerance`` plus rounding of the true length for smooth
         integrands (cusps converge more slowly but are subdivided until the
-        criterion holds, at most 40 levels)."""
+        criterion holds, at most 40 levels).  Tolerances below ``1e-14``
+        times the length are raised to that floor.
+
+        Raises
+        ------
+        CurveError
+            Non-positive tolerance.
+        LimitError
+            More than :data:`MAX_ARC_INTERVALS` intervals would be needed."""
         tol = as_scalar(tolerance, 'tolerance', 0.0)
         if tol <= 0:
             raise CurveError('tolerance must be positive')
@@ -609,17 +648,28 @@ class PiecewiseBezier:
         if dc is None:
             return 0.0
         n1 = self.degree - 1
+        pcoef = np.einsum('ki,sid->skd', bernstein_matrix(n1), dc) if n1 <= 8 else None
 
         def gl(seg, a, b):
             u = a[:, None] + (b - a)[:, None] * _GL_X[None, :]         # (K, 16)
-            B = bernstein(n1, u.reshape(-1)).reshape(u.shape + (n1 + 1,))
-            v = np.einsum('kgi,kid->kgd', B, dc[seg])
-            return (np.linalg.norm(v, axis=2) * _GL_W).sum(axis=1) * (b - a)
+            if pcoef is not None:                                       # Horner
+                c = pcoef[seg]
+                v = np.repeat(c[:, n1][:, None, :], u.shape[1], axis=1)
+                for k in range(n1 - 1, -1, -1):
+                    v *= u[:, :, None]
+                    v += c[:, k][:, None, :]
+            else:
+                B = bernstein(n1, u.reshape(-1)).reshape(u.shape + (n1 + 1,))
+                v = np.einsum('kgi,kid->kgd', B, dc[seg])
+            speed = np.sqrt(np.einsum('kgd,kgd->kg', v, v))
+            return (speed @ _GL_W) * (b - a)
 
         seg = np.arange(len(self))
         a = np.zeros(len(self))
         b = np.ones(len(self))
         whole = gl(seg, a, b)
+        # tolerances below the float resolution of the length are raised to it
+        tol = max(tol, 1e-14 * float(whole.sum()))
         total = 0.0
         for level in range(40):
             m = 0.5 * (a + b)
@@ -627,13 +677,16 @@ class PiecewiseBezier:
             halves = left + right
             # budget: tol shared by parameter length; floor: rounding of the sum
             ok = np.abs(halves - whole) <= np.maximum(tol * (b - a) / len(self) * 0.5,
-                                                      1e-15 * np.abs(halves))
+                                                      4e-14 * np.abs(halves))
             if level == 39:
                 ok[:] = True
             total += float(halves[ok].sum())
             bad = ~ok
             if not bad.any():
                 break
+            if 2 * int(bad.sum()) > MAX_ARC_INTERVALS:
+                raise LimitError('arc length needs more than %d intervals; use a larger '
+                                 'tolerance' % MAX_ARC_INTERVALS)
             seg = np.concatenate([seg[bad], seg[bad]])
             a, b = np.concatenate([a[bad], m[bad]]), np.concatenate([m[bad], b[bad]])
             whole = np.concatenate([left[bad], right[bad]])

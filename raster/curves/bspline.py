@@ -31,7 +31,7 @@ zeros, uniform interior knots, ``p + 1`` ones; the curve then starts at
 
 import numpy as np
 
-from ._base import CurveError, CurveMixin, as_params, as_points, shape_out
+from ._base import MAX_CURVE_COORD, CurveError, CurveMixin, as_params, as_points, shape_out
 from .bezier import PiecewiseBezier, _check_degree
 
 
@@ -251,8 +251,8 @@ def _check_knots(kn, N, p):
     if kn.shape != (N + p + 1,):
         raise CurveError('a degree-%d B-spline with %d control points needs %d knots, got %d'
                          % (p, N, N + p + 1, kn.size))
-    if not np.all(np.isfinite(kn)):
-        raise CurveError('knots must be finite')
+    if not np.all(np.isfinite(kn)) or np.abs(kn).max() > MAX_CURVE_COORD:
+        raise CurveError('knots must be finite and at most %g in magnitude' % MAX_CURVE_COORD)
     if np.any(np.diff(kn) < 0):
         i = int(np.nonzero(np.diff(kn) < 0)[0][0])
         raise CurveError('knots must be non-decreasing (knot %d = %g > knot %d = %g)'

@@ -21,7 +21,6 @@ handling are those of :mod:`raster.curves.cardinal`.
 [1.0, 1.0]
 """
 
-import numpy as np
 
 from ._base import as_points, per_key
 from .cardinal import neighbours

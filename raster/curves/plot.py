@@ -1,5 +1,6 @@
 """Plots of curves, drawn by raster itself: the curve, its control polygon,
-the convex hull of the control points and labelled sample points.
+the convex hull of the control points, rings at the joints between
+segments, and labelled sample points.
 
 PNG output goes through raster's core (:func:`raster.stroke.stroke`,
 :func:`raster.flatten.flatten`, :func:`raster.scan.coverage`,
@@ -16,6 +17,7 @@ import os
 
 import numpy as np
 
+from ..hull import convex_hull
 from ..path import Path, PathBuilder, TransformPen
 from ..transform import Affine
 from ._base import CurveError
@@ -35,6 +37,9 @@ COLORS = {
 }
 
 _FONT = None
+
+#: Largest plot side in pixels (keeps the float32 canvas under 256 MB).
+MAX_PLOT_SIDE = 4000
 
 
 def _font():
@@ -116,7 +121,6 @@ class Plot:
 
     def __init__(self, curve, params=None, width=640, label_var='t', y_up=True,
                  tolerance=0.1):
-        from ..hull import convex_hull
         pb = curve.to_beziers()
         if pb.dim < 2:
             raise CurveError('plots need curves of dimension 2 or 3')
@@ -128,17 +132,21 @@ class Plot:
         allp = np.concatenate([ctrl, pts, [lo[:2], hi[:2]]])
         xmin, ymin = allp.min(0)
         xmax, ymax = allp.max(0)
-        span = max(xmax - xmin, ymax - ymin, 1e-12)
+        span = max(xmax - xmin, ymax - ymin)
+        if not span > 1e-9 * max(1.0, np.abs(allp).max()):
+            span = 1.0                  # a curve of a single point: a unit frame
         if xmax - xmin < 1e-3 * span:
             xmin, xmax = xmin - 0.05 * span, xmax + 0.05 * span
         if ymax - ymin < 1e-3 * span:
             ymin, ymax = ymin - 0.05 * span, ymax + 0.05 * span
         margin = 36.0
         self.width = int(width)
+        if not 100 <= self.width <= MAX_PLOT_SIDE:
+            raise CurveError('plot width must be between 100 and %d pixels' % MAX_PLOT_SIDE)
         s = (self.width - 2 * margin) / (xmax - xmin)
-        self.height = int(np.clip(np.ceil((ymax - ymin) * s + 2 * margin), 16, 8000))
-        if (ymax - ymin) * s + 2 * margin > 8000:
-            s = (8000 - 2 * margin) / (ymax - ymin)
+        if (ymax - ymin) * s + 2 * margin > MAX_PLOT_SIDE:        # tall: fit the height
+            s = (MAX_PLOT_SIDE - 2 * margin) / (ymax - ymin)
+        self.height = int(np.clip(np.ceil((ymax - ymin) * s + 2 * margin), 16, MAX_PLOT_SIDE))
         if y_up:
             T = Affine(s, 0, 0, -s, margin - xmin * s, margin + ymax * s)
         else:
@@ -161,6 +169,11 @@ class Plot:
         self.layers.append(('stroke', self.curve_path,
                             {'color': COLORS['curve'], 'width': 2.0, 'join': 'round',
                              'cap': 'round'}))
+        if len(pb) > 1:                 # joints: small rings on the curve
+            for x, y in dev(pb.ctrl[1:, 0, :2]):
+                ring = _circle(x, y, 2.5)
+                self.layers.append(('fill', ring, {'color': COLORS['background']}))
+                self.layers.append(('stroke', ring, {'color': COLORS['curve'], 'width': 1.2}))
         self.labels = []
         for tv, (x, y) in zip(t, dev(pts)):
             self.layers.append(('fill', _circle(x, y, 3.5), {'color': COLORS['point']}))

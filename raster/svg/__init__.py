@@ -76,24 +76,8 @@ def load_svg(source, *, dpi=96, font_dirs=(), resources_dir=None, base_dir=None,
     from .document import load_document
     src, sbase = _source_and_base(source)
     root = load_document(src)
-    kw = dict(opts)
-    kw['base_dir'] = base_dir if base_dir is not None else sbase
-    kw['dpi'] = dpi
-    kw['font_dirs'] = tuple(font_dirs or ())
-    kw['resources_dir'] = resources_dir
-    return build_tree(root, **_accepted(build_tree, kw))
-
-
-def _accepted(fn, kw):
-    """The keyword arguments ``fn`` accepts (all of them if it takes **kw)."""
-    import inspect
-    try:
-        params = inspect.signature(fn).parameters
-    except (TypeError, ValueError):
-        return kw
-    if any(p.kind == p.VAR_KEYWORD for p in params.values()):
-        return kw
-    return {k: v for k, v in kw.items() if k in params}
+    return build_tree(root, base_dir=base_dir if base_dir is not None else sbase, dpi=dpi,
+                      font_dirs=tuple(font_dirs or ()), resources_dir=resources_dir, **opts)
 
 
 def _background(bg):
@@ -158,10 +142,6 @@ def render(source, width=None, height=None, *, zoom=None, dpi=96, background=Non
         Zero, negative or non-finite size or zoom, or an output above
         :data:`raster.limits.MAX_PIXELS` pixels.
 
-    >>> img = render(b'<svg xmlns="http://www.w3.org/2000/svg" width="4" height="2">'
-    ...              b'<rect width="2" height="2" fill="blue"/></svg>')
-    >>> img.shape, img[0, 0].tolist(), img[0, 3].tolist()
-    ((2, 4, 4), [0, 0, 255, 255], [0, 0, 0, 0])
     """
     from .render import render_tree
     _rebind()

@@ -69,7 +69,6 @@ class Declaration(NamedTuple):
 # tokenizing helpers
 # --------------------------------------------------------------------------
 
-_COMMENT_RE = re.compile(r'/\*.*?(?:\*/|$)', re.S)
 _STRING_OR_COMMENT_RE = re.compile(
     r'"(?:[^"\\\n]|\\.)*"|\'(?:[^\'\\\n]|\\.)*\'|/\*.*?(?:\*/|\Z)', re.S)
 
@@ -186,8 +185,10 @@ def parse_declarations(text):
     -------
     tuple of Declaration
 
-    >>> parse_declarations('fill: red !important; ; bogus; Stroke :blue')
-    (Declaration(name='fill', value='red', important=True), Declaration(name='stroke', value='blue', important=False))
+    >>> for d in parse_declarations('fill: red !important; ; bogus; Stroke :blue'):
+    ...     print(d)
+    Declaration(name='fill', value='red', important=True)
+    Declaration(name='stroke', value='blue', important=False)
     """
     if not isinstance(text, str):
         raise CSSError('declarations must be a string, got %s' % type(text).__name__)
@@ -385,7 +386,7 @@ class Selector:
     specificity : (int, int, int)
     """
 
-    __slots__ = ('text', 'parts', 'specificity')
+    __slots__ = ('text', 'parts', 'specificity', '_backtracks')
 
     def __init__(self, text, parts):
         # parts: [compound, (combinator, compound), ...] read right to left:
@@ -398,6 +399,8 @@ class Selector:
             sa, sb, sc = comp.specificity()
             a, b, c = a + sa, b + sb, c + sc
         self.specificity = (a, b, c)
+        # number of descendant / general-sibling combinators
+        self._backtracks = sum(1 for p in parts[1:] if p[0] in ' ~')
 
     def __repr__(self):
         return 'Selector(%r)' % self.text
@@ -415,19 +418,41 @@ class Selector:
             return ('tag', c.tag)
         return ('*', None)
 
-    def matches(self, el):
+    def matches(self, el, memo=None):
         """Whether lxml element `el` matches this selector.
+
+        Parameters
+        ----------
+        el : lxml element
+        memo : dict, optional
+            A cache private to this selector and one unchanged document.
+            Passing the same dict for every element of a pass makes matching
+            linear in the number of elements and compounds (no exponential
+            backtracking over ancestors or siblings).
 
         >>> from lxml import etree
         >>> r = etree.fromstring('<svg><g><rect/></g></svg>')
-        >>> parse_selector('svg rect').matches(r[0][0]), parse_selector('svg > rect').matches(r[0][0])
+        >>> rect = r[0][0]
+        >>> parse_selector('svg rect').matches(rect), parse_selector('svg > rect').matches(rect)
         (True, False)
         """
         if not isinstance(el.tag, str):
             return False
-        return self._match(el, 0)
+        if memo is None and self._backtracks > 1:
+            memo = {}
+        return self._match(el, 0, memo)
 
-    def _match(self, el, i):
+    def _match(self, el, i, memo):
+        """Whether `el` matches part `i` and everything left of it."""
+        if memo is not None:
+            key = (el, i)
+            r = memo.get(key)
+            if r is None:
+                r = memo[key] = self._match1(el, i, memo)
+            return r
+        return self._match1(el, i, memo)
+
+    def _match1(self, el, i, memo):
         parts = self.parts
         comp = parts[i] if i == 0 else parts[i][1]
         if not comp.matches(el, _local(el)):
@@ -437,24 +462,43 @@ class Selector:
         comb = parts[i + 1][0]
         if comb == '>':
             p = el.getparent()
-            return p is not None and self._match(p, i + 1)
-        if comb == ' ':
-            p = el.getparent()
-            while p is not None:
-                if self._match(p, i + 1):
-                    return True
-                p = p.getparent()
-            return False
+            return p is not None and self._match(p, i + 1, memo)
         if comb == '+':
             p = _prev_element(el)
-            return p is not None and self._match(p, i + 1)
-        # '~'
-        p = _prev_element(el)
-        while p is not None:
-            if self._match(p, i + 1):
-                return True
-            p = _prev_element(p)
-        return False
+            return p is not None and self._match(p, i + 1, memo)
+        step = _parent if comb == ' ' else _prev_element
+        return self._any_along(step(el), step, i + 1, memo)
+
+    def _any_along(self, node, step, j, memo):
+        """Whether `node` or a node reached from it by repeated `step`
+        (ancestors or previous siblings) matches part `j` onward."""
+        if memo is None:
+            while node is not None:
+                if self._match(node, j, memo):
+                    return True
+                node = step(node)
+            return False
+        tag = 'a' if step is _parent else 's'
+        walked = []
+        result = False
+        while node is not None:
+            key = (tag, node, j)
+            r = memo.get(key)
+            if r is not None:
+                result = r
+                break
+            walked.append(node)
+            if self._match(node, j, memo):
+                result = True
+                break
+            node = step(node)
+        for n in walked:
+            memo[(tag, n, j)] = result
+        return result
+
+
+def _parent(el):
+    return el.getparent()
 
 
 def _parse_compound(text, pos):
@@ -667,8 +711,9 @@ def select(root, selector):
     ['a', None]
     """
     sels = parse_selector_list(selector)
+    memos = [{} if s._backtracks else None for s in sels]
     return [el for el in root.iter() if isinstance(el.tag, str)
-            and any(s.matches(el) for s in sels)]
+            and any(s.matches(el, m) for s, m in zip(sels, memos))]
 
 
 # --------------------------------------------------------------------------
@@ -713,6 +758,11 @@ class _Index:
         return out
 
 
+def _etree_element():
+    from lxml import etree
+    return etree.Element
+
+
 def declared_styles(root, extra_css=''):
     """The cascaded (declared) style of every element of a document.
 
@@ -737,29 +787,39 @@ def declared_styles(root, extra_css=''):
     ``<style>`` elements with no ``type``, an empty one or ``text/css`` are
     used, wherever they are in the tree; CDATA sections are plain text.
     """
-    elements = [el for el in root.iter() if isinstance(el.tag, str)]
+    if not hasattr(root, 'iter') or not isinstance(getattr(root, 'tag', None), str):
+        if hasattr(root, 'getroot'):
+            root = root.getroot()
+        else:
+            raise CSSError('declared_styles needs an lxml element, got %s'
+                           % type(root).__name__)
+    elements = list(root.iter(_etree_element()))
     rules = []
-    for el in elements:
+    for el in root.iter('{%s}style' % SVG_NS, 'style'):
         if _is_style_element(el):
             rules.extend(parse_stylesheet(''.join(el.itertext()), len(rules)))
     if extra_css:
         rules.extend(parse_stylesheet(extra_css, len(rules) + 1_000_000))
     index = _Index(rules) if rules else None
+    # one matching cache per selector with descendant/sibling combinators,
+    # shared by all elements of this pass (see Selector.matches)
+    memos = {id(r.selector): {} for r in rules if r.selector._backtracks}
     props = PROPERTIES
     pres = PRESENTATION_ATTRIBUTES
     out = {}
     for el in elements:
         d = {}
         attrib = el.attrib
-        for k, v in attrib.items():
+        # keys() only: values such as path data are never copied out
+        for k in attrib.keys():
             if k in pres:
-                d[k] = v.strip()
+                d[k] = attrib[k].strip()
         important = None
         if index is not None:
             tag = el.tag
             local = tag.rpartition('}')[2] if tag[0] == '{' else tag
             matched = [r for r in index.candidates(el, local)
-                       if r.selector.matches(el)]
+                       if r.selector.matches(el, memos.get(id(r.selector)))]
             if matched:
                 if len(matched) > 1:
                     matched.sort(key=lambda r: (r.selector.specificity, r.order))

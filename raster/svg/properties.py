@@ -98,6 +98,7 @@ _TABLE = [
     ('font-stretch', _I, 'normal'),
     ('font-kerning', _I, 'auto'),
     ('font-feature-settings', _I, 'normal'),
+    ('font-variation-settings', _I, 'normal'),
     ('font-variant-caps', _I, 'normal'),
     ('font-variant-ligatures', _I, 'normal'),
     ('font-variant-numeric', _I, 'normal'),
@@ -135,6 +136,7 @@ PRESENTATION_ATTRIBUTES = frozenset(
     n for n in PROPERTIES
     if n not in ('transform', 'transform-box', 'white-space', 'line-height',
                  'inline-size', 'text-overflow', 'font-feature-settings',
+                 'font-variation-settings',
                  'font-variant-caps', 'font-variant-ligatures',
                  'font-variant-numeric', 'font-variant-east-asian',
                  'font-variant-position', 'font-kerning', 'text-orientation',

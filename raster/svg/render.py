@@ -638,6 +638,10 @@ def _radial_param(p, x, y):
     b = px * cdx + py * cdy + fr * dr
     c = px * px + py * py - fr * fr
     if abs(a) < 1e-9:
+        if abs(cdx) + abs(cdy) + abs(dr) < 1e-12:
+            # concentric circles of equal radius: the start colour inside,
+            # the end colour outside (as resvg)
+            return np.where(c <= 0, 0.0, 1.0)
         with np.errstate(divide='ignore', invalid='ignore'):
             s = c / (2.0 * b)
         ok = (fr + s * dr >= 0) & np.isfinite(s)

@@ -32,6 +32,8 @@ __all__ = [
     'parse_length', 'parse_length_list', 'parse_angle', 'parse_transform',
     'parse_transform_origin', 'parse_viewbox', 'parse_preserve_aspect_ratio',
     'viewbox_transform', 'parse_url', 'DEFAULT_ASPECT_RATIO',
+    'parse_opacity', 'parse_font_size', 'FONT_SIZE_KEYWORDS', 'PAINT_CURRENT',
+    'DEFAULT_CONTEXT',
 ]
 
 
@@ -120,6 +122,16 @@ def parse_number_list(s, strict=True):
     (True, [1.0, 2.0])
     """
     _check_str(s, 'number list')
+    # fast path (C speed): plain numbers separated by whitespace/commas
+    if not s.translate(_DROP_LIST_CHARS) and _commas_ok(s):
+        try:
+            vals = [float(x) for x in s.replace(',', ' ').split()]
+        except ValueError:  # '1-2', '.5.5', '1e' ...: use the full grammar
+            pass
+        else:
+            if all(map(math.isfinite, vals)):
+                return vals
+            return None
     nums = _NUM_RE.findall(s)
     # Replace every number with 'N' and drop whitespace: a valid list is then
     # 'N' runs separated by at most one comma, with no comma at either end.
@@ -139,6 +151,13 @@ def parse_number_list(s, strict=True):
 
 
 _DROP_WS = str.maketrans('', '', _WS)
+_DROP_LIST_CHARS = str.maketrans('', '', _WS + '0123456789.eE+-,')
+
+
+def _commas_ok(s):
+    # no comma at either end, no two commas with only whitespace between
+    t = s.translate(_DROP_WS)
+    return not (t.startswith(',') or t.endswith(',') or ',,' in t)
 
 
 # --------------------------------------------------------------------------
@@ -216,7 +235,6 @@ del _NAMED
 _HEX_RE = re.compile(r'#([0-9a-fA-F]+)')
 _FUNC_RE = re.compile(r'([a-zA-Z]+)\s*\((.*)\)', re.S)
 _ARG_RE = re.compile(r'(' + NUMBER + r')(%|deg|rad|grad|turn)?', re.I)
-_ICC_RE = re.compile(r'\s+icc-color\s*\([^)]*\)\s*$', re.I)
 
 
 def _clamp01(v):
@@ -224,10 +242,12 @@ def _clamp01(v):
 
 
 def _split_args(body):
-    """Split the arguments of a colour function: ``a, b, c[, d]`` or
-    ``a b c [/ d]``.  Returns a list of (value, unit) or None."""
+    """Split the arguments of a colour function: ``a, b, c[, d]`` (legacy) or
+    ``a b c [/ d]`` (modern).  Returns (list of (value, unit), legacy) or
+    None."""
     body = body.strip()
-    if ',' in body:
+    legacy = ',' in body
+    if legacy:
         if '/' in body:
             return None
         parts = [p.strip() for p in body.split(',')]
@@ -252,7 +272,7 @@ def _split_args(body):
         if not math.isfinite(v):
             return None
         out.append((v, (m.group(2) or '').lower()))
-    return out
+    return out, legacy
 
 
 def _alpha(arg):
@@ -281,9 +301,6 @@ def _parse_color(s):
     t = s.strip(_WS)
     if not t:
         return None
-    # SVG 1.1 allowed an ICC colour after the sRGB one; the sRGB one is used.
-    if 'icc-color' in t.lower():
-        t = _ICC_RE.sub('', t)
     low = t.lower()
     if low == 'currentcolor':
         return CURRENT_COLOR
@@ -310,15 +327,20 @@ def _parse_color(s):
     if m is None:
         return None
     name = m.group(1).lower()
-    args = _split_args(m.group(2))
-    if args is None:
+    split = _split_args(m.group(2))
+    if split is None:
         return None
+    args, legacy = split
     a = 1.0
     if len(args) == 4:
+        if legacy and args[3][1]:
+            return None  # resvg: no percentage alpha in the comma syntax
         a = _alpha(args[3])
         if a is None:
             return None
     if name in ('rgb', 'rgba'):
+        if legacy and len({u == '%' for _, u in args[:3]}) != 1:
+            return None  # numbers and percentages mixed
         out = []
         for v, unit in args[:3]:
             if unit == '%':
@@ -345,12 +367,17 @@ def parse_color(s):
 
     Accepts the 147 named colours and ``transparent`` (case-insensitive),
     ``#rgb``, ``#rgba``, ``#rrggbb``, ``#rrggbbaa``, ``rgb()``/``rgba()`` with
-    numbers (0..255) or percentages, comma syntax or space syntax with
-    ``/ alpha``, alpha as a number or a percentage, ``hsl()``/``hsla()`` with
-    the hue unitless (degrees) or in ``deg``/``rad``/``grad``/``turn``.
-    Out-of-range components are clamped.  A trailing SVG 1.1
-    ``icc-color(...)`` is ignored.  CSS system colours (``ButtonFace`` ...)
-    are not supported and give ``None``.
+    numbers (0..255) or percentages, ``hsl()``/``hsla()`` with the hue
+    unitless (degrees) or in ``deg``/``rad``/``grad``/``turn``; either the
+    comma syntax with an optional fourth alpha argument, or the space syntax
+    with an optional ``/ alpha``.  Out-of-range components are clamped.
+
+    Following resvg (its ``painting/fill`` tests), the comma syntax does not
+    mix numbers and percentages in ``rgb()`` and takes alpha as a number only
+    (``rgba(0, 127, 0, 50%)`` is invalid); the space syntax takes
+    ``/ 50%``.  SVG 1.1 ``icc-color(...)`` suffixes are invalid (SVG 2 dropped
+    them; resvg ignores such a paint).  CSS system colours (``ButtonFace``
+    ...) are not supported and give ``None``.
 
     Parameters
     ----------
@@ -362,8 +389,8 @@ def parse_color(s):
         Non-premultiplied sRGB ``(r, g, b, a)``; :data:`CURRENT_COLOR` for
         ``currentColor``; ``None`` if `s` is not a colour.
 
-    >>> parse_color('rgb(300, -5, 50%)')
-    (1.0, 0.0, 0.5, 1.0)
+    >>> parse_color('rgb(300 -5 50%)'), parse_color('rgb(300, -5, 50%)')
+    ((1.0, 0.0, 0.5, 1.0), None)
     >>> parse_color('hsl(120, 100%, 50%)')
     (0.0, 1.0, 0.0, 1.0)
     >>> parse_color('currentcolor'), parse_color('ButtonFace')
@@ -465,8 +492,9 @@ def parse_paint(s):
     Paint or None
         ``None`` when the value is invalid.  ``inherit`` is not handled here.
 
-    >>> parse_paint('url(#g) none')
-    Paint(kind='url', color=None, url='g', fallback=Paint(kind='none', color=None, url=None, fallback=None))
+    >>> p = parse_paint('url(#g) none')
+    >>> p.kind, p.url, p.fallback.kind
+    ('url', 'g', 'none')
     >>> parse_paint('red').color
     (1.0, 0.0, 0.0, 1.0)
     """
@@ -562,7 +590,6 @@ def parse_length(s, axis='x', ctx=None):
     return v
 
 
-_LEN_ITEM = NUMBER + r'(?:[a-zA-Z]+|%)?'
 _LEN_ITEM_RE = re.compile(r'(' + NUMBER + r')([a-zA-Z]+|%)?')
 
 
@@ -592,6 +619,83 @@ def parse_length_list(s, axis='other', ctx=None):
             return None
         out.append(v)
     return out
+
+
+_OPACITY_RE = re.compile(r'\s*(' + NUMBER + r')(%?)\s*')
+
+
+def parse_opacity(s):
+    """Parse an opacity (``opacity``, ``fill-opacity``, ``stop-opacity``
+    ...): a number or a percentage, clamped to [0, 1].
+
+    Returns
+    -------
+    float or None
+        ``None`` for anything else (``'0.1mm'``), as resvg treats it: the
+        property is then absent.
+
+    >>> parse_opacity('50%'), parse_opacity('1.5'), parse_opacity('0.1mm')
+    (0.5, 1.0, None)
+    """
+    _check_str(s, 'opacity')
+    m = _OPACITY_RE.fullmatch(s)
+    if m is None:
+        return None
+    v = float(m.group(1))
+    if m.group(2):
+        v /= 100.0
+    if not math.isfinite(v):
+        return None
+    return _clamp01(v)
+
+
+#: Steps of the absolute font-size keywords from ``medium``; each step
+#: scales by 1.2 (measured on resvg's ``text/font-size/named-value`` test).
+FONT_SIZE_KEYWORDS = {'xx-small': -3, 'x-small': -2, 'small': -1, 'medium': 0,
+                      'large': 1, 'x-large': 2, 'xx-large': 3}
+
+
+def parse_font_size(s, parent_size=12.0, ctx=None, medium=12.0):
+    """Parse a ``font-size`` value into user units.
+
+    Parameters
+    ----------
+    s : str
+    parent_size : float
+        The parent's computed font size: ``em``, ``ex`` (half) and ``%``
+        refer to it, ``larger``/``smaller`` multiply/divide it by 1.2.
+    ctx : LengthContext, optional
+        For absolute units (only ``dpi`` is used).
+    medium : float
+        Size of the ``medium`` keyword; the other absolute keywords are
+        ``medium * 1.2**k``, ``k`` from -3 (``xx-small``) to 3 (``xx-large``).
+
+    Returns
+    -------
+    float or None
+        ``None`` when invalid or negative.
+
+    >>> round(parse_font_size('large'), 9), parse_font_size('200%', 10)
+    (14.4, 20.0)
+    >>> parse_font_size('smaller', 12)
+    10.0
+    """
+    _check_str(s, 'font-size')
+    t = s.strip(_WS).lower()
+    k = FONT_SIZE_KEYWORDS.get(t)
+    if k is not None:
+        return medium * 1.2 ** k if k >= 0 else medium / 1.2 ** -k
+    if t == 'larger':
+        return parent_size * 1.2
+    if t == 'smaller':
+        return parent_size / 1.2
+    base = DEFAULT_CONTEXT if ctx is None else ctx
+    c = LengthContext(font_size=parent_size, width=parent_size, height=parent_size,
+                      dpi=base.dpi)
+    v = parse_length(s, 'x', c)
+    if v is None or v < 0:
+        return None
+    return v
 
 
 _ANGLE_RE = re.compile(r'\s*(' + NUMBER + r')(deg|rad|grad|turn)?\s*', re.I)
@@ -639,22 +743,93 @@ def _tf_one(name, args):
     return Affine.skew_y(args[0])
 
 
+_CSS_TF_RE = re.compile(r'[ \t\r\n]*([a-zA-Z]+)[ \t\r\n]*\(([^()]*)\)[ \t\r\n]*')
+_ANGLE_FUNCS = {'rotate', 'skew', 'skewx', 'skewy'}
+_LENGTH_FUNCS = {'translate', 'translatex', 'translatey'}
+_CSS_NARGS = {'matrix': (6,), 'translate': (1, 2), 'translatex': (1,),
+              'translatey': (1,), 'scale': (1, 2), 'scalex': (1,), 'scaley': (1,),
+              'rotate': (1, 3), 'skew': (1, 2), 'skewx': (1,), 'skewy': (1,)}
+
+
+def _css_tf_args(name, body):
+    """Arguments of a CSS transform function, converted to numbers (angles
+    to degrees, lengths to px); ``None`` when invalid."""
+    items = _LEN_ITEM_RE.findall(body)
+    skeleton = _LEN_ITEM_RE.sub('N', body).translate(_DROP_WS)
+    if not skeleton or skeleton.strip('N,') or skeleton[0] != 'N' or \
+            skeleton[-1] != 'N' or ',,' in skeleton:
+        return None
+    out = []
+    for i, (num, unit) in enumerate(items):
+        v = float(num)
+        unit = unit.lower()
+        if name in _ANGLE_FUNCS and i == 0 or name in ('skew',):
+            f = _ANGLE_UNITS.get(unit)
+            if f is None:
+                return None
+            v *= f
+        elif name in _LENGTH_FUNCS or (name == 'rotate' and i > 0):
+            if unit == '%' or unit in ('em', 'ex'):
+                return None
+            v = _resolve(v, unit, 'x', DEFAULT_CONTEXT)
+            if v is None:
+                return None
+        elif name in ('scale', 'scalex', 'scaley') and unit == '%':
+            v /= 100.0
+        elif unit:
+            return None
+        if not math.isfinite(v):
+            return None
+        out.append(v)
+    return out
+
+
+def _css_tf_one(name, a):
+    if name == 'translate':
+        return Affine.translate(a[0], a[1] if len(a) > 1 else 0.0)
+    if name == 'translatex':
+        return Affine.translate(a[0], 0.0)
+    if name == 'translatey':
+        return Affine.translate(0.0, a[0])
+    if name == 'scale':
+        return Affine.scale(a[0], a[1] if len(a) > 1 else None)
+    if name == 'scalex':
+        return Affine.scale(a[0], 1.0)
+    if name == 'scaley':
+        return Affine.scale(1.0, a[0])
+    if name == 'skew':
+        return Affine(1, math.tan(math.radians(a[1])) if len(a) > 1 else 0.0,
+                      math.tan(math.radians(a[0])), 1, 0, 0)
+    return _tf_one({'skewx': 'skewX', 'skewy': 'skewY'}.get(name, name), a)
+
+
 @functools.lru_cache(maxsize=2048)
-def _parse_transform(s):
+def _parse_transform(s, css):
+    if css and s.strip(_WS).lower() == 'none':
+        return Affine()
     pos, n = 0, len(s)
     out = Affine()
     need_more = False
+    regex = _CSS_TF_RE if css else _TF_RE
     while True:
-        m = _TF_RE.match(s, pos)
+        m = regex.match(s, pos)
         if m is None:
             break
-        args = parse_number_list(m.group(2))
-        name = m.group(1)
-        if args is None or len(args) not in _TF_NARGS[name]:
-            return None
+        if css:
+            name = m.group(1).lower()
+            if name not in _CSS_NARGS:
+                return None
+            args = _css_tf_args(name, m.group(2))
+            if args is None or len(args) not in _CSS_NARGS[name]:
+                return None
+        else:
+            name = m.group(1)
+            args = parse_number_list(m.group(2))
+            if args is None or len(args) not in _TF_NARGS[name]:
+                return None
         try:
-            out = out @ _tf_one(name, args)
-        except Exception:  # non-finite results (tan(90deg), overflow)
+            out = out @ (_css_tf_one(name, args) if css else _tf_one(name, args))
+        except Exception:  # non-finite results (overflow)
             return None
         pos = m.end()
         need_more = False
@@ -666,14 +841,23 @@ def _parse_transform(s):
     return out
 
 
-def parse_transform(s):
-    """Parse an SVG transform list.
+def parse_transform(s, css=False):
+    """Parse an SVG transform list, or a CSS ``transform`` value.
 
-    ``matrix(a b c d e f)``, ``translate(tx [ty])``, ``scale(sx [sy])``,
-    ``rotate(deg [cx cy])``, ``skewX(deg)``, ``skewY(deg)``; arguments and
-    functions separated by commas and/or whitespace (or nothing between
-    functions).  Function names are case-sensitive.  The list composes left
-    to right: the rightmost function applies first.
+    SVG syntax (``css=False``): ``matrix(a b c d e f)``, ``translate(tx
+    [ty])``, ``scale(sx [sy])``, ``rotate(deg [cx cy])``, ``skewX(deg)``,
+    ``skewY(deg)``; arguments and functions separated by commas and/or
+    whitespace (or nothing between functions); names are case-sensitive.
+
+    CSS syntax (``css=True``, for a ``transform`` that came from a style
+    sheet or ``style`` attribute): also ``none``, ``translateX/Y``,
+    ``scaleX/Y``, ``skew(ax [, ay])``, case-insensitive names; angles may
+    carry ``deg``/``rad``/``grad``/``turn`` and translations absolute length
+    units (``px``, ``in``, ``mm`` ...; percentages are refused since there is
+    no reference box); unitless values are accepted as in SVG.
+
+    Either way the list composes left to right: the rightmost function
+    applies first.
 
     Returns
     -------
@@ -687,9 +871,11 @@ def parse_transform(s):
     Affine(0, 1, -1, 0, 20, 0)
     >>> parse_transform('scale(2) foo(1)') is None
     True
+    >>> parse_transform('translateX(1in) rotate(0.25turn)', css=True)
+    Affine(0, 1, -1, 0, 96, 0)
     """
     _check_str(s, 'transform')
-    return _parse_transform(s)
+    return _parse_transform(s, bool(css))
 
 
 _KW_X = {'left': 0.0, 'center': 50.0, 'right': 100.0}
@@ -701,8 +887,8 @@ def parse_transform_origin(s, ctx=None):
 
     One or two values (a third, the z offset, is accepted and ignored): each a
     length, a percentage of the viewport (``ctx.width``/``ctx.height``) or a
-    keyword ``left``/``center``/``right``/``top``/``bottom``, in either order
-    when keywords make the axis clear.  A single value sets x (or y for
+    keyword ``left``/``center``/``right``/``top``/``bottom``; x first, except
+    that two keywords may come in either order (``bottom right``).  A single value sets x (or y for
     ``top``/``bottom``); the other coordinate is ``center``.
 
     Returns
@@ -724,18 +910,17 @@ def parse_transform_origin(s, ctx=None):
         if parse_length(parts[2], 'other', ctx) is None or parts[2].endswith('%'):
             return None
         parts = parts[:2]
-    low = [p.lower() for p in parts]
-    if len(low) == 1:
-        w = low[0]
-        if w in ('top', 'bottom'):
-            low = ['center', w]
+    if len(parts) == 1:
+        if parts[0].lower() in ('top', 'bottom'):
+            parts = ['center', parts[0]]
         else:
-            low = [w, 'center']
-    a, b = low
+            parts = [parts[0], 'center']
+    a, b = parts[0].lower(), parts[1].lower()
     # swap when the first is a y keyword or the second an x keyword
     if a in ('top', 'bottom') or b in ('left', 'right'):
-        if a in ('left', 'right') or b in ('top', 'bottom'):
-            return None
+        if a in ('left', 'right') or b in ('top', 'bottom') or \
+                a not in _KW_Y or b not in _KW_X:
+            return None  # e.g. 'top 10px': only keyword pairs may swap
         a, b = b, a
         parts = parts[::-1]
 

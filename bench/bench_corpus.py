@@ -1,0 +1,494 @@
+"""Corpus benchmark: raster against resvg-py and cairosvg on real SVG files.
+
+Run from the repository root::
+
+    python bench/bench_corpus.py [--repeat N] [--files PATTERN] [--widths natural,2000]
+                                 [--renderers raster,resvg,cairosvg] [--timeout S]
+                                 [--markdown OUT.md] [--json OUT.json] [--save DIR]
+
+Every file of the corpus (default ``../shared/corpus/*.svg`` relative to the
+repository root, ``--corpus`` to change) is rendered by every renderer, at its
+natural size and at 2000 px width, to PNG bytes, so every renderer pays its
+own PNG encode:
+
+* raster: ``raster.render(path, width)`` then Pillow's PNG encode at
+  ``raster.canvas.DEFAULT_COMPRESS_LEVEL`` (what ``Canvas.save_png`` does);
+  the time without the encode is reported as well ("render-only");
+* resvg-py: ``resvg_py.svg_to_bytes`` with the options of
+  ``shared/conformance/score.py``'s ResvgRenderer (dpi=96, font_size=12,
+  languages=['en'], font_family='Times New Roman', resources_dir = the
+  file's directory) and the *system fonts* (the corpus has text; on the
+  reference machine the only system fonts are DejaVu);
+* cairosvg: ``cairosvg.svg2png(bytestring=..., url=path, unsafe=False,
+  output_width=W)`` (``output_width`` omitted at natural size).
+
+Method.  Each (file, width, renderer) cell runs in a fresh worker process
+(this script with ``--worker``): it imports the renderer, renders a tiny
+warm-up document through the same code path (this loads lazily imported
+modules and Pillow's PNG plugin), resets the kernel's peak-RSS mark
+(writing '5' to /proc/self/clear_refs) and notes its current RSS, then renders
+the file ``--repeat`` times.  Reported: the median wall time of the repeats,
+and the peak memory = ``getrusage(RUSAGE_SELF).ru_maxrss`` after the renders
+minus the RSS before them, i.e. what a render needs on top of an idle
+interpreter with the same imports (without the reset the baseline falls back
+to the peak so far).  Cells run file by file with the renderers interleaved,
+so load from other users of the machine affects all renderers alike; CPU
+times are recorded in the JSON output too.  A renderer that raises or
+exceeds the timeout shows ``error`` with a one-line reason and the run goes
+on.
+
+The ratios are raster's time over the peer's (below 1: raster is faster);
+the geometric mean is over the files where both renderers succeeded.
+"""
+
+import argparse
+import fnmatch
+import glob
+import json
+import math
+import os
+import platform
+import signal
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+DEFAULT_CORPUS = os.path.normpath(os.path.join(ROOT, '..', 'shared', 'corpus'))
+RENDERERS = ('raster', 'resvg', 'cairosvg')
+WARMUP_SVG = (b'<svg xmlns="http://www.w3.org/2000/svg" width="8" height="8">'
+              b'<path d="M1 1h6v6z" fill="red" stroke="blue"/></svg>')
+
+
+# --------------------------------------------------------------------------
+# Worker side: one renderer, one file, one width
+# --------------------------------------------------------------------------
+
+def _make_renderer(name):
+    """Return fn(svg_path, width_or_None) -> (png_bytes, seconds_before_encode_or_None)."""
+    if name == 'raster':
+        import io
+
+        import raster
+        import raster.svg  # noqa: F401
+        from PIL import Image
+        from raster.canvas import DEFAULT_COMPRESS_LEVEL
+
+        def fn(path, width):
+            t0 = time.perf_counter()
+            arr = raster.render(path, width)
+            t1 = time.perf_counter()
+            buf = io.BytesIO()
+            Image.fromarray(arr, 'RGBA').save(buf, format='PNG',
+                                              compress_level=DEFAULT_COMPRESS_LEVEL)
+            return buf.getvalue(), t1 - t0
+        return fn
+    if name == 'resvg':
+        import re
+
+        import resvg_py
+        strings = {}
+
+        def prepare(path):
+            """resvg_py reads ``svg_path`` as UTF-8 only; a file in another
+            encoding (declared in its XML declaration) is decoded here, once,
+            outside the timed renders, and passed as ``svg_string``."""
+            with open(path, 'rb') as f:
+                data = f.read()
+            try:
+                data.decode('utf-8')
+                return None
+            except UnicodeDecodeError:
+                m = re.match(rb'<\?xml[^>]*encoding=["\']([A-Za-z0-9._-]+)["\']', data)
+                enc = m.group(1).decode('ascii') if m else 'latin-1'
+                text = data.decode(enc)
+                text = re.sub(r'(<\?xml[^>]*encoding=["\'])[A-Za-z0-9._-]+', r'\g<1>utf-8', text,
+                              count=1)
+                strings[path] = text
+                return 'resvg_py reads files as UTF-8 only: transcoded from %s, passed as svg_string' % enc
+
+        def fn(path, width):
+            kw = dict(resources_dir=os.path.dirname(os.path.abspath(path)),
+                      dpi=96.0, font_size=12.0, languages=['en'],
+                      font_family='Times New Roman')
+            if path in strings:
+                kw['svg_string'] = strings[path]
+            else:
+                kw['svg_path'] = path
+            if width is not None:
+                kw['width'] = int(width)
+            return bytes(resvg_py.svg_to_bytes(**kw)), None
+        fn.prepare = prepare
+        return fn
+    if name == 'cairosvg':
+        import cairosvg
+
+        def fn(path, width):
+            with open(path, 'rb') as f:
+                data = f.read()
+            kw = dict(bytestring=data, url=path, unsafe=False)
+            if width is not None:
+                kw['output_width'] = int(width)
+            return cairosvg.svg2png(**kw), None
+        return fn
+    raise ValueError('unknown renderer %r' % name)
+
+
+def _png_size(png):
+    """(width, height) from a PNG's IHDR chunk."""
+    if len(png) < 24 or png[:8] != b'\x89PNG\r\n\x1a\n':
+        raise ValueError('output is not a PNG')
+    return int.from_bytes(png[16:20], 'big'), int.from_bytes(png[20:24], 'big')
+
+
+def _one_line(exc):
+    import traceback
+    tb = traceback.extract_tb(exc.__traceback__)
+    where = ''
+    if tb:
+        fr = tb[-1]
+        where = ' [%s:%d %s]' % (os.path.relpath(fr.filename, ROOT) if fr.filename.startswith(ROOT)
+                                 else os.path.basename(fr.filename), fr.lineno, fr.name)
+    msg = str(exc).strip().splitlines()[0] if str(exc).strip() else ''
+    return ('%s: %s%s' % (type(exc).__name__, msg, where))[:300]
+
+
+def _rss_baseline():
+    """Current RSS in KiB after resetting the peak-RSS mark, and whether the
+    reset worked.  Linux resets the high-water mark (VmHWM, which
+    ``ru_maxrss`` reports) when '5' is written to /proc/self/clear_refs; then
+    the later ``ru_maxrss`` minus this value is the render's own peak.  Without
+    the reset the baseline is the peak so far (imports + warm-up), and a render
+    smaller than that peak shows 0."""
+    import resource
+    try:
+        with open('/proc/self/clear_refs', 'w') as f:
+            f.write('5')
+        with open('/proc/self/status') as f:
+            for line in f:
+                if line.startswith('VmRSS:'):
+                    return int(line.split()[1]), True
+    except OSError:
+        pass
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, False
+
+
+def worker(spec):
+    """Run one cell; ``spec`` is the JSON job description.  Writes a JSON result."""
+    import resource
+    res = {'renderer': spec['renderer'], 'file': os.path.basename(spec['svg']),
+           'width': spec['width']}
+    try:
+        fn = _make_renderer(spec['renderer'])
+        with tempfile.NamedTemporaryFile(suffix='.svg', delete=False) as f:
+            f.write(WARMUP_SVG)
+        try:
+            fn(f.name, None)
+        finally:
+            os.unlink(f.name)
+        import gc
+        gc.collect()
+        prep = getattr(fn, 'prepare', None)
+        if prep is not None:
+            note = prep(spec['svg'])
+            if note:
+                res['note'] = note
+        base_kb, reset = _rss_baseline()
+        walls, cpus, renders = [], [], []
+        png = None
+        t_start = time.perf_counter()
+        for _ in range(spec['repeat']):
+            c0 = time.process_time()
+            t0 = time.perf_counter()
+            png, t_render = fn(spec['svg'], spec['width'])
+            walls.append(time.perf_counter() - t0)
+            cpus.append(time.process_time() - c0)
+            if t_render is not None:
+                renders.append(t_render)
+            if time.perf_counter() - t_start > spec['soft_limit']:
+                break                     # slow file: keep the repeats we have
+        peak_kb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+        res.update(wall=walls, cpu=cpus, render_only=renders or None,
+                   peak_mb=max(0, peak_kb - base_kb) / 1024.0, hwm_reset=reset,
+                   base_mb=base_kb / 1024.0, size=_png_size(png), png_bytes=len(png))
+        if spec.get('save'):
+            with open(spec['save'], 'wb') as f:
+                f.write(png)
+    except BaseException as exc:          # report, never crash the run
+        res['error'] = _one_line(exc)
+    with open(spec['out'], 'w') as f:
+        json.dump(res, f)
+
+
+# --------------------------------------------------------------------------
+# Parent side
+# --------------------------------------------------------------------------
+
+def run_cell(renderer, svg, width, args, tmpdir):
+    out = os.path.join(tmpdir, 'result.json')
+    if os.path.exists(out):
+        os.unlink(out)
+    save = None
+    if args.save:
+        save = os.path.join(args.save, '%s_%s_%s.png' % (
+            os.path.splitext(os.path.basename(svg))[0], width or 'natural', renderer))
+    spec = dict(renderer=renderer, svg=svg, width=width, repeat=args.repeat,
+                soft_limit=args.timeout, out=out, save=save)
+    hard = args.timeout * 2 + 30      # first render may start just before soft_limit
+    p = subprocess.Popen([sys.executable, os.path.abspath(__file__), '--worker', json.dumps(spec)],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                         stdin=subprocess.DEVNULL, start_new_session=True, cwd=ROOT)
+    try:
+        _, err = p.communicate(timeout=hard)
+    except subprocess.TimeoutExpired:
+        try:
+            os.killpg(p.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        p.communicate()
+        return {'error': 'timeout: no result after %g s' % hard}
+    if not os.path.exists(out):
+        tail = err.decode('utf-8', 'replace').strip().splitlines()
+        why = tail[-1] if tail else 'no output'
+        if p.returncode and p.returncode < 0:
+            why = 'killed by signal %d; %s' % (-p.returncode, why)
+        return {'error': ('worker died: ' + why)[:300]}
+    with open(out) as f:
+        return json.load(f)
+
+
+def machine_info():
+    model = '?'
+    try:
+        with open('/proc/cpuinfo') as f:
+            for line in f:
+                if line.startswith('model name'):
+                    model = line.split(':', 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    try:
+        avail = len(os.sched_getaffinity(0))
+    except AttributeError:
+        avail = os.cpu_count()
+    try:
+        load = ' (load average %.2f %.2f %.2f)' % os.getloadavg()
+    except OSError:
+        load = ''
+    vers = []
+    from importlib import metadata
+    for dist in ('numpy', 'Pillow', 'lxml', 'resvg_py', 'CairoSVG', 'cairocffi', 'raster'):
+        try:
+            vers.append('%s %s' % (dist, metadata.version(dist)))
+        except metadata.PackageNotFoundError:
+            vers.append('%s -' % dist)
+    try:
+        import cairocffi
+        vers.append('libcairo %s' % cairocffi.cairo_version_string())
+    except Exception:                    # pragma: no cover - optional
+        pass
+    return ['CPU: %s, %d cores available (os.cpu_count()=%s)%s' % (model, avail, os.cpu_count(), load),
+            'Python %s (%s), %s' % (platform.python_version(), platform.machine(), platform.platform()),
+            'Libraries: ' + ', '.join(vers)]
+
+
+def _med(xs):
+    return statistics.median(xs) if xs else None
+
+
+def _ms(x):
+    return '%.0f' % (x * 1000) if x >= 0.0995 else '%.1f' % (x * 1000)
+
+
+def geomean(xs):
+    xs = [x for x in xs if x and x > 0]
+    return math.exp(sum(map(math.log, xs)) / len(xs)) if xs else None
+
+
+def build_tables(results, files, widths, renderers, repeat):
+    """Markdown-ish lines: one table per width plus geometric means."""
+    lines = []
+    summary = {}
+    for width in widths:
+        wkey = width or 'natural'
+        lines.append('')
+        lines.append('### Width: %s' % ('natural size' if width is None else '%d px' % width))
+        lines.append('')
+        head = ['file', 'size (px)']
+        for r in renderers:
+            head.append('%s ms' % r)
+            if r == 'raster':
+                head.append('raster render-only ms')
+        for peer in ('resvg', 'cairosvg'):
+            if 'raster' in renderers and peer in renderers:
+                head.append('raster/%s' % peer)
+        head.append('peak MB (%s)' % ' / '.join(renderers))
+        lines.append('| ' + ' | '.join(head) + ' |')
+        lines.append('|' + '|'.join(['---'] * len(head)) + '|')
+        ratios = {p: [] for p in ('resvg', 'cairosvg')}
+        errors, notes = [], []
+        for svg in files:
+            name = os.path.basename(svg)
+            row = [name]
+            cells = {r: results.get((name, wkey, r), {'error': 'not run'}) for r in renderers}
+            sizes = {tuple(c['size']) for c in cells.values() if 'size' in c}
+            row.append(' vs '.join('%dx%d' % s for s in sorted(sizes)) or '-')
+            t = {}
+            for r in renderers:
+                c = cells[r]
+                if 'error' in c:
+                    row.append('error')
+                    errors.append('%s / %s / %s: %s' % (name, wkey, r, c['error']))
+                    if r == 'raster':
+                        row.append('error')
+                    continue
+                t[r] = _med(c['wall'])
+                mark = ''
+                if c.get('note'):
+                    mark = '*'
+                    notes.append('%s / %s / %s: %s' % (name, wkey, r, c['note']))
+                if len(c['wall']) < repeat:
+                    mark += ' (%d run%s)' % (len(c['wall']), 's' if len(c['wall']) > 1 else '')
+                row.append(_ms(t[r]) + mark)
+                if r == 'raster':
+                    ro = _med(c.get('render_only') or [])
+                    row.append(_ms(ro) if ro is not None else '-')
+            for peer in ('resvg', 'cairosvg'):
+                if 'raster' in renderers and peer in renderers:
+                    if 'raster' in t and peer in t:
+                        q = t['raster'] / t[peer]
+                        ratios[peer].append(q)
+                        row.append('%.2f' % q)
+                    else:
+                        row.append('-')
+            row.append(' / '.join('%.0f' % cells[r]['peak_mb'] if 'peak_mb' in cells[r] else '-'
+                                  for r in renderers))
+            lines.append('| ' + ' | '.join(row) + ' |')
+        lines.append('')
+        for peer, qs in ratios.items():
+            g = geomean(qs)
+            if g is not None:
+                summary[(wkey, peer)] = (g, len(qs))
+                lines.append('Geometric mean raster/%s at %s: **%.2f** over %d files.'
+                             % (peer, wkey, g, len(qs)))
+        # the project target: no file slower than 2x the faster peer
+        if 'raster' in renderers:
+            over = []
+            for svg in files:
+                name = os.path.basename(svg)
+                c = results.get((name, wkey, 'raster'), {})
+                peers = [_med(results[(name, wkey, p)]['wall']) for p in ('resvg', 'cairosvg')
+                         if 'wall' in results.get((name, wkey, p), {})]
+                if 'wall' in c and peers and _med(c['wall']) > 2 * min(peers):
+                    over.append('%s (%.1fx)' % (name, _med(c['wall']) / min(peers)))
+            if over:
+                lines.append('Files where raster is more than 2x slower than the faster peer: '
+                             + ', '.join(over) + '.')
+        for title, items in (('Errors', errors), ('Notes (*)', notes)):
+            if items:
+                lines.append('')
+                lines.append(title + ':')
+                lines.append('')
+                for e in items:
+                    lines.append('- ' + e.replace('|', '/'))
+    return lines, summary
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    ap.add_argument('--corpus', default=DEFAULT_CORPUS, help='folder of .svg files')
+    ap.add_argument('--files', default=None, metavar='PATTERN',
+                    help='comma-separated fnmatch patterns or substrings of file names')
+    ap.add_argument('--widths', default='natural,2000',
+                    help="comma-separated output widths; 'natural' = the document's size")
+    ap.add_argument('--renderers', default=','.join(RENDERERS))
+    ap.add_argument('--repeat', type=int, default=3, help='timed renders per cell (median)')
+    ap.add_argument('--timeout', type=float, default=60.0,
+                    help='seconds: stop repeating after this; kill the worker after 2x+30')
+    ap.add_argument('--markdown', metavar='OUT.md', help='write the tables as markdown')
+    ap.add_argument('--json', metavar='OUT.json', help='write all raw measurements')
+    ap.add_argument('--save', metavar='DIR', help='keep each PNG as DIR/<file>_<width>_<renderer>.png')
+    ap.add_argument('--worker', help=argparse.SUPPRESS)
+    args = ap.parse_args(argv)
+    if args.worker:
+        worker(json.loads(args.worker))
+        return 0
+    if args.repeat < 1:
+        ap.error('--repeat must be >= 1')
+    renderers = [r.strip() for r in args.renderers.split(',') if r.strip()]
+    bad = [r for r in renderers if r not in RENDERERS]
+    if bad:
+        ap.error('unknown renderer(s): %s' % ', '.join(bad))
+    widths = []
+    for w in args.widths.split(','):
+        w = w.strip()
+        if w == 'natural':
+            widths.append(None)
+        elif w.isdigit() and int(w) > 0:
+            widths.append(int(w))
+        else:
+            ap.error('bad width %r' % w)
+    files = sorted(glob.glob(os.path.join(args.corpus, '*.svg')))
+    if args.files:
+        pats = [p.strip() for p in args.files.split(',') if p.strip()]
+        files = [f for f in files if any(
+            fnmatch.fnmatch(os.path.basename(f), p) or p in os.path.basename(f) for p in pats)]
+    if not files:
+        ap.error('no .svg files in %s match' % args.corpus)
+    if args.save:
+        os.makedirs(args.save, exist_ok=True)
+
+    info = machine_info()
+    for line in info:
+        print(line)
+    print('Corpus: %s (%d files); widths: %s; renderers: %s; repeat %d'
+          % (args.corpus, len(files), args.widths, ', '.join(renderers), args.repeat))
+    results = {}
+    t_all = time.perf_counter()
+    with tempfile.TemporaryDirectory(prefix='bench_corpus_') as tmpdir:
+        for svg in files:
+            name = os.path.basename(svg)
+            for width in widths:
+                wkey = width or 'natural'
+                for r in renderers:
+                    res = run_cell(r, svg, width, args, tmpdir)
+                    results[(name, wkey, r)] = res
+                    if 'error' in res:
+                        msg = 'error: ' + res['error']
+                    else:
+                        msg = '%8s ms  peak %5.0f MB  %dx%d  (%d runs)' % (
+                            _ms(_med(res['wall'])), res['peak_mb'], res['size'][0],
+                            res['size'][1], len(res['wall']))
+                        if res.get('note'):
+                            msg += '  [%s]' % res['note']
+                        if res.get('render_only'):
+                            msg += '  render-only %s ms' % _ms(_med(res['render_only']))
+                    print('%-40s %-8s %-9s %s' % (name, wkey, r, msg), flush=True)
+    print('Total benchmark time %.0f s' % (time.perf_counter() - t_all))
+    lines, summary = build_tables(results, files, widths, renderers, args.repeat)
+    print('\n'.join(lines))
+    if args.markdown:
+        with open(args.markdown, 'w') as f:
+            f.write('## Corpus benchmark\n\n')
+            f.write('Command: `python bench/bench_corpus.py %s`\n\n'
+                    % ' '.join(a for a in (argv if argv is not None else sys.argv[1:])))
+            f.write('Machine (%s UTC):\n\n' % time.strftime('%Y-%m-%d %H:%M', time.gmtime()))
+            for line in info:
+                f.write('- %s\n' % line)
+            f.write('\nTimes are medians of %d wall-clock renders to PNG bytes (PNG encode '
+                    'included); peak MB = peak RSS growth of the worker process over an idle '
+                    'interpreter with the same imports.\n' % args.repeat)
+            f.write('\n'.join(lines) + '\n')
+    if args.json:
+        with open(args.json, 'w') as f:
+            json.dump({'machine': info, 'repeat': args.repeat,
+                       'results': [dict(v, file=k[0], width=k[1], renderer=k[2])
+                                   for k, v in results.items()]}, f, indent=1)
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

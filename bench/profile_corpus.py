@@ -1,0 +1,220 @@
+"""Where does raster's SVG pipeline spend its time?  Per-stage profile.
+
+Run from the repository root::
+
+    python bench/profile_corpus.py [FILES ...] [--width 2000] [--top 25] [--repeat 3]
+
+FILES are corpus file names or substrings (default: every file of
+``../shared/corpus``).  For each file two measurements are made:
+
+1. *Stage wall times, no profiler*: the public stages are timed one after
+   the other (median of ``--repeat`` runs): XML parse
+   (``raster.svg.document.load_document``), tree build incl. CSS cascade
+   (``raster.svg.build.build_tree``), rendering (``render_tree``: path
+   parse, flatten, stroke, scan conversion, compositing), conversion to
+   8-bit (``Canvas.to_rgba8``) and PNG encode (Pillow, at
+   ``raster.canvas.DEFAULT_COMPRESS_LEVEL``).
+2. *cProfile attribution*: one run under cProfile.  Every function's own
+   time is assigned to a stage by the module it lives in (``raster/scan.py``
+   -> scan conversion, ...).  Time spent in code outside raster (numpy,
+   builtins, ``re``) is handed up to its callers in proportion to the time
+   each caller spent in it, until it reaches raster code, so
+   ``np.add.at`` called from ``scan.py`` counts as scan conversion.  lxml
+   counts as XML parse and Pillow as PNG encode.  The profiler inflates
+   Python-heavy stages relative to numpy-heavy ones; read the percentages
+   with the stage wall times of (1) beside them.
+
+The top functions by own time (after the same hand-up) are listed too.
+"""
+
+import argparse
+import cProfile
+import glob
+import io
+import os
+import pstats
+import statistics
+import sys
+import time
+from collections import defaultdict
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+DEFAULT_CORPUS = os.path.normpath(os.path.join(ROOT, '..', 'shared', 'corpus'))
+
+# module file (relative to raster/) -> stage
+STAGES = [
+    ('svg/document.py', 'XML parse'),
+    ('svg/css.py', 'CSS cascade'),
+    ('svg/build.py', 'tree build'),
+    ('svg/tree.py', 'tree build'),
+    ('svg/properties.py', 'tree build'),
+    ('svg/values.py', 'tree build'),
+    ('svgpath.py', 'path parse'),
+    ('path.py', 'path model'),
+    ('transform.py', 'path model'),
+    ('flatten.py', 'flatten'),
+    ('stroke.py', 'stroke'),
+    ('scan.py', 'scan conversion'),
+    ('canvas.py', 'compositing'),
+    ('svg/text', 'text'),
+    ('svg/filters', 'filters'),
+    ('svg/paint', 'paint servers'),
+    ('svg/gradient', 'paint servers'),
+    ('svg/render.py', 'render (orchestration)'),
+]
+
+
+def stage_of(func):
+    """Stage of a pstats function key (filename, line, name), or None for
+    code outside raster whose time is handed up to the callers."""
+    fn = func[0].replace(os.sep, '/')
+    i = fn.rfind('/raster/')
+    if i >= 0:
+        rel = fn[i + len('/raster/'):]
+        for prefix, stage in STAGES:
+            if rel.startswith(prefix):
+                return stage
+        return 'raster other (%s)' % rel
+    if '/lxml/' in fn or 'lxml.etree' in func[2]:
+        return 'XML parse'
+    if '/PIL/' in fn or 'ImagingEncoder' in func[2] or "'encode' of" in func[2]:
+        return 'PNG encode'
+    if fn.endswith('bench/profile_corpus.py'):
+        return 'driver'
+    return None
+
+
+def attribute(stats):
+    """(stage -> seconds, function -> seconds) from a pstats.Stats object,
+    handing own time of non-raster functions up to their callers."""
+    raw = stats.stats
+    by_stage = defaultdict(float)
+    by_func = defaultdict(float)
+
+    def give(func, seconds, depth=0):
+        st = stage_of(func)
+        if st is not None or depth > 40:
+            by_stage[st or 'unattributed'] += seconds
+            by_func[func] += seconds
+            return
+        callers = raw[func][4] if func in raw else {}
+        weights = {c: v[2] + 1e-12 for c, v in callers.items() if c != func}
+        tot = sum(weights.values())
+        if not weights:
+            by_stage['unattributed'] += seconds
+            by_func[func] += seconds
+            return
+        for c, w in weights.items():
+            give(c, seconds * w / tot, depth + 1)
+
+    for func, (_, _, tt, _, _) in raw.items():
+        if tt > 0:
+            give(func, tt)
+    return by_stage, by_func
+
+
+def stage_times(path, width, repeat):
+    """Median wall time of each public stage, without profiler."""
+    from PIL import Image
+
+    from raster.canvas import DEFAULT_COMPRESS_LEVEL
+    from raster.svg import _source_and_base, load_svg  # noqa: F401
+    from raster.svg.build import build_tree
+    from raster.svg.document import load_document
+    from raster.svg.render import render_tree
+    rows = defaultdict(list)
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        root = load_document(path)
+        t1 = time.perf_counter()
+        tree = build_tree(root, base_dir=os.path.dirname(os.path.abspath(path)), dpi=96)
+        t2 = time.perf_counter()
+        canvas = render_tree(tree, width=width)
+        t3 = time.perf_counter()
+        arr = canvas.to_rgba8()
+        t4 = time.perf_counter()
+        buf = io.BytesIO()
+        Image.fromarray(arr, 'RGBA').save(buf, format='PNG', compress_level=DEFAULT_COMPRESS_LEVEL)
+        t5 = time.perf_counter()
+        for k, v in (('XML parse', t1 - t0), ('tree build + CSS', t2 - t1),
+                     ('render_tree', t3 - t2), ('to_rgba8', t4 - t3), ('PNG encode', t5 - t4)):
+            rows[k].append(v)
+    return {k: statistics.median(v) for k, v in rows.items()}, arr.shape
+
+
+def render_png(path, width):
+    from PIL import Image
+
+    import raster
+    from raster.canvas import DEFAULT_COMPRESS_LEVEL
+    arr = raster.render(path, width)
+    buf = io.BytesIO()
+    Image.fromarray(arr, 'RGBA').save(buf, format='PNG', compress_level=DEFAULT_COMPRESS_LEVEL)
+    return buf.getvalue()
+
+
+def fmt_func(func):
+    fn, line, name = func
+    i = fn.replace(os.sep, '/').rfind('/raster/')
+    if i >= 0:
+        fn = fn[i + 1:]
+    elif fn != '~':
+        fn = os.path.basename(fn)
+    return '%s:%d(%s)' % (fn, line, name) if fn != '~' else name
+
+
+def profile_file(path, width, top, repeat):
+    print('=' * 78)
+    print('%s at width %s' % (os.path.basename(path), width))
+    try:
+        render_png(path, width)            # warm-up (imports, caches)
+        st, shape = stage_times(path, width, repeat)
+    except Exception as exc:
+        print('  error: %s: %s' % (type(exc).__name__, str(exc).splitlines()[0] if str(exc) else ''))
+        return None
+    total = sum(st.values())
+    print('Stage wall times (median of %d, no profiler), output %dx%d, total %.0f ms:'
+          % (repeat, shape[1], shape[0], total * 1000))
+    for k, v in st.items():
+        print('  %-22s %8.1f ms  %5.1f %%' % (k, v * 1000, 100 * v / total))
+    prof = cProfile.Profile()
+    prof.enable()
+    render_png(path, width)
+    prof.disable()
+    stats = pstats.Stats(prof)
+    by_stage, by_func = attribute(stats)
+    ptotal = sum(by_stage.values())
+    print('cProfile attribution (total %.0f ms under the profiler):' % (ptotal * 1000))
+    for k, v in sorted(by_stage.items(), key=lambda kv: -kv[1]):
+        print('  %-28s %8.1f ms  %5.1f %%' % (k, v * 1000, 100 * v / ptotal))
+    print('Top %d functions by own time (non-raster time handed up to raster callers):' % top)
+    raw = stats.stats
+    for func, v in sorted(by_func.items(), key=lambda kv: -kv[1])[:top]:
+        ncalls = raw[func][1] if func in raw else 0
+        cum = raw[func][3] if func in raw else 0.0
+        print('  %8.1f ms %5.1f %%  calls %7d  cum %8.1f ms  %s'
+              % (v * 1000, 100 * v / ptotal, ncalls, cum * 1000, fmt_func(func)))
+    return st, by_stage
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    ap.add_argument('files', nargs='*', help='corpus file names or substrings')
+    ap.add_argument('--corpus', default=DEFAULT_CORPUS)
+    ap.add_argument('--width', type=int, default=2000)
+    ap.add_argument('--top', type=int, default=25)
+    ap.add_argument('--repeat', type=int, default=3)
+    args = ap.parse_args(argv)
+    files = sorted(glob.glob(os.path.join(args.corpus, '*.svg')))
+    if args.files:
+        files = [f for f in files if any(p in os.path.basename(f) for p in args.files)]
+    if not files:
+        ap.error('no matching .svg files in %s' % args.corpus)
+    for f in files:
+        profile_file(f, args.width, args.top, args.repeat)
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,959 @@
+"""Resolve an SVG document (an lxml tree) into the render tree of
+:mod:`raster.svg.tree`.
+
+Everything the renderer needs is decided here, so the renderer never parses
+a string:
+
+* the CSS cascade (:func:`raster.svg.css.declared_styles`) followed by
+  inheritance along the *rendering* parent chain: content instantiated by
+  ``use`` inherits from the ``use`` element, not from its place in ``defs``;
+  ``inherit`` takes the parent's computed value; ``currentColor`` resolves
+  to the element's computed ``color``;
+* lengths in user units (``em``/``ex`` from the computed font size, ``%`` of
+  the nearest viewport: root ``svg``, nested ``svg`` or ``symbol``
+  instance), transforms with ``transform-origin``, viewBoxes with
+  ``preserveAspectRatio``;
+* basic shapes and path data to :class:`~raster.path.Path` (SVG's
+  prefix-on-error rule for path data);
+* structure: ``g``, ``a``, nested ``svg`` (clipped to its viewport unless
+  ``overflow`` is ``visible``/``auto``), ``use`` (with cycle detection and
+  limits), ``symbol``, ``switch`` with ``systemLanguage``/
+  ``requiredExtensions``, ``display`` and ``visibility``.
+
+Coordinates: user units, x right, y down.  The tree's root group maps the
+root element's user space to document pixels (the natural size).
+
+Not supported yet, each reported once per build with a
+:class:`raster.errors.RasterWarning` (through :func:`warnings.warn`) and then
+left out rather than drawn wrongly: text, images, filters, clip paths,
+masks, markers, paint servers (gradients and patterns paint nothing for
+now), external ``use`` references.
+
+>>> from raster.svg.document import load_document
+>>> root = load_document(b'<svg xmlns="http://www.w3.org/2000/svg" width="20" height="10">'
+...                      b'<rect width="5" height="5" fill="red"/></svg>')
+>>> tree = build_tree(root)
+>>> tree.width, tree.height, tree.root.children[0].fill.paint.color
+(20.0, 10.0, (1.0, 0.0, 0.0, 1.0))
+"""
+
+import math
+import warnings
+
+from .. import limits
+from ..errors import PathError, RasterError, RasterWarning, SVGError
+from ..path import Path
+from ..svgpath import (circle_path, ellipse_path, line_path, parse_path, polyline_path,
+                       rect_path)
+from ..transform import IDENTITY, Affine
+from .css import declared_styles
+from .properties import INHERITED, PROPERTIES
+from .tree import (ClipPath, Fill, GradientStop, Group, LinearGradient, PathNode, RadialGradient,
+                   SolidPaint, Stroke, Tree)
+from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length,
+                     parse_length_list, parse_paint, parse_preserve_aspect_ratio,
+                     parse_transform, parse_transform_origin, parse_viewbox, viewbox_transform)
+
+__all__ = ['build_tree']
+
+SVG_NS = 'http://www.w3.org/2000/svg'
+XLINK_HREF = '{http://www.w3.org/1999/xlink}href'
+_P = '{%s}' % SVG_NS
+_PLEN = len(_P)
+
+_SHAPES = frozenset(['rect', 'circle', 'ellipse', 'line', 'polyline', 'polygon', 'path'])
+_CONTAINERS = frozenset(['g', 'a', 'svg', 'switch', 'use'])
+# elements a <switch> may choose
+_SWITCH_CHOICES = _SHAPES | _CONTAINERS | frozenset(['text', 'image', 'foreignObject'])
+# never rendered directly
+_NOT_RENDERED = frozenset(['defs', 'symbol', 'title', 'desc', 'metadata', 'style', 'script',
+                           'linearGradient', 'radialGradient', 'pattern', 'clipPath', 'mask',
+                           'marker', 'filter', 'stop', 'font', 'font-face', 'glyph',
+                           'missing-glyph', 'cursor', 'view', 'animate', 'set',
+                           'animateMotion', 'animateTransform', 'animateColor'])
+_PAINT_SERVERS = frozenset(['linearGradient', 'radialGradient', 'pattern'])
+
+_FONT_KEYWORDS = {'xx-small': 3 / 5, 'x-small': 3 / 4, 'small': 8 / 9, 'medium': 1.0,
+                  'large': 6 / 5, 'x-large': 3 / 2, 'xx-large': 2.0, 'xxx-large': 3.0}
+_JOINS = frozenset(['miter', 'miter-clip', 'round', 'bevel', 'arcs'])
+_CAPS = frozenset(['butt', 'round', 'square'])
+_BLEND = frozenset(['normal', 'multiply', 'screen', 'overlay', 'darken', 'lighten',
+                    'color-dodge', 'color-burn', 'hard-light', 'soft-light', 'difference',
+                    'exclusion', 'hue', 'saturation', 'color', 'luminosity'])
+_BLACK = (0.0, 0.0, 0.0, 1.0)
+_UNSUPPORTED = object()   # a paint server we cannot paint yet: use the fallback
+_ARC_SAFETY = 0.1   # arcs are made 10x finer than `tolerance` so zooming in stays smooth
+
+
+def _local(el):
+    """Local name of an SVG-namespace element, else None."""
+    tag = el.tag
+    if isinstance(tag, str) and tag.startswith(_P):
+        return tag[_PLEN:]
+    return None
+
+
+def _number_or_percent(s):
+    """A number or a percentage (as a fraction), or None."""
+    s = s.strip()
+    try:
+        if s.endswith('%'):
+            v = float(s[:-1]) / 100.0
+        else:
+            v = float(s)
+    except ValueError:
+        return None
+    return v if math.isfinite(v) else None
+
+
+def _opacity(s, default=1.0):
+    if s is None:
+        return default
+    v = _number_or_percent(s)
+    if v is None:
+        return default
+    return min(max(v, 0.0), 1.0)
+
+
+def _parse_float(s):
+    try:
+        v = float(s)
+    except (TypeError, ValueError):
+        return None
+    return v if math.isfinite(v) else None
+
+
+class _State:
+    """Per-subtree context: viewport size for percentages, the CTM at the
+    document's natural size (for arc tolerances), the active ``use`` depth."""
+    __slots__ = ('vw', 'vh', 'ctm', 'use_depth')
+
+    def __init__(self, vw, vh, ctm, use_depth=0):
+        self.vw, self.vh, self.ctm, self.use_depth = vw, vh, ctm, use_depth
+
+    def sub(self, transform=None, vw=None, vh=None, use_depth=None):
+        return _State(self.vw if vw is None else vw, self.vh if vh is None else vh,
+                      self.ctm if transform is None else self.ctm @ transform,
+                      self.use_depth if use_depth is None else use_depth)
+
+
+class _Builder:
+    def __init__(self, root, dpi, font_size, languages, tolerance, max_elements,
+                 max_use_depth, extra_css):
+        self.root = root
+        self.dpi = float(dpi)
+        self.font_size = float(font_size)
+        self.languages = tuple(str(x).strip().lower() for x in languages)
+        self.lang_primary = frozenset(x.split('-')[0] for x in self.languages)
+        self.tolerance = float(tolerance)
+        self.max_elements = int(max_elements)
+        self.max_use_depth = int(max_use_depth)
+        self.styles = declared_styles(root, extra_css) if extra_css else declared_styles(root)
+        self.by_id = {}
+        for el in root.iter():
+            if isinstance(el.tag, str):
+                i = el.get('id')
+                if i is not None and i not in self.by_id:
+                    self.by_id[i] = el
+        self.count = 0
+        self.stopped = False
+        self.warned = set()
+        self.tree_ids = {}
+        self._recursive = {}
+        self._doc_styles = {}
+        self._servers = {}
+        self._inh0 = _initial_inherited(font_size)
+        self._ctx_cache = {}
+
+    # -- helpers ---------------------------------------------------------------
+    def warn(self, kind, msg):
+        if kind not in self.warned:
+            self.warned.add(kind)
+            warnings.warn(msg, RasterWarning, stacklevel=4)
+
+    def ctx(self, inh, st):
+        key = (inh['_fs'], st.vw, st.vh)
+        c = self._ctx_cache.get(key)
+        if c is None:
+            c = LengthContext(font_size=key[0], width=st.vw, height=st.vh, dpi=self.dpi)
+            if len(self._ctx_cache) < 4096:
+                self._ctx_cache[key] = c
+        return c
+
+    def length(self, el, name, axis, ctx, default=0.0):
+        s = el.get(name)
+        if s is None:
+            return default
+        v = parse_length(s, axis, ctx)
+        return default if v is None else v
+
+    def note_id(self, el, node):
+        i = el.get('id')
+        if i and i not in self.tree_ids:
+            self.tree_ids[i] = node
+        return node
+
+    def tick(self):
+        """Count one element; False (with a warning) once the limit is hit."""
+        self.count += 1
+        if self.count > self.max_elements:
+            if not self.stopped:
+                self.stopped = True
+                self.warn('limit', 'document needs more than %d nodes; the rest is not '
+                          'rendered' % self.max_elements)
+            return False
+        return True
+
+    # -- style -------------------------------------------------------------------
+    def style(self, el, pinh, pown):
+        """(inherited dict, own non-inherited dict) of ``el`` given its
+        rendering parent's."""
+        decl = self.styles.get(el)
+        if not decl:
+            return pinh, {}
+        inh = None
+        own = {}
+        for k, v in decl.items():
+            if v == 'inherit':
+                if k in INHERITED:
+                    continue
+                pv = pown.get(k)
+                if pv is not None:
+                    own[k] = pv
+                continue
+            if k in INHERITED:
+                if k == 'font-size':
+                    fs = self.font_size_value(v, pinh['_fs'])
+                    if fs is None:
+                        continue
+                    k, v = '_fs', fs
+                elif k == 'color':
+                    c = parse_color(v)
+                    if c is None or c is CURRENT_COLOR:
+                        continue
+                    k, v = '_color', c
+                elif k == 'fill' or k == 'stroke':
+                    if parse_paint(v) is None:
+                        continue
+                if inh is None:
+                    inh = dict(pinh)
+                inh[k] = v
+            else:
+                own[k] = v
+        return (pinh if inh is None else inh), own
+
+    def font_size_value(self, v, parent):
+        low = v.strip().lower()
+        if low in _FONT_KEYWORDS:
+            return self.font_size * _FONT_KEYWORDS[low]
+        if low == 'larger':
+            return parent * 1.2
+        if low == 'smaller':
+            return parent / 1.2
+        fs = parse_length(v, 'other', LengthContext(font_size=parent, width=parent,
+                                                     height=parent, dpi=self.dpi))
+        if fs is None or fs < 0:
+            return None
+        return fs
+
+    # -- conditions ----------------------------------------------------------------
+    def passes_conditions(self, el):
+        attrib = el.attrib
+        if 'requiredExtensions' in attrib:
+            return False
+        sl = attrib.get('systemLanguage')
+        if sl is not None:
+            ok = False
+            for tag in sl.split(','):
+                tag = tag.strip().lower()
+                if tag and tag.split('-')[0] in self.lang_primary:
+                    ok = True
+                    break
+            if not ok:
+                return False
+        return True
+
+    # -- transforms ------------------------------------------------------------------
+    def transform_of(self, el, own, ctx):
+        """The element's transform (with transform-origin); None if singular."""
+        s = own.get('transform')
+        if s is None:
+            s = el.get('transform')
+        if s is None:
+            return IDENTITY
+        t = parse_transform(s)
+        if t is None:
+            return IDENTITY
+        if t.determinant == 0:
+            return None
+        if not t.is_identity:
+            o = own.get('transform-origin')
+            if o is not None:
+                p = parse_transform_origin(o, ctx)
+                if p is not None and (p[0] or p[1]):
+                    t = Affine.translate(p[0], p[1]) @ t @ Affine.translate(-p[0], -p[1])
+        return t
+
+    # -- nodes -----------------------------------------------------------------------
+    def children(self, el, inh, own, st, out):
+        for ch in el:
+            if isinstance(ch.tag, str):
+                self.node(ch, inh, own, st, out)
+
+    def node(self, el, pinh, pown, st, out, name=None):
+        """Build ``el`` (rendered in the context of a parent with computed
+        style ``pinh``/``pown``) and append its nodes to ``out``."""
+        if name is None:
+            name = _local(el)
+            if name is None:
+                return
+        if name in _NOT_RENDERED:
+            return
+        if name not in _SHAPES and name not in _CONTAINERS:
+            if name == 'text':
+                self.warn('text', 'text is not supported yet and is not rendered')
+            elif name == 'image':
+                self.warn('image', 'image is not supported yet and is not rendered')
+            return
+        decl = self.styles.get(el)
+        if decl and decl.get('display', '').strip() == 'none':
+            return
+        if not self.passes_conditions(el):
+            return
+        if not self.tick():
+            return
+        inh, own = self.style(el, pinh, pown)
+        ctx = self.ctx(inh, st)
+        t = self.transform_of(el, own, ctx)
+        if t is None:
+            return
+        if name in _SHAPES:
+            self.shape(el, name, inh, own, ctx, t, st, out)
+        elif name == 'use':
+            self.use(el, inh, own, ctx, t, st, out)
+        elif name == 'svg':
+            self.nested_svg(el, inh, own, ctx, t, st, out)
+        else:
+            kids = []
+            sub = st.sub(t)
+            if name == 'switch':
+                for ch in el:
+                    cn = _local(ch) if isinstance(ch.tag, str) else None
+                    if cn in _SWITCH_CHOICES and self.passes_conditions(ch):
+                        self.node(ch, inh, own, sub, kids, cn)
+                        break
+            else:
+                self.children(el, inh, own, sub, kids)
+            out.extend(self.wrap(el, own, t, kids))
+
+    def effects(self, el, own):
+        """(opacity, blend mode, isolate, ok) of an element; ok False means
+        'do not render' (e.g. a broken clip-path reference)."""
+        opacity = _opacity(own.get('opacity'))
+        blend = own.get('mix-blend-mode', 'normal')
+        if blend not in _BLEND:
+            blend = 'normal'
+        isolate = own.get('isolation') == 'isolate'
+        ok = True
+        for prop, kind in (('clip-path', 'clip paths'), ('mask', 'masks'),
+                           ('filter', 'filters')):
+            v = own.get(prop)
+            if v is not None and v.strip() != 'none':
+                self.warn(prop, '%s are not supported yet and are ignored' % kind)
+        return opacity, blend, isolate, ok
+
+    def wrap(self, el, own, t, kids, clip=None, keep=False):
+        """Wrap ``kids`` in a Group when the element changes something (or
+        has an id); return the list of nodes to add to the parent."""
+        if not kids:
+            return []
+        opacity, blend, isolate, ok = self.effects(el, own)
+        if not ok or opacity <= 0.0:
+            return []
+        i = el.get('id') or ''
+        if (not keep and not i and t.is_identity and opacity >= 1.0 and clip is None
+                and blend == 'normal' and not isolate):
+            return kids
+        g = Group(id=i, transform=t, opacity=opacity, clip_path=clip, blend_mode=blend,
+                  isolate=isolate, children=kids)
+        self.note_id(el, g)
+        return [g]
+
+    def clip_rect(self, x, y, w, h):
+        rect = PathNode(path=rect_path(x, y, w, h), fill=Fill(SolidPaint(_BLACK)))
+        return ClipPath(root=Group(children=[rect]))
+
+    # -- structure ---------------------------------------------------------------------
+    def viewport_group(self, el, inh, own, t, st, out, x, y, w, h, vb_el, content_el,
+                       overflow_own):
+        """Common part of nested svg and symbol instances: content of
+        ``content_el`` in a viewport (x, y, w, h) with the viewBox of
+        ``vb_el``."""
+        if not (w > 0 and h > 0):
+            return
+        vb_attr = vb_el.get('viewBox')
+        inner = Affine.translate(x, y)
+        vw, vh = w, h
+        if vb_attr is not None:
+            vb = parse_viewbox(vb_attr)
+            if vb is None:
+                return
+            par = parse_preserve_aspect_ratio(vb_el.get('preserveAspectRatio', ''))
+            inner = viewbox_transform(vb, par, w, h, x, y)
+            vw, vh = vb[2], vb[3]
+        ov = overflow_own.get('overflow', 'hidden').strip()
+        clip = None if ov in ('visible', 'auto') else self.clip_rect(x, y, w, h)
+        kids = []
+        self.children(content_el, inh, own, st.sub(t @ inner, vw, vh), kids)
+        if not kids:
+            return
+        if clip is None:
+            out.extend(self.wrap(el, own, t @ inner, kids))
+        else:
+            if not inner.is_identity:
+                kids = [Group(transform=inner, children=kids)]
+            out.extend(self.wrap(el, own, t, kids, clip=clip))
+
+    def nested_svg(self, el, inh, own, ctx, t, st, out, use_size=None):
+        x = self.length(el, 'x', 'x', ctx)
+        y = self.length(el, 'y', 'y', ctx)
+        w, h = use_size if use_size is not None else (None, None)
+        if w is None:
+            w = self.length(el, 'width', 'x', ctx, None)
+            if w is None:
+                w = st.vw
+        if h is None:
+            h = self.length(el, 'height', 'y', ctx, None)
+            if h is None:
+                h = st.vh
+        self.viewport_group(el, inh, own, t, st, out, x, y, w, h, el, el, own)
+
+    def href_target(self, el):
+        href = el.get('href')
+        if href is None:
+            href = el.get(XLINK_HREF)
+        if href is None:
+            return None
+        href = href.strip()
+        if not href.startswith('#'):
+            if href:
+                self.warn('external', 'references to other documents are not supported')
+            return None
+        return self.by_id.get(href[1:])
+
+    def is_recursive(self, use):
+        """True when instantiating ``use`` would (directly or through other
+        ``use`` elements) instantiate itself, or nests deeper than the use
+        depth limit.  Memoized per element."""
+        memo = self._recursive
+        gray = 'gray'
+
+        def visit(u, depth):
+            v = memo.get(u)
+            if v is gray:
+                return True
+            if v is not None:
+                return v
+            if depth > self.max_use_depth:
+                return True
+            memo[u] = gray
+            res = False
+            tgt = self.href_target(u)
+            if tgt is not None:
+                anc = u
+                while anc is not None:
+                    if anc is tgt:
+                        res = True
+                        break
+                    anc = anc.getparent()
+                if not res:
+                    for u2 in tgt.iter(_P + 'use'):
+                        if visit(u2, depth + 1):
+                            res = True
+                            break
+            memo[u] = res
+            return res
+
+        return visit(use, 0)
+
+    def use(self, el, inh, own, ctx, t, st, out):
+        tgt = self.href_target(el)
+        if tgt is None:
+            return
+        if self.is_recursive(el):
+            self.warn('use-cycle', 'recursive use reference ignored (id %r)' % el.get('id'))
+            return
+        if st.use_depth >= self.max_use_depth:
+            self.warn('use-depth', 'use nesting deeper than %d ignored' % self.max_use_depth)
+            return
+        x = self.length(el, 'x', 'x', ctx)
+        y = self.length(el, 'y', 'y', ctx)
+        name = _local(tgt)
+        if name is None:
+            return
+        st2 = st.sub(use_depth=st.use_depth + 1)
+        kids = []
+        if name == 'symbol':
+            decl = self.styles.get(tgt)
+            if decl and decl.get('display', '').strip() == 'none':
+                return
+            sinh, sown = self.style(tgt, inh, own)
+            w = self.length(el, 'width', 'x', ctx, None)
+            h = self.length(el, 'height', 'y', ctx, None)
+            if w is None:
+                w = self.length(tgt, 'width', 'x', ctx, None)
+            if h is None:
+                h = self.length(tgt, 'height', 'y', ctx, None)
+            w = st.vw if w is None else w
+            h = st.vh if h is None else h
+            sym = []
+            self.viewport_group(tgt, sinh, sown, IDENTITY, st2.sub(t), sym, x, y, w, h,
+                                tgt, tgt, sown)
+            kids = sym
+            out.extend(self.wrap(el, own, t, kids))
+            return
+        move = Affine.translate(x, y) if (x or y) else IDENTITY
+        tt = t @ move
+        if name == 'svg':
+            w = self.length(el, 'width', 'x', ctx, None)
+            h = self.length(el, 'height', 'y', ctx, None)
+            decl = self.styles.get(tgt)
+            if decl and decl.get('display', '').strip() == 'none':
+                return
+            if not self.tick():
+                return
+            sinh, sown = self.style(tgt, inh, own)
+            sctx = self.ctx(sinh, st2)
+            stt = self.transform_of(tgt, sown, sctx)
+            if stt is None:
+                return
+            self.nested_svg(tgt, sinh, sown, sctx, stt, st2.sub(tt), kids, use_size=(w, h))
+        else:
+            self.node(tgt, inh, own, st2.sub(tt), kids, name)
+        out.extend(self.wrap(el, own, tt, kids))
+
+    # -- shapes -----------------------------------------------------------------------
+    def arc_tolerance(self, st, t):
+        s = (st.ctm @ t).max_scale()
+        tol = self.tolerance * _ARC_SAFETY
+        if s > 0 and math.isfinite(s):
+            tol = tol / s
+        return min(max(tol, 1e-9), 1e9)
+
+    def geometry(self, el, name, ctx, tol):
+        L = self.length
+        if name == 'path':
+            d = el.get('d')
+            if not d:
+                return None
+            return parse_path(d, tol, strict=False)
+        if name == 'rect':
+            w = L(el, 'width', 'x', ctx, None)
+            h = L(el, 'height', 'y', ctx, None)
+            if w is None or h is None or w <= 0 or h <= 0:
+                return None
+            rx = L(el, 'rx', 'x', ctx, None)
+            ry = L(el, 'ry', 'y', ctx, None)
+            if rx is not None and rx < 0:
+                rx = None
+            if ry is not None and ry < 0:
+                ry = None
+            return rect_path(L(el, 'x', 'x', ctx), L(el, 'y', 'y', ctx), w, h, rx, ry, tol)
+        if name == 'circle':
+            r = L(el, 'r', 'other', ctx, None)
+            if r is None or r <= 0:
+                return None
+            return circle_path(L(el, 'cx', 'x', ctx), L(el, 'cy', 'y', ctx), r, tol)
+        if name == 'ellipse':
+            rx = L(el, 'rx', 'x', ctx, None)
+            ry = L(el, 'ry', 'y', ctx, None)
+            # a negative radius is invalid: treated as auto (resvg)
+            rx = None if rx is not None and rx < 0 else rx
+            ry = None if ry is not None and ry < 0 else ry
+            if rx is None and ry is None:
+                return None
+            return ellipse_path(L(el, 'cx', 'x', ctx), L(el, 'cy', 'y', ctx), rx, ry, tol)
+        if name == 'line':
+            return line_path(L(el, 'x1', 'x', ctx), L(el, 'y1', 'y', ctx),
+                             L(el, 'x2', 'x', ctx), L(el, 'y2', 'y', ctx))
+        pts = el.get('points')
+        if not pts:
+            return None
+        return polyline_path(pts, closed=(name == 'polygon'))
+
+    def paint(self, value, inh, ctx):
+        p = parse_paint(value)
+        if p is None:
+            return None
+        kind = p.kind
+        if kind == 'color':
+            return SolidPaint(p.color)
+        if kind == 'current':
+            return SolidPaint(inh['_color'])
+        if kind == 'url':
+            tgt = self.by_id.get(p.url)
+            name = _local(tgt) if tgt is not None else None
+            if name in _PAINT_SERVERS:
+                server = self._resolve_paint_server(tgt, name, ctx)
+                if server is not _UNSUPPORTED:
+                    return server
+            fb = p.fallback
+            if fb is None:
+                return None
+            if fb.kind == 'color':
+                return SolidPaint(fb.color)
+            if fb.kind == 'current':
+                return SolidPaint(inh['_color'])
+            return None
+        return None     # none, context-fill / context-stroke outside markers
+
+    # -- paint servers --------------------------------------------------------------
+    def doc_style(self, el):
+        """(inherited, own) style of ``el`` along its *document* ancestors
+        (for gradients, stops and patterns).  Memoized."""
+        memo = self._doc_styles
+        r = memo.get(el)
+        if r is not None:
+            return r
+        chain = []
+        e = el
+        while e is not None and e not in memo:
+            chain.append(e)
+            e = e.getparent()
+        if e is None:
+            pinh, pown = self._inh0, {}
+        else:
+            pinh, pown = memo[e]
+        for e in reversed(chain):
+            pinh, pown = self.style(e, pinh, pown)
+            memo[e] = (pinh, pown)
+        return memo[el]
+
+    def href_chain(self, el, kinds):
+        """``el`` and the elements it references through ``href`` while they
+        are of one of the local names ``kinds`` (cycles cut)."""
+        chain = [el]
+        seen = {el}
+        while True:
+            nxt = self.href_target(chain[-1])
+            if nxt is None or nxt in seen or _local(nxt) not in kinds:
+                return chain
+            chain.append(nxt)
+            seen.add(nxt)
+
+    def _resolve_paint_server(self, el, name, ctx):
+        """A paint server element to a tree paint: LinearGradient,
+        RadialGradient, SolidPaint (a gradient with one stop), None (paints
+        nothing) or _UNSUPPORTED (use the fallback)."""
+        key = (el, ctx)
+        cache = self._servers
+        if key in cache:
+            return cache[key]
+        if name == 'pattern':
+            self.warn('pattern', 'patterns are not supported yet; their fallback is used')
+            r = _UNSUPPORTED
+        else:
+            r = self._gradient(el, name, ctx)
+        cache[key] = r
+        return r
+
+    def _gradient(self, el, name, ctx):
+        chain = self.href_chain(el, ('linearGradient', 'radialGradient'))
+
+        def attr(n, same_kind=False):
+            for e in chain:
+                if same_kind and e.tag != el.tag:
+                    continue
+                v = e.get(n)
+                if v is not None:
+                    return v
+            return None
+        stops_el = None
+        for e in chain:
+            ss = [c for c in e if isinstance(c.tag, str) and c.tag == _P + 'stop']
+            if ss:
+                stops_el = ss
+                break
+        if stops_el is None:
+            return None
+        stops = []
+        last = 0.0
+        for stop in stops_el:
+            off = _number_or_percent(stop.get('offset', '0'))
+            off = 0.0 if off is None else min(max(off, 0.0), 1.0)
+            off = max(off, last)
+            last = off
+            sinh, sown = self.doc_style(stop)
+            c = parse_color(sown.get('stop-color', 'black'))
+            if c is None:
+                c = _BLACK
+            elif c is CURRENT_COLOR:
+                c = sinh['_color']
+            a = _opacity(sown.get('stop-opacity'))
+            stops.append(GradientStop(off, (c[0], c[1], c[2], c[3] * a)))
+        if len(stops) == 1:
+            return SolidPaint(stops[0].color)
+        units = 'userSpaceOnUse' if attr('gradientUnits') == 'userSpaceOnUse' \
+            else 'objectBoundingBox'
+        if units == 'objectBoundingBox':
+            lctx = LengthContext(font_size=ctx.font_size, width=1.0, height=1.0, dpi=ctx.dpi)
+        else:
+            lctx = ctx
+
+        def length(n, axis, default):
+            v = attr(n, True)    # geometry comes only from gradients of the same kind
+            if v is None:
+                return default
+            r = parse_length(v, axis, lctx)
+            return default if r is None else r
+        tf = IDENTITY
+        ts = attr('gradientTransform')
+        if ts is not None:
+            t = parse_transform(ts)
+            if t is not None and t.determinant != 0:    # singular: ignored (resvg)
+                tf = t
+        spread = attr('spreadMethod')
+        if spread not in ('pad', 'reflect', 'repeat'):
+            spread = 'pad'
+        gid = el.get('id') or ''
+        if name == 'linearGradient':
+            x1 = length('x1', 'x', 0.0)
+            y1 = length('y1', 'y', 0.0)
+            x2 = length('x2', 'x', lctx.width if units == 'userSpaceOnUse' else 1.0)
+            y2 = length('y2', 'y', 0.0)
+            return LinearGradient(x1, y1, x2, y2, stops, units=units, transform=tf,
+                                  spread=spread, id=gid)
+        half_w = 0.5 * lctx.width if units == 'userSpaceOnUse' else 0.5
+        half_h = 0.5 * lctx.height if units == 'userSpaceOnUse' else 0.5
+        cx = length('cx', 'x', half_w)
+        cy = length('cy', 'y', half_h)
+        r = length('r', 'other', parse_length('50%', 'other', lctx))
+        fx = length('fx', 'x', cx)
+        fy = length('fy', 'y', cy)
+        fr = length('fr', 'other', 0.0)
+        if r < 0:       # invalid: resvg paints the last stop, as for r = 0
+            r = 0.0
+        if fr < 0:
+            fr = 0.0
+        return RadialGradient(cx, cy, r, fx, fy, stops, fr=fr, units=units, transform=tf,
+                              spread=spread, id=gid)
+
+    def shape(self, el, name, inh, own, ctx, t, st, out):
+        vis = inh.get('visibility', 'visible')
+        if vis == 'hidden' or vis == 'collapse':
+            return
+        try:
+            path = self.geometry(el, name, ctx, self.arc_tolerance(st, t))
+        except RasterError:
+            return
+        if path is None or len(path.verbs) == 0:
+            return
+        fill = stroke = None
+        fp = self.paint(inh.get('fill', 'black'), inh, ctx)
+        if fp is not None:
+            rule = inh.get('fill-rule', 'nonzero')
+            fill = Fill(fp, _opacity(inh.get('fill-opacity')),
+                        'evenodd' if rule == 'evenodd' else 'nonzero')
+        sv = inh.get('stroke')
+        if sv is not None:
+            sp = self.paint(sv, inh, ctx)
+            if sp is not None:
+                stroke = self.stroke(sp, inh, ctx)
+        if fill is None and stroke is None:
+            return
+        order = _paint_order(inh.get('paint-order'))
+        sr = inh.get('shape-rendering', 'auto')
+        node = PathNode(id=el.get('id') or '', path=path, fill=fill, stroke=stroke,
+                        paint_order=order,
+                        antialias=sr not in ('crispEdges', 'optimizeSpeed'))
+        self.note_id(el, node)
+        opacity, blend, isolate, ok = self.effects(el, own)
+        if not ok or opacity <= 0.0:
+            return
+        if t.is_identity and opacity >= 1.0 and blend == 'normal' and not isolate:
+            out.append(node)
+        else:
+            g = Group(id=node.id, transform=t, opacity=opacity, blend_mode=blend,
+                      isolate=isolate, children=[node])
+            if node.id:
+                self.tree_ids[node.id] = g
+            out.append(g)
+
+    def stroke(self, paint, inh, ctx):
+        w = 1.0
+        s = inh.get('stroke-width')
+        if s is not None:
+            v = parse_length(s, 'other', ctx)
+            if v is not None:
+                w = v
+        if not w > 0:
+            return None
+        join = inh.get('stroke-linejoin', 'miter')
+        cap = inh.get('stroke-linecap', 'butt')
+        ml = _parse_float(inh.get('stroke-miterlimit', '4'))
+        if ml is None or ml < 1:
+            ml = 4.0
+        dash = None
+        da = inh.get('stroke-dasharray')
+        if da is not None and da.strip() != 'none':
+            vals = parse_length_list(da, 'other', ctx)
+            if vals and all(v >= 0 for v in vals) and sum(vals) > 0:
+                if len(vals) % 2:
+                    vals = vals * 2
+                dash = tuple(vals)
+        off = 0.0
+        do = inh.get('stroke-dashoffset')
+        if do is not None:
+            v = parse_length(do, 'other', ctx)
+            if v is not None:
+                off = v
+        return Stroke(paint, width=w, opacity=_opacity(inh.get('stroke-opacity')),
+                      join=join if join in _JOINS else 'miter',
+                      cap=cap if cap in _CAPS else 'butt', miterlimit=ml, dash=dash,
+                      dash_offset=off)
+
+
+def _paint_order(v):
+    if v is None:
+        return ('fill', 'stroke', 'markers')
+    words = v.split()
+    if not words or words == ['normal']:
+        return ('fill', 'stroke', 'markers')
+    seen = []
+    for w in words:
+        if w not in ('fill', 'stroke', 'markers') or w in seen:
+            return ('fill', 'stroke', 'markers')
+        seen.append(w)
+    for w in ('fill', 'stroke', 'markers'):
+        if w not in seen:
+            seen.append(w)
+    return tuple(seen)
+
+
+def _initial_inherited(font_size):
+    inh = {k: p.initial for k, p in PROPERTIES.items() if p.inherited}
+    del inh['font-size']
+    del inh['color']
+    inh['_fs'] = float(font_size)
+    inh['_color'] = _BLACK
+    return inh
+
+
+def build_tree(root, *, base_dir=None, allow_files_under=None, resources_dir=None,
+               font_dirs=(), dpi=96, font_size=12, languages=('en',), tolerance=0.1,
+               max_elements=limits.MAX_ELEMENTS, max_use_depth=limits.MAX_USE_DEPTH,
+               extra_css=''):
+    """Resolve an SVG document into a render :class:`~raster.svg.tree.Tree`.
+
+    Parameters
+    ----------
+    root : lxml element
+        The root ``svg`` element (see :func:`raster.svg.document.load_document`).
+    base_dir, allow_files_under, resources_dir, font_dirs :
+        Where external resources may come from (accepted; images and fonts
+        are not used yet).
+    dpi : float
+        Pixels per inch for absolute units (``in``, ``mm``, ``pt`` ...).
+    font_size : float
+        The ``medium`` font size in px (for ``em``/``ex`` units).
+    languages : sequence of str
+        User languages for ``systemLanguage`` (``'en'`` matches ``en-US``
+        and ``en-GB``: primary subtags are compared).
+    tolerance : float
+        Flattening tolerance in device pixels at the natural size; arcs are
+        converted to cubics ten times finer (``tolerance / 10`` divided by
+        the element's scale), so a 10x zoom stays within ``tolerance``.
+    max_elements : int
+        Most nodes to build; beyond it a warning is issued and the rest of
+        the document is dropped (protects against ``use`` bombs).
+    max_use_depth : int
+        Deepest ``use`` nesting followed.
+    extra_css : str
+        A user stylesheet applied after the document's own.
+
+    Returns
+    -------
+    Tree
+        ``width``/``height``: natural size in px; ``root``: a Group whose
+        transform maps user space to document px; ``ids``: id -> first node
+        built for that id.
+
+    Raises
+    ------
+    raster.errors.SVGError
+        The root is not ``svg`` or the document size is zero, negative or
+        invalid.
+
+    Warns
+    -----
+    raster.errors.RasterWarning
+        Once per kind of unsupported or ignored content.
+    """
+    if _local(root) != 'svg':
+        raise SVGError('not an SVG document: root element is not <svg>')
+    if not (isinstance(tolerance, (int, float)) and math.isfinite(tolerance) and tolerance > 0):
+        raise SVGError('tolerance must be a positive number, got %r' % (tolerance,))
+    b = _Builder(root, dpi, font_size, languages, tolerance, max_elements, max_use_depth,
+                 extra_css)
+    inh0 = _initial_inherited(font_size)
+    inh, own = b.style(root, inh0, {})
+    vb_attr = root.get('viewBox')
+    vb = parse_viewbox(vb_attr) if vb_attr is not None else None
+    rw, rh = (vb[2], vb[3]) if vb is not None else (100.0, 100.0)
+    ctx = LengthContext(font_size=inh['_fs'], width=rw, height=rh, dpi=b.dpi)
+    ws, hs = root.get('width'), root.get('height')
+    auto = ws is None and hs is None and vb is None
+    w = parse_length(ws, 'x', ctx) if ws is not None else None
+    h = parse_length(hs, 'y', ctx) if hs is not None else None
+    if ws is not None and w is None or hs is not None and h is None:
+        raise SVGError('invalid document size: width=%r height=%r' % (ws, hs))
+    if w is None:
+        w = rw
+    if h is None:
+        h = rh
+    if not (w > 0 and h > 0 and math.isfinite(w) and math.isfinite(h)):
+        raise SVGError('invalid document size: width=%r height=%r' % (ws, hs))
+    t_root = b.transform_of(root, own, ctx)
+    vbt = IDENTITY
+    if vb is not None:
+        par = parse_preserve_aspect_ratio(root.get('preserveAspectRatio', ''))
+        vbt = viewbox_transform(vb, par, w, h)
+    kids = []
+    if t_root is not None and b.passes_conditions(root):
+        rt = t_root @ vbt
+        vw, vh = (vb[2], vb[3]) if vb is not None else (w, h)
+        st = _State(vw, vh, rt)
+        b.children(root, inh, own, st, kids)
+    else:
+        rt = vbt
+    opacity, blend, isolate, _ = b.effects(root, own)
+    group = Group(id=root.get('id') or '', transform=rt, opacity=opacity, children=kids)
+    if auto and kids:
+        box = _content_box(group)
+        if box is not None:
+            x0, y0, x1, y1 = box
+            w, h = x1 - x0, y1 - y0
+            group.transform = Affine.translate(-x0, -y0) @ rt
+    if group.id:
+        b.tree_ids.setdefault(group.id, group)
+    return Tree(width=float(w), height=float(h), root=group, ids=b.tree_ids)
+
+
+def _content_box(group):
+    """Approximate visual bounds (control boxes, half stroke widths) of a
+    group's content in its parent's coordinates, or None."""
+    from .tree import walk
+    import numpy as np
+    lo = np.array([np.inf, np.inf])
+    hi = -lo
+    for n, t in walk(group):
+        if isinstance(n, PathNode) and len(n.path.points):
+            pts = t.apply(n.path.points)
+            pad = 0.0
+            if n.stroke is not None:
+                pad = n.stroke.width * 0.5 * t.max_scale()
+            lo = np.minimum(lo, pts.min(0) - pad)
+            hi = np.maximum(hi, pts.max(0) + pad)
+    if not np.all(np.isfinite(lo)) or not np.all(hi > lo):
+        return None
+    return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])

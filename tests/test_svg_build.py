@@ -1,0 +1,481 @@
+"""Tests of raster.svg.build.build_tree: the resolved tree of small inline
+documents (inheritance, CSS, units, use/symbol/nested svg, switch,
+display/visibility, opacity, group dropping) and a sweep over the resvg
+suite's structure/shapes/painting documents."""
+
+import glob
+import math
+import os
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as hs
+
+from raster.errors import RasterWarning, SVGError
+from raster.svg.build import build_tree
+from raster.svg.document import load_document
+from raster.svg.tree import ClipPath, Group, PathNode, SolidPaint, walk
+from raster.transform import Affine
+
+SUITE = os.path.join(os.path.dirname(__file__), '..', '..', 'shared', 'resvg-suite', 'tests')
+GREEN = (0.0, 128 / 255, 0.0, 1.0)
+
+
+def tree_of(body, attrs='width="200" height="200"', **kw):
+    doc = ('<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
+           '%s>%s</svg>' % (attrs, body))
+    with warnings.catch_warnings():
+        warnings.simplefilter('ignore', RasterWarning)
+        return build_tree(load_document(doc.encode()), **kw)
+
+
+def paths(tree):
+    """[(PathNode, absolute transform)] in document order."""
+    return [(n, t) for n, t in walk(tree.root) if isinstance(n, PathNode)]
+
+
+def only_path(tree):
+    ps = paths(tree)
+    assert len(ps) == 1, ps
+    return ps[0]
+
+
+def box(node, t=Affine()):
+    pts = t.apply(node.path.points)
+    return tuple(np.round(np.concatenate([pts.min(0), pts.max(0)]), 6).tolist())
+
+
+# -- document size ------------------------------------------------------------
+
+def test_size_from_width_height_and_units():
+    t = tree_of('', 'width="1in" height="10mm"')
+    assert t.width == 96 and t.height == pytest.approx(960 / 25.4)
+
+
+def test_size_from_viewbox_and_percent():
+    t = tree_of('', 'viewBox="0 0 30 40"')
+    assert (t.width, t.height) == (30, 40)
+    t = tree_of('', 'width="50%" height="10" viewBox="0 0 30 40"')
+    assert (t.width, t.height) == (15, 10)
+
+
+def test_no_size_uses_content_bounds():
+    t = tree_of('<rect x="10" y="20" width="30" height="40"/>', '')
+    assert (t.width, t.height) == (30, 40)
+    n, m = only_path(t)
+    assert box(n, m) == (0, 0, 30, 40)
+
+
+@pytest.mark.parametrize('attrs', ['width="-50" height="10"', 'width="0" height="10"',
+                                   'width="abc" height="10"'])
+def test_invalid_size_raises(attrs):
+    with pytest.raises(SVGError, match='invalid document size'):
+        tree_of('', attrs)
+
+
+def test_root_preserve_aspect_ratio():
+    # viewBox 100x50 in 200x200: meet scales by 2 and centres vertically
+    t = tree_of('<rect width="100" height="50"/>',
+                'width="200" height="200" viewBox="0 0 100 50"')
+    assert box(*only_path(t)) == (0, 50, 200, 150)
+    t = tree_of('<rect width="100" height="50"/>',
+                'width="200" height="200" viewBox="0 0 100 50" preserveAspectRatio="xMinYMax meet"')
+    assert box(*only_path(t)) == (0, 100, 200, 200)
+    t = tree_of('<rect width="100" height="50"/>',
+                'width="200" height="200" viewBox="0 0 100 50" preserveAspectRatio="none"')
+    assert box(*only_path(t)) == (0, 0, 200, 200)
+
+
+# -- inheritance and CSS ---------------------------------------------------------
+
+def test_inheritance_and_inherit_keyword():
+    t = tree_of('<g fill="green" stroke="blue" opacity="0.5">'
+                '<g fill="red"><rect fill="inherit" width="1" height="1"/></g>'
+                '<rect opacity="inherit" width="1" height="1"/></g>')
+    (a, _), (b, _) = paths(t)
+    assert a.fill.paint.color == (1.0, 0.0, 0.0, 1.0)
+    assert a.stroke.paint.color == (0.0, 0.0, 1.0, 1.0)
+    assert b.fill.paint.color == GREEN
+    # opacity is not inherited, but inherit copies the parent's 0.5
+    groups = [n for n, _ in walk(t.root) if isinstance(n, Group) and n.opacity == 0.5]
+    assert len(groups) == 2
+
+
+def test_current_color_uses_own_color():
+    t = tree_of('<g color="red"><rect fill="currentColor" stroke="currentColor" '
+                'color="green" width="1" height="1"/>'
+                '<rect fill="currentColor" width="1" height="1"/></g>')
+    (a, _), (b, _) = paths(t)
+    assert a.fill.paint.color == GREEN and a.stroke.paint.color == GREEN
+    assert b.fill.paint.color == (1.0, 0.0, 0.0, 1.0)
+
+
+def test_css_precedence_end_to_end():
+    t = tree_of('<style>#r{fill:blue} rect{fill:red !important} .c{stroke:green}</style>'
+                '<rect id="r" class="c" fill="yellow" stroke="black" style="stroke-width:3"'
+                ' width="1" height="1"/>'
+                '<rect style="fill:lime !important" width="1" height="1"/>')
+    (a, _), (b, _) = paths(t)
+    assert a.fill.paint.color == (1.0, 0.0, 0.0, 1.0)
+    assert a.stroke.paint.color == GREEN and a.stroke.width == 3
+    assert b.fill.paint.color == (0.0, 1.0, 0.0, 1.0)
+
+
+def test_invalid_paint_falls_back_to_inherited():
+    t = tree_of('<g fill="green"><rect fill="not-a-colour" width="1" height="1"/></g>')
+    assert only_path(t)[0].fill.paint.color == GREEN
+
+
+# -- units --------------------------------------------------------------------------
+
+def test_units_em_ex_percent_mm():
+    t = tree_of('<g font-size="20"><rect x="1em" y="2ex" width="50%" height="10mm"/></g>',
+                'width="400" height="300"')
+    n, m = only_path(t)
+    assert box(n, m) == pytest.approx((20, 20, 220, 20 + 96 / 2.54))
+
+
+def test_font_size_relative_chain():
+    t = tree_of('<g font-size="10"><g font-size="200%"><g font-size="2em">'
+                '<circle r="1em"/></g></g></g>')
+    n, m = only_path(t)
+    assert box(n, m) == pytest.approx((-40, -40, 40, 40))
+
+
+def test_percent_uses_nearest_viewport():
+    t = tree_of('<svg x="0" y="0" width="50" height="50" viewBox="0 0 10 20">'
+                '<rect width="100%" height="100%"/></svg>', 'width="200" height="100"')
+    n, _ = only_path(t)
+    assert box(n) == (0, 0, 10, 20)
+
+
+def test_stroke_width_percent_and_dasharray():
+    t = tree_of('<rect width="1" height="1" stroke="red" stroke-width="10%" '
+                'stroke-dasharray="5, 10%, 1" stroke-dashoffset="1mm"/>',
+                'width="300" height="400" viewBox="0 0 300 400"')
+    s = only_path(t)[0].stroke
+    diag = math.sqrt((300 ** 2 + 400 ** 2) / 2)
+    assert s.width == pytest.approx(diag / 10)
+    assert s.dash == pytest.approx((5, diag / 10, 1, 5, diag / 10, 1))
+    assert s.dash_offset == pytest.approx(96 / 25.4)
+
+
+@pytest.mark.parametrize('da', ['none', '0 0', '5 -1', '5,,5', ''])
+def test_dasharray_solid_cases(da):
+    t = tree_of('<rect width="1" height="1" stroke="red" stroke-dasharray="%s"/>' % da)
+    assert only_path(t)[0].stroke.dash is None
+
+
+def test_stroke_properties():
+    t = tree_of('<line x2="10" stroke="red" stroke-linejoin="round" stroke-linecap="square" '
+                'stroke-miterlimit="0.5" stroke-opacity="2" fill-opacity="-1"/>'
+                '<line x2="10" stroke="red" stroke-width="0"/>')
+    n, _ = paths(t)[0]
+    s = n.stroke
+    assert (s.join, s.cap, s.miterlimit, s.opacity) == ('round', 'square', 4.0, 1.0)
+    assert n.fill.opacity == 0.0
+    assert paths(t)[1][0].stroke is None
+
+
+@pytest.mark.parametrize('po,expect', [
+    ('normal', ('fill', 'stroke', 'markers')),
+    ('stroke', ('stroke', 'fill', 'markers')),
+    ('markers fill', ('markers', 'fill', 'stroke')),
+    ('fill fill', ('fill', 'stroke', 'markers')),
+])
+def test_paint_order(po, expect):
+    t = tree_of('<rect width="1" height="1" paint-order="%s"/>' % po)
+    assert only_path(t)[0].paint_order == expect
+
+
+def test_shape_rendering_antialias():
+    t = tree_of('<g shape-rendering="crispEdges"><rect width="1" height="1"/>'
+                '<rect shape-rendering="geometricPrecision" width="1" height="1"/></g>'
+                '<rect shape-rendering="optimizeSpeed" width="1" height="1"/>')
+    assert [n.antialias for n, _ in paths(t)] == [False, True, False]
+
+
+def test_fill_rule_and_url_fallbacks():
+    t = tree_of('<rect fill="url(#missing) green" fill-rule="evenodd" width="1" height="1"/>'
+                '<rect fill="url(#missing)" stroke="red" width="1" height="1"/>')
+    (a, _), (b, _) = paths(t)
+    assert a.fill.paint.color == GREEN and a.fill.rule == 'evenodd'
+    assert b.fill is None
+
+
+# -- shapes -------------------------------------------------------------------------
+
+def test_shapes_geometry():
+    t = tree_of('<rect x="1" y="2" width="3" height="4"/>'
+                '<circle cx="10" cy="10" r="5"/>'
+                '<ellipse cx="10" cy="10" rx="5"/>'
+                '<line x1="1" y1="2" x2="3" y2="4" stroke="red"/>'
+                '<polygon points="0,0 4,0 4,4"/>'
+                '<path d="M 0 0 L 5 5 L oops 9"/>')
+    boxes = [box(n) for n, _ in paths(t)]
+    assert boxes[0] == (1, 2, 4, 6)
+    assert boxes[1] == pytest.approx((5, 5, 15, 15))
+    assert boxes[2] == pytest.approx((5, 5, 15, 15))      # ry auto = rx
+    assert boxes[3] == (1, 2, 3, 4)
+    assert boxes[4] == (0, 0, 4, 4)
+    assert boxes[5] == (0, 0, 5, 5)                       # prefix before the error
+
+
+@pytest.mark.parametrize('shape', ['<rect width="0" height="5"/>', '<rect width="5"/>',
+                                   '<circle r="-1"/>', '<ellipse/>', '<polygon points=""/>',
+                                   '<path d="L 1 1"/>', '<rect width="-5" height="5"/>'])
+def test_invalid_shapes_not_rendered(shape):
+    assert paths(tree_of(shape)) == []
+
+
+def test_circle_arc_tolerance():
+    # the circle's cubics stay within tolerance/10 of the true circle at natural size
+    t = tree_of('<circle cx="0" cy="0" r="1"/>', 'width="1000" height="1000" viewBox="-1 -1 2 2"',
+                tolerance=0.1)
+    n, m = only_path(t)
+    seg = n.path.segments()
+    tt = np.linspace(0, 1, 33)[:, None]
+    c = seg.ctrl[:, None]
+    pts = ((1 - tt) ** 3 * c[:, :, 0] + 3 * (1 - tt) ** 2 * tt * c[:, :, 1]
+           + 3 * (1 - tt) * tt ** 2 * c[:, :, 2] + tt ** 3 * c[:, :, 3])
+    err_px = np.abs(np.hypot(pts[..., 0], pts[..., 1]) - 1).max() * 500
+    assert err_px <= 0.01 + 1e-9
+
+
+# -- structure ----------------------------------------------------------------------
+
+def test_trivial_groups_dropped():
+    t = tree_of('<g><g><rect width="1" height="1"/></g></g>')
+    assert isinstance(t.root.children[0], PathNode)
+
+
+def test_group_with_id_or_transform_kept():
+    t = tree_of('<g id="a"><g transform="translate(5 6)"><rect width="1" height="1"/></g></g>')
+    g = t.root.children[0]
+    assert isinstance(g, Group) and g.id == 'a' and t.ids['a'] is g
+    assert g.children[0].transform == Affine.translate(5, 6)
+
+
+def test_opacity_wraps_shape():
+    t = tree_of('<rect id="r" opacity="50%" width="1" height="1"/>')
+    g = t.root.children[0]
+    assert isinstance(g, Group) and g.opacity == 0.5 and isinstance(g.children[0], PathNode)
+    assert t.ids['r'] is g
+
+
+def test_transform_origin():
+    t = tree_of('<rect width="10" height="10" transform="rotate(90)" transform-origin="5 5"/>')
+    n, m = only_path(t)
+    assert box(n, m) == pytest.approx((0, 0, 10, 10))
+
+
+def test_singular_transform_not_rendered():
+    assert paths(tree_of('<rect width="1" height="1" transform="scale(0)"/>')) == []
+
+
+def test_display_and_visibility():
+    t = tree_of('<g display="none"><rect id="a" width="1" height="1"/></g>'
+                '<g visibility="hidden"><rect id="b" width="1" height="1"/>'
+                '<rect id="c" visibility="visible" width="1" height="1"/></g>'
+                '<rect id="d" visibility="collapse" width="1" height="1"/>')
+    assert [n.id for n, _ in paths(t)] == ['c']
+
+
+def test_use_inherits_from_use_and_translates():
+    t = tree_of('<defs><rect id="r" width="10" height="10"/></defs>'
+                '<use href="#r" x="5" y="6" fill="green"/>')
+    n, m = only_path(t)
+    assert n.fill.paint.color == GREEN and box(n, m) == (5, 6, 15, 16)
+
+
+def test_use_href_precedence_and_display_none():
+    t = tree_of('<defs><rect id="a" width="1" height="1" fill="green"/>'
+                '<rect id="b" width="1" height="1" fill="red"/></defs>'
+                '<use href="#a" xlink:href="#b"/><use href="#a" display="none"/>')
+    assert [n.fill.paint.color for n, _ in paths(t)] == [GREEN]
+
+
+@pytest.mark.parametrize('body', [
+    '<use id="u1" href="#u2"/><use id="u2" href="#u1"/>',
+    '<g id="g"><use href="#g"/><rect width="1" height="1"/></g>',
+    '<use id="u" href="#u"/>',
+    '<use id="u1" href="#u2"><use id="u2" href="#u1"/></use>',
+])
+def test_use_cycles_refused(body):
+    doc = ('<svg xmlns="http://www.w3.org/2000/svg" width="10" height="10">%s</svg>' % body)
+    with pytest.warns(RasterWarning, match='recursive'):
+        t = build_tree(load_document(doc.encode()))
+    # only the non-recursive rect itself (if any) is drawn
+    assert len(paths(t)) <= 1
+
+
+def test_use_bomb_capped():
+    body = ['<defs><rect id="a0" width="1" height="1"/>']
+    for i in range(1, 12):
+        body.append('<g id="a%d">%s</g>' % (i, ''.join('<use href="#a%d"/>' % (i - 1)
+                                                      for _ in range(10))))
+    body.append('</defs><use href="#a11"/>')
+    doc = '<svg xmlns="http://www.w3.org/2000/svg" width="10" height="10">%s</svg>' % ''.join(body)
+    with pytest.warns(RasterWarning, match='more than 2000 nodes'):
+        t = build_tree(load_document(doc.encode()), max_elements=2000)
+    assert 0 < len(paths(t)) <= 2000
+
+
+def test_use_depth_limit():
+    body = ['<rect id="a0" width="1" height="1"/>']
+    body += ['<use id="a%d" href="#a%d"/>' % (i, i - 1) for i in range(1, 20)]
+    doc = '<svg xmlns="http://www.w3.org/2000/svg" width="10" height="10"><defs>%s</defs>' \
+          '<use href="#a19"/></svg>' % ''.join(body)
+    with pytest.warns(RasterWarning):
+        t = build_tree(load_document(doc.encode()), max_use_depth=5)
+    assert paths(t) == []
+    t = build_tree(load_document(doc.encode()), max_use_depth=64)
+    assert len(paths(t)) == 1
+
+
+def test_symbol_with_viewbox():
+    t = tree_of('<symbol id="s" viewBox="0 0 10 10"><rect width="10" height="10"/></symbol>'
+                '<use href="#s" x="20" y="30" width="100" height="50"/>')
+    n, m = only_path(t)
+    assert box(n, m) == (45, 30, 95, 80)
+    clips = [g.clip_path for g, _ in walk(t.root) if isinstance(g, Group) and g.clip_path]
+    assert len(clips) == 1 and box(clips[0].root.children[0]) == (20, 30, 120, 80)
+
+
+def test_symbol_not_rendered_directly():
+    assert paths(tree_of('<symbol><rect width="1" height="1"/></symbol>')) == []
+
+
+def test_nested_svg_viewport_and_clip():
+    t = tree_of('<svg x="10" y="20" width="50" height="60"><circle r="100"/></svg>'
+                '<svg x="10" y="20" width="50" height="60" overflow="visible">'
+                '<circle r="100"/></svg>')
+    groups = [g for g in t.root.children if isinstance(g, Group)]
+    assert isinstance(groups[0].clip_path, ClipPath)
+    assert box(groups[0].clip_path.root.children[0]) == (10, 20, 60, 80)
+    assert groups[1].clip_path is None
+    (_, m1), (_, m2) = paths(t)
+    assert m1.apply([[0.0, 0.0]]).tolist() == [[10, 20]] == m2.apply([[0.0, 0.0]]).tolist()
+
+
+def test_switch_and_system_language():
+    t = tree_of('<switch><rect id="a" requiredExtensions="x" width="1" height="1"/>'
+                '<foo id="f"/>'
+                '<rect id="b" systemLanguage="ru" width="1" height="1"/>'
+                '<rect id="c" systemLanguage="fr, en-GB" width="1" height="1"/>'
+                '<rect id="d" width="1" height="1"/></switch>')
+    assert [n.id for n, _ in paths(t)] == ['c']
+    t = tree_of('<switch><rect id="b" systemLanguage="ru" width="1" height="1"/>'
+                '<rect id="d" width="1" height="1"/></switch>', languages=('ru-RU',))
+    assert [n.id for n, _ in paths(t)] == ['b']
+
+
+def test_unknown_and_unsupported_elements_skipped():
+    with pytest.warns(RasterWarning, match='text'):
+        t = build_tree(load_document(
+            b'<svg xmlns="http://www.w3.org/2000/svg" width="5" height="5"><text>hi</text>'
+            b'<foo><rect width="1" height="1"/></foo><rect id="k" width="1" height="1"/></svg>'))
+    assert [n.id for n, _ in paths(t)] == ['k']
+
+
+# -- properties -------------------------------------------------------------------------
+
+@settings(max_examples=60, deadline=None)
+@given(tx=hs.floats(-100, 100), ty=hs.floats(-100, 100), s=hs.floats(0.1, 10))
+def test_transform_invariance(tx, ty, s):
+    """Wrapping content in <g transform> maps the resolved geometry by the
+    same affine (a rect and a circle)."""
+    inner = '<rect x="1" y="2" width="3" height="4"/><circle cx="5" cy="5" r="2"/>'
+    a = tree_of(inner)
+    b = tree_of('<g transform="translate(%r %r) scale(%r)">%s</g>' % (tx, ty, s, inner))
+    T = Affine.translate(tx, ty) @ Affine.scale(s)
+    for (na, ma), (nb, mb) in zip(paths(a), paths(b)):
+        pa = T.apply(ma.apply(na.path.points))
+        pb = mb.apply(nb.path.points)
+        if pa.shape == pb.shape:
+            assert np.allclose(pa, pb, atol=1e-6 * (1 + abs(tx) + abs(ty)))
+        else:   # a finer arc subdivision at a larger scale: compare the boxes
+            assert np.allclose(pa.min(0), pb.min(0), atol=1e-2 * s)
+
+
+# -- the resvg suite -------------------------------------------------------------------
+
+def _suite_files():
+    out = []
+    for area in ('structure', 'shapes', 'painting'):
+        out += sorted(glob.glob(os.path.join(SUITE, area, '**', '*.svg'), recursive=True))
+    return out
+
+
+@pytest.mark.skipif(not os.path.isdir(SUITE), reason='resvg suite not available')
+def test_resvg_suite_builds():
+    files = _suite_files()
+    assert len(files) > 500
+    errors = []
+    with warnings.catch_warnings():
+        warnings.simplefilter('ignore', RasterWarning)
+        for f in files:
+            try:
+                build_tree(load_document(f))
+            except SVGError:
+                pass     # refused documents (negative size, XML errors) are fine
+            except Exception as e:  # noqa: BLE001
+                errors.append('%s: %s: %s' % (os.path.relpath(f, SUITE), type(e).__name__, e))
+    assert errors == []
+
+
+# -- gradients (issue 4) ----------------------------------------------------------------
+
+def _fill_of(body, **kw):
+    return only_path(tree_of(body + '<rect width="10" height="10" fill="url(#g)"/>', **kw))[0].fill.paint
+
+
+def test_linear_gradient_defaults_and_stops():
+    from raster.svg.tree import LinearGradient
+    p = _fill_of('<linearGradient id="g"><stop offset="-1" stop-color="red"/>'
+                 '<stop offset="50%" stop-color="lime" stop-opacity="0.5"/>'
+                 '<stop offset="0.2" stop-color="blue"/><stop offset="7"/></linearGradient>')
+    assert isinstance(p, LinearGradient)
+    assert (p.x1, p.y1, p.x2, p.y2, p.units, p.spread) == (0, 0, 1, 0, 'objectBoundingBox', 'pad')
+    # offsets clamped to [0, 1] and made non-decreasing
+    assert [s.offset for s in p.stops] == [0, 0.5, 0.5, 1]
+    assert p.stops[1].color == (0, 1, 0, 0.5)
+    assert p.stops[3].color == (0, 0, 0, 1)
+
+
+def test_gradient_href_chain_and_cycle():
+    from raster.svg.tree import LinearGradient, RadialGradient
+    p = _fill_of('<radialGradient id="base" y2="1" spreadMethod="reflect" cx="0.2">'
+                 '<stop offset="0" stop-color="red"/><stop offset="1" stop-color="blue"/>'
+                 '</radialGradient>'
+                 '<linearGradient id="g" href="#mid" x2="0.7"/>'
+                 '<linearGradient id="mid" href="#base" y1="0.3" gradientTransform="rotate(90)"/>')
+    assert isinstance(p, LinearGradient)
+    # x2 own, y1 from the linear parent, y2 of the radial gradient ignored
+    assert (p.x1, p.y1, p.x2, p.y2) == (0, 0.3, 0.7, 0)
+    assert p.spread == 'reflect' and p.transform == Affine.rotate(90)
+    assert [s.color for s in p.stops] == [(1, 0, 0, 1), (0, 0, 1, 1)]
+    # a cycle of hrefs terminates; no stops anywhere paints nothing
+    t = tree_of('<linearGradient id="g" href="#h"/><linearGradient id="h" href="#g"/>'
+                '<rect width="1" height="1" fill="url(#g)" stroke="red"/>')
+    assert only_path(t)[0].fill is None
+    p = _fill_of('<radialGradient id="g" fx="0.1" r="-1"><stop offset="0"/>'
+                 '<stop offset="1" stop-color="red"/></radialGradient>')
+    assert isinstance(p, RadialGradient) and (p.cx, p.cy, p.fx, p.fy, p.r) == (0.5, 0.5, 0.1, 0.5, 0)
+
+
+def test_gradient_user_space_units_and_single_stop():
+    p = _fill_of('<linearGradient id="g" gradientUnits="userSpaceOnUse" x1="10%" x2="1in">'
+                 '<stop offset="0"/><stop offset="1"/></linearGradient>',
+                 attrs='width="200" height="100"')
+    assert (p.units, p.x1, p.x2) == ('userSpaceOnUse', 20, 96)
+    p = _fill_of('<linearGradient id="g"><stop offset="0.3" stop-color="currentColor" '
+                 'color="lime" style="stop-opacity:0.25"/></linearGradient>')
+    assert isinstance(p, SolidPaint) and p.color == (0, 1, 0, 0.25)
+
+
+def test_stop_current_color_inherits_from_document_parents():
+    p = _fill_of('<g color="blue"><linearGradient id="g"><stop stop-color="currentColor"/>'
+                 '<stop offset="1" stop-color="red"/></linearGradient></g>')
+    assert p.stops[0].color == (0, 0, 1, 1)

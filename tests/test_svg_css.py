@@ -1,0 +1,386 @@
+"""Tests of raster.svg.css (parser, selectors, cascade) and
+raster.svg.properties."""
+
+import glob
+import os
+
+import pytest
+from hypothesis import given, settings, strategies as st
+from lxml import etree
+
+from raster.errors import RasterError
+from raster.svg.css import (CSSError, Declaration, declared_styles, parse_declarations,
+                            parse_selector, parse_selector_list, parse_stylesheet, select)
+from raster.svg.properties import (PRESENTATION_ATTRIBUTES, PROPERTIES, SHORTHANDS,
+                                   initial_value, is_inherited)
+
+SVG = 'http://www.w3.org/2000/svg'
+HERE = os.path.dirname(__file__)
+SUITE = os.path.join(HERE, '..', '..', 'shared', 'resvg-suite', 'tests')
+CORPUS = os.path.join(HERE, '..', '..', 'shared', 'corpus')
+
+
+def doc(body, ns=True):
+    return etree.fromstring('<svg%s>%s</svg>' % (' xmlns="%s"' % SVG if ns else '', body))
+
+
+def by_id(root, i):
+    return root.xpath('//*[@id=$i]', i=i)[0]
+
+
+def style_of(body, i='r', extra_css=''):
+    root = doc(body)
+    return declared_styles(root, extra_css)[by_id(root, i)]
+
+
+# --------------------------------------------------------------------------
+# properties table
+# --------------------------------------------------------------------------
+
+def test_property_table():
+    inherited = {'fill', 'fill-opacity', 'fill-rule', 'stroke', 'stroke-width',
+                 'stroke-linecap', 'stroke-linejoin', 'stroke-miterlimit',
+                 'stroke-dasharray', 'stroke-dashoffset', 'stroke-opacity', 'color',
+                 'visibility', 'paint-order', 'shape-rendering', 'clip-rule',
+                 'font-family', 'font-size', 'font-weight', 'font-style',
+                 'text-anchor', 'letter-spacing', 'word-spacing', 'writing-mode',
+                 'direction', 'marker-start', 'marker-mid', 'marker-end',
+                 'image-rendering', 'dominant-baseline'}
+    not_inherited = {'opacity', 'display', 'clip-path', 'mask', 'filter',
+                     'mix-blend-mode', 'isolation', 'stop-color', 'stop-opacity',
+                     'overflow', 'mask-type', 'transform', 'transform-origin',
+                     'baseline-shift', 'alignment-baseline', 'text-decoration'}
+    for n in inherited:
+        assert is_inherited(n), n
+    for n in not_inherited:
+        assert n in PROPERTIES and not is_inherited(n), n
+    assert initial_value('fill') == 'black'
+    assert initial_value('stroke') == 'none'
+    assert initial_value('stroke-width') == '1'
+    assert initial_value('stroke-miterlimit') == '4'
+    assert initial_value('nope') is None and not is_inherited('nope')
+    assert 'transform' not in PRESENTATION_ATTRIBUTES
+    assert 'marker' not in PRESENTATION_ATTRIBUTES  # resvg: attribute ignored
+    assert {'fill', 'stroke', 'opacity', 'mix-blend-mode', 'transform-origin'} \
+        <= PRESENTATION_ATTRIBUTES <= set(PROPERTIES)
+    assert SHORTHANDS['marker'] == ('marker-start', 'marker-mid', 'marker-end')
+
+
+# --------------------------------------------------------------------------
+# declarations and stylesheets
+# --------------------------------------------------------------------------
+
+def test_declarations():
+    D = Declaration
+    assert parse_declarations('fill:red') == (D('fill', 'red', False),)
+    assert parse_declarations(' FILL : red ; stroke:blue;') == (
+        D('fill', 'red', False), D('stroke', 'blue', False))
+    assert parse_declarations('fill: red ! important') == (D('fill', 'red', True),)
+    assert parse_declarations('fill: red !IMPORTANT') == (D('fill', 'red', True),)
+    assert parse_declarations('/*text*/fill:green/*text*/') == (D('fill', 'green', False),)
+    assert parse_declarations('fill:;stroke;:red;1x:2;fill: a ! b') == ()
+    assert parse_declarations("font-family: 'a;b', serif; fill: url(#a;b)") == (
+        D('font-family', "'a;b', serif", False), D('fill', 'url(#a;b)', False))
+    with pytest.raises(RasterError):
+        parse_declarations(None)
+
+
+def test_marker_shorthand():
+    assert parse_declarations('marker: url(#m) !important') == tuple(
+        Declaration(n, 'url(#m)', True) for n in ('marker-start', 'marker-mid', 'marker-end'))
+
+
+def test_font_shorthand():
+    d = dict((x.name, x.value) for x in parse_declarations("font: 50px 'Noto Sans'"))
+    assert d == {'font-style': 'normal', 'font-variant': 'normal', 'font-weight': 'normal',
+                 'font-stretch': 'normal', 'font-size': '50px', 'line-height': 'normal',
+                 'font-family': "'Noto Sans'"}
+    d = dict((x.name, x.value) for x in parse_declarations(
+        'font: italic bold condensed 12pt/1.5 Arial, sans-serif'))
+    assert d['font-style'] == 'italic' and d['font-weight'] == 'bold'
+    assert d['font-stretch'] == 'condensed' and d['font-size'] == '12pt'
+    assert d['line-height'] == '1.5' and d['font-family'] == 'Arial, sans-serif'
+    d = dict((x.name, x.value) for x in parse_declarations('font: small-caps 700 large serif'))
+    assert (d['font-variant'], d['font-weight'], d['font-size']) == ('small-caps', '700', 'large')
+    for bad in ('font: bold', 'font: 12px', 'font: foo 12px serif', 'font: caption'):
+        assert parse_declarations(bad) == (), bad
+
+
+def test_stylesheet_parsing():
+    css = """
+    /* comment { } */ <!--
+    @import url(foo.css);
+    @media screen { rect { fill: red } @supports (x) { a { b: c } } }
+    @font-face { font-family: X; src: url(x.ttf) }
+    rect, .a { fill: green; stroke: blue !important }
+    a $ b, rect { fill: red }
+    .1a { fill: red }
+    circle::before, :hover { fill: red }
+    g { fill: "a}b" ; stroke: c }
+    -->
+    """
+    rules = parse_stylesheet(css)
+    texts = [r.selector.text for r in rules]
+    assert texts == ['rect', '.a', 'circle::before', ':hover', 'g']
+    assert rules[0].order == rules[1].order < rules[2].order
+    assert rules[0].declarations == (Declaration('fill', 'green', False),
+                                     Declaration('stroke', 'blue', True))
+    assert rules[-1].declarations == (Declaration('fill', '"a}b"', False),
+                                      Declaration('stroke', 'c', False))
+    # unterminated input never hangs and keeps what parsed
+    assert [r.selector.text for r in parse_stylesheet('a { fill: red } b { fill')] == ['a', 'b']
+    assert parse_stylesheet('@media x { a { fill: red }') == []
+    assert parse_stylesheet('}}} a { fill: red }')[0].selector.text == 'a'
+    # an unclosed '[' swallows the rest of the sheet, as CSS Syntax says
+    assert [r.selector.text for r in parse_stylesheet('a{b:c} x[ {fill:red} y {b:c}')] == ['a']
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.text(alphabet='ab{}();:,@"\'/*!#.[]=>+~ \n', max_size=60))
+def test_stylesheet_never_crashes(text):
+    rules = parse_stylesheet(text)
+    for r in rules:
+        assert isinstance(r.declarations, tuple)
+
+
+def test_selector_errors():
+    for bad in ('', 'a >', '> a', 'a,', '[x', '.', '#', 'a:', 'a::', 'a $ b', 'a:not(b',
+                '[x=1]', '.1a', 'a|b'):
+        with pytest.raises(CSSError):
+            parse_selector_list(bad)
+
+
+@pytest.mark.parametrize('sel, spec', [
+    ('*', (0, 0, 0)), ('rect', (0, 0, 1)), ('.a', (0, 1, 0)), ('#a', (1, 0, 0)),
+    ('[x]', (0, 1, 0)), ('g > rect.a[x="1"]:first-child', (0, 3, 2)),
+    ('#a #b .c d', (2, 1, 1)), ('* + *', (0, 0, 0)), ('a:hover', (0, 1, 1)),
+])
+def test_specificity(sel, spec):
+    assert parse_selector(sel).specificity == spec
+
+
+# --------------------------------------------------------------------------
+# matching
+# --------------------------------------------------------------------------
+
+TREE = """
+<g id="g1" class="layer top">
+  <rect id="r1" class="a b" x="1" lang="en-US" data="foo bar" href="#x.svg"/>
+  <!-- a comment between siblings -->
+  <circle id="c1"/>
+  <rect id="r2" class="b"/>
+  <g id="g2"><rect id="r3"/><text id="t1">hi</text></g>
+</g>
+<rect id="r4"/>
+"""
+
+
+@pytest.mark.parametrize('sel, ids', [
+    ('rect', ['r1', 'r2', 'r3', 'r4']),
+    ('*', ['root', 'g1', 'r1', 'c1', 'r2', 'g2', 'r3', 't1', 'r4']),
+    ('.b', ['r1', 'r2']),
+    ('.a.b', ['r1']),
+    ('rect.b:first-child', ['r1']),
+    ('#c1', ['c1']),
+    ('rect#c1', []),
+    ('[x]', ['r1']),
+    ('[x="1"]', ['r1']), ("[x='2']", []),
+    ('[data~=bar]', ['r1']), ('[data~=ba]', []),
+    ('[lang|=en]', ['r1']), ('[lang|=en-US]', ['r1']), ('[lang|=e]', []),
+    ('[href^="#x"]', ['r1']), ('[href$=".svg"]', ['r1']), ('[href*="x.s"]', ['r1']),
+    ('[href^=""]', []), ('[lang="EN-us" i]', ['r1']), ('[lang="EN-us"]', []),
+    ('svg rect', ['r1', 'r2', 'r3', 'r4']),
+    ('svg > rect', ['r4']),
+    ('g > rect', ['r1', 'r2', 'r3']),
+    ('g g rect', ['r3']),
+    ('.layer > g > rect', ['r3']),
+    ('rect + circle', ['c1']),        # the comment between is not an element
+    ('rect + rect', []),
+    ('circle + rect', ['r2']),
+    ('rect ~ rect', ['r2']),
+    ('rect ~ *', ['c1', 'r2', 'g2', 't1']),
+    ('g ~ rect', ['r4']),
+    (':first-child', ['root', 'g1', 'r1', 'r3']),  # Selectors 4: root too
+    ('rect:first-child + circle ~ g text', ['t1']),
+    ('rect:hover', []), ('rect:nth-child(1)', []), ('rect::before', []),
+    ('circle, #r4', ['c1', 'r4']),
+])
+def test_selector_matching(sel, ids):
+    root = doc(TREE.replace('\n', ''))
+    root.set('id', 'root')
+    assert [e.get('id') for e in select(root, sel)] == ids
+
+
+def test_matching_without_namespace_and_foreign_elements():
+    root = doc('<rect id="r"/>', ns=False)
+    assert [e.get('id') for e in select(root, 'svg > rect')] == ['r']
+    root = etree.fromstring('<svg xmlns="%s" xmlns:x="urn:x"><x:rect id="f"/>'
+                            '<rect id="r"/></svg>' % SVG)
+    # type selectors match local names (no namespace prefixes in selectors)
+    assert [e.get('id') for e in select(root, 'rect')] == ['f', 'r']
+
+
+# --------------------------------------------------------------------------
+# cascade
+# --------------------------------------------------------------------------
+
+def test_cascade_order():
+    body = """<style>
+        #r { fill: red }
+        rect { fill: blue; stroke: red; opacity: 0.5 }
+        .c { stroke: green }
+        rect { opacity: 0.25 }
+    </style>
+    <rect id="r" class="c" fill="yellow" stroke-width="3" width="5"/>"""
+    # id beats type whatever the order; class beats type; later type rule wins
+    assert style_of(body) == {'fill': 'red', 'stroke': 'green', 'opacity': '0.25',
+                              'stroke-width': '3'}
+
+
+def test_specificity_tie_resolved_by_order():
+    assert style_of('<style>.a{fill:red} .b{fill:green}</style><rect id="r" class="b a"/>') \
+        == {'fill': 'green'}
+    assert style_of('<style>.b{fill:green} .a{fill:red}</style><rect id="r" class="b a"/>') \
+        == {'fill': 'red'}
+    # two style elements chain in document order
+    assert style_of('<style>rect{fill:red}</style><rect id="r"/><style>rect{fill:green}</style>') \
+        == {'fill': 'green'}
+
+
+def test_style_attribute_and_important():
+    # resvg structure/style/resolve-order: style attribute beats stylesheet
+    assert style_of('<style>.fil {fill:blue}</style>'
+                    '<rect id="r" style="fill:green" class="fil"/>') == {'fill': 'green'}
+    # resvg structure/style/important: !important beats later normal rule
+    assert style_of('<style>#r { fill: green !important; } #r { fill: red; }</style>'
+                    '<rect id="r"/>') == {'fill': 'green'}
+    # stylesheet !important beats the style attribute's normal declaration
+    assert style_of('<style>rect { fill: green !important }</style>'
+                    '<rect id="r" style="fill: red"/>') == {'fill': 'green'}
+    # the style attribute's !important beats everything
+    assert style_of('<style>#r { fill: red !important }</style>'
+                    '<rect id="r" style="fill: green !important; stroke: red"/>') \
+        == {'fill': 'green', 'stroke': 'red'}
+    # among !important stylesheet declarations, specificity still counts
+    assert style_of('<style>#r { fill: green !important } rect { fill: red !important }'
+                    '</style><rect id="r"/>') == {'fill': 'green'}
+
+
+def test_cascade_filters_and_keeps():
+    # resvg non-presentational-attribute: `height` in CSS is ignored; CSS
+    # transform is kept (resvg structure/style/transform)
+    s = style_of('<style>#r { height:160px; transform: scale(2) }</style>'
+                 '<rect id="r" transform="scale(3)" fill=" inherit " marker="url(#m)"'
+                 ' style="bogus: 1; stroke: inherit"/>')
+    assert s == {'transform': 'scale(2)', 'fill': 'inherit', 'stroke': 'inherit'}
+
+
+def test_style_type_and_cdata():
+    assert style_of('<style type="no-a-css">.fil { fill: red; }</style>'
+                    '<rect id="r" class="fil" fill="green"/>') == {'fill': 'green'}
+    assert style_of('<style type="text/css"><![CDATA[ .fil { fill: green; } ]]></style>'
+                    '<rect id="r" class="fil"/>') == {'fill': 'green'}
+    assert style_of('<style type="">rect { fill: green }</style><rect id="r"/>') \
+        == {'fill': 'green'}
+
+
+def test_extra_css_and_marker_in_css():
+    assert style_of('<style>rect{fill:red}</style><rect id="r"/>',
+                    extra_css='rect{fill:green}') == {'fill': 'green'}
+    s = style_of('<style>#r { marker:url(#marker1) }</style><path id="r"/>')
+    assert s == {'marker-start': 'url(#marker1)', 'marker-mid': 'url(#marker1)',
+                 'marker-end': 'url(#marker1)'}
+
+
+def test_every_element_gets_an_entry():
+    root = doc(TREE.replace('\n', ''))
+    styles = declared_styles(root)
+    elements = [e for e in root.iter() if isinstance(e.tag, str)]
+    assert list(styles) == elements
+    assert all(v == {} for v in styles.values())
+
+
+def test_index_matches_brute_force():
+    # The rule index (id/class/type/universal) must give exactly the result
+    # of testing every rule against every element.
+    import random
+    rng = random.Random(7)
+    tags, classes = ['rect', 'g', 'circle'], ['a', 'b', 'c']
+    sels = ['rect', '.a', '.b.c', '#e3', '*', 'g > rect', 'g .a', '.a + .b', 'rect ~ g',
+            '[id$="1"]', 'g:first-child', '#e5 *', 'circle.c', 'g g .a', 'rect ~ g .b',
+            '.a ~ * ~ g', 'g > g rect', '* g ~ .c *']
+    for trial in range(20):
+        parts, n = [], 0
+
+        def gen(depth):
+            nonlocal n
+            out = ''
+            for _ in range(rng.randint(1, 4)):
+                n += 1
+                tag = rng.choice(tags)
+                cls = ' '.join(rng.sample(classes, rng.randint(0, 2)))
+                kids = gen(depth + 1) if depth < 3 and rng.random() < 0.4 else ''
+                out += '<%s id="e%d" class="%s">%s</%s>' % (tag, n, cls, kids, tag)
+            return out
+        chosen = rng.sample(sels, 5)
+        css = ''.join('%s { stroke-width: %d }' % (s, i) for i, s in enumerate(chosen))
+        root = doc('<style>%s</style>%s' % (css, gen(0)))
+        styles = declared_styles(root)
+        rules = parse_stylesheet(css)
+        for el, d in styles.items():
+            best = None
+            for r in rules:
+                # no memo here: plain backtracking is the reference
+                if r.selector._match(el, 0, None):
+                    key = (r.selector.specificity, r.order)
+                    if best is None or key > best[0]:
+                        best = (key, r.declarations[0].value)
+            assert d.get('stroke-width') == (best[1] if best else None)
+
+
+@pytest.mark.skipif(not os.path.isdir(SUITE), reason='resvg suite not present')
+def test_resvg_style_tests_parse():
+    files = sorted(glob.glob(os.path.join(SUITE, 'structure', 'style', '*.svg')))
+    assert len(files) >= 14
+    n_rules = 0
+    for path in files:
+        root = etree.parse(path).getroot()
+        for st_el in root.iter('{%s}style' % SVG):
+            n_rules += len(parse_stylesheet(''.join(st_el.itertext())))
+        styles = declared_styles(root)
+        assert len(styles) == sum(1 for e in root.iter() if isinstance(e.tag, str))
+        rect = by_id(root, 'rect1')
+        name = os.path.basename(path)
+        expect = {
+            'attribute-selector.svg': 'green', 'class-selector.svg': 'green',
+            'combined-selectors.svg': 'green', 'important.svg': 'green',
+            'invalid-type.svg': 'green', 'resolve-order.svg': 'green',
+            'style-inside-CDATA.svg': 'green', 'type-selector.svg': 'green',
+            'universal-selector.svg': 'green', 'unresolved-class-selector.svg': 'green',
+            'non-presentational-attribute.svg': 'red', 'transform.svg': 'green',
+        }.get(name)
+        if expect is not None:
+            assert styles[rect].get('fill') == expect, name
+    assert n_rules >= 11
+
+
+@pytest.mark.skipif(not os.path.isdir(CORPUS), reason='corpus not present')
+def test_corpus_documents_cascade():
+    for path in sorted(glob.glob(os.path.join(CORPUS, '*.svg')))[:6]:
+        root = etree.parse(path, etree.XMLParser(huge_tree=True)).getroot()
+        styles = declared_styles(root)
+        for d in styles.values():
+            assert set(d) <= set(PROPERTIES)
+
+
+def test_deep_tree_matching_is_not_exponential():
+    # Without the matching cache, 'x g g ... *' backtracks over C(200, 10)
+    # ancestor combinations and never finishes.
+    depth = 200
+    root = etree.fromstring('<svg><style>x g g g g g g g g g g * { fill: red }'
+                            ' g ~ g ~ g g { stroke: red }</style>'
+                            + '<g>' * depth + '<rect/>' + '</g>' * depth + '</svg>')
+    styles = declared_styles(root)
+    assert all(d == {} for d in styles.values())
+    assert select(root, 'x g g g g g g g g g *') == []
+    assert len(select(root, 'svg g g g g g g g g g rect')) == 1
