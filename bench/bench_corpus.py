@@ -68,7 +68,8 @@ WARMUP_SVG = (b'<svg xmlns="http://www.w3.org/2000/svg" width="8" height="8">'
 # --------------------------------------------------------------------------
 
 def _make_renderer(name):
-    """Return fn(svg_path, width_or_None) -> (png_bytes, seconds_before_encode_or_None)."""
+    """Return fn(svg_path, width_or_None) -> (png_bytes, render_times), where
+    render_times is None or (wall, cpu) seconds spent before the PNG encode."""
     if name == 'raster':
         import io
 
@@ -78,13 +79,15 @@ def _make_renderer(name):
         from raster.canvas import DEFAULT_COMPRESS_LEVEL
 
         def fn(path, width):
+            c0 = time.process_time()
             t0 = time.perf_counter()
             arr = raster.render(path, width)
             t1 = time.perf_counter()
+            c1 = time.process_time()
             buf = io.BytesIO()
             Image.fromarray(arr, 'RGBA').save(buf, format='PNG',
                                               compress_level=DEFAULT_COMPRESS_LEVEL)
-            return buf.getvalue(), t1 - t0
+            return buf.getvalue(), (t1 - t0, c1 - c0)
         return fn
     if name == 'resvg':
         import re
@@ -197,7 +200,7 @@ def worker(spec):
             if note:
                 res['note'] = note
         base_kb, reset = _rss_baseline()
-        walls, cpus, renders = [], [], []
+        walls, cpus, renders, renders_cpu = [], [], [], []
         png = None
         t_start = time.perf_counter()
         for _ in range(spec['repeat']):
@@ -207,11 +210,13 @@ def worker(spec):
             walls.append(time.perf_counter() - t0)
             cpus.append(time.process_time() - c0)
             if t_render is not None:
-                renders.append(t_render)
+                renders.append(t_render[0])
+                renders_cpu.append(t_render[1])
             if time.perf_counter() - t_start > spec['soft_limit']:
                 break                     # slow file: keep the repeats we have
         peak_kb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
         res.update(wall=walls, cpu=cpus, render_only=renders or None,
+                   render_only_cpu=renders_cpu or None,
                    peak_mb=max(0, peak_kb - base_kb) / 1024.0, hwm_reset=reset,
                    base_mb=base_kb / 1024.0, size=_png_size(png), png_bytes=len(png))
         if spec.get('save'):
@@ -308,14 +313,18 @@ def geomean(xs):
     return math.exp(sum(map(math.log, xs)) / len(xs)) if xs else None
 
 
-def build_tables(results, files, widths, renderers, repeat):
-    """Markdown-ish lines: one table per width plus geometric means."""
+def build_tables(results, files, widths, renderers, repeat, metric='wall'):
+    """Markdown lines: one table per width plus geometric means.  ``metric``
+    is 'wall' (wall-clock time) or 'cpu' (the worker's CPU time, which load
+    from other processes disturbs less)."""
+    ro_key = 'render_only' if metric == 'wall' else 'render_only_cpu'
     lines = []
     summary = {}
     for width in widths:
         wkey = width or 'natural'
         lines.append('')
-        lines.append('### Width: %s' % ('natural size' if width is None else '%d px' % width))
+        lines.append('### Width: %s (%s time)' % ('natural size' if width is None else '%d px' % width,
+                                                  'wall-clock' if metric == 'wall' else 'CPU'))
         lines.append('')
         head = ['file', 'size (px)']
         for r in renderers:
@@ -345,7 +354,7 @@ def build_tables(results, files, widths, renderers, repeat):
                     if r == 'raster':
                         row.append('error')
                     continue
-                t[r] = _med(c['wall'])
+                t[r] = _med(c[metric])
                 mark = ''
                 if c.get('note'):
                     mark = '*'
@@ -354,7 +363,7 @@ def build_tables(results, files, widths, renderers, repeat):
                     mark += ' (%d run%s)' % (len(c['wall']), 's' if len(c['wall']) > 1 else '')
                 row.append(_ms(t[r]) + mark)
                 if r == 'raster':
-                    ro = _med(c.get('render_only') or [])
+                    ro = _med(c.get(ro_key) or [])
                     row.append(_ms(ro) if ro is not None else '-')
             for peer in ('resvg', 'cairosvg'):
                 if 'raster' in renderers and peer in renderers:
@@ -372,18 +381,18 @@ def build_tables(results, files, widths, renderers, repeat):
             g = geomean(qs)
             if g is not None:
                 summary[(wkey, peer)] = (g, len(qs))
-                lines.append('Geometric mean raster/%s at %s: **%.2f** over %d files.'
-                             % (peer, wkey, g, len(qs)))
+                lines.append('Geometric mean raster/%s at %s (%s time): **%.2f** over %d files.'
+                             % (peer, wkey, metric, g, len(qs)))
         # the project target: no file slower than 2x the faster peer
         if 'raster' in renderers:
             over = []
             for svg in files:
                 name = os.path.basename(svg)
                 c = results.get((name, wkey, 'raster'), {})
-                peers = [_med(results[(name, wkey, p)]['wall']) for p in ('resvg', 'cairosvg')
-                         if 'wall' in results.get((name, wkey, p), {})]
-                if 'wall' in c and peers and _med(c['wall']) > 2 * min(peers):
-                    over.append('%s (%.1fx)' % (name, _med(c['wall']) / min(peers)))
+                peers = [_med(results[(name, wkey, p)][metric]) for p in ('resvg', 'cairosvg')
+                         if metric in results.get((name, wkey, p), {})]
+                if metric in c and peers and _med(c[metric]) > 2 * min(peers):
+                    over.append('%s (%.1fx)' % (name, _med(c[metric]) / min(peers)))
             if over:
                 lines.append('Files where raster is more than 2x slower than the faster peer: '
                              + ', '.join(over) + '.')
@@ -411,6 +420,10 @@ def main(argv=None):
     ap.add_argument('--markdown', metavar='OUT.md', help='write the tables as markdown')
     ap.add_argument('--json', metavar='OUT.json', help='write all raw measurements')
     ap.add_argument('--save', metavar='DIR', help='keep each PNG as DIR/<file>_<width>_<renderer>.png')
+    ap.add_argument('--metric', choices=('wall', 'cpu', 'both'), default='both',
+                    help='time shown in the tables: wall-clock, worker CPU time, or both')
+    ap.add_argument('--retable', metavar='IN.json',
+                    help='no rendering: rebuild the tables from a --json file of an earlier run')
     ap.add_argument('--worker', help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.worker:
@@ -431,6 +444,17 @@ def main(argv=None):
             widths.append(int(w))
         else:
             ap.error('bad width %r' % w)
+    if args.retable:
+        with open(args.retable) as f:
+            old = json.load(f)
+        results = {(r['file'], r['width'], r['renderer']): r for r in old['results']}
+        files = sorted({k[0] for k in results})
+        present = {k[1] for k in results}
+        widths = [w for w in widths if (w or 'natural') in present]
+        renderers = [r for r in renderers if r in {k[2] for k in results}]
+        _report(args, argv, old['machine'], results, files, widths, renderers,
+                old.get('repeat', args.repeat))
+        return 0
     files = sorted(glob.glob(os.path.join(args.corpus, '*.svg')))
     if args.files:
         pats = [p.strip() for p in args.files.split(',') if p.strip()]
@@ -468,26 +492,35 @@ def main(argv=None):
                             msg += '  render-only %s ms' % _ms(_med(res['render_only']))
                     print('%-40s %-8s %-9s %s' % (name, wkey, r, msg), flush=True)
     print('Total benchmark time %.0f s' % (time.perf_counter() - t_all))
-    lines, summary = build_tables(results, files, widths, renderers, args.repeat)
-    print('\n'.join(lines))
-    if args.markdown:
-        with open(args.markdown, 'w') as f:
-            f.write('## Corpus benchmark\n\n')
-            f.write('Command: `python bench/bench_corpus.py %s`\n\n'
-                    % ' '.join(a for a in (argv if argv is not None else sys.argv[1:])))
-            f.write('Machine (%s UTC):\n\n' % time.strftime('%Y-%m-%d %H:%M', time.gmtime()))
-            for line in info:
-                f.write('- %s\n' % line)
-            f.write('\nTimes are medians of %d wall-clock renders to PNG bytes (PNG encode '
-                    'included); peak MB = peak RSS growth of the worker process over an idle '
-                    'interpreter with the same imports.\n' % args.repeat)
-            f.write('\n'.join(lines) + '\n')
     if args.json:
         with open(args.json, 'w') as f:
             json.dump({'machine': info, 'repeat': args.repeat,
                        'results': [dict(v, file=k[0], width=k[1], renderer=k[2])
                                    for k, v in results.items()]}, f, indent=1)
+    _report(args, argv, info, results, files, widths, renderers, args.repeat)
     return 0
+
+
+def _report(args, argv, info, results, files, widths, renderers, repeat):
+    metrics = ('wall', 'cpu') if args.metric == 'both' else (args.metric,)
+    lines = []
+    for metric in metrics:
+        lines += build_tables(results, files, widths, renderers, repeat, metric)[0]
+    print('\n'.join(lines))
+    if args.markdown:
+        with open(args.markdown, 'w') as f:
+            f.write('## Corpus benchmark\n\n')
+            f.write('Command: `python bench/bench_corpus.py %s`\n\n'
+                    % ' '.join(argv if argv is not None else sys.argv[1:]))
+            f.write('Machine (tables written %s UTC):\n\n'
+                    % time.strftime('%Y-%m-%d %H:%M', time.gmtime()))
+            for line in info:
+                f.write('- %s\n' % line)
+            f.write('\nTimes are medians of %d renders to PNG bytes (PNG encode included), '
+                    'wall-clock and CPU time of the worker process; peak MB = peak RSS of the '
+                    'worker during the renders minus its RSS before them (after the imports '
+                    'and a warm-up render).\n' % repeat)
+            f.write('\n'.join(lines) + '\n')
 
 
 if __name__ == '__main__':

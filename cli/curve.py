@@ -26,6 +26,7 @@ Usage and input errors print one line on stderr and exit with status 2.
 import argparse
 import json
 import math
+import os
 import re
 import sys
 
@@ -210,7 +211,7 @@ def sample_params(args, curve):
     if args.at is not None and args.step is not None:
         raise UsageError('use either --at or --step')
     if args.at is not None:
-        return np.array(parse_numbers(args.at, 'parameter'))
+        return np.array(parse_numbers(args.at, 'parameter')) + 0.0     # no -0
     if args.step is not None:
         h = _number(args.step, 'step')
         if h <= 0:
@@ -381,6 +382,11 @@ def main(argv=None):
     input)."""
     from raster.errors import RasterError
     parser = build_parser()
+    if argv is None:
+        argv = sys.argv[1:]
+    # values such as "-1,2 3,4" or "-0.5,1" must not be taken for options:
+    # a leading space keeps argparse from seeing a dash (parsing strips it)
+    argv = [' ' + a if re.match(r'-[\d.]', a) else a for a in argv]
     try:
         args = parser.parse_args(argv)
         curve = build_curve(args)
@@ -400,6 +406,10 @@ def main(argv=None):
         msg = str(e).splitlines()[0] if str(e) else type(e).__name__
         print('curve: error: %s' % msg, file=sys.stderr)
         return 2
+    except BrokenPipeError:             # e.g. piped into head: stop quietly
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 1
     except OSError as e:
         print('curve: error: %s' % e, file=sys.stderr)
         return 1

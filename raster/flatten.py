@@ -49,9 +49,9 @@ numbers, i.e. into pieces of roughly equal error just under the tolerance
 (a uniform split into ``ceil(sqrt(e / tolerance))`` pieces when that
 estimate is useless, e.g. along a straight line that folds back).  The new
 pieces are tested again in the next round.  Rounds are a Python loop; each
-round is vectorized over all pieces of all curves.  Measured point counts
-are within ~1.15x (tolerance 0.01) to ~1.3x (tolerance 2, a few pieces per
-curve) of a greedy near-minimal reference.
+round is vectorized over all pieces of all curves.  On 40 random cubics
+the total piece count measured 1.05x (tolerance 0.01), 1.09x (0.25) and
+1.10x (2) that of a greedy near-minimal reference on 3000 curve samples.
 
 Conventions: coordinates are float64 user units (x right, y down);
 ``tolerance`` is in the same units (device pixels after a transform).

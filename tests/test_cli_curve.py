@@ -171,5 +171,14 @@ def test_console_script_exit_status():
     assert proc.stdout == ''
 
 
+def test_negative_numbers_are_values_not_options(capsys):
+    code, out, err = run(capsys, 'bspline', '-1,2 3,-4 5,5', '--degree', '1', '--knots',
+                         '-1,-1,0,1,1', '--at', '-0.5,0.5', '--json')
+    obj = json.loads(out)
+    assert code == 0 and err == ''
+    assert obj['domain'] == [-1, 1]
+    np.testing.assert_allclose([p['point'] for p in obj['points']], [[1, -1], [4, 0.5]])
+
+
 def test_parse_points_separators():
     np.testing.assert_array_equal(parse_points(' 1,2;3,4\n5,6 '), [[1, 2], [3, 4], [5, 6]])

@@ -463,6 +463,8 @@ def test_viewbox_transform_default_and_errors():
     aff_close(viewbox_transform((0, 0, 100, 50), None, 200, 200), (2, 0, 0, 2, 0, 50))
     with pytest.raises(SVGError):
         viewbox_transform((0, 0, 0, 50), None, 200, 200)
+    with pytest.raises(SVGError):
+        viewbox_transform((0, 0, 10, 50), ('xMidYmid', 'meet'), 200, 200)
 
 
 @settings(max_examples=100, deadline=None)

@@ -122,6 +122,9 @@ class Hermite(HermiteSpline):
     """
 
     def __init__(self, p0, p1, t0, t1):
+        sizes = {np.size(p0), np.size(p1), np.size(t0), np.size(t1)}
+        if len(sizes) != 1:
+            raise CurveError('end points and tangents must all have the same dimension')
         pts = as_points([np.ravel(p0), np.ravel(p1)], 2, 'end points', dims=None)
         tans = as_points([np.ravel(t0), np.ravel(t1)], 2, 'tangents', dims=None)
         if tans.shape != pts.shape:

@@ -43,14 +43,15 @@ import warnings
 from .. import limits
 from ..errors import PathError, RasterError, RasterWarning, SVGError
 from ..path import Path
+from ..bbox import bbox as exact_bbox
 from ..svgpath import (circle_path, ellipse_path, line_path, parse_path, polyline_path,
                        rect_path)
 from ..transform import IDENTITY, Affine
 from .css import declared_styles
 from .properties import INHERITED, PROPERTIES
-from .tree import (ClipPath, Fill, GradientStop, Group, LinearGradient, PathNode, RadialGradient,
-                   SolidPaint, Stroke, Tree)
-from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length,
+from .tree import (ClipPath, Fill, GradientStop, Group, LinearGradient, Mask, PathNode,
+                   RadialGradient, SolidPaint, Stroke, Tree)
+from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length, parse_url,
                      parse_length_list, parse_paint, parse_preserve_aspect_ratio,
                      parse_transform, parse_transform_origin, parse_viewbox, viewbox_transform)
 
@@ -81,6 +82,7 @@ _BLEND = frozenset(['normal', 'multiply', 'screen', 'overlay', 'darken', 'lighte
                     'color-dodge', 'color-burn', 'hard-light', 'soft-light', 'difference',
                     'exclusion', 'hue', 'saturation', 'color', 'luminosity'])
 _BLACK = (0.0, 0.0, 0.0, 1.0)
+_EMPTY = object()         # a clip path or mask that leaves nothing visible
 _UNSUPPORTED = object()   # a paint server we cannot paint yet: use the fallback
 _ARC_SAFETY = 0.1   # arcs are made 10x finer than `tolerance` so zooming in stays smooth
 
@@ -126,15 +128,16 @@ def _parse_float(s):
 class _State:
     """Per-subtree context: viewport size for percentages, the CTM at the
     document's natural size (for arc tolerances), the active ``use`` depth."""
-    __slots__ = ('vw', 'vh', 'ctm', 'use_depth')
+    __slots__ = ('vw', 'vh', 'ctm', 'use_depth', 'mode')
 
-    def __init__(self, vw, vh, ctm, use_depth=0):
+    def __init__(self, vw, vh, ctm, use_depth=0, mode=None):
         self.vw, self.vh, self.ctm, self.use_depth = vw, vh, ctm, use_depth
+        self.mode = mode        # None, or 'clip' inside a clipPath
 
     def sub(self, transform=None, vw=None, vh=None, use_depth=None):
         return _State(self.vw if vw is None else vw, self.vh if vh is None else vh,
                       self.ctm if transform is None else self.ctm @ transform,
-                      self.use_depth if use_depth is None else use_depth)
+                      self.use_depth if use_depth is None else use_depth, self.mode)
 
 
 class _Builder:
@@ -160,6 +163,7 @@ class _Builder:
         self.warned = set()
         self.tree_ids = {}
         self._recursive = {}
+        self._active_refs = set()
         self._doc_styles = {}
         self._servers = {}
         self._inh0 = _initial_inherited(font_size)
@@ -344,40 +348,200 @@ class _Builder:
                         break
             else:
                 self.children(el, inh, own, sub, kids)
-            out.extend(self.wrap(el, own, t, kids))
+            out.extend(self.wrap(el, own, t, kids, st))
 
-    def effects(self, el, own):
-        """(opacity, blend mode, isolate, ok) of an element; ok False means
-        'do not render' (e.g. a broken clip-path reference)."""
+    def effects(self, el, own, st, kids):
+        """Group effects of an element whose content is ``kids`` (nodes in
+        its user space): ``(opacity, blend, isolate, clip_path, mask, ok)``;
+        ``ok`` False means the element is not rendered (an empty clip path,
+        an object-bounding-box clip or mask of an empty box)."""
+        if not own:
+            return 1.0, 'normal', False, None, None, True
+        clip = mask = None
+        v = own.get('clip-path')
+        if v is not None and v.strip() != 'none':
+            clip = self.reference(v, 'clipPath', 'clip-path')
+            if clip is not None:
+                clip = self.build_clip(clip, kids, st)
+                if clip is _EMPTY:
+                    return 1.0, 'normal', False, None, None, False
+        if st.mode == 'clip':
+            return 1.0, 'normal', False, clip, None, True
+        v = own.get('mask')
+        if v is not None and v.strip() != 'none':
+            mask = self.reference(v, 'mask', 'mask')
+            if mask is not None:
+                mask = self.build_mask(mask, kids, st)
+                if mask is _EMPTY:
+                    return 1.0, 'normal', False, None, None, False
+        v = own.get('filter')
+        if v is not None and v.strip() != 'none':
+            self.warn('filter', 'filters are not supported yet and are ignored')
         opacity = _opacity(own.get('opacity'))
         blend = own.get('mix-blend-mode', 'normal')
         if blend not in _BLEND:
             blend = 'normal'
         isolate = own.get('isolation') == 'isolate'
-        ok = True
-        for prop, kind in (('clip-path', 'clip paths'), ('mask', 'masks'),
-                           ('filter', 'filters')):
-            v = own.get(prop)
-            if v is not None and v.strip() != 'none':
-                self.warn(prop, '%s are not supported yet and are ignored' % kind)
-        return opacity, blend, isolate, ok
+        return opacity, blend, isolate, clip, mask, True
 
-    def wrap(self, el, own, t, kids, clip=None, keep=False):
+    def reference(self, value, kind, prop):
+        """The element of local name ``kind`` referenced by a ``url(#id)``
+        property value, or None (missing or wrong references are ignored,
+        as resvg does)."""
+        u = parse_url(value)
+        if u is None:
+            self.warn(prop + '-syntax', 'unsupported %s value %r ignored' % (prop, value))
+            return None
+        tgt = self.by_id.get(u[0])
+        if tgt is None or _local(tgt) != kind:
+            return None
+        return tgt
+
+    def wrap(self, el, own, t, kids, st, clip=None, keep=False):
         """Wrap ``kids`` in a Group when the element changes something (or
-        has an id); return the list of nodes to add to the parent."""
+        has an id); return the list of nodes to add to the parent.
+        ``clip`` is a viewport clip (nested svg, symbol)."""
         if not kids:
             return []
-        opacity, blend, isolate, ok = self.effects(el, own)
+        opacity, blend, isolate, cp, mask, ok = self.effects(el, own, st, kids)
         if not ok or opacity <= 0.0:
             return []
+        if clip is not None and cp is not None:
+            kids = [Group(clip_path=clip, children=kids)]
+            clip = None
+        clip = cp if cp is not None else clip
         i = el.get('id') or ''
         if (not keep and not i and t.is_identity and opacity >= 1.0 and clip is None
-                and blend == 'normal' and not isolate):
+                and mask is None and blend == 'normal' and not isolate):
             return kids
-        g = Group(id=i, transform=t, opacity=opacity, clip_path=clip, blend_mode=blend,
-                  isolate=isolate, children=kids)
+        g = Group(id=i, transform=t, opacity=opacity, clip_path=clip, mask=mask,
+                  blend_mode=blend, isolate=isolate, children=kids)
         self.note_id(el, g)
         return [g]
+
+    # -- clip paths and masks -------------------------------------------------------
+    def object_box(self, kids):
+        """(x, y, w, h) fill bounding box of nodes in their parent's user
+        space, or None when there is no geometry."""
+        lo = [math.inf, math.inf]
+        hi = [-math.inf, -math.inf]
+        stack = [(n, IDENTITY) for n in kids]
+        while stack:
+            n, t = stack.pop()
+            if isinstance(n, Group):
+                t2 = t @ n.transform
+                stack.extend((c, t2) for c in n.children)
+            elif isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
+                try:
+                    x0, y0, x1, y1 = exact_bbox(n.path, t)
+                except RasterError:
+                    continue
+                lo = [min(lo[0], x0), min(lo[1], y0)]
+                hi = [max(hi[0], x1), max(hi[1], y1)]
+        if not math.isfinite(lo[0]):
+            return None
+        return (lo[0], lo[1], hi[0] - lo[0], hi[1] - lo[1])
+
+    def build_clip(self, cp, kids, st):
+        """A clipPath element to a ClipPath for content ``kids``; None when
+        the reference is ignored (recursion), _EMPTY when nothing is left."""
+        if cp in self._active_refs:
+            self.warn('clip-recursive', 'recursive clip-path reference ignored')
+            return None
+        self._active_refs.add(cp)
+        try:
+            inh, own = self.doc_style(cp)
+            ctx = self.ctx(inh, st)
+            t = self.transform_of(cp, own, ctx)
+            if t is None:
+                return _EMPTY
+            if cp.get('clipPathUnits') == 'objectBoundingBox':
+                box = self.object_box(kids)
+                if box is None or box[2] <= 0 or box[3] <= 0:
+                    return _EMPTY
+                t = t @ Affine(box[2], 0, 0, box[3], box[0], box[1])
+            sub = _State(st.vw, st.vh, st.ctm @ t, st.use_depth, 'clip')
+            nodes = []
+            for ch in cp:
+                name = _local(ch) if isinstance(ch.tag, str) else None
+                if name in _SHAPES:
+                    self.node(ch, inh, own, sub, nodes, name)
+                elif name == 'use':
+                    tgt = self.href_target(ch)
+                    if tgt is not None and _local(tgt) in _SHAPES:
+                        self.node(ch, inh, own, sub, nodes, name)
+                elif name == 'text':
+                    self.warn('text', 'text is not supported yet and is not rendered')
+            nested = None
+            v = own.get('clip-path')
+            if v is not None and v.strip() != 'none':
+                ref = self.reference(v, 'clipPath', 'clip-path')
+                if ref is not None:
+                    nested = self.build_clip(ref, kids, st)
+                    if nested is _EMPTY:
+                        return _EMPTY
+            if not nodes:
+                return _EMPTY
+            return ClipPath(root=Group(children=nodes), transform=t, clip_path=nested,
+                            id=cp.get('id') or '')
+        finally:
+            self._active_refs.discard(cp)
+
+    def build_mask(self, mk, kids, st):
+        """A mask element to a Mask for content ``kids`` (None: reference
+        ignored; _EMPTY: nothing is visible)."""
+        if mk in self._active_refs:
+            self.warn('mask-recursive', 'recursive mask reference ignored')
+            return None
+        self._active_refs.add(mk)
+        try:
+            inh, own = self.doc_style(mk)
+            box = None
+            obb = mk.get('maskUnits') != 'userSpaceOnUse'
+            cobb = mk.get('maskContentUnits') == 'objectBoundingBox'
+            if obb or cobb:
+                box = self.object_box(kids)
+                if box is None or box[2] <= 0 or box[3] <= 0:
+                    return _EMPTY
+            if obb:
+                lctx = LengthContext(font_size=inh['_fs'], width=1.0, height=1.0, dpi=self.dpi)
+            else:
+                lctx = self.ctx(inh, st)
+            x = self.length(mk, 'x', 'x', lctx, None)
+            y = self.length(mk, 'y', 'y', lctx, None)
+            w = self.length(mk, 'width', 'x', lctx, None)
+            h = self.length(mk, 'height', 'y', lctx, None)
+            x = parse_length('-10%', 'x', lctx) if x is None else x
+            y = parse_length('-10%', 'y', lctx) if y is None else y
+            w = parse_length('120%', 'x', lctx) if w is None else w
+            h = parse_length('120%', 'y', lctx) if h is None else h
+            if obb:
+                x, y, w, h = box[0] + x * box[2], box[1] + y * box[3], w * box[2], h * box[3]
+            if not (w > 0 and h > 0):
+                return _EMPTY
+            ct = IDENTITY
+            if cobb:
+                ct = Affine(box[2], 0, 0, box[3], box[0], box[1])
+            sub = _State(st.vw, st.vh, st.ctm @ ct, st.use_depth, None)
+            nodes = []
+            self.children(mk, inh, own, sub, nodes)
+            if not ct.is_identity and nodes:
+                nodes = [Group(transform=ct, children=nodes)]
+            nested = None
+            v = own.get('mask')
+            if v is not None and v.strip() != 'none':
+                ref = self.reference(v, 'mask', 'mask')
+                if ref is not None:
+                    nested = self.build_mask(ref, kids, st)
+                    if nested is _EMPTY:
+                        return _EMPTY
+            if not nodes:
+                return _EMPTY
+            kind = 'alpha' if own.get('mask-type') == 'alpha' else 'luminance'
+            return Mask(rect=(x, y, w, h), root=Group(children=nodes), kind=kind, mask=nested,
+                        id=mk.get('id') or '')
+        finally:
+            self._active_refs.discard(mk)
 
     def clip_rect(self, x, y, w, h):
         rect = PathNode(path=rect_path(x, y, w, h), fill=Fill(SolidPaint(_BLACK)))
@@ -408,11 +572,11 @@ class _Builder:
         if not kids:
             return
         if clip is None:
-            out.extend(self.wrap(el, own, t @ inner, kids))
+            out.extend(self.wrap(el, own, t @ inner, kids, st))
         else:
             if not inner.is_identity:
                 kids = [Group(transform=inner, children=kids)]
-            out.extend(self.wrap(el, own, t, kids, clip=clip))
+            out.extend(self.wrap(el, own, t, kids, st, clip=clip))
 
     def nested_svg(self, el, inh, own, ctx, t, st, out, use_size=None):
         x = self.length(el, 'x', 'x', ctx)
@@ -510,7 +674,7 @@ class _Builder:
             self.viewport_group(tgt, sinh, sown, IDENTITY, st2.sub(t), sym, x, y, w, h,
                                 tgt, tgt, sown)
             kids = sym
-            out.extend(self.wrap(el, own, t, kids))
+            out.extend(self.wrap(el, own, t, kids, st))
             return
         move = Affine.translate(x, y) if (x or y) else IDENTITY
         tt = t @ move
@@ -530,7 +694,7 @@ class _Builder:
             self.nested_svg(tgt, sinh, sown, sctx, stt, st2.sub(tt), kids, use_size=(w, h))
         else:
             self.node(tgt, inh, own, st2.sub(tt), kids, name)
-        out.extend(self.wrap(el, own, tt, kids))
+        out.extend(self.wrap(el, own, tt, kids, st))
 
     # -- shapes -----------------------------------------------------------------------
     def arc_tolerance(self, st, t):
@@ -749,32 +913,37 @@ class _Builder:
         if path is None or len(path.verbs) == 0:
             return
         fill = stroke = None
-        fp = self.paint(inh.get('fill', 'black'), inh, ctx)
-        if fp is not None:
-            rule = inh.get('fill-rule', 'nonzero')
-            fill = Fill(fp, _opacity(inh.get('fill-opacity')),
-                        'evenodd' if rule == 'evenodd' else 'nonzero')
-        sv = inh.get('stroke')
-        if sv is not None:
-            sp = self.paint(sv, inh, ctx)
-            if sp is not None:
-                stroke = self.stroke(sp, inh, ctx)
-        if fill is None and stroke is None:
-            return
+        if st.mode == 'clip':
+            rule = inh.get('clip-rule', 'nonzero')
+            fill = Fill(SolidPaint(_BLACK), 1.0, 'evenodd' if rule == 'evenodd' else 'nonzero')
+        else:
+            fp = self.paint(inh.get('fill', 'black'), inh, ctx)
+            if fp is not None:
+                rule = inh.get('fill-rule', 'nonzero')
+                fill = Fill(fp, _opacity(inh.get('fill-opacity')),
+                            'evenodd' if rule == 'evenodd' else 'nonzero')
+            sv = inh.get('stroke')
+            if sv is not None:
+                sp = self.paint(sv, inh, ctx)
+                if sp is not None:
+                    stroke = self.stroke(sp, inh, ctx)
+            if fill is None and stroke is None:
+                return
         order = _paint_order(inh.get('paint-order'))
         sr = inh.get('shape-rendering', 'auto')
         node = PathNode(id=el.get('id') or '', path=path, fill=fill, stroke=stroke,
                         paint_order=order,
                         antialias=sr not in ('crispEdges', 'optimizeSpeed'))
         self.note_id(el, node)
-        opacity, blend, isolate, ok = self.effects(el, own)
+        opacity, blend, isolate, clip, mask, ok = self.effects(el, own, st.sub(t), [node])
         if not ok or opacity <= 0.0:
             return
-        if t.is_identity and opacity >= 1.0 and blend == 'normal' and not isolate:
+        if (t.is_identity and opacity >= 1.0 and blend == 'normal' and not isolate
+                and clip is None and mask is None):
             out.append(node)
         else:
-            g = Group(id=node.id, transform=t, opacity=opacity, blend_mode=blend,
-                      isolate=isolate, children=[node])
+            g = Group(id=node.id, transform=t, opacity=opacity, clip_path=clip, mask=mask,
+                      blend_mode=blend, isolate=isolate, children=[node])
             if node.id:
                 self.tree_ids[node.id] = g
             out.append(g)
@@ -919,15 +1088,16 @@ def build_tree(root, *, base_dir=None, allow_files_under=None, resources_dir=Non
         par = parse_preserve_aspect_ratio(root.get('preserveAspectRatio', ''))
         vbt = viewbox_transform(vb, par, w, h)
     kids = []
+    rt = vbt if t_root is None else t_root @ vbt
+    vw, vh = (vb[2], vb[3]) if vb is not None else (w, h)
+    st = _State(vw, vh, rt)
     if t_root is not None and b.passes_conditions(root):
-        rt = t_root @ vbt
-        vw, vh = (vb[2], vb[3]) if vb is not None else (w, h)
-        st = _State(vw, vh, rt)
         b.children(root, inh, own, st, kids)
-    else:
-        rt = vbt
-    opacity, blend, isolate, _ = b.effects(root, own)
-    group = Group(id=root.get('id') or '', transform=rt, opacity=opacity, children=kids)
+    opacity, blend, isolate, clip, mask, ok = b.effects(root, own, st, kids)
+    if not ok:
+        kids = []
+    group = Group(id=root.get('id') or '', transform=rt, opacity=opacity, clip_path=clip,
+                  mask=mask, blend_mode=blend, isolate=isolate, children=kids)
     if auto and kids:
         box = _content_box(group)
         if box is not None:

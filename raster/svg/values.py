@@ -1017,6 +1017,11 @@ def viewbox_transform(viewbox, par, width, height, x=0.0, y=0.0):
     -------
     Affine
 
+    Raises
+    ------
+    ValueSyntaxError
+        For a viewBox size that is not positive or an unknown `par`.
+
     >>> viewbox_transform((0, 0, 100, 50), ('xMidYMid', 'meet'), 200, 200)
     Affine(2, 0, 0, 2, 0, 50)
     """
@@ -1024,6 +1029,8 @@ def viewbox_transform(viewbox, par, width, height, x=0.0, y=0.0):
     if not (vw > 0 and vh > 0):
         raise ValueSyntaxError('viewBox width and height must be positive')
     align, mos = par if par is not None else DEFAULT_ASPECT_RATIO
+    if align not in _ALIGNS or mos not in ('meet', 'slice'):
+        raise ValueSyntaxError('bad preserveAspectRatio %r' % (par,))
     sx, sy = width / vw, height / vh
     if align == 'none':
         return Affine(sx, 0, 0, sy, x - minx * sx, y - miny * sy)
