@@ -45,3 +45,12 @@ def __getattr__(name):
 
 def __dir__():
     return sorted(set(globals()) | set(_LAZY))
+
+
+# `flatten` and `bbox` name both a public function and its submodule.  Bind
+# the functions now: importing a submodule binds the package attribute to the
+# module, which would otherwise shadow the lazy name (raster.flatten(path)
+# failing after `from raster.flatten import ...`).  Both modules need only
+# numpy.
+from .flatten import flatten, Polylines  # noqa: E402,F401
+from .bbox import bbox  # noqa: E402,F401

@@ -99,6 +99,10 @@ def _check_tolerance(tolerance):
     return tol
 
 
+# binomial coefficients C(n, k) for the degrees used by blossoming
+_COMB = [[math.comb(n, k) for k in range(n + 1)] for n in range(64)]
+
+
 def _blossom(P, a, b):
     """Control points of the pieces ``[a, b]`` of the curves ``P``.
 
@@ -113,26 +117,29 @@ def _blossom(P, a, b):
     -------
     (m, n+1, D) float64 ndarray
         ``Q_i`` is the blossom ``P(a, .., a, b, .., b)`` with ``n - i``
-        copies of ``a``; ``Q_0 = P(a)`` and ``Q_n = P(b)`` exactly as the
-        de Casteljau evaluation at ``a`` and ``b``.
+        copies of ``a``; ``Q_0 = P(a)`` and ``Q_n = P(b)``.
     """
     m, n1, D = P.shape
     n = n1 - 1
-    a = a[:, None, None]
-    b = b[:, None, None]
-    ca, cb = 1.0 - a, 1.0 - b
-    # de Casteljau pyramid at a: A[l] has n+1-l points
-    A = [P]
+    # The blossom with n-i arguments a and i arguments b is a convex
+    # combination of the P_j: the weights are the convolution of the
+    # Bernstein weights of degree n-i at a and of degree i at b.  They are
+    # exact at t = 0 and t = 1 (Q_n = P_n exactly when b = 1).
+    one = np.ones(m)
+    pa, qa, pb, qb = [one], [one], [one], [one]      # powers of a, 1-a, b, 1-b
     for _ in range(n):
-        X = A[-1]
-        A.append(ca * X[:, :-1] + a * X[:, 1:])
-    Q = np.empty((m, n1, D))
+        pa.append(pa[-1] * a)
+        qa.append(qa[-1] * (1.0 - a))
+        pb.append(pb[-1] * b)
+        qb.append(qb[-1] * (1.0 - b))
+    W = np.zeros((n1, n1, m))                          # W[i, j]: weight of P_j in Q_i
     for i in range(n1):
-        X = A[n - i]                                   # i+1 points
-        for _ in range(i):
-            X = cb * X[:, :-1] + b * X[:, 1:]
-        Q[:, i] = X[:, 0]
-    return Q
+        wb = [_COMB[i][k] * pb[k] * qb[i - k] for k in range(i + 1)]
+        for r in range(n - i + 1):
+            wa = _COMB[n - i][r] * pa[r] * qa[n - i - r]
+            for k in range(i + 1):
+                W[i, r + k] += wa * wb[k]
+    return np.matmul(W.transpose(2, 0, 1), P)
 
 
 def _bernstein_max(c):

@@ -29,12 +29,14 @@ boundaries as cycles, the edges shared by neighbours cancel, and what is left
 is traced directly (all subpaths at once, as numpy arrays) as one polygon
 per open subpath -- left offsets forward with the outer join points, end
 cap, right offsets backward, start cap -- and two loops per closed subpath.
-At an inner join the cycle sum passes through the vertex (the "pivot"); the
-pivot is left out where the neighbouring rectangles both cover the triangle
-it spans, which changes the winding only where it is at least two.  The
-outline polygons therefore cross themselves at inner joins ("ears"), which
-the nonzero rule fills correctly; their winding is positive (positive
-shoelace area in user space, negative after a mirroring transform).
+At an inner join the cycle sum passes through the vertex (the "pivot").
+Where the neighbouring rectangles both cover the triangle the pivot spans,
+it is left out, which changes the winding only where it is at least two;
+for turns up to 90 degrees the two inner offset lines then end where they
+cross (same argument).  Only at sharp inner corners of short segments does
+the outline keep a pivot or a small crossed loop, which the nonzero rule
+fills correctly.  The winding is positive (positive shoelace area in user
+space, negative after a mirroring transform).
 
 Joins *inside* a flattened curve (between the chords of one Bezier segment)
 are always round, whatever the join style, so curves stay smooth; a round
@@ -685,7 +687,7 @@ def _rot90(v):
 
 def _arc_step(r, tol):
     """Largest angle step (radians, at most pi/2) for an arc of radius ``r``
-    polygonized by :func:`_fans` within ``tol``.
+    polygonized by :func:`_arcs` within ``tol``.
 
     The vertices sit at the area-preserving radius ``R = r * sqrt(a / sin a)``
     (``a`` the step), so each fan triangle has exactly the area of its circle
@@ -769,7 +771,16 @@ class _Items:
         same = np.zeros(len(pts), bool)
         same[1:] = (pid[1:] == pid[:-1]) & np.all(pts[1:] == pts[:-1], axis=1)
         pts, pid = pts[~same], pid[~same]
-        _, counts = np.unique(pid, return_counts=True)
+        head = np.r_[True, pid[1:] != pid[:-1]]      # last point back on the first
+        tail = np.r_[head[1:], True] & ~head
+        h = np.flatnonzero(head)
+        tails = np.flatnonzero(tail)
+        back = np.all(pts[tails] == pts[h[np.searchsorted(h, tails, 'right') - 1]], axis=1)
+        keep = np.ones(len(pts), bool)
+        keep[tails[back]] = False
+        pts, pid = pts[keep], pid[keep]
+        counts = np.bincount(pid)
+        counts = counts[counts > 0]
         # reverse every polygon: the winding number becomes +1 per covering
         # piece (positive shoelace areas, x right and y down)
         pp, k = _ranges(counts)
@@ -825,8 +836,11 @@ def _outline(lines, style, tol):
     s = np.flatnonzero(has_out)
     c, k, S = cid[s], loc[s], nseg[cid[s]]
     a, b, nn = P[s], P[nxt[s]], nrm[s]
-    base = items.put(np.stack([a + nn, b + nn, b - nn, a - nn], axis=1).reshape(-1, 2))
+    quads = np.stack([a + nn, b + nn, b - nn, a - nn], axis=1).reshape(-1, 2)
+    base = items.put(quads)                         # (edited in place at inner joins)
     rs = np.arange(len(s)) * 4 + base
+    qpos = np.zeros(N, np.int64)                    # vertex -> its segment's row in quads
+    qpos[s] = np.arange(len(s)) * 4
     items.add(pbase[c], 4 * k, rs, 2)
     items.add(pbase[c] + is_ring[c], np.where(is_ring[c], 4 * (S - 1 - k), 4 * S + 2 + 4 * (S - 1 - k)),
               rs + 2, 2)
@@ -838,7 +852,7 @@ def _outline(lines, style, tol):
         d0, d1, v = d[prv[jv]], d[jv], P[jv]
         cross = d0[:, 0] * d1[:, 1] - d0[:, 1] * d1[:, 0]
         dot = np.clip(np.einsum('ij,ij->i', d0, d1), -1.0, 1.0)
-        theta = np.arccos(dot)                      # turning angle in [0, pi]
+        theta = np.arctan2(np.abs(cross), dot)      # turning angle in [0, pi]
         sgn = np.where(cross >= 0, 1.0, -1.0)
         o0 = -sgn[:, None] * _rot90(d0)             # outer unit normals
         o1 = -sgn[:, None] * _rot90(d1)
@@ -873,11 +887,22 @@ def _outline(lines, style, tol):
             pts, cnt = _arcs(v[rnd], r * o0[rnd], (sgn * theta)[rnd], tol)
             ostart[rnd] = items.put(pts) + _starts(cnt)
             ocnt[rnd] = cnt
-        pivot = r * np.sin(theta) > np.minimum(seglen[prv[jv]], seglen[jv])
+        shortest = np.minimum(seglen[prv[jv]], seglen[jv])
+        pivot = r * np.sin(theta) > shortest
         pstart = np.zeros(len(jv), np.int64)
         pstart[pivot] = items.put(v[pivot]) + np.arange(int(pivot.sum()))
         pcnt = pivot.astype(np.int64)
         left_outer = sgn < 0                         # outer normal = +n
+        # inner side without pivot and turn <= 90 degrees: end the inner offset
+        # lines where they cross (X, at r*tan(turn/2) <= both lengths along
+        # them) instead of letting them overshoot into a small crossed loop;
+        # the triangle that removes lies in both rectangles, as above.  The
+        # outline is then free of "ears" there.
+        x = turn & ~pivot & (theta <= 0.5 * np.pi)
+        X = v[x] - (o0[x] + o1[x]) * (r / (1.0 + dot[x]))[:, None]
+        lo = left_outer[x]
+        quads[qpos[prv[jv[x]]] + np.where(lo, 2, 1)] = X    # inner end of the segment in
+        quads[qpos[jv[x]] + np.where(lo, 3, 0)] = X         # inner start of the segment out
         lkey = 4 * ((l - 1) % S) + 2
         rkey = np.where(is_ring[c], 4 * (S - 1 - l) + 2, 4 * S + 4 + 4 * (S - 1 - l))
         items.add(pbase[c], lkey, np.where(left_outer, ostart, pstart),

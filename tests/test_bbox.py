@@ -85,7 +85,7 @@ def test_quadratic_roots_are_roots(a, b, c):
 @pytest.mark.parametrize('deg', [2, 3])
 def test_random_segments_against_sampling(deg):
     rng = np.random.default_rng(deg)
-    for _ in range(40):
+    for _ in range(20):
         ctrl = rng.uniform(-1000, 1000, (deg + 1, 2))
         lo, hi = bezier_bbox(ctrl)
         slo, shi = sampled_box(ctrl)
@@ -311,13 +311,42 @@ def test_bounds_pen_truetype_quadratics():
 
 
 def test_public_name():
+    # the function, not the submodule, even after `from raster.bbox import`
+    assert raster.bbox is bbox
     import subprocess
     import sys
-    code = ('import raster; f = raster.bbox; from raster.bbox import bbox; '
-            'assert f is bbox and raster.bbox is bbox')
+    code = ('import raster.bbox; from raster.bbox import bbox; '
+            'import raster; assert raster.bbox is bbox')
     subprocess.run([sys.executable, '-c', code], check=True)
 
 
 def test_bbox_rejects_non_paths():
     with pytest.raises(PathError):
         bbox('M 0 0 L 1 1')
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.integers(1, 3), st.lists(pt, min_size=3, max_size=3)),
+                min_size=1, max_size=6),
+       st.sampled_from([0.05, 0.5]))
+def test_consistent_with_flattening(segs, tol):
+    # flattened vertices are curve points: inside the exact box; the
+    # polyline is within tol of the curve: its box is within tol of the
+    # exact box
+    from raster.flatten import flatten
+    b = PathBuilder()
+    b.moveTo((0, 0))
+    for deg, pts in segs:
+        if deg == 1:
+            b.lineTo(pts[0])
+        elif deg == 2:
+            b.qCurveTo(pts[0], pts[1])
+        else:
+            b.curveTo(*pts)
+    p = b.path()
+    box = np.array(bbox(p))
+    fp = flatten(p, tol).points
+    fbox = np.r_[fp.min(0), fp.max(0)]
+    eps = 1e-9 * (1 + np.abs(box).max())
+    assert np.all(fbox[:2] >= box[:2] - eps) and np.all(fbox[2:] <= box[2:] + eps)
+    assert np.all(fbox[:2] <= box[:2] + tol + eps) and np.all(fbox[2:] >= box[2:] - tol - eps)

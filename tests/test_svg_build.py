@@ -479,3 +479,95 @@ def test_stop_current_color_inherits_from_document_parents():
     p = _fill_of('<g color="blue"><linearGradient id="g"><stop stop-color="currentColor"/>'
                  '<stop offset="1" stop-color="red"/></linearGradient></g>')
     assert p.stops[0].color == (0, 0, 1, 1)
+
+
+# -- clip paths and masks -------------------------------------------------------------
+
+def test_clip_path_user_space_and_clip_rule():
+    t = tree_of('<clipPath id="c" transform="translate(1 2)" clip-rule="evenodd">'
+                '<rect width="5" height="5" fill="none" stroke="red" opacity="0.1"/>'
+                '<g><rect width="9" height="9"/></g></clipPath>'
+                '<rect id="r" width="10" height="10" fill="green" clip-path="url(#c)"/>')
+    g = t.ids['r']
+    cp = g.clip_path
+    assert isinstance(g, Group) and isinstance(cp, ClipPath)
+    assert cp.transform == Affine.translate(1, 2)
+    (n,) = cp.root.children             # the <g> child is not valid in a clipPath
+    assert isinstance(n, PathNode) and n.fill.rule == 'evenodd' and n.stroke is None
+    assert box(n) == (0, 0, 5, 5)
+
+
+def test_clip_path_object_bounding_box():
+    t = tree_of('<clipPath id="c" clipPathUnits="objectBoundingBox">'
+                '<rect x="0.25" width="0.5" height="1"/></clipPath>'
+                '<g id="g" clip-path="url(#c)"><rect x="10" y="20" width="40" height="10"/></g>')
+    cp = t.ids['g'].clip_path
+    (n,) = cp.root.children
+    assert box(n, cp.transform) == (20, 20, 40, 30)
+
+
+def test_clip_path_missing_recursive_and_empty():
+    # missing reference: ignored; self-recursive reference: ignored; empty clip: not drawn
+    t = tree_of('<clipPath id="self" clip-path="url(#self)"><rect width="1" height="1"/></clipPath>'
+                '<clipPath id="empty"/>'
+                '<rect id="a" width="1" height="1" clip-path="url(#nothing)"/>'
+                '<rect id="b" width="1" height="1" clip-path="url(#self)"/>'
+                '<rect id="c" width="1" height="1" clip-path="url(#empty)"/>')
+    assert isinstance(t.ids['a'], PathNode)
+    assert t.ids['b'].clip_path.clip_path is None
+    assert [n.id for n, _ in paths(t)] == ['a', 'b']
+
+
+def test_mask_defaults_and_content_units():
+    t = tree_of('<mask id="m" maskContentUnits="objectBoundingBox" style="mask-type:alpha">'
+                '<rect width="0.5" height="1" fill="white"/></mask>'
+                '<rect id="r" x="10" y="10" width="100" height="50" mask="url(#m)"/>')
+    m = t.ids['r'].mask
+    assert m.kind == 'alpha'
+    assert m.rect == pytest.approx((0, 5, 120, 60))      # -10%, 120% of the bbox
+    (n, tt), = [(n, tt) for n, tt in walk(m.root) if isinstance(n, PathNode)]
+    assert box(n, tt) == (10, 10, 60, 60)
+
+
+def test_mask_recursion_dropped():
+    t = tree_of('<mask id="m1" mask="url(#m2)"><rect width="5" height="5" fill="white"/></mask>'
+                '<mask id="m2" mask="url(#m1)"><rect width="5" height="5" fill="white"/></mask>'
+                '<rect id="r" width="1" height="1" mask="url(#m2)"/>')
+    m = t.ids['r'].mask
+    assert m.id == 'm2' and m.mask is None
+
+
+def test_gradient_fallbacks():
+    # no stops: the fallback colour; objectBoundingBox on a line (zero-height box): fallback
+    t = tree_of('<linearGradient id="g0"/><linearGradient id="g">'
+                '<stop offset="0"/><stop offset="1" stop-color="red"/></linearGradient>'
+                '<rect width="1" height="1" fill="url(#g0) green"/>'
+                '<line x2="10" stroke="url(#g) green"/><line x2="10" stroke="url(#g)"/>')
+    (a, _), (b, _), (c, _) = paths(t)
+    assert a.fill.paint.color == GREEN and b.stroke.paint.color == GREEN
+    assert c.stroke is None
+
+
+def test_pattern_resolved():
+    from raster.svg.tree import Pattern
+    t = tree_of('<pattern id="base" width="20" height="10" patternUnits="userSpaceOnUse" '
+                'viewBox="0 0 2 1" patternTransform="scale(2)"><rect width="1" height="1"/></pattern>'
+                '<pattern id="p" href="#base" x="5" fill="green"/>'
+                '<rect width="100" height="100" fill="url(#p)"/>')
+    p = only_path(t)[0].fill.paint
+    assert isinstance(p, Pattern)
+    assert p.rect == (5, 0, 20, 10) and p.units == 'userSpaceOnUse'
+    assert p.transform == Affine.scale(2) and p.content_transform == Affine.scale(10)
+    (n,) = p.root.children
+    assert box(n) == (0, 0, 1, 1)
+    # content inherits from the pattern's document ancestors, not from the painted shape
+    assert n.fill.paint.color == (0, 0, 0, 1)
+
+
+def test_pattern_self_reference_terminates():
+    t = tree_of('<pattern id="p" href="#p" width="10" height="10" patternUnits="userSpaceOnUse">'
+                '<rect width="5" height="5" fill="url(#p)" stroke="green"/></pattern>'
+                '<rect width="100" height="100" fill="url(#p)"/>')
+    p = only_path(t)[0].fill.paint
+    (inner,) = p.root.children
+    assert inner.fill is None and inner.stroke.paint.color == GREEN

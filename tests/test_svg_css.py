@@ -135,7 +135,7 @@ def test_stylesheet_parsing():
     assert [r.selector.text for r in parse_stylesheet('a{b:c} x[ {fill:red} y {b:c}')] == ['a']
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(st.text(alphabet='ab{}();:,@"\'/*!#.[]=>+~ \n', max_size=60))
 def test_stylesheet_never_crashes(text):
     rules = parse_stylesheet(text)
@@ -384,3 +384,24 @@ def test_deep_tree_matching_is_not_exponential():
     assert all(d == {} for d in styles.values())
     assert select(root, 'x g g g g g g g g g *') == []
     assert len(select(root, 'svg g g g g g g g g g rect')) == 1
+
+
+@pytest.mark.skipif(not os.path.isdir(SUITE), reason='resvg suite not present')
+def test_whole_resvg_suite_cascades():
+    files = sorted(glob.glob(os.path.join(SUITE, '**', '*.svg'), recursive=True))
+    n = 0
+    for path in files:
+        try:
+            root = etree.parse(path).getroot()
+        except etree.XMLSyntaxError:
+            continue  # a few suite files are deliberately malformed
+        styles = declared_styles(root)
+        for el, d in styles.items():
+            assert set(d) <= set(PROPERTIES), path
+            # every presentation attribute the element carries is present
+            # unless CSS overrode it (then the value may differ)
+            for k in el.keys():
+                if k in PRESENTATION_ATTRIBUTES:
+                    assert k in d, (path, k)
+        n += 1
+    assert n > 1000

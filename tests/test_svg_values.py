@@ -124,7 +124,7 @@ def test_colour_type_error():
         parse_length(3.0)
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(st.tuples(st.integers(0, 255), st.integers(0, 255), st.integers(0, 255),
                  st.integers(0, 255)))
 def test_hex_rgb_roundtrip(rgba):
@@ -136,7 +136,7 @@ def test_hex_rgb_roundtrip(rgba):
     assert close(parse_color('rgb(%d %d %d / %r%%)' % (r, g, b, a / 2.55)), expected, 1e-12)
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(st.floats(-720, 720), st.floats(0, 100), st.floats(0, 100))
 def test_hsl_properties(h, s, l):
     c = parse_color('hsl(%r, %r%%, %r%%)' % (h, s, l))
@@ -219,7 +219,7 @@ def test_number_lists():
     assert parse_number_list('x', strict=False) == []
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(st.lists(st.floats(-1e6, 1e6, allow_nan=False), max_size=20),
        st.sampled_from([' ', ',', ', ', ' ,\n']))
 def test_number_list_roundtrip(nums, sep):
@@ -562,7 +562,7 @@ FUZZ_ALPHABET = st.sampled_from(list('0123456789.eE+-,% ()#/\t\nabcdfghilmnoprst
                                    'px', 'none', 'turn', 'currentColor', 'xMidYMid', 'slice'])
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(st.lists(FUZZ_ALPHABET, max_size=25).map(''.join))
 def test_parsers_never_raise_on_text(s):
     # every micro-syntax parser answers None or a value, never an exception

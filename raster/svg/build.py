@@ -23,11 +23,16 @@ a string:
 Coordinates: user units, x right, y down.  The tree's root group maps the
 root element's user space to document pixels (the natural size).
 
+Paint servers and effects: linear and radial gradients (``href``
+inheritance with cycle detection, stop offsets clamped and made monotonic,
+``stop-color``/``stop-opacity`` with ``currentColor``), patterns, clip paths
+and masks (user space or object bounding box units, nested and recursive
+references: a recursive reference is ignored, as resvg does).
+
 Not supported yet, each reported once per build with a
 :class:`raster.errors.RasterWarning` (through :func:`warnings.warn`) and then
-left out rather than drawn wrongly: text, images, filters, clip paths,
-masks, markers, paint servers (gradients and patterns paint nothing for
-now), external ``use`` references.
+left out rather than drawn wrongly: text, images, filters (ignored),
+references to other documents.
 
 >>> from raster.svg.document import load_document
 >>> root = load_document(b'<svg xmlns="http://www.w3.org/2000/svg" width="20" height="10">'
@@ -40,6 +45,8 @@ now), external ``use`` references.
 import math
 import warnings
 
+import numpy as np
+
 from .. import limits
 from ..errors import PathError, RasterError, RasterWarning, SVGError
 from ..path import Path
@@ -50,8 +57,9 @@ from ..transform import IDENTITY, Affine
 from .css import declared_styles
 from .properties import INHERITED, PROPERTIES
 from .tree import (ClipPath, Fill, GradientStop, Group, LinearGradient, Mask, PathNode,
-                   RadialGradient, SolidPaint, Stroke, Tree)
-from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length, parse_url,
+                   Pattern, RadialGradient, SolidPaint, Stroke, Tree)
+from .values import (CURRENT_COLOR, LengthContext, parse_angle, parse_color, parse_length,
+                     parse_url,
                      parse_length_list, parse_paint, parse_preserve_aspect_ratio,
                      parse_transform, parse_transform_origin, parse_viewbox, viewbox_transform)
 
@@ -73,6 +81,7 @@ _NOT_RENDERED = frozenset(['defs', 'symbol', 'title', 'desc', 'metadata', 'style
                            'missing-glyph', 'cursor', 'view', 'animate', 'set',
                            'animateMotion', 'animateTransform', 'animateColor'])
 _PAINT_SERVERS = frozenset(['linearGradient', 'radialGradient', 'pattern'])
+_MARKABLE = frozenset(['path', 'line', 'polyline', 'polygon'])
 
 _FONT_KEYWORDS = {'xx-small': 3 / 5, 'x-small': 3 / 4, 'small': 8 / 9, 'medium': 1.0,
                   'large': 6 / 5, 'x-large': 3 / 2, 'xx-large': 2.0, 'xxx-large': 3.0}
@@ -128,16 +137,18 @@ def _parse_float(s):
 class _State:
     """Per-subtree context: viewport size for percentages, the CTM at the
     document's natural size (for arc tolerances), the active ``use`` depth."""
-    __slots__ = ('vw', 'vh', 'ctm', 'use_depth', 'mode')
+    __slots__ = ('vw', 'vh', 'ctm', 'use_depth', 'mode', 'context')
 
-    def __init__(self, vw, vh, ctm, use_depth=0, mode=None):
+    def __init__(self, vw, vh, ctm, use_depth=0, mode=None, context=None):
         self.vw, self.vh, self.ctm, self.use_depth = vw, vh, ctm, use_depth
         self.mode = mode        # None, or 'clip' inside a clipPath
+        self.context = context  # (fill paint, stroke paint) for context-fill/-stroke
 
-    def sub(self, transform=None, vw=None, vh=None, use_depth=None):
+    def sub(self, transform=None, vw=None, vh=None, use_depth=None, context=False):
         return _State(self.vw if vw is None else vw, self.vh if vh is None else vh,
                       self.ctm if transform is None else self.ctm @ transform,
-                      self.use_depth if use_depth is None else use_depth, self.mode)
+                      self.use_depth if use_depth is None else use_depth, self.mode,
+                      self.context if context is False else context)
 
 
 class _Builder:
@@ -531,6 +542,18 @@ class _Builder:
             v = own.get('mask')
             if v is not None and v.strip() != 'none':
                 ref = self.reference(v, 'mask', 'mask')
+                # a chain of mask-on-mask references that comes back is
+                # dropped as a whole (resvg)
+                seen = set()
+                r = ref
+                while r is not None and r not in seen:
+                    if r is mk or r in self._active_refs:
+                        ref = None
+                        self.warn('mask-recursive', 'recursive mask reference ignored')
+                        break
+                    seen.add(r)
+                    rv = self.doc_style(r)[1].get('mask')
+                    r = self.reference(rv, 'mask', 'mask') if rv and rv.strip() != 'none' else None
                 if ref is not None:
                     nested = self.build_mask(ref, kids, st)
                     if nested is _EMPTY:
@@ -655,7 +678,11 @@ class _Builder:
         name = _local(tgt)
         if name is None:
             return
-        st2 = st.sub(use_depth=st.use_depth + 1)
+        # the use element is the context element of its content (SVG 2)
+        cfill = self.paint(inh.get('fill', 'black'), inh, ctx, None, st)
+        sv = inh.get('stroke')
+        cstroke = self.paint(sv, inh, ctx, None, st) if sv is not None else None
+        st2 = st.sub(use_depth=st.use_depth + 1, context=(cfill, cstroke))
         kids = []
         if name == 'symbol':
             decl = self.styles.get(tgt)
@@ -745,7 +772,7 @@ class _Builder:
             return None
         return polyline_path(pts, closed=(name == 'polygon'))
 
-    def paint(self, value, inh, ctx):
+    def paint(self, value, inh, ctx, path=None, st=None):
         p = parse_paint(value)
         if p is None:
             return None
@@ -759,6 +786,15 @@ class _Builder:
             name = _local(tgt) if tgt is not None else None
             if name in _PAINT_SERVERS:
                 server = self._resolve_paint_server(tgt, name, ctx)
+                if (server is not None and server is not _UNSUPPORTED and path is not None
+                        and getattr(server, 'units', '') == 'objectBoundingBox'):
+                    # a bounding box of zero width or height cannot be used
+                    try:
+                        x0, y0, x1, y1 = exact_bbox(path)
+                    except RasterError:
+                        x0 = x1 = 0.0
+                    if not (x1 > x0 and y1 > y0):
+                        server = _UNSUPPORTED
                 if server is not _UNSUPPORTED:
                     return server
             fb = p.fallback
@@ -769,7 +805,9 @@ class _Builder:
             if fb.kind == 'current':
                 return SolidPaint(inh['_color'])
             return None
-        return None     # none, context-fill / context-stroke outside markers
+        if kind in ('context-fill', 'context-stroke') and st is not None and st.context:
+            return st.context[0 if kind == 'context-fill' else 1]
+        return None     # none, or context-fill / context-stroke without a context
 
     # -- paint servers --------------------------------------------------------------
     def doc_style(self, el):
@@ -814,12 +852,79 @@ class _Builder:
         if key in cache:
             return cache[key]
         if name == 'pattern':
-            self.warn('pattern', 'patterns are not supported yet; their fallback is used')
-            r = _UNSUPPORTED
+            r = self._pattern(el, ctx)
         else:
             r = self._gradient(el, name, ctx)
         cache[key] = r
         return r
+
+    def _pattern(self, el, ctx):
+        """A pattern element to a tree Pattern (None: paints nothing)."""
+        if el in self._active_refs:
+            self.warn('pattern-recursive', 'recursive pattern reference ignored')
+            return None
+        chain = self.href_chain(el, ('pattern',))
+
+        def attr(n):
+            for e in chain:
+                v = e.get(n)
+                if v is not None:
+                    return v
+            return None
+        content_el = None
+        for e in chain:
+            if any(isinstance(c.tag, str) and c.tag.startswith(_P) for c in e):
+                content_el = e
+                break
+        if content_el is None:
+            return None
+        units = 'userSpaceOnUse' if attr('patternUnits') == 'userSpaceOnUse' \
+            else 'objectBoundingBox'
+        cunits = 'objectBoundingBox' if attr('patternContentUnits') == 'objectBoundingBox' \
+            else 'userSpaceOnUse'
+        if units == 'objectBoundingBox':
+            lctx = LengthContext(font_size=ctx.font_size, width=1.0, height=1.0, dpi=ctx.dpi)
+        else:
+            lctx = ctx
+        vals = []
+        for n, axis in (('x', 'x'), ('y', 'y'), ('width', 'x'), ('height', 'y')):
+            v = attr(n)
+            r = parse_length(v, axis, lctx) if v is not None else None
+            vals.append(0.0 if r is None else r)
+        x, y, w, h = vals
+        if not (w > 0 and h > 0):
+            return None
+        tf = IDENTITY
+        ts = attr('patternTransform')
+        if ts is not None:
+            t = parse_transform(ts)
+            if t is not None and t.determinant != 0:
+                tf = t
+        vb = None
+        content_t = IDENTITY
+        vbs = attr('viewBox')
+        if vbs is not None:
+            vb = parse_viewbox(vbs)
+            if vb is None:
+                return None
+            par = parse_preserve_aspect_ratio(attr('preserveAspectRatio') or '')
+            if units == 'userSpaceOnUse':
+                content_t = viewbox_transform(vb, par, w, h)
+        self._active_refs.add(el)
+        try:
+            inh, own = self.doc_style(content_el)
+            scale = 1000.0 if (cunits == 'objectBoundingBox' or units == 'objectBoundingBox') \
+                else 1.0
+            st = _State(ctx.width, ctx.height, tf @ Affine.scale(scale))
+            nodes = []
+            self.children(content_el, inh, own, st, nodes)
+        finally:
+            self._active_refs.discard(el)
+        if not nodes:
+            return None
+        return Pattern(rect=(x, y, w, h), root=Group(children=nodes), units=units,
+                       content_units=cunits, transform=tf, content_transform=content_t,
+                       view_box=vb, id=el.get('id') or '')
 
     def _gradient(self, el, name, ctx):
         chain = self.href_chain(el, ('linearGradient', 'radialGradient'))
@@ -839,7 +944,7 @@ class _Builder:
                 stops_el = ss
                 break
         if stops_el is None:
-            return None
+            return _UNSUPPORTED     # no stops: the fallback colour, else nothing
         stops = []
         last = 0.0
         for stop in stops_el:
@@ -917,22 +1022,26 @@ class _Builder:
             rule = inh.get('clip-rule', 'nonzero')
             fill = Fill(SolidPaint(_BLACK), 1.0, 'evenodd' if rule == 'evenodd' else 'nonzero')
         else:
-            fp = self.paint(inh.get('fill', 'black'), inh, ctx)
+            fp = self.paint(inh.get('fill', 'black'), inh, ctx, path, st)
             if fp is not None:
                 rule = inh.get('fill-rule', 'nonzero')
                 fill = Fill(fp, _opacity(inh.get('fill-opacity')),
                             'evenodd' if rule == 'evenodd' else 'nonzero')
             sv = inh.get('stroke')
             if sv is not None:
-                sp = self.paint(sv, inh, ctx)
+                sp = self.paint(sv, inh, ctx, path, st)
                 if sp is not None:
                     stroke = self.stroke(sp, inh, ctx)
-            if fill is None and stroke is None:
-                return
+        markers = None
+        if name in _MARKABLE and st.mode != 'clip':
+            if ('marker-start' in inh or 'marker-mid' in inh or 'marker-end' in inh):
+                markers = self.markers(path, inh, ctx, st.sub(t), fill, stroke)
+        if fill is None and stroke is None and markers is None:
+            return
         order = _paint_order(inh.get('paint-order'))
         sr = inh.get('shape-rendering', 'auto')
         node = PathNode(id=el.get('id') or '', path=path, fill=fill, stroke=stroke,
-                        paint_order=order,
+                        paint_order=order, markers=markers,
                         antialias=sr not in ('crispEdges', 'optimizeSpeed'))
         self.note_id(el, node)
         opacity, blend, isolate, clip, mask, ok = self.effects(el, own, st.sub(t), [node])
@@ -947,6 +1056,105 @@ class _Builder:
             if node.id:
                 self.tree_ids[node.id] = g
             out.append(g)
+
+    # -- markers ------------------------------------------------------------------------
+    def markers(self, path, inh, ctx, st, fill, stroke):
+        """Marker instances of a path as a Group in the path's coordinates,
+        or None."""
+        refs = []
+        for prop in ('marker-start', 'marker-mid', 'marker-end'):
+            v = inh.get(prop)
+            el = None
+            if v is not None and v.strip() != 'none':
+                el = self.reference(v, 'marker', prop)
+            refs.append(el)
+        if not any(r is not None for r in refs):
+            return None
+        pts, ang, rev = _marker_vertices(path)
+        if len(pts) == 0:
+            return None
+        sw = 1.0
+        v = inh.get('stroke-width')
+        if v is not None:
+            r = parse_length(v, 'other', ctx)
+            if r is not None:
+                sw = r
+        context = (fill.paint if fill is not None else None,
+                   stroke.paint if stroke is not None else None)
+        n = len(pts)
+        kinds = np.ones(n, np.int8)
+        kinds[0] = 0
+        kinds[-1] = 2
+        out = []
+        for k, mk in enumerate(refs):
+            if mk is None:
+                continue
+            idx = [0] if k == 0 else ([n - 1] if k == 2 else list(range(1, n - 1)))
+            if not idx:
+                continue
+            built = self.marker_content(mk, st, sw, context)
+            if built is None:
+                continue
+            content, scale, orient = built
+            for i in idx:
+                if orient == 'auto':
+                    a = ang[i]
+                elif orient == 'auto-start-reverse':
+                    a = ang[i] + (180.0 if k == 0 else 0.0)
+                else:
+                    a = orient
+                tt = Affine.translate(pts[i, 0], pts[i, 1]) @ Affine.rotate(a) @ scale
+                out.append(Group(transform=tt, children=[content]))
+        if not out:
+            return None
+        return Group(children=out)
+
+    def marker_content(self, mk, st, sw, context):
+        """(content group, scale-and-ref transform, orient) of a marker."""
+        if mk in self._active_refs:
+            self.warn('marker-recursive', 'recursive marker reference ignored')
+            return None
+        inh, own = self.doc_style(mk)
+        mctx = self.ctx(inh, st)
+        mw = self.length(mk, 'markerWidth', 'x', mctx, 3.0)
+        mh = self.length(mk, 'markerHeight', 'y', mctx, 3.0)
+        if not (mw > 0 and mh > 0):
+            return None
+        vbt = IDENTITY
+        vw, vh = mw, mh
+        vbs = mk.get('viewBox')
+        if vbs is not None:
+            vb = parse_viewbox(vbs)
+            if vb is None:
+                return None
+            par = parse_preserve_aspect_ratio(mk.get('preserveAspectRatio', ''))
+            vbt = viewbox_transform(vb, par, mw, mh)
+            vw, vh = vb[2], vb[3]
+        rx = self.length(mk, 'refX', 'x', mctx, 0.0)
+        ry = self.length(mk, 'refY', 'y', mctx, 0.0)
+        (rpx, rpy), = vbt.apply([[rx, ry]]).tolist()
+        s = 1.0 if mk.get('markerUnits') == 'userSpaceOnUse' else sw
+        if not s > 0:
+            return None
+        scale = Affine.scale(s) @ Affine.translate(-rpx, -rpy)
+        o = (mk.get('orient') or '0').strip()
+        if o not in ('auto', 'auto-start-reverse'):
+            o = parse_angle(o)
+            o = 0.0 if o is None else o
+        self._active_refs.add(mk)
+        try:
+            nodes = []
+            sub = _State(vw, vh, st.ctm @ scale @ vbt, st.use_depth, None, context)
+            self.children(mk, inh, own, sub, nodes)
+        finally:
+            self._active_refs.discard(mk)
+        if not nodes:
+            return None
+        if not vbt.is_identity:
+            nodes = [Group(transform=vbt, children=nodes)]
+        ov = own.get('overflow', 'hidden').strip()
+        clip = None if ov in ('visible', 'auto') else self.clip_rect(0, 0, mw, mh)
+        return Group(clip_path=clip, children=nodes), scale, o
 
     def stroke(self, paint, inh, ctx):
         w = 1.0
@@ -1127,3 +1335,73 @@ def _content_box(group):
     if not np.all(np.isfinite(lo)) or not np.all(hi > lo):
         return None
     return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
+
+
+def _bisect(a_in, a_out):
+    d = (a_out - a_in + math.pi) % (2 * math.pi) - math.pi
+    return a_in + d / 2.0
+
+
+def _marker_vertices(path):
+    """Marker positions of a path and the marker angle (degrees) at each.
+
+    Returns
+    -------
+    pts : (V, 2) float64 ndarray
+        Every vertex: each contour's start, every segment end, and the start
+        again at the end of a closed contour.
+    angles : (V,) float64 ndarray
+        Direction at the vertex (the bisector of the incoming and outgoing
+        directions; the one that exists at open ends; 0 without any).
+    n : int
+        V.
+    """
+    seg = path.segments()
+    c = seg.ctrl
+    # start / end tangents, skipping coincident control points
+    sd = c[:, 1] - c[:, 0]
+    for k in (2, 3):
+        z = np.all(sd == 0, axis=1)
+        sd[z] = c[z, k] - c[z, 0]
+    ed = c[:, 3] - c[:, 2]
+    for k in (1, 0):
+        z = np.all(ed == 0, axis=1)
+        ed[z] = c[z, 3] - c[z, k]
+    sa = np.arctan2(sd[:, 1], sd[:, 0])
+    ea = np.arctan2(ed[:, 1], ed[:, 0])
+    pts_out, ang_out = [], []
+    first = np.concatenate([[0], np.cumsum(seg.contour_nseg)])
+    for ci in range(len(seg.contour_start)):
+        a, b = int(first[ci]), int(first[ci + 1])
+        start = seg.contour_start[ci]
+        ends = c[a:b, 3]
+        s_ang = list(sa[a:b])
+        e_ang = list(ea[a:b])
+        pts = [start] + list(ends)
+        if seg.contour_closed[ci] and b > a:
+            d = start - seg.contour_end[ci]
+            ca = math.atan2(d[1], d[0]) if (d[0] or d[1]) else e_ang[-1]
+            s_ang.append(ca)
+            e_ang.append(ca)
+            pts.append(start)
+        n = len(s_ang)
+        angs = np.zeros(n + 1)
+        for i in range(n + 1):
+            ain = e_ang[i - 1] if i > 0 else None
+            aout = s_ang[i] if i < n else None
+            if seg.contour_closed[ci] and n:
+                if i == 0:
+                    ain = e_ang[-1]
+                if i == n:
+                    aout = s_ang[0]
+            if ain is not None and aout is not None:
+                angs[i] = _bisect(ain, aout)
+            elif ain is not None:
+                angs[i] = ain
+            elif aout is not None:
+                angs[i] = aout
+        pts_out.append(np.asarray(pts, dtype=np.float64).reshape(-1, 2))
+        ang_out.append(np.degrees(angs))
+    if not pts_out:
+        return np.zeros((0, 2)), np.zeros(0), 0
+    return np.concatenate(pts_out), np.concatenate(ang_out), 0

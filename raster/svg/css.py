@@ -28,7 +28,17 @@ The cascade (:func:`declared_styles`), lowest priority first:
 Only properties of :data:`raster.svg.properties.PROPERTIES` are kept (a
 ``height`` in CSS is ignored, as resvg does for SVG 1.1 geometry).  The
 shorthands ``marker`` and ``font`` are expanded.  Values are trimmed strings;
-``inherit`` is kept as is for the tree builder to resolve.
+``inherit`` (and ``initial``/``unset``) are kept as is for the tree builder to
+resolve.  A ``transform`` entry can only come from CSS (the attribute is not a
+presentation attribute), so it is CSS syntax: parse it with
+``raster.svg.values.parse_transform(value, css=True)``; it replaces the
+element's ``transform`` attribute.
+
+Cost: rules are indexed by the id, first class or type of their rightmost
+compound, so an element is only tested against rules that can match it; with
+no ``<style>`` at all only attributes are read.  Matching caches results per
+(element, compound) during a pass, so descendant and sibling combinators stay
+linear on deep trees.
 
 >>> from lxml import etree
 >>> root = etree.fromstring(
@@ -293,6 +303,7 @@ _ATTR_RE = re.compile(
     r'\[\s*(' + _IDENT + r')\s*(?:([~|^$*]?=)\s*(?:(' + _IDENT + r')|"((?:[^"\\]|\\.)*)"'
     r'|\'((?:[^\'\\]|\\.)*)\')\s*(?:([iIsS])\s*)?)?\]')
 _ESC_RE = re.compile(r'\\(.)', re.S)
+_NAME_RE = re.compile(r'(?:[_a-zA-Z0-9-]|[^\x00-\x7f]|\\.)+')
 
 
 def _unescape(s):
@@ -519,7 +530,7 @@ def _parse_compound(text, pos):
         if ch == '#':
             m = _IDENT_RE.match(text, pos + 1)
             if m is None:
-                m = re.compile(r'(?:[_a-zA-Z0-9-]|[^\x00-\x7f]|\\.)+').match(text, pos + 1)
+                m = _NAME_RE.match(text, pos + 1)  # lenient: '#1a' accepted
                 if m is None:
                     raise CSSError('bad id selector in %r' % text)
             if comp.id is not None and comp.id != _unescape(m.group(0)):

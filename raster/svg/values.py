@@ -224,7 +224,8 @@ turquoise 40e0d0 violet ee82ee wheat f5deb3 white ffffff whitesmoke f5f5f5
 yellow ffff00 yellowgreen 9acd32
 """.split()
 
-#: The 147 SVG/CSS named colours (lower-case name -> ``(r, g, b)`` bytes).
+#: The 147 SVG 1.1 named colours plus CSS 4 ``rebeccapurple`` (lower-case
+#: name -> ``(r, g, b)`` bytes).
 NAMED_COLORS = {
     _NAMED[i]: (int(_NAMED[i + 1][0:2], 16), int(_NAMED[i + 1][2:4], 16),
                 int(_NAMED[i + 1][4:6], 16))
@@ -365,9 +366,9 @@ def _parse_color(s):
 def parse_color(s):
     """Parse a CSS/SVG colour.
 
-    Accepts the 147 named colours and ``transparent`` (case-insensitive),
-    ``#rgb``, ``#rgba``, ``#rrggbb``, ``#rrggbbaa``, ``rgb()``/``rgba()`` with
-    numbers (0..255) or percentages, ``hsl()``/``hsla()`` with the hue
+    Accepts the 147 SVG named colours, ``rebeccapurple`` and ``transparent``
+    (case-insensitive), ``#rgb``, ``#rgba``, ``#rrggbb``, ``#rrggbbaa``,
+    ``rgb()``/``rgba()`` with numbers (0..255) or percentages, ``hsl()``/``hsla()`` with the hue
     unitless (degrees) or in ``deg``/``rad``/``grad``/``turn``; either the
     comma syntax with an optional fourth alpha argument, or the space syntax
     with an optional ``/ alpha``.  Out-of-range components are clamped.
