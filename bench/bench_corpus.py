@@ -16,9 +16,11 @@ own PNG encode:
   the time without the encode is reported as well ("render-only");
 * resvg-py: ``resvg_py.svg_to_bytes`` with the options of
   ``shared/conformance/score.py``'s ResvgRenderer (dpi=96, font_size=12,
-  languages=['en'], font_family='Times New Roman', resources_dir = the
-  file's directory) and the *system fonts* (the corpus has text; on the
-  reference machine the only system fonts are DejaVu);
+  languages=['en'], resources_dir = the file's directory) and the *system
+  fonts* (the corpus has text), except that the default and generic font
+  families name installed DejaVu fonts (see :data:`RESVG_FONTS`: with
+  score.py's 'Times New Roman' and resvg's default generic families, which
+  are not installed here, resvg renders no text at all);
 * cairosvg: ``cairosvg.svg2png(bytestring=..., url=path, unsafe=False,
   output_width=W)`` (``output_width`` omitted at natural size).
 
@@ -59,6 +61,16 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 DEFAULT_CORPUS = os.path.normpath(os.path.join(ROOT, '..', 'shared', 'corpus'))
 RENDERERS = ('raster', 'resvg', 'cairosvg')
+#: resvg-py font options.  score.py passes font_family='Times New Roman' and
+#: leaves the generic families at resvg's defaults (Times New Roman, Arial,
+#: Courier New, ...); a family that is not installed makes resvg drop the
+#: text, so with only DejaVu installed the corpus text would vanish and resvg
+#: would skip the cost of text.  The benchmark therefore names installed
+#: DejaVu fonts for the default and the generic families (system fonts are
+#: loaded too); cairosvg finds the same fonts through fontconfig.
+RESVG_FONTS = dict(font_family='DejaVu Serif', serif_family='DejaVu Serif',
+                   sans_serif_family='DejaVu Sans', monospace_family='DejaVu Sans Mono',
+                   cursive_family='DejaVu Serif', fantasy_family='DejaVu Serif')
 WARMUP_SVG = (b'<svg xmlns="http://www.w3.org/2000/svg" width="8" height="8">'
               b'<path d="M1 1h6v6z" fill="red" stroke="blue"/></svg>')
 
@@ -115,8 +127,7 @@ def _make_renderer(name):
 
         def fn(path, width):
             kw = dict(resources_dir=os.path.dirname(os.path.abspath(path)),
-                      dpi=96.0, font_size=12.0, languages=['en'],
-                      font_family='Times New Roman')
+                      dpi=96.0, font_size=12.0, languages=['en'], **RESVG_FONTS)
             if path in strings:
                 kw['svg_string'] = strings[path]
             else:

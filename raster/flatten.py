@@ -106,20 +106,23 @@ _COMB = [[math.comb(n, k) for k in range(n + 1)] for n in range(64)]
 def _blossom(P, a, b):
     """Control points of the pieces ``[a, b]`` of the curves ``P``.
 
+    Layout: arrays of pieces are "transposed", control point index first,
+    then coordinate, then piece, so that every row is contiguous.
+
     Parameters
     ----------
-    P : (m, n+1, D) float64 ndarray
+    P : (n+1, D, m) float64 ndarray
         Control points of the curve each piece belongs to.
     a, b : (m,) float64 ndarray
         Parameter interval of each piece.
 
     Returns
     -------
-    (m, n+1, D) float64 ndarray
+    (n+1, D, m) float64 ndarray
         ``Q_i`` is the blossom ``P(a, .., a, b, .., b)`` with ``n - i``
         copies of ``a``; ``Q_0 = P(a)`` and ``Q_n = P(b)``.
     """
-    m, n1, D = P.shape
+    n1, D, m = P.shape
     n = n1 - 1
     # The blossom with n-i arguments a and i arguments b is a convex
     # combination of the P_j: the weights are the convolution of the
@@ -132,32 +135,33 @@ def _blossom(P, a, b):
         qa.append(qa[-1] * (1.0 - a))
         pb.append(pb[-1] * b)
         qb.append(qb[-1] * (1.0 - b))
-    W = np.zeros((n1, n1, m))                          # W[i, j]: weight of P_j in Q_i
+    W = np.zeros((n1, n1, m))                         # W[i, j]: weight of P_j in Q_i
     for i in range(n1):
         wb = [_COMB[i][k] * pb[k] * qb[i - k] for k in range(i + 1)]
         for r in range(n - i + 1):
             wa = _COMB[n - i][r] * pa[r] * qa[n - i - r]
             for k in range(i + 1):
                 W[i, r + k] += wa * wb[k]
-    return np.matmul(W.transpose(2, 0, 1), P)
+    return np.einsum('ijm,jdm->idm', W, P)
 
 
 def _bernstein_max(c):
-    """Exact maximum and minimum over ``t`` in [0, 1] of Bernstein
+    """Exact minimum and maximum over ``t`` in [0, 1] of Bernstein
     polynomials of degree 2 or 3.
 
     Parameters
     ----------
-    c : (m, n+1) float64 ndarray, n in (2, 3)
+    c : (n+1, m) float64 ndarray, n in (2, 3)
+        Coefficients, one polynomial per column.
 
     Returns
     -------
     lo, hi : (m,) float64 ndarray
     """
-    n = c.shape[1] - 1
-    c0, c1, c2 = c[:, 0], c[:, 1], c[:, 2]
-    lo = np.minimum(c0, c[:, n])
-    hi = np.maximum(c0, c[:, n])
+    n = len(c) - 1
+    c0, c1, c2 = c[0], c[1], c[2]
+    lo = np.minimum(c0, c[n])
+    hi = np.maximum(c0, c[n])
     if n == 2:
         # derivative / 2 = (c1 - c0) + t (c0 - 2 c1 + c2): one root
         den = c0 - 2.0 * c1 + c2
@@ -167,7 +171,7 @@ def _bernstein_max(c):
         s = 1.0 - t
         v = s * s * c0 + 2.0 * s * t * c1 + t * t * c2
         return np.minimum(lo, v), np.maximum(hi, v)
-    c3 = c[:, 3]
+    c3 = c[3]
     # derivative / 3 = A t**2 + B t + C
     r = quadratic_roots(c3 - c0 + 3.0 * (c1 - c2), 2.0 * (c0 - 2.0 * c1 + c2), c1 - c0)
     for j in range(2):
@@ -186,67 +190,45 @@ def _deviation(Q):
 
     Parameters
     ----------
-    Q : (m, n+1, D) float64 ndarray
+    Q : (n+1, D, m) float64 ndarray
+        Control points of ``m`` pieces (transposed layout, see
+        :func:`_blossom`).
 
     Returns
     -------
     (m,) float64 ndarray
-        For planar quadratics and cubics the bound is exact up to rounding
-        whenever the curve's projection stays inside the chord.
+        For planar quadratics and cubics the bound is exact up to rounding.
     """
-    m, n1, D = Q.shape
+    n1, D, m = Q.shape
     n = n1 - 1
     if n < 2:
         return np.zeros(m)
-    if D == 2 and n <= 3:
-        return _deviation_planar(Q)
-    A = Q[:, 0]
-    d = Q[:, n] - A                                   # (m, D)
-    L2 = np.einsum('md,md->m', d, d)
-    rel = Q[:, 1:n] - A[:, None]                      # (m, n-1, D)
-    nz = L2 > 0
-    L2s = np.where(nz, L2, 1.0)
-    u = np.einsum('mkd,md->mk', rel, d) / L2s[:, None]   # chord parameter
-    uc = np.clip(u, 0.0, 1.0)
-    seg = rel - uc[:, :, None] * d[:, None]
-    hull = np.sqrt(np.einsum('mkd,mkd->mk', seg, seg)).max(axis=1)
-    L = np.sqrt(L2)
-    pv = rel - u[:, :, None] * d[:, None]
-    perp = (1.0 - 2.0 ** (1 - n)) * np.sqrt(np.einsum('mkd,mkd->mk', pv, pv)).max(axis=1)
-    ulo, uhi = u.min(axis=1), u.max(axis=1)
-    over = np.maximum(np.maximum(-ulo, uhi - 1.0), 0.0) * L
-    e = np.minimum(np.sqrt(perp * perp + over * over), hull)
-    return np.where(nz, e, hull)
-
-
-def _deviation_planar(Q):
-    """:func:`_deviation` for planar quadratics and cubics, with the exact
-    extrema of the offset and chord-parameter polynomials."""
-    m, n1, _ = Q.shape
-    n = n1 - 1
-    ax, ay = Q[:, 0, 0], Q[:, 0, 1]
-    dx, dy = Q[:, n, 0] - ax, Q[:, n, 1] - ay         # chord
-    rx = Q[:, 1:n, 0] - ax[:, None]                   # (m, n-1)
-    ry = Q[:, 1:n, 1] - ay[:, None]
-    L2 = dx * dx + dy * dy
+    A = Q[0]
+    d = Q[n] - A                                      # (D, m) chord
+    L2 = (d * d).sum(axis=0)
     nz = L2 > 0
     L2s = np.where(nz, L2, 1.0)
     L = np.sqrt(L2s)
-    u = (rx * dx[:, None] + ry * dy[:, None]) / L2s[:, None]
-    off = (dx[:, None] * ry - dy[:, None] * rx) / L[:, None]
+    rel = Q[1:n] - A                                  # (n-1, D, m)
+    u = (rel * d).sum(axis=1) / L2s                   # (n-1, m) chord parameter
     uc = np.clip(u, 0.0, 1.0)
-    hx = rx - uc * dx[:, None]
-    hy = ry - uc * dy[:, None]
-    h2 = hx * hx + hy * hy
-    hull = np.sqrt(h2[:, 0] if n == 2 else np.maximum(h2[:, 0], h2[:, 1]))
-    # Bernstein coefficients: offset (0, off.., 0), chord parameter (0, u.., 1)
-    c = np.zeros((2 * m, n1))
-    c[:m, 1:n] = off
-    c[m:, 1:n] = u
-    c[m:, n] = 1.0
-    lo, hi = _bernstein_max(c)
-    perp = np.maximum(-lo[:m], hi[:m])
-    over = np.maximum(np.maximum(-lo[m:], hi[m:] - 1.0), 0.0) * L
+    h = rel - uc[:, None] * d
+    hull = np.sqrt((h * h).sum(axis=1).max(axis=0))   # convex-hull bound
+    if D == 2 and n <= 3:
+        # signed offsets from the chord line; offset and chord parameter
+        # are Bernstein polynomials (0, .., 0) and (0, .., 1): exact extrema
+        c = np.zeros((n1, 2 * m))
+        c[1:n, :m] = (d[0] * rel[:, 1] - d[1] * rel[:, 0]) / L
+        c[1:n, m:] = u
+        c[n, m:] = 1.0
+        lo, hi = _bernstein_max(c)
+        perp = np.maximum(-lo[:m], hi[:m])
+        ulo, uhi = lo[m:], hi[m:]
+    else:
+        p = rel - u[:, None] * d
+        perp = (1.0 - 2.0 ** (1 - n)) * np.sqrt((p * p).sum(axis=1).max(axis=0))
+        ulo, uhi = u.min(axis=0), u.max(axis=0)
+    over = np.maximum(np.maximum(-ulo, uhi - 1.0), 0.0) * L
     e = np.minimum(np.sqrt(perp * perp + over * over), hull)
     return np.where(nz, e, hull)
 
@@ -277,8 +259,9 @@ def _plan_split(Q, e, tol):
 
     Parameters
     ----------
-    Q : (m, n+1, D) float64 ndarray
-        Control points of the rejected pieces (local parameter ``s``).
+    Q : (n+1, D, m) float64 ndarray
+        Control points of the rejected pieces (local parameter ``s``;
+        transposed layout).
     e : (m,) float64 ndarray
         Their deviation bounds (``> tol``).
     tol : float
@@ -291,26 +274,26 @@ def _plan_split(Q, e, tol):
         Normalised cumulative density at ``s = 0, 1/_G, .., 1``; rows that
         are all NaN ask for a uniform split.
     """
-    m, n1, D = Q.shape
+    n1, D, m = Q.shape
     n = n1 - 1
     # uniform estimate: deviation falls like 1/k**2
     k_uni = np.maximum(np.ceil(np.sqrt(e / tol)), 2.0)
     if n < 2:
         return k_uni, None
-    d1 = n * np.diff(Q, axis=1)                       # (m, n, D)
-    d2 = (n - 1) * np.diff(d1, axis=1)                # (m, n-1, D)
-    v = np.einsum('gk,mkd->mgd', _bernstein_basis(n - 1, _SG), d1)
-    w = np.einsum('gk,mkd->mgd', _bernstein_basis(n - 2, _SG), d2)
-    vv = np.einsum('mgd,mgd->mg', v, v)
-    ww = np.einsum('mgd,mgd->mg', w, w)
-    vw = np.einsum('mgd,mgd->mg', v, w)
+    d1 = n * np.diff(Q, axis=0)                       # (n, D, m)
+    d2 = (n - 1) * np.diff(d1, axis=0)                # (n-1, D, m)
+    v = np.tensordot(_bernstein_basis(n - 1, _SG), d1, axes=1)   # (_G, D, m): B'
+    w = np.tensordot(_bernstein_basis(n - 2, _SG), d2, axes=1)   # (_G, D, m): B''
+    vv = (v * v).sum(axis=1)
+    ww = (w * w).sum(axis=1)
+    vw = (v * w).sum(axis=1)
     with np.errstate(all='ignore'):
         cross = np.sqrt(np.maximum(vv * ww - vw * vw, 0.0))
         kappa = cross / np.sqrt(vv)
         dens = np.sqrt(kappa / (8.0 * tol))
-    dens = np.where(np.isfinite(dens), dens, 0.0)
+    dens = np.where(np.isfinite(dens), dens, 0.0)    # (_G, m)
     F = np.zeros((m, _G + 1))
-    np.cumsum(dens / _G, axis=1, out=F[:, 1:])
+    np.cumsum(dens.T / _G, axis=1, out=F[:, 1:])
     total = F[:, -1]
     k_den = np.ceil(total * _SAFETY)
     use = np.isfinite(total) & (total > 0) & (k_den >= 2)
@@ -432,6 +415,7 @@ def flatten_beziers(ctrl, tolerance=DEFAULT_TOLERANCE):
     floor = _NOISE * scale                            # per-curve noise level
 
     # active pieces: curve index and parameter interval
+    PT = np.ascontiguousarray(P.transpose(1, 2, 0))   # (n+1, D, S)
     cur = np.arange(S, dtype=np.int64)
     a = np.zeros(S)
     b = np.ones(S)
@@ -445,18 +429,18 @@ def flatten_beziers(ctrl, tolerance=DEFAULT_TOLERANCE):
         for lo in range(0, len(cur), _CHUNK):
             c = cur[lo:lo + _CHUNK]
             ca, cb = a[lo:lo + _CHUNK], b[lo:lo + _CHUNK]
-            Q = _blossom(P[c], ca, cb)
+            Q = _blossom(PT[:, :, c], ca, cb)
             e = _deviation(Q)
             ok = (e <= np.maximum(tol, floor[c])) | (rnd == _MAX_ROUNDS)
             if np.any(ok):
                 acc_cur.append(c[ok])
                 acc_t.append(cb[ok])
-                acc_pt.append(Q[ok, n])
+                acc_pt.append(Q[n][:, ok].T)
                 n_acc += int(ok.sum())
             bad = ~ok
             if not np.any(bad):
                 continue
-            kf, cdf = _plan_split(Q[bad], e[bad], tol)
+            kf, cdf = _plan_split(Q[:, :, bad], e[bad], tol)
             total = float(kf.sum())
             if n_acc + n_new + len(cur) - lo + total + S > limits.MAX_FLATTEN_POINTS:
                 raise LimitError('flattening would produce more than %d points '
@@ -557,6 +541,24 @@ class Polylines:
 
     def __repr__(self):
         return 'Polylines(%d polylines, %d points)' % (len(self), len(self.points))
+
+    def to_path(self):
+        """The polylines as a :class:`~raster.path.Path` of line segments
+        (``M L .. L`` plus ``Z`` for the closed ones).
+
+        >>> Polylines([[0, 0], [1, 0], [1, 1]], [0], [True]).to_path().to_svg()
+        'M 0 0 L 1 0 L 1 1 Z'
+        """
+        from .path import Path, MOVE, LINE, CLOSE
+        K, N = len(self.starts), len(self.points)
+        if K == 0:
+            return Path.empty()
+        # verb slot of vertex i: i + number of closes of earlier polylines
+        ncl = np.cumsum(self.closed) - self.closed
+        verbs = np.full(N + int(self.closed.sum()), LINE, np.uint8)
+        verbs[self.starts + ncl] = MOVE
+        verbs[(self.ends + ncl)[self.closed]] = CLOSE
+        return Path(verbs, self.points.copy(), _checked=True)
 
     def edges(self, close_all=True):
         """Line segments of all polylines.

@@ -394,9 +394,9 @@ def _pieces(loc, w, h):
     col = np.floor(xm).astype(np.int64)
     np.clip(col, -1, w - 1, out=col)
     left = col < 0
-    if left.any():
-        xa[left] = -0.5
-        xb[left] = -0.5
+    if left.any():      # (new arrays: xa, xb may be views of loc)
+        xa = np.where(left, -0.5, xa)
+        xb = np.where(left, -0.5, xb)
     row = np.floor(0.5 * (ya + yb)).astype(np.int64)
     np.clip(row, 0, h - 1, out=row)
     return xa, ya, xb, yb, col, row
@@ -525,7 +525,7 @@ def _flag_cells(xa, ya, xb, yb, cell):
             good[owner[gfirst]] = fits
         else:
             good = np.ones(len(ci), bool)
-        ok[ci] = True
+        ok[ci] = good
     return cells, cells[~ok]
 
 
@@ -533,7 +533,7 @@ def _area_coverage(loc, w, h, evenodd):
     ncell = w * h
     cover = None
     partial = None
-    run_cells, tangled_cells = [], []
+    touched_cells, bad_cells = [], []
     chunks = _chunks(loc, w, h)
     saved = None
     for lo, hi in chunks:
@@ -556,8 +556,8 @@ def _area_coverage(loc, w, h, evenodd):
             partial += p1
         # virtual pieces get cell ids < 0 (never flagged)
         touched, bad = _flag_cells(xa, ya, xb, yb, np.where(real, cell, -1))
-        run_cells.append(touched)
-        tangled_cells.append(bad)
+        touched_cells.append(touched)
+        bad_cells.append(bad)
         if len(chunks) == 1:
             saved = (xa, ya, xb, yb, col, row)
     if cover is None:
@@ -567,14 +567,14 @@ def _area_coverage(loc, w, h, evenodd):
 
     # flagged cells, and cells touched by pieces of several chunks (a chain
     # cut at a chunk boundary is not followed across it)
-    if len(run_cells) == 1:
-        flagged = tangled_cells[0]
+    if len(touched_cells) == 1:
+        flagged = bad_cells[0]
     else:
-        nruns = np.bincount(np.concatenate(run_cells), minlength=ncell)
-        for tg in tangled_cells:
-            nruns[tg] = 2
-        flagged = np.flatnonzero(nruns >= 2)
-        del nruns
+        nchunks = np.bincount(np.concatenate(touched_cells), minlength=ncell)
+        for tg in bad_cells:
+            nchunks[tg] = 2
+        flagged = np.flatnonzero(nchunks >= 2)
+        del nchunks
     if len(flagged):
         if saved is None:
             saved = _collect_rows(loc, w, h, flagged)

@@ -488,3 +488,15 @@ def test_closing_edge_omitted_when_polyline_returns_to_start():
 def test_flatten_rejects_non_paths():
     with pytest.raises(PathError):
         flatten([[0, 0], [1, 1]])
+
+
+def test_to_path_round_trip():
+    p = mixed_path()
+    pl = flatten(p, 0.3)
+    q = pl.to_path()
+    assert q.verbs.max() <= 4 and not np.any((q.verbs == 2) | (q.verbs == 3))
+    pl2 = flatten(q, 0.3)
+    assert np.array_equal(pl2.points, pl.points)
+    assert np.array_equal(pl2.starts, pl.starts)
+    assert np.array_equal(pl2.closed, pl.closed)
+    assert len(Polylines(np.zeros((0, 2)), [], []).to_path()) == 0

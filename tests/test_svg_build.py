@@ -571,3 +571,52 @@ def test_pattern_self_reference_terminates():
     p = only_path(t)[0].fill.paint
     (inner,) = p.root.children
     assert inner.fill is None and inner.stroke.paint.color == GREEN
+
+
+# -- markers and context paints ---------------------------------------------------------
+
+def _marker_instances(node):
+    return [(g.transform, g.children[0]) for g in node.markers.children]
+
+
+def test_markers_positions_angles_and_units():
+    t = tree_of('<marker id="m" refX="1" refY="2" markerWidth="4" markerHeight="6" orient="auto">'
+                '<rect width="4" height="6" fill="context-stroke"/></marker>'
+                '<path d="M 0 0 L 10 0 L 10 10" stroke="green" stroke-width="2" fill="none" '
+                'marker-start="url(#m)" marker-mid="url(#m)" marker-end="url(#m)"/>')
+    n, _ = only_path(t)
+    inst = _marker_instances(n)
+    assert len(inst) == 3
+    # instance transform maps the ref point (1, 2) to the vertex, scaled by the stroke width
+    where = [tuple(np.round(tt.apply([[1.0, 2.0]])[0], 9)) for tt, _ in inst]
+    assert where == [(0, 0), (10, 0), (10, 10)]
+    angles = [round(math.degrees(math.atan2(tt.b, tt.a)), 9) for tt, _ in inst]
+    assert angles == [0, 45, 90]                       # start out, bisector, end in
+    assert all(math.isclose(tt.max_scale(), 2) for tt, _ in inst)
+    content = inst[0][1]
+    assert isinstance(content.clip_path, ClipPath)       # overflow hidden by default
+    assert content.children[0].fill.paint.color == GREEN   # context-stroke
+
+
+def test_marker_on_closed_path_and_circle():
+    t = tree_of('<marker id="m" markerUnits="userSpaceOnUse" orient="auto-start-reverse">'
+                '<rect width="1" height="1"/></marker>'
+                '<path d="M 30 100 L 170 100 Z" stroke="red" marker-start="url(#m)" '
+                'marker-mid="url(#m)" marker-end="url(#m)"/>'
+                '<circle r="10" marker-mid="url(#m)"/>')
+    (a, _), (b, _) = paths(t)
+    inst = _marker_instances(a)
+    ang = [round(math.degrees(math.atan2(tt.b, tt.a)), 9) % 360 for tt, _ in inst]
+    assert ang == [180, 90, 180]       # reversed start; mid bisects 0 and 180 as resvg
+    assert [tuple(tt.apply([[0.0, 0.0]])[0]) for tt, _ in inst] == [(30, 100), (170, 100),
+                                                                    (30, 100)]
+    assert len(_marker_instances(b)) == 4       # circle: the ends of its 4 quarter arcs
+
+
+def test_context_fill_in_use():
+    t = tree_of('<defs><rect id="r" width="1" height="1" fill="context-stroke" '
+                'stroke="context-fill"/></defs><use href="#r" fill="green" stroke="red"/>'
+                '<rect width="1" height="1" fill="context-fill" stroke="blue"/>')
+    (a, _), (b, _) = paths(t)
+    assert a.fill.paint.color == (1, 0, 0, 1) and a.stroke.paint.color == GREEN
+    assert b.fill is None      # no context element

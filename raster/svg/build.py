@@ -49,7 +49,7 @@ import numpy as np
 
 from .. import limits
 from ..errors import PathError, RasterError, RasterWarning, SVGError
-from ..path import Path
+from ..path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
 from ..bbox import bbox as exact_bbox
 from ..svgpath import (circle_path, ellipse_path, line_path, parse_path, polyline_path,
                        rect_path)
@@ -81,7 +81,6 @@ _NOT_RENDERED = frozenset(['defs', 'symbol', 'title', 'desc', 'metadata', 'style
                            'missing-glyph', 'cursor', 'view', 'animate', 'set',
                            'animateMotion', 'animateTransform', 'animateColor'])
 _PAINT_SERVERS = frozenset(['linearGradient', 'radialGradient', 'pattern'])
-_MARKABLE = frozenset(['path', 'line', 'polyline', 'polygon'])
 
 _FONT_KEYWORDS = {'xx-small': 3 / 5, 'x-small': 3 / 4, 'small': 8 / 9, 'medium': 1.0,
                   'large': 6 / 5, 'x-large': 3 / 2, 'xx-large': 2.0, 'xxx-large': 3.0}
@@ -328,7 +327,8 @@ class _Builder:
             if name == 'text':
                 self.warn('text', 'text is not supported yet and is not rendered')
             elif name == 'image':
-                self.warn('image', 'image is not supported yet and is not rendered')
+                from .image import build_image
+                build_image(self, el, pinh, pown, st, out)
             return
         decl = self.styles.get(el)
         if decl and decl.get('display', '').strip() == 'none':
@@ -1033,9 +1033,18 @@ class _Builder:
                 if sp is not None:
                     stroke = self.stroke(sp, inh, ctx)
         markers = None
-        if name in _MARKABLE and st.mode != 'clip':
-            if ('marker-start' in inh or 'marker-mid' in inh or 'marker-end' in inh):
-                markers = self.markers(path, inh, ctx, st.sub(t), fill, stroke)
+        if st.mode != 'clip' and (inh['marker-start'] != 'none' or inh['marker-mid'] != 'none'
+                                  or inh['marker-end'] != 'none'):
+            mpath = path
+            if name in ('circle', 'ellipse', 'rect') or (name == 'path' and (
+                    'a' in el.get('d', '') or 'A' in el.get('d', ''))):
+                # vertices of arcs: one cubic per quarter at most, as resvg
+                try:
+                    mpath = self.geometry(el, name, ctx, 1e6)
+                except RasterError:
+                    pass
+            from .markers import build_markers      # marker logic: raster/svg/markers.py
+            markers = build_markers(self, el, name, path, inh, own, ctx, st.sub(t), fill, stroke)
         if fill is None and stroke is None and markers is None:
             return
         order = _paint_order(inh.get('paint-order'))
@@ -1070,7 +1079,7 @@ class _Builder:
             refs.append(el)
         if not any(r is not None for r in refs):
             return None
-        pts, ang, rev = _marker_vertices(path)
+        pts, ang, kinds = _marker_vertices(path)
         if len(pts) == 0:
             return None
         sw = 1.0
@@ -1081,15 +1090,13 @@ class _Builder:
                 sw = r
         context = (fill.paint if fill is not None else None,
                    stroke.paint if stroke is not None else None)
-        n = len(pts)
-        kinds = np.ones(n, np.int8)
-        kinds[0] = 0
-        kinds[-1] = 2
         out = []
         for k, mk in enumerate(refs):
             if mk is None:
                 continue
-            idx = [0] if k == 0 else ([n - 1] if k == 2 else list(range(1, n - 1)))
+            idx = np.flatnonzero(kinds == k).tolist()
+            if len(pts) == 1:       # a lone vertex is both start and end
+                idx = [0] if k != 1 else []
             if not idx:
                 continue
             built = self.marker_content(mk, st, sw, context)
@@ -1272,6 +1279,7 @@ def build_tree(root, *, base_dir=None, allow_files_under=None, resources_dir=Non
         raise SVGError('tolerance must be a positive number, got %r' % (tolerance,))
     b = _Builder(root, dpi, font_size, languages, tolerance, max_elements, max_use_depth,
                  extra_css)
+    b.image_sources = (base_dir, allow_files_under, resources_dir)   # for raster.svg.image
     inh0 = _initial_inherited(font_size)
     inh, own = b.style(root, inh0, {})
     vb_attr = root.get('viewBox')
@@ -1337,71 +1345,82 @@ def _content_box(group):
     return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
 
 
-def _bisect(a_in, a_out):
-    d = (a_out - a_in + math.pi) % (2 * math.pi) - math.pi
-    return a_in + d / 2.0
-
-
 def _marker_vertices(path):
-    """Marker positions of a path and the marker angle (degrees) at each.
+    """Marker positions of a path and the marker angle (degrees) at each,
+    following resvg's rules.
+
+    A vertex is the end point of every command (``CLOSE``: its contour's
+    start).  The first vertex takes the direction leaving it, the last the
+    direction arriving at it, a middle vertex the bisector of both (only one
+    at a contour's open end or start).  ``CLOSE`` vertices get no mid marker.
 
     Returns
     -------
     pts : (V, 2) float64 ndarray
-        Every vertex: each contour's start, every segment end, and the start
-        again at the end of a closed contour.
-    angles : (V,) float64 ndarray
-        Direction at the vertex (the bisector of the incoming and outgoing
-        directions; the one that exists at open ends; 0 without any).
-    n : int
-        V.
+    angles : (V,) float64 ndarray, degrees
+    kind : (V,) int8 ndarray
+        0 start, 1 mid, 2 end.
     """
-    seg = path.segments()
-    c = seg.ctrl
-    # start / end tangents, skipping coincident control points
-    sd = c[:, 1] - c[:, 0]
-    for k in (2, 3):
-        z = np.all(sd == 0, axis=1)
-        sd[z] = c[z, k] - c[z, 0]
-    ed = c[:, 3] - c[:, 2]
-    for k in (1, 0):
-        z = np.all(ed == 0, axis=1)
-        ed[z] = c[z, 3] - c[z, k]
-    sa = np.arctan2(sd[:, 1], sd[:, 0])
-    ea = np.arctan2(ed[:, 1], ed[:, 0])
-    pts_out, ang_out = [], []
-    first = np.concatenate([[0], np.cumsum(seg.contour_nseg)])
-    for ci in range(len(seg.contour_start)):
-        a, b = int(first[ci]), int(first[ci + 1])
-        start = seg.contour_start[ci]
-        ends = c[a:b, 3]
-        s_ang = list(sa[a:b])
-        e_ang = list(ea[a:b])
-        pts = [start] + list(ends)
-        if seg.contour_closed[ci] and b > a:
-            d = start - seg.contour_end[ci]
-            ca = math.atan2(d[1], d[0]) if (d[0] or d[1]) else e_ang[-1]
-            s_ang.append(ca)
-            e_ang.append(ca)
-            pts.append(start)
-        n = len(s_ang)
-        angs = np.zeros(n + 1)
-        for i in range(n + 1):
-            ain = e_ang[i - 1] if i > 0 else None
-            aout = s_ang[i] if i < n else None
-            if seg.contour_closed[ci] and n:
-                if i == 0:
-                    ain = e_ang[-1]
-                if i == n:
-                    aout = s_ang[0]
-            if ain is not None and aout is not None:
-                angs[i] = _bisect(ain, aout)
-            elif ain is not None:
-                angs[i] = ain
-            elif aout is not None:
-                angs[i] = aout
-        pts_out.append(np.asarray(pts, dtype=np.float64).reshape(-1, 2))
-        ang_out.append(np.degrees(angs))
-    if not pts_out:
-        return np.zeros((0, 2)), np.zeros(0), 0
-    return np.concatenate(pts_out), np.concatenate(ang_out), 0
+    verbs = path.verbs.astype(np.int64)
+    pts = path.points
+    n = len(verbs)
+    if n == 0:
+        return np.zeros((0, 2)), np.zeros(0), np.zeros(0, np.int8)
+    npts = np.array([1, 1, 2, 3, 0])[verbs]
+    off = np.cumsum(npts) - npts
+    contour = np.cumsum(verbs == MOVE) - 1
+    move_pts = pts[off[verbs == MOVE]]
+    last_idx = np.maximum(off + npts - 1, 0)
+    end = pts[np.minimum(last_idx, len(pts) - 1)].copy()
+    close = verbs == CLOSE
+    end[close] = move_pts[contour[close]]
+    prev = np.vstack([end[:1], end[:-1]])
+    c1 = pts[np.minimum(off, len(pts) - 1)]                     # first control point
+    c2 = pts[np.minimum(off + np.maximum(npts - 2, 0), len(pts) - 1)]  # last control point
+
+    def first_nonzero(*vecs):
+        out = vecs[0].copy()
+        for v in vecs[1:]:
+            z = np.all(out == 0, axis=1)
+            out[z] = v[z]
+        return out
+    curve = (verbs == QUAD) | (verbs == CUBIC)
+    # direction arriving at each command's end point
+    vin = end - prev
+    vin[curve] = first_nonzero(end - c2, end - c1, end - prev)[curve]
+    # direction leaving the previous vertex along each command
+    vout = end - prev
+    vout[curve] = first_nonzero(c1 - prev, c2 - prev, end - prev)[curve]
+    ain = np.degrees(np.arctan2(vin[:, 1], vin[:, 0]))
+    aout = np.degrees(np.arctan2(vout[:, 1], vout[:, 0]))
+    draws = verbs != MOVE
+    ang = np.zeros(n)
+    nxt_draws = np.append(draws[1:], False)
+    nxt_aout = np.append(aout[1:], 0.0)
+    both = draws & nxt_draws
+    # bisector as resvg computes it: both angles in [0, 360), half the
+    # difference, flipped when the half turn is more than 90 degrees
+    a1 = ain % 360.0
+    half = (nxt_aout % 360.0 - a1) * 0.5
+    bis = a1 + half - np.where(np.abs(half) > 90.0, 180.0, 0.0)
+    ang = np.where(both, bis, ang)
+    ang = np.where(draws & ~nxt_draws, ain, ang)
+    ang = np.where(~draws & nxt_draws, nxt_aout, ang)
+    # first vertex: the direction leaving it; last: the direction arriving
+    ang[0] = nxt_aout[0] if n > 1 and nxt_draws[0] else 0.0
+    if n > 1:
+        lv = verbs[-1]
+        if lv == MOVE:
+            ang[-1] = 0.0
+        elif lv == CLOSE:
+            ang[-1] = ain[-1] if verbs[-2] == LINE else 0.0
+        else:
+            ang[-1] = ain[-1]
+    kind = np.ones(n, np.int8)
+    kind[0] = 0
+    kind[-1] = 2
+    keep = np.ones(n, bool)
+    keep[1:-1] = ~close[1:-1]
+    if n == 1:
+        return end[:1], ang[:1], np.array([0], np.int8)
+    return end[keep], ang[keep], kind[keep]

@@ -1,0 +1,571 @@
+"""SVG markers (``marker-start``, ``marker-mid``, ``marker-end``) resolved
+into the render tree.
+
+A marker is drawn at vertices of a shape's path: ``marker-start`` at the
+first vertex, ``marker-end`` at the last, ``marker-mid`` at every vertex in
+between.  Each instance is a :class:`~raster.svg.tree.Group` whose transform
+maps the marker's content coordinates to the path's user space::
+
+    translate(vertex) @ rotate(angle) @ scale(sx, sy) @ translate(-refX, -refY)
+
+where ``(sx, sy)`` is the stroke width (``markerUnits="strokeWidth"``, the
+default) or 1 (``userSpaceOnUse``) times the viewBox scale, and the angle is
+the ``orient`` angle or, for ``auto``/``auto-start-reverse``, the direction
+of the path at the vertex.  Unless ``overflow`` is ``visible``/``auto`` the
+content is clipped to the marker viewport (``0 0 markerWidth
+markerHeight``, mapped into viewBox coordinates when there is a viewBox).
+All instances of a path are the children of the Group stored in
+:attr:`PathNode.markers <raster.svg.tree.PathNode>`, in the path's user
+space, and are drawn at the ``markers`` position of ``paint-order``.
+
+Vertices and directions follow resvg (usvg's marker module), the reference
+for the conformance suite, so that conformance images match:
+
+* the path is seen as a list of segments ``M``, ``L``, ``C`` (quadratics are
+  raised to cubics) and ``Z``; a ``Z`` has the vertex of its subpath start;
+* start: segment 0; end: the last segment (none when it is a ``M``); mid:
+  every segment in between except ``Z`` -- so the start of a later subpath
+  gets a mid marker, the closing vertex of a closed subpath in the middle of
+  the path gets none;
+* elliptical arcs count as their cubic pieces of at most 90 degrees each (a
+  half ellipse has a mid vertex), and the basic shapes (``rect``,
+  ``circle``, ``ellipse``) are marked too (SVG 2);
+* the ``auto`` angle at a vertex is the bisector of an incoming and an
+  outgoing direction taken from the neighbouring vertices and control
+  points, skipping a control point that coincides with the vertex.
+
+Coordinates are user units, x right, y down; angles are degrees clockwise
+on screen (SVG's rotate).
+
+>>> from raster.svgpath import parse_path
+>>> mv = marker_vertices(parse_path('M 0 0 L 10 0 L 10 10'))
+>>> mv.points.tolist(), mv.angles.tolist()
+([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]], [0.0, 45.0, 90.0])
+>>> mv.start, mv.mid.tolist(), mv.end
+(0, [1], 2)
+"""
+
+import dataclasses
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from ..errors import RasterError
+from ..path import CLOSE, CUBIC, LINE, MOVE, QUAD
+from ..transform import Affine
+from ..bbox import bbox as exact_bbox
+from .tree import Group, LinearGradient, Pattern, RadialGradient, SolidPaint
+from .values import (parse_angle, parse_length, parse_preserve_aspect_ratio, parse_url,
+                     parse_viewbox, viewbox_transform)
+
+__all__ = ['MARKABLE', 'MarkerVertices', 'marker_vertices', 'vertex_angles', 'parse_orient',
+           'marker_transform', 'context_paint', 'build_markers']
+
+#: Elements that take markers (SVG 2: every shape; resvg draws them too).
+MARKABLE = frozenset(['path', 'line', 'polyline', 'polygon', 'rect', 'circle', 'ellipse'])
+
+_M, _L, _C, _Z = 0, 1, 3, 4          # marker segment kinds (path verb values)
+_NPTS = np.array([1, 1, 2, 3, 0], dtype=np.int64)
+_TWO_PI = 2.0 * math.pi
+# arcs are re-flattened for marker placement with a tolerance so large that
+# only the "at most 90 degrees per piece" rule splits them (as resvg does)
+_PLACEMENT_TOL = 1e9
+
+
+class MarkerVertices(NamedTuple):
+    """Marker vertices of a path.
+
+    Attributes
+    ----------
+    points : (S, 2) float64 ndarray
+        The vertex of every marker segment (see the module docstring): the
+        end point of ``M``/``L``/``C``, the subpath start for ``Z``.
+    angles : (S,) float64 ndarray
+        The ``orient="auto"`` angle at each vertex, degrees in [0, 360).
+    kinds : (S,) uint8 ndarray
+        Segment kinds: 0 ``M``, 1 ``L``, 3 ``C``, 4 ``Z``.
+    start : int
+        Index of the start vertex, -1 when there is none.
+    mid : (K,) int64 ndarray
+        Indices of the mid vertices.
+    end : int
+        Index of the end vertex, -1 when there is none.
+    """
+    points: np.ndarray
+    angles: np.ndarray
+    kinds: np.ndarray
+    start: int
+    mid: np.ndarray
+    end: int
+
+
+def _segments(path):
+    """Marker segments of a path: kinds (S,), vertices (S, 2), first and
+    second control points (S, 2) (meaningful for cubics) and the start of
+    the latest subpath strictly before each segment (S, 2)."""
+    verbs = np.asarray(path.verbs)
+    pts = np.asarray(path.points, dtype=np.float64).reshape(-1, 2)
+    n = len(verbs)
+    if n == 0:
+        z = np.zeros((0, 2))
+        return np.zeros(0, np.uint8), z, z, z, z
+    npts = _NPTS[verbs]
+    off = np.cumsum(npts) - npts
+    # a move directly followed by a move is replaced by it (as tiny-skia does)
+    nxt = np.append(verbs[1:], CLOSE)
+    keep = ~((verbs == MOVE) & (nxt == MOVE))
+    is_move = verbs == MOVE
+    move_idx = np.where(is_move, np.arange(n), -1)
+    np.maximum.accumulate(move_idx, out=move_idx)       # latest move at or before
+    sub_start = pts[off[np.maximum(move_idx, 0)]]
+    last = np.clip(off + npts - 1, 0, len(pts) - 1)
+    vert = np.where((verbs == CLOSE)[:, None], sub_start, pts[last])
+    prev = pts[np.maximum(off - 1, 0)]                  # start point of a drawing verb
+    c1 = pts[np.minimum(off, len(pts) - 1)].copy()
+    c2 = pts[np.minimum(off + 1, len(pts) - 1)].copy()
+    q = verbs == QUAD
+    if q.any():                                         # degree elevation
+        qc = pts[off[q]]
+        c1[q] = (prev[q] + 2.0 * qc) / 3.0
+        c2[q] = (vert[q] + 2.0 * qc) / 3.0
+    kinds = np.where(q, CUBIC, verbs).astype(np.uint8)
+    kinds, vert, c1, c2 = kinds[keep], vert[keep], c1[keep], c2[keep]
+    # start of the latest subpath strictly before each kept segment
+    km = kinds == MOVE
+    S = len(kinds)
+    before = np.where(km, np.arange(S), -1)
+    before = np.concatenate([[-1], before[:-1]])
+    np.maximum.accumulate(before, out=before)
+    sp = np.where((before >= 0)[:, None], vert[np.maximum(before, 0)], 0.0)
+    return kinds, vert, c1, c2, sp
+
+
+def _near(a, b):
+    """Rows of ``a`` and ``b`` ((N, 2)) equal to within a few float32 ulps
+    (resvg compares single-precision coordinates)."""
+    tol = 4.0 * np.finfo(np.float32).eps * np.maximum(np.abs(a), np.abs(b))
+    return np.all(np.abs(a - b) <= tol, axis=-1)
+
+
+def _bisector(vin, vout):
+    """resvg's vertex angle (degrees in [0, 360)) from incoming and outgoing
+    direction vectors ((N, 2) each): the mean of the two angles, turned by
+    180 degrees when they are more than 180 degrees apart.  A zero vector
+    has angle 0."""
+    a_in = np.mod(np.arctan2(vin[:, 1], vin[:, 0]), _TWO_PI)
+    a_out = np.mod(np.arctan2(vout[:, 1], vout[:, 0]), _TWO_PI)
+    d = (a_out - a_in) * 0.5
+    ang = a_in + d - np.where(np.abs(d) > math.pi / 2, math.pi, 0.0)
+    return np.degrees(np.mod(ang, _TWO_PI)) % 360.0
+
+
+def _curves(prev, c1, x, c2, nxt):
+    """Incoming/outgoing directions at vertex ``x`` between a control point
+    ``c1`` before it and ``c2`` after it; a control point on the vertex is
+    replaced by the neighbouring vertex (``prev`` or ``nxt``)."""
+    e1 = _near(c1, x)[:, None]
+    e2 = _near(x, c2)[:, None]
+    vin = np.where(e1, x - prev, x - c1)
+    vout = np.where(e1, c2 - x, np.where(e2, nxt - x, c2 - x))
+    return vin, vout
+
+
+def vertex_angles(kinds, vert, c1, c2, sp):
+    """``orient="auto"`` angles (degrees, (S,)) of marker segments as made
+    by :func:`_segments`; vectorized over all vertices."""
+    S = len(kinds)
+    vin = np.zeros((S, 2))
+    vout = np.zeros((S, 2))
+    if S < 2:
+        return np.zeros(S)
+    # -- first vertex: the direction into the first segment
+    k1 = kinds[1]
+    if k1 == _L:
+        vin[0] = vout[0] = vert[1] - vert[0]
+    elif k1 == _C:
+        d = vert[1] - vert[0] if _near(vert[0:1], c1[1:2])[0] else c1[1] - vert[0]
+        vin[0] = vout[0] = d
+    # -- last vertex
+    j = S - 1
+    k, kp = kinds[j], kinds[j - 1]
+    if k == _L:
+        vin[j] = vout[j] = vert[j] - vert[j - 1]
+    elif k == _C:
+        d = vert[j] - c1[j] if _near(c2[j:j + 1], vert[j:j + 1])[0] else vert[j] - c2[j]
+        vin[j] = vout[j] = d
+    elif k == _Z and kp == _L:
+        vin[j] = vout[j] = sp[j] - vert[j - 1]
+    elif k == _Z and kp == _C:
+        p = vert[j - 1:j]
+        a, b = _curves(p, c2[j - 1:j], p, sp[j:j + 1], sp[j:j + 1])
+        vin[j], vout[j] = a[0], b[0]
+    # -- middle vertices, all at once
+    if S > 2:
+        i = np.arange(1, S - 1)
+        cur, nk = kinds[i], kinds[i + 1]
+        pv, x, nv = vert[i - 1], vert[i], vert[i + 1]
+        a_in = np.zeros((len(i), 2))
+        a_out = np.zeros((len(i), 2))
+
+        def put(sel, vi, vo):
+            a_in[sel] = vi[sel]
+            a_out[sel] = vo[sel]
+        line = lambda d: (d, d)                                   # noqa: E731
+        put((cur == _M) & (nk == _L), *line(nv - x))
+        put((cur == _M) & (nk == _C), *line(c1[i + 1] - x))
+        put((cur == _L) & (nk == _L), x - pv, nv - x)
+        put((cur == _C) & (nk == _C), *_curves(pv, c2[i], x, c1[i + 1], nv))
+        put((cur == _L) & (nk == _C), *_curves(pv, pv, x, c1[i + 1], nv))
+        put((cur == _C) & (nk == _L), *_curves(pv, c2[i], x, nv, nv))
+        put((cur == _L) & (nk == _M), *line(x - pv))
+        cm = np.where(_near(x, c2[i])[:, None], x - pv, x - c2[i])
+        put((cur == _C) & (nk == _M), *line(cm))
+        put((cur == _L) & (nk == _Z), x - pv, sp[i] - x)
+        put(((cur == _M) | (cur == _C)) & (nk == _Z), *line(sp[i] - pv))
+        vin[1:-1], vout[1:-1] = a_in, a_out
+    return _bisector(vin, vout)
+
+
+def marker_vertices(path):
+    """Marker vertices, ``auto`` angles and start/mid/end indices of a path.
+
+    Parameters
+    ----------
+    path : raster.Path
+        In user units (elliptical arcs already converted to cubics; see the
+        module docstring for how arcs should be split).
+
+    Returns
+    -------
+    MarkerVertices
+        Empty arrays and ``start == end == -1`` for a path of fewer than
+        two segments.
+
+    Examples
+    --------
+    A closed triangle: the closing vertex is the end, and the last corner's
+    angle bisects its edge and the closing edge.
+
+    >>> from raster.svgpath import parse_path
+    >>> mv = marker_vertices(parse_path('M 0 0 L 10 0 L 10 10 Z'))
+    >>> mv.points[mv.end].tolist(), mv.mid.tolist(), round(float(mv.angles[2]), 6)
+    ([0.0, 0.0], [1, 2], 157.5)
+    """
+    kinds, vert, c1, c2, sp = _segments(path)
+    S = len(kinds)
+    if S < 2:
+        e = np.zeros(0, np.int64)
+        return MarkerVertices(np.zeros((0, 2)), np.zeros(0), kinds, -1, e, -1)
+    angles = vertex_angles(kinds, vert, c1, c2, sp)
+    start = 0 if kinds[0] == _M else -1
+    mid = np.flatnonzero(kinds[1:S - 1] != _Z) + 1
+    end = S - 1 if kinds[S - 1] != _M else -1
+    return MarkerVertices(vert, angles, kinds, start, mid.astype(np.int64), end)
+
+
+def parse_orient(s):
+    """``orient`` attribute: ``'auto'``, ``'auto-start-reverse'`` or an angle
+    in degrees (``deg``/``rad``/``grad``/``turn`` units accepted); missing or
+    invalid is 0.
+
+    >>> parse_orient('auto'), parse_orient('0.25turn'), parse_orient('x')
+    ('auto', 90.0, 0.0)
+    """
+    if s is None:
+        return 0.0
+    s = s.strip()
+    if s in ('auto', 'auto-start-reverse'):
+        return s
+    try:
+        a = parse_angle(s)
+    except RasterError:
+        a = None
+    return 0.0 if a is None else float(a)
+
+
+def marker_transform(point, angle, sx, sy, ref):
+    """Affine mapping marker content to the path's user space:
+    ``translate(point) @ rotate(angle) @ scale(sx, sy) @ translate(-ref)``.
+
+    >>> marker_transform((10, 20), 90, 2, 2, (1, 0)).apply([[1.0, 0.0], [2.0, 0.0]]).tolist()
+    [[10.0, 20.0], [10.0, 22.0]]
+    """
+    t = Affine.translate(float(point[0]), float(point[1]))
+    if angle:
+        t = t @ Affine.rotate(float(angle))
+    return t @ Affine(sx, 0, 0, sy, -sx * float(ref[0]), -sy * float(ref[1]))
+
+
+def context_paint(paint, to_context, box=None):
+    """A context element's paint, re-expressed for content whose coordinates
+    map to the context element's user space by ``to_context``.
+
+    Gradients and patterns keep painting in the context element's space
+    (SVG 2 context-fill/context-stroke): their transform is prefixed by the
+    inverse of ``to_context``, and object-bounding-box units are resolved
+    against ``box`` (x0, y0, x1, y1), the context element's bounding box.
+    Returns None when the paint cannot be used (singular transform, empty
+    box).  Solid colours and None are returned unchanged.
+    """
+    if paint is None or isinstance(paint, SolidPaint):
+        return paint
+    try:
+        inv = to_context.inverse()
+    except RasterError:
+        return None
+    needs_box = (getattr(paint, 'units', '') == 'objectBoundingBox'
+                 or getattr(paint, 'content_units', '') == 'objectBoundingBox')
+    bx = by = 0.0
+    bw = bh = 1.0
+    if needs_box:
+        if box is None:
+            return None
+        bx, by, bw, bh = box[0], box[1], box[2] - box[0], box[3] - box[1]
+        if not (bw > 0 and bh > 0):
+            return None
+    if isinstance(paint, (LinearGradient, RadialGradient)):
+        t = paint.transform
+        if paint.units == 'objectBoundingBox':
+            t = Affine(bw, 0, 0, bh, bx, by) @ t
+        return dataclasses.replace(paint, units='userSpaceOnUse', transform=inv @ t)
+    if isinstance(paint, Pattern):
+        x, y, w, h = paint.rect
+        if paint.units == 'objectBoundingBox':
+            x, y, w, h = bx + x * bw, by + y * bh, w * bw, h * bh
+        ct = paint.content_transform
+        if paint.view_box is None and paint.content_units == 'objectBoundingBox':
+            ct = ct @ Affine.scale(bw, bh)
+        return dataclasses.replace(paint, rect=(x, y, w, h), units='userSpaceOnUse',
+                                   content_units='userSpaceOnUse', content_transform=ct,
+                                   transform=inv @ paint.transform)
+    return paint
+
+
+# -- tree building ----------------------------------------------------------------
+
+
+def _local(el):
+    tag = el.tag
+    if isinstance(tag, str) and tag.startswith('{http://www.w3.org/2000/svg}'):
+        return tag[28:]
+    return None
+
+
+def _marker_ref(builder, value):
+    if value is None:
+        return None
+    v = value.strip()
+    if not v or v == 'none':
+        return None
+    u = parse_url(v)
+    if u is None:
+        return None
+    el = builder.by_id.get(u[0])
+    if el is None or _local(el) != 'marker':
+        return None
+    return el
+
+
+def _stroke_width(inh, ctx):
+    s = inh.get('stroke-width')
+    if s is None:
+        return 1.0
+    v = parse_length(s, 'other', ctx)
+    if v is None or v < 0:
+        return 1.0
+    return v
+
+
+def _ref(mk, name, axis, ctx, lo, size):
+    s = mk.get(name)
+    if s is None:
+        return 0.0
+    k = s.strip()
+    if k in ('left', 'top'):
+        return lo
+    if k == 'center':
+        return lo + size * 0.5
+    if k in ('right', 'bottom'):
+        return lo + size
+    v = parse_length(s, axis, ctx)
+    return 0.0 if v is None else v
+
+
+class _Marker:
+    """Everything about one marker element that does not depend on the
+    vertex."""
+    __slots__ = ('el', 'inh', 'own', 'scale', 'ref', 'clip', 'orient', 'vw', 'vh')
+
+
+def _resolve_marker(builder, mk, ctx, sw):
+    """The vertex-independent part of a marker, or None when it draws
+    nothing (zero or negative size, zero stroke scale, bad viewBox)."""
+    inh, own = builder.doc_style(mk)
+    mw = builder.length(mk, 'markerWidth', 'x', ctx, 3.0)
+    mh = builder.length(mk, 'markerHeight', 'y', ctx, 3.0)
+    if not (mw > 0 and mh > 0):
+        return None
+    units = 1.0 if mk.get('markerUnits', '').strip() == 'userSpaceOnUse' else sw
+    if not (units > 0 and math.isfinite(units)):
+        return None
+    m = _Marker()
+    m.el, m.inh, m.own = mk, inh, own
+    vbs = mk.get('viewBox')
+    vb = None
+    if vbs is not None:
+        try:
+            vb = parse_viewbox(vbs)
+        except RasterError:
+            vb = None
+        if vb is None:
+            return None
+    if vb is None:
+        sx = sy = units
+        lox, loy, vw, vh = 0.0, 0.0, mw, mh
+        clip_rect = (0.0, 0.0, mw, mh)
+    else:
+        try:
+            par = parse_preserve_aspect_ratio(mk.get('preserveAspectRatio', ''))
+            vbt = viewbox_transform(vb, par, mw, mh)
+        except RasterError:
+            return None
+        sx, sy = vbt.a * units, vbt.d * units
+        lox, loy, vw, vh = vb
+        # the viewport (0 0 mw mh) in viewBox coordinates
+        clip_rect = (-vbt.e / vbt.a, -vbt.f / vbt.d, mw / vbt.a, mh / vbt.d)
+    m.scale = (sx, sy)
+    m.vw, m.vh = vw, vh
+    m.ref = (_ref(mk, 'refX', 'x', ctx, lox, vw), _ref(mk, 'refY', 'y', ctx, loy, vh))
+    ov = own.get('overflow', 'hidden').strip()
+    m.clip = None if ov in ('visible', 'auto') else builder.clip_rect(*clip_rect)
+    m.orient = parse_orient(mk.get('orient'))
+    return m
+
+
+def _content(builder, m, st, T, context):
+    """Marker content nodes built for the instance transform ``T``."""
+    sub = st.sub(T, m.vw, m.vh, context=context)
+    ids = set(builder.tree_ids)
+    nodes = []
+    builder._active_refs.add(m.el)
+    try:
+        builder.children(m.el, m.inh, m.own, sub, nodes)
+    finally:
+        builder._active_refs.discard(m.el)
+    # marker content is not a document node: keep `ids` for real elements
+    for k in [k for k in builder.tree_ids if k not in ids]:
+        del builder.tree_ids[k]
+    return nodes
+
+
+def _placement_path(builder, el, name, path, ctx):
+    """The path whose vertices carry markers: arcs (path arcs, rounded
+    corners, ellipses) split only into pieces of at most 90 degrees."""
+    if name in ('line', 'polyline', 'polygon'):
+        return path
+    if name == 'path':
+        d = el.get('d') or ''
+        if 'a' not in d and 'A' not in d:
+            return path
+    if name == 'rect' and el.get('rx') is None and el.get('ry') is None:
+        return path
+    try:
+        p = builder.geometry(el, name, ctx, _PLACEMENT_TOL)
+    except RasterError:
+        return path
+    return path if p is None else p
+
+
+def build_markers(builder, el, name, path, inh, own, ctx, st, fill=None, stroke=None):
+    """Marker instances of a shape, as one Group in the shape's user space.
+
+    Parameters
+    ----------
+    builder : raster.svg.build._Builder
+        The tree builder (its ``children``, ``doc_style``, ``clip_rect``,
+        ``geometry`` ... build the marker content like any other content).
+    el : lxml element
+        The shape element; ``name`` its local name.
+    path : raster.Path
+        The shape's geometry in its user space.
+    inh, own : dict
+        The shape's computed inherited and own properties.
+    ctx : raster.svg.values.LengthContext
+        Length context of the shape.
+    st : build state
+        State whose CTM includes the shape's transform.
+    fill, stroke : raster.svg.tree.Fill, raster.svg.tree.Stroke or None
+        The shape's resolved paints: the context for ``context-fill`` /
+        ``context-stroke`` in the marker content.
+
+    Returns
+    -------
+    raster.svg.tree.Group or None
+        None when no marker draws anything.
+    """
+    if name not in MARKABLE or st.mode == 'clip':
+        return None
+    refs = [_marker_ref(builder, inh.get(p)) for p in ('marker-start', 'marker-mid', 'marker-end')]
+    if all(r is None for r in refs):
+        return None
+    sw = _stroke_width(inh, ctx)
+    if not sw > 0:
+        return None
+    mv = marker_vertices(_placement_path(builder, el, name, path, ctx))
+    if len(mv.points) == 0:
+        return None
+    cfill = fill.paint if fill is not None else None
+    cstroke = stroke.paint if stroke is not None else None
+    simple = all(p is None or isinstance(p, SolidPaint) for p in (cfill, cstroke))
+    box = None
+    if not simple:
+        try:
+            box = exact_bbox(path)
+        except RasterError:
+            box = None
+    resolved = {}
+    out = []
+    for kind, mk in enumerate(refs):
+        if mk is None:
+            continue
+        if kind == 0:
+            idx = [mv.start] if mv.start >= 0 else []
+        elif kind == 1:
+            idx = mv.mid.tolist()
+        else:
+            idx = [mv.end] if mv.end >= 0 else []
+        if not idx:
+            continue
+        if mk in builder._active_refs:
+            builder.warn('marker-recursive', 'recursive marker reference ignored')
+            continue
+        m = resolved.get(mk)
+        if m is None:
+            m = resolved[mk] = _resolve_marker(builder, mk, ctx, sw)
+        if m is None:
+            continue
+        shared = None
+        for i in idx:
+            o = m.orient
+            if o == 'auto':
+                a = float(mv.angles[i])
+            elif o == 'auto-start-reverse':
+                a = float(mv.angles[i]) + (180.0 if kind == 0 else 0.0)
+            else:
+                a = o
+            T = marker_transform(mv.points[i], a % 360.0, m.scale[0], m.scale[1], m.ref)
+            if simple:
+                if shared is None:
+                    shared = _content(builder, m, st, T, (cfill, cstroke))
+                nodes = list(shared)
+            else:
+                nodes = _content(builder, m, st, T, (context_paint(cfill, T, box),
+                                                     context_paint(cstroke, T, box)))
+            if nodes:
+                out.append(Group(transform=T, clip_path=m.clip, children=nodes))
+            if builder.stopped:
+                break
+    if not out:
+        return None
+    return Group(children=out)
