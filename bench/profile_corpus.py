@@ -25,6 +25,10 @@ FILES are corpus file names or substrings (default: every file of
    with the stage wall times of (1) beside them.
 
 The top functions by own time (after the same hand-up) are listed too.
+
+``--cost-model`` prints instead the fixed CPU cost of one call of each stage
+on a small shape and the CPU cost per pixel on a 2000x2000 square: with
+thousands of small shapes per document, the fixed costs decide the speed.
 """
 
 import argparse
@@ -198,6 +202,56 @@ def profile_file(path, width, top, repeat):
     return st, by_stage
 
 
+def cost_model():
+    """Print the fixed per-call CPU cost of each stage on a small shape and
+    the per-pixel CPU cost on a 2000x2000 one (min of 3 batches)."""
+    from raster.canvas import Canvas
+    from raster.flatten import flatten
+    from raster.path import Path
+    from raster.scan import coverage
+    from raster.stroke import stroke
+    from raster.svgpath import parse_path
+
+    def cpu(fn, n):
+        best = float('inf')
+        for _ in range(3):
+            c = time.process_time()
+            for _ in range(n):
+                fn()
+            best = min(best, (time.process_time() - c) / n)
+        return best
+
+    d = 'M10 10 C 20 0 30 0 40 10 S 60 30 50 40 L 20 45 Q 5 30 10 10 Z'
+    p = parse_path(d)
+    poly = Path.polygon([(1, 1), (30, 2), (25, 30), (3, 20)])
+    pl = flatten(p, 0.25)
+    e = pl.edges(close_all=True)
+    m = coverage(e, 100, 100)
+    c = Canvas(100, 100)
+    print('Fixed CPU cost per call, small shape (6 verbs: line, quad, cubics; '
+          '%d edges; mask %dx%d):' % (len(e), m.data.shape[1], m.data.shape[0]))
+    rows = [('parse_path', lambda: parse_path(d), 200),
+            ('flatten (curves)', lambda: flatten(p, 0.25), 100),
+            ('flatten (4-gon)', lambda: flatten(poly, 0.25), 200),
+            ('Polylines.edges', lambda: pl.edges(close_all=True), 200),
+            ('scan.coverage', lambda: coverage(e, 100, 100), 100),
+            ('Canvas.fill', lambda: c.fill(m, (1, 0, 0, 1)), 200),
+            ('stroke (curves, w=2)', lambda: stroke(p, width=2, tolerance=0.25), 30),
+            ('stroke (4-gon, w=2)', lambda: stroke(poly, width=2, tolerance=0.25), 30)]
+    for name, fn, n in rows:
+        print('  %-22s %8.3f ms' % (name, cpu(fn, n) * 1e3))
+    big = Canvas(2000, 2000)
+    sq = Path.polygon([(0.5, 0.5), (1999.5, 0.5), (1999.5, 1999.5), (0.5, 1999.5)])
+    E = flatten(sq, 0.25).edges(close_all=True)
+    M = coverage(E, 2000, 2000)
+    print('CPU cost per pixel, 2000x2000 square:')
+    for name, fn in (('scan.coverage', lambda: coverage(E, 2000, 2000)),
+                     ('Canvas.fill', lambda: big.fill(M, (1, 0, 0, 0.5))),
+                     ('Canvas.composite', lambda: big.composite(big.data)),
+                     ('Canvas.to_rgba8', lambda: big.to_rgba8())):
+        print('  %-22s %8.1f ns' % (name, cpu(fn, 2) * 1e9 / 4e6))
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     ap.add_argument('files', nargs='*', help='corpus file names or substrings')
@@ -205,7 +259,12 @@ def main(argv=None):
     ap.add_argument('--width', type=int, default=2000)
     ap.add_argument('--top', type=int, default=25)
     ap.add_argument('--repeat', type=int, default=3)
+    ap.add_argument('--cost-model', action='store_true',
+                    help='only print per-call and per-pixel costs of the stages')
     args = ap.parse_args(argv)
+    if args.cost_model:
+        cost_model()
+        return 0
     files = sorted(glob.glob(os.path.join(args.corpus, '*.svg')))
     if args.files:
         files = [f for f in files if any(p in os.path.basename(f) for p in args.files)]

@@ -20,12 +20,9 @@ __version__ = '0.1.0'
 
 _LAZY = {
     'parse_path': 'raster.svgpath',
-    'flatten': 'raster.flatten',
-    'Polylines': 'raster.flatten',
-    'bbox': 'raster.bbox',
-    'stroke': 'raster.stroke',
-    'Stroke': 'raster.stroke',
+    'StrokeStyle': 'raster.stroke',
     'coverage': 'raster.scan',
+    'path_coverage': 'raster.scan',
     'Canvas': 'raster.canvas',
     'render': 'raster.svg',
     'render_image': 'raster.svg',

@@ -99,7 +99,11 @@ def segment_extrema(ctrl, degree):
     a = np.where(cub, -p0 + 3.0 * (p1 - p2) + p3, 0.0)
     b = np.where(cub, 2.0 * (p0 - 2.0 * p1 + p2), np.where(quad, p0 - 2.0 * p1 + p2, 0.0))
     c = np.where(cub | quad, p1 - p0, 0.0)
-    r = quadratic_roots(a, b, c)                      # (S, D, 2)
+    # roots do not change under scaling: normalise so that squares can
+    # neither overflow nor underflow for huge or tiny coordinates
+    m = np.maximum(np.maximum(np.abs(a), np.abs(b)), np.abs(c))
+    m = np.where(m > 0, m, 1.0)
+    r = quadratic_roots(a / m, b / m, c / m)          # (S, D, 2)
     return np.where((r > 0.0) & (r < 1.0), r, np.nan)
 
 

@@ -87,6 +87,8 @@ _CHUNK = 1 << 16
 _MAX_ROUNDS = 200
 # Accept a piece whose deviation is at rounding-noise level.
 _NOISE = 64 * np.finfo(np.float64).eps
+# Largest coordinate magnitude accepted (squares must not overflow).
+_HUGE = 1e150
 
 
 def _check_tolerance(tolerance):
@@ -142,7 +144,12 @@ def _blossom(P, a, b):
             wa = _COMB[n - i][r] * pa[r] * qa[n - i - r]
             for k in range(i + 1):
                 W[i, r + k] += wa * wb[k]
-    return np.einsum('ijm,jdm->idm', W, P)
+    Q = np.empty((n1, D, m))
+    for i in range(n1):
+        Q[i] = W[i, 0] * P[0]
+        for j in range(1, n1):
+            Q[i] += W[i, j] * P[j]
+    return Q
 
 
 def _bernstein_max(c):
@@ -197,7 +204,8 @@ def _deviation(Q):
     Returns
     -------
     (m,) float64 ndarray
-        For planar quadratics and cubics the bound is exact up to rounding.
+        For planar quadratics and cubics whose projection stays within the
+        chord the bound is the exact distance (up to rounding).
     """
     n1, D, m = Q.shape
     n = n1 - 1
@@ -383,7 +391,8 @@ def flatten_beziers(ctrl, tolerance=DEFAULT_TOLERANCE):
     PathError
         Non-finite control points, wrong array shape, bad tolerance.
     LimitError
-        More than :data:`raster.limits.MAX_FLATTEN_POINTS` points needed.
+        More than :data:`raster.limits.MAX_FLATTEN_POINTS` points needed, or
+        coordinates beyond 1e150.
 
     Examples
     --------
@@ -412,6 +421,9 @@ def flatten_beziers(ctrl, tolerance=DEFAULT_TOLERANCE):
                          % limits.MAX_FLATTEN_POINTS)
     n = n1 - 1
     scale = np.abs(P).reshape(S, -1).max(axis=1)
+    if scale.max() > _HUGE:
+        raise LimitError('control points beyond %g cannot be flattened '
+                         '(squared distances would overflow)' % _HUGE)
     floor = _NOISE * scale                            # per-curve noise level
 
     # active pieces: curve index and parameter interval

@@ -40,7 +40,8 @@ space, negative after a mirroring transform).
 
 Joins *inside* a flattened curve (between the chords of one Bezier segment)
 are always round, whatever the join style, so curves stay smooth; a round
-join that a bevel approximates within the tolerance is a bevel.  Round joins,
+join whose miter stays within the tolerance of it is drawn as that miter
+(one outline point instead of an arc).  Round joins,
 caps and dots are polygonized with their vertices at the area-preserving
 radius ``r * sqrt(a / sin a)`` (``a`` the angle step), so round caps are not
 systematically too small.  For butt and square caps and sharp joins on fat
@@ -858,19 +859,18 @@ def _outline(lines, style, tol):
         o1 = -sgn[:, None] * _rot90(d1)
         turn = theta > 1e-9
         join = style.join
-        rnd = turn & (lines.smooth[jv] | (join == 'round'))
-        # round joins that a bevel approximates within tol need no points
-        rnd &= r * (1.0 - np.cos(0.5 * theta)) > tol
+        left_outer = sgn < 0                         # outer normal = +n
+        cos_half = np.sqrt(0.5 * (1.0 + dot))       # 1 / (miter length / width)
+        roundish = turn & (lines.smooth[jv] | (join == 'round'))
+        # a round join whose miter stays within tol of it is that miter
+        mit = roundish & (r * (1.0 - cos_half) <= tol * cos_half)
+        rnd = roundish & ~mit
         ostart = np.zeros(len(jv), np.int64)        # outer points, from o0 to o1
         ocnt = np.zeros(len(jv), np.int64)
         if join in ('miter', 'miter-clip', 'arcs'):
-            cos_half = np.sqrt(0.5 * (1.0 + dot))   # 1 / (miter length / width)
+            sharp = turn & ~roundish
             fits = cos_half * style.miterlimit >= 1.0
-            sharp = turn & ~rnd & ~(lines.smooth[jv] | (join == 'round'))
-            mit = sharp & fits
-            tip = v[mit] + (o0[mit] + o1[mit]) * (r / (1.0 + dot[mit]))[:, None]
-            ostart[mit] = items.put(tip) + np.arange(int(mit.sum()))
-            ocnt[mit] = 1
+            mit |= sharp & fits
             if join == 'miter-clip':
                 q = sharp & ~fits
                 bis = o0[q] + o1[q]
@@ -883,6 +883,12 @@ def _outline(lines, style, tol):
                 ostart[q] = items.put(np.stack([e0, e1], axis=1).reshape(-1, 2)) + \
                     2 * np.arange(int(q.sum()))
                 ocnt[q] = 2
+        # a miter tip lies on both outer offset lines: it replaces their ends
+        # (adding the miter triangle beyond the bevel to the cycle sum)
+        tip = v[mit] + (o0[mit] + o1[mit]) * (r / (1.0 + dot[mit]))[:, None]
+        lo = left_outer[mit]
+        quads[qpos[prv[jv[mit]]] + np.where(lo, 1, 2)] = tip     # outer end, segment in
+        quads[qpos[jv[mit]] + np.where(lo, 0, 3)] = tip          # outer start, segment out
         if np.any(rnd):
             pts, cnt = _arcs(v[rnd], r * o0[rnd], (sgn * theta)[rnd], tol)
             ostart[rnd] = items.put(pts) + _starts(cnt)
@@ -892,7 +898,6 @@ def _outline(lines, style, tol):
         pstart = np.zeros(len(jv), np.int64)
         pstart[pivot] = items.put(v[pivot]) + np.arange(int(pivot.sum()))
         pcnt = pivot.astype(np.int64)
-        left_outer = sgn < 0                         # outer normal = +n
         # inner side without pivot and turn <= 90 degrees: end the inner offset
         # lines where they cross (X, at r*tan(turn/2) <= both lengths along
         # them) instead of letting them overshoot into a small crossed loop;

@@ -227,6 +227,17 @@ def test_straight_line_cubics():
     assert lo.tolist() == [0, 0] and hi.tolist() == [3, 6]
 
 
+@pytest.mark.parametrize('scale', [1e-200, 1e-9, 1e9, 1e200])
+def test_scale_invariance_at_extreme_magnitudes(scale):
+    # cubic arch (0,0) (0,4) (4,4) (4,0): box (0, 0, 4, 3), scaled
+    ctrl = np.array([[0, 0], [0, 4], [4, 4], [4, 0]], float) * scale
+    lo, hi = bezier_bbox(ctrl)
+    assert lo.tolist() == [0, 0]
+    assert hi == pytest.approx([4 * scale, 3 * scale], rel=1e-12)
+    lo, hi = bezier_bbox(ctrl[:3])                    # quadratic (0,0)(0,4)(4,4)
+    assert hi == pytest.approx([4 * scale, 4 * scale], rel=1e-12)
+
+
 def test_coincident_points_and_lone_points():
     assert bbox(path_of(np.array([[5, 5]] * 4, float))) == (5, 5, 5, 5)
     b = PathBuilder(); b.moveTo((7, 8)); b.closePath(); b.moveTo((100, 100))

@@ -200,7 +200,7 @@ coord = st.floats(0, 100, allow_nan=False, allow_infinity=False)
 point = st.tuples(coord, coord)
 
 
-@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.lists(point, min_size=4, max_size=4), st.sampled_from([0.05, 0.25, 1.0]))
 def test_random_cubics_within_tolerance(ctrl, tol):
     check_curve(ctrl, tol)
@@ -356,6 +356,11 @@ def test_point_limit(monkeypatch):
     monkeypatch.setattr(limits, 'MAX_FLATTEN_POINTS', 10_000)
     with pytest.raises(LimitError):
         flatten_beziers([[[0, 0], [5e7, 1e8], [1e8, 0]]], 0.01)
+
+
+def test_astronomical_coordinates_refused():
+    with pytest.raises(LimitError):
+        flatten_beziers([[[0, 0], [1e200, 1e200], [0, 1]]])
 
 
 def test_tiny_tolerance_at_huge_coordinates_terminates(monkeypatch):

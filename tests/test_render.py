@@ -416,3 +416,42 @@ def test_group_opacity_scales_single_shape(op, seed):
     a = render_tree(tree(Group(opacity=op, children=[filled(circle(cx, cy, r))]))).data
     b = render_tree(tree(filled(circle(cx, cy, r), opacity=op))).data
     assert np.allclose(a, b, atol=1e-5)
+
+
+# -- library entry points (raster.render, render_image, load_svg) ----------------------
+
+DOC = (b'<svg xmlns="http://www.w3.org/2000/svg" width="10" height="10">'
+       b'<rect id="r" width="5" height="10" fill="red" fill-opacity="0.5"/></svg>')
+
+
+def test_render_straight_and_premultiplied():
+    import raster
+    img = raster.render(DOC)
+    assert img.dtype == np.uint8 and img.shape == (10, 10, 4)
+    assert img[5, 2].tolist() == [255, 0, 0, 128]
+    pre = raster.render(DOC, premultiplied=True)
+    assert pre[5, 2].tolist() == [128, 0, 0, 128]
+
+
+def test_render_image_background_and_size():
+    import raster
+    im = raster.render_image(DOC, 20, background='white')
+    assert im.mode == 'RGBA' and im.size == (20, 20)
+    assert im.getpixel((5, 5)) == (255, 128, 128, 255)      # 0.5 of white: 127.5 rounds up
+    assert im.getpixel((15, 5)) == (255, 255, 255, 255)
+
+
+def test_load_svg_gives_tree():
+    import raster
+    t = raster.load_svg(DOC)
+    assert isinstance(t, Tree) and (t.width, t.height) == (10, 10) and 'r' in t.ids
+
+
+@pytest.mark.parametrize('kw,err', [({'width': 0}, CanvasError), ({'height': -1}, CanvasError),
+                                    ({'width': 10**6}, CanvasError), ({'id': 'nope'}, SVGError),
+                                    ({'background': 'nocolour'}, SVGError),
+                                    ({'background': (2, 0, 0, 1)}, SVGError)])
+def test_render_errors(kw, err):
+    import raster
+    with pytest.raises(err):
+        raster.render(DOC, **kw)

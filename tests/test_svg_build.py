@@ -573,45 +573,7 @@ def test_pattern_self_reference_terminates():
     assert inner.fill is None and inner.stroke.paint.color == GREEN
 
 
-# -- markers and context paints ---------------------------------------------------------
-
-def _marker_instances(node):
-    return [(g.transform, g.children[0]) for g in node.markers.children]
-
-
-def test_markers_positions_angles_and_units():
-    t = tree_of('<marker id="m" refX="1" refY="2" markerWidth="4" markerHeight="6" orient="auto">'
-                '<rect width="4" height="6" fill="context-stroke"/></marker>'
-                '<path d="M 0 0 L 10 0 L 10 10" stroke="green" stroke-width="2" fill="none" '
-                'marker-start="url(#m)" marker-mid="url(#m)" marker-end="url(#m)"/>')
-    n, _ = only_path(t)
-    inst = _marker_instances(n)
-    assert len(inst) == 3
-    # instance transform maps the ref point (1, 2) to the vertex, scaled by the stroke width
-    where = [tuple(np.round(tt.apply([[1.0, 2.0]])[0], 9)) for tt, _ in inst]
-    assert where == [(0, 0), (10, 0), (10, 10)]
-    angles = [round(math.degrees(math.atan2(tt.b, tt.a)), 9) for tt, _ in inst]
-    assert angles == [0, 45, 90]                       # start out, bisector, end in
-    assert all(math.isclose(tt.max_scale(), 2) for tt, _ in inst)
-    content = inst[0][1]
-    assert isinstance(content.clip_path, ClipPath)       # overflow hidden by default
-    assert content.children[0].fill.paint.color == GREEN   # context-stroke
-
-
-def test_marker_on_closed_path_and_circle():
-    t = tree_of('<marker id="m" markerUnits="userSpaceOnUse" orient="auto-start-reverse">'
-                '<rect width="1" height="1"/></marker>'
-                '<path d="M 30 100 L 170 100 Z" stroke="red" marker-start="url(#m)" '
-                'marker-mid="url(#m)" marker-end="url(#m)"/>'
-                '<circle r="10" marker-mid="url(#m)"/>')
-    (a, _), (b, _) = paths(t)
-    inst = _marker_instances(a)
-    ang = [round(math.degrees(math.atan2(tt.b, tt.a)), 9) % 360 for tt, _ in inst]
-    assert ang == [180, 90, 180]       # reversed start; mid bisects 0 and 180 as resvg
-    assert [tuple(tt.apply([[0.0, 0.0]])[0]) for tt, _ in inst] == [(30, 100), (170, 100),
-                                                                    (30, 100)]
-    assert len(_marker_instances(b)) == 4       # circle: the ends of its 4 quarter arcs
-
+# -- context paints (markers: tests/test_svg_markers.py) ---------------------------------------------------------
 
 def test_context_fill_in_use():
     t = tree_of('<defs><rect id="r" width="1" height="1" fill="context-stroke" '
@@ -620,3 +582,62 @@ def test_context_fill_in_use():
     (a, _), (b, _) = paths(t)
     assert a.fill.paint.color == (1, 0, 0, 1) and a.stroke.paint.color == GREEN
     assert b.fill is None      # no context element
+
+
+def test_gradient_transform_origin():
+    p = _fill_of('<radialGradient id="g" gradientTransform="scale(2)" transform-origin="0.5 0.5">'
+                 '<stop offset="0"/><stop offset="1"/></radialGradient>')
+    assert p.transform == Affine(2, 0, 0, 2, -0.5, -0.5)
+
+
+# -- robustness -------------------------------------------------------------------------
+
+_VALUES = ['', ' ', '-1', '0', '1e400', 'NaN', 'inf', '50%', '-50%', '1em', '2ex', '3mm', 'auto',
+           'none', 'inherit', 'url(#a)', 'url(#b) red', 'url(#c)', 'currentColor', 'red',
+           'rotate(45)', 'scale(0)', 'matrix(1 0 0 1 1e308 0)', '0 0 10 10', '0 0 -1 1',
+           'M 0 0 L 10 10 A 5 5 0 1 1 1e6 3', 'xMinYMin slice', '1,2,3', '#a', 'evenodd']
+_ATTRS = ['x', 'y', 'width', 'height', 'r', 'rx', 'ry', 'd', 'points', 'fill', 'stroke',
+          'stroke-width', 'stroke-dasharray', 'opacity', 'transform', 'viewBox', 'href',
+          'clip-path', 'mask', 'font-size', 'preserveAspectRatio', 'offset', 'stop-color',
+          'gradientTransform', 'transform-origin', 'display', 'marker-mid', 'patternUnits']
+_TAGS = ['g', 'rect', 'circle', 'ellipse', 'path', 'polygon', 'use', 'svg', 'symbol',
+         'clipPath', 'mask', 'linearGradient', 'radialGradient', 'stop', 'pattern', 'switch',
+         'marker', 'line']
+
+
+@settings(max_examples=50, deadline=None)
+@given(hs.data())
+def test_random_documents_never_crash(data):
+    """Random trees of elements with hostile attribute values build without
+    an exception other than SVGError (seeded by hypothesis)."""
+    ids = ['a', 'b', 'c']
+
+    def element(depth):
+        tag = data.draw(hs.sampled_from(_TAGS))
+        attrs = data.draw(hs.dictionaries(hs.sampled_from(_ATTRS), hs.sampled_from(_VALUES),
+                                          max_size=5))
+        if data.draw(hs.booleans()):
+            attrs['id'] = data.draw(hs.sampled_from(ids))
+        a = ''.join(' %s="%s"' % kv for kv in attrs.items())
+        kids = ''
+        if depth < 3:
+            kids = ''.join(element(depth + 1) for _ in range(data.draw(hs.integers(0, 3))))
+        return '<%s%s>%s</%s>' % (tag, a, kids, tag)
+    body = ''.join(element(0) for _ in range(data.draw(hs.integers(1, 3))))
+    try:
+        t = tree_of(body, max_elements=5000)
+    except SVGError:
+        return
+    for n, m in walk(t.root):
+        if isinstance(n, PathNode):
+            assert np.all(np.isfinite(n.path.points))
+
+
+def test_bad_tolerance_and_root():
+    root = load_document(b'<svg xmlns="http://www.w3.org/2000/svg" width="5" height="5"/>')
+    for bad in (0, -1, float('nan'), 'x'):
+        with pytest.raises(SVGError, match='tolerance'):
+            build_tree(root, tolerance=bad)
+    with pytest.raises(SVGError, match='root element'):
+        build_tree(root[0] if len(root) else load_document(
+            b'<svg xmlns="http://www.w3.org/2000/svg"><g/></svg>')[0])

@@ -142,6 +142,10 @@ def render(source, width=None, height=None, *, zoom=None, dpi=96, background=Non
         Zero, negative or non-finite size or zoom, or an output above
         :data:`raster.limits.MAX_PIXELS` pixels.
 
+    >>> img = render(b'<svg xmlns="http://www.w3.org/2000/svg" width="4" height="2">'
+    ...              b'<rect width="2" height="2" fill="blue"/></svg>')
+    >>> img.shape, img[0, 0].tolist(), img[0, 3].tolist()
+    ((2, 4, 4), [0, 0, 255, 255], [0, 0, 0, 0])
     """
     from .render import render_tree
     _rebind()

@@ -25,14 +25,17 @@ root element's user space to document pixels (the natural size).
 
 Paint servers and effects: linear and radial gradients (``href``
 inheritance with cycle detection, stop offsets clamped and made monotonic,
-``stop-color``/``stop-opacity`` with ``currentColor``), patterns, clip paths
-and masks (user space or object bounding box units, nested and recursive
-references: a recursive reference is ignored, as resvg does).
+``stop-color``/``stop-opacity`` with ``currentColor``, ``transform-origin``),
+patterns, clip paths and masks (user space or object bounding box units,
+nested references; a recursive reference is ignored, as resvg does),
+``context-fill``/``context-stroke`` in ``use`` content.  Markers are built
+by :mod:`raster.svg.markers` and images by :mod:`raster.svg.image`, both
+called from here.
 
 Not supported yet, each reported once per build with a
 :class:`raster.errors.RasterWarning` (through :func:`warnings.warn`) and then
-left out rather than drawn wrongly: text, images, filters (ignored),
-references to other documents.
+left out rather than drawn wrongly: text; filters are ignored; references to
+other documents.
 
 >>> from raster.svg.document import load_document
 >>> root = load_document(b'<svg xmlns="http://www.w3.org/2000/svg" width="20" height="10">'
@@ -45,11 +48,8 @@ references to other documents.
 import math
 import warnings
 
-import numpy as np
-
 from .. import limits
-from ..errors import PathError, RasterError, RasterWarning, SVGError
-from ..path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
+from ..errors import RasterError, RasterWarning, SVGError
 from ..bbox import bbox as exact_bbox
 from ..svgpath import (circle_path, ellipse_path, line_path, parse_path, polyline_path,
                        rect_path)
@@ -58,8 +58,7 @@ from .css import declared_styles
 from .properties import INHERITED, PROPERTIES
 from .tree import (ClipPath, Fill, GradientStop, Group, LinearGradient, Mask, PathNode,
                    Pattern, RadialGradient, SolidPaint, Stroke, Tree)
-from .values import (CURRENT_COLOR, LengthContext, parse_angle, parse_color, parse_length,
-                     parse_url,
+from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length, parse_url,
                      parse_length_list, parse_paint, parse_preserve_aspect_ratio,
                      parse_transform, parse_transform_origin, parse_viewbox, viewbox_transform)
 
@@ -145,7 +144,8 @@ class _State:
 
     def sub(self, transform=None, vw=None, vh=None, use_depth=None, context=False):
         return _State(self.vw if vw is None else vw, self.vh if vh is None else vh,
-                      self.ctm if transform is None else self.ctm @ transform,
+                      self.ctm if transform is None or transform.is_identity
+                      else self.ctm @ transform,
                       self.use_depth if use_depth is None else use_depth, self.mode,
                       self.context if context is False else context)
 
@@ -174,6 +174,7 @@ class _Builder:
         self.tree_ids = {}
         self._recursive = {}
         self._active_refs = set()
+        self._stroke_cache = {}
         self._doc_styles = {}
         self._servers = {}
         self._inh0 = _initial_inherited(font_size)
@@ -361,7 +362,7 @@ class _Builder:
                 self.children(el, inh, own, sub, kids)
             out.extend(self.wrap(el, own, t, kids, st))
 
-    def effects(self, el, own, st, kids):
+    def effects(self, el, own, st, kids, t=None):
         """Group effects of an element whose content is ``kids`` (nodes in
         its user space): ``(opacity, blend, isolate, clip_path, mask, ok)``;
         ``ok`` False means the element is not rendered (an empty clip path,
@@ -369,6 +370,8 @@ class _Builder:
         if not own:
             return 1.0, 'normal', False, None, None, True
         clip = mask = None
+        if t is not None and not t.is_identity and ('clip-path' in own or 'mask' in own):
+            st = st.sub(t)
         v = own.get('clip-path')
         if v is not None and v.strip() != 'none':
             clip = self.reference(v, 'clipPath', 'clip-path')
@@ -414,7 +417,7 @@ class _Builder:
         ``clip`` is a viewport clip (nested svg, symbol)."""
         if not kids:
             return []
-        opacity, blend, isolate, cp, mask, ok = self.effects(el, own, st, kids)
+        opacity, blend, isolate, cp, mask, ok = self.effects(el, own, st, kids, t)
         if not ok or opacity <= 0.0:
             return []
         if clip is not None and cp is not None:
@@ -725,7 +728,8 @@ class _Builder:
 
     # -- shapes -----------------------------------------------------------------------
     def arc_tolerance(self, st, t):
-        s = (st.ctm @ t).max_scale()
+        m = st.ctm if t.is_identity else st.ctm @ t
+        s = m.max_scale()
         tol = self.tolerance * _ARC_SAFETY
         if s > 0 and math.isfinite(s):
             tol = tol / s
@@ -858,6 +862,17 @@ class _Builder:
         cache[key] = r
         return r
 
+    def _with_origin(self, el, t, lctx):
+        """``t`` about the element's ``transform-origin`` (lengths in the
+        paint server's units)."""
+        o = self.doc_style(el)[1].get('transform-origin')
+        if o is None or t.is_identity:
+            return t
+        p = parse_transform_origin(o, lctx)
+        if p is None or not (p[0] or p[1]):
+            return t
+        return Affine.translate(p[0], p[1]) @ t @ Affine.translate(-p[0], -p[1])
+
     def _pattern(self, el, ctx):
         """A pattern element to a tree Pattern (None: paints nothing)."""
         if el in self._active_refs:
@@ -899,7 +914,7 @@ class _Builder:
         if ts is not None:
             t = parse_transform(ts)
             if t is not None and t.determinant != 0:
-                tf = t
+                tf = self._with_origin(el, t, lctx)
         vb = None
         content_t = IDENTITY
         vbs = attr('viewBox')
@@ -980,7 +995,7 @@ class _Builder:
         if ts is not None:
             t = parse_transform(ts)
             if t is not None and t.determinant != 0:    # singular: ignored (resvg)
-                tf = t
+                tf = self._with_origin(el, t, lctx)
         spread = attr('spreadMethod')
         if spread not in ('pad', 'reflect', 'repeat'):
             spread = 'pad'
@@ -1035,14 +1050,6 @@ class _Builder:
         markers = None
         if st.mode != 'clip' and (inh['marker-start'] != 'none' or inh['marker-mid'] != 'none'
                                   or inh['marker-end'] != 'none'):
-            mpath = path
-            if name in ('circle', 'ellipse', 'rect') or (name == 'path' and (
-                    'a' in el.get('d', '') or 'A' in el.get('d', ''))):
-                # vertices of arcs: one cubic per quarter at most, as resvg
-                try:
-                    mpath = self.geometry(el, name, ctx, 1e6)
-                except RasterError:
-                    pass
             from .markers import build_markers      # marker logic: raster/svg/markers.py
             markers = build_markers(self, el, name, path, inh, own, ctx, st.sub(t), fill, stroke)
         if fill is None and stroke is None and markers is None:
@@ -1053,7 +1060,7 @@ class _Builder:
                         paint_order=order, markers=markers,
                         antialias=sr not in ('crispEdges', 'optimizeSpeed'))
         self.note_id(el, node)
-        opacity, blend, isolate, clip, mask, ok = self.effects(el, own, st.sub(t), [node])
+        opacity, blend, isolate, clip, mask, ok = self.effects(el, own, st, [node], t)
         if not ok or opacity <= 0.0:
             return
         if (t.is_identity and opacity >= 1.0 and blend == 'normal' and not isolate
@@ -1066,104 +1073,22 @@ class _Builder:
                 self.tree_ids[node.id] = g
             out.append(g)
 
-    # -- markers ------------------------------------------------------------------------
-    def markers(self, path, inh, ctx, st, fill, stroke):
-        """Marker instances of a path as a Group in the path's coordinates,
-        or None."""
-        refs = []
-        for prop in ('marker-start', 'marker-mid', 'marker-end'):
-            v = inh.get(prop)
-            el = None
-            if v is not None and v.strip() != 'none':
-                el = self.reference(v, 'marker', prop)
-            refs.append(el)
-        if not any(r is not None for r in refs):
-            return None
-        pts, ang, kinds = _marker_vertices(path)
-        if len(pts) == 0:
-            return None
-        sw = 1.0
-        v = inh.get('stroke-width')
-        if v is not None:
-            r = parse_length(v, 'other', ctx)
-            if r is not None:
-                sw = r
-        context = (fill.paint if fill is not None else None,
-                   stroke.paint if stroke is not None else None)
-        out = []
-        for k, mk in enumerate(refs):
-            if mk is None:
-                continue
-            idx = np.flatnonzero(kinds == k).tolist()
-            if len(pts) == 1:       # a lone vertex is both start and end
-                idx = [0] if k != 1 else []
-            if not idx:
-                continue
-            built = self.marker_content(mk, st, sw, context)
-            if built is None:
-                continue
-            content, scale, orient = built
-            for i in idx:
-                if orient == 'auto':
-                    a = ang[i]
-                elif orient == 'auto-start-reverse':
-                    a = ang[i] + (180.0 if k == 0 else 0.0)
-                else:
-                    a = orient
-                tt = Affine.translate(pts[i, 0], pts[i, 1]) @ Affine.rotate(a) @ scale
-                out.append(Group(transform=tt, children=[content]))
-        if not out:
-            return None
-        return Group(children=out)
-
-    def marker_content(self, mk, st, sw, context):
-        """(content group, scale-and-ref transform, orient) of a marker."""
-        if mk in self._active_refs:
-            self.warn('marker-recursive', 'recursive marker reference ignored')
-            return None
-        inh, own = self.doc_style(mk)
-        mctx = self.ctx(inh, st)
-        mw = self.length(mk, 'markerWidth', 'x', mctx, 3.0)
-        mh = self.length(mk, 'markerHeight', 'y', mctx, 3.0)
-        if not (mw > 0 and mh > 0):
-            return None
-        vbt = IDENTITY
-        vw, vh = mw, mh
-        vbs = mk.get('viewBox')
-        if vbs is not None:
-            vb = parse_viewbox(vbs)
-            if vb is None:
-                return None
-            par = parse_preserve_aspect_ratio(mk.get('preserveAspectRatio', ''))
-            vbt = viewbox_transform(vb, par, mw, mh)
-            vw, vh = vb[2], vb[3]
-        rx = self.length(mk, 'refX', 'x', mctx, 0.0)
-        ry = self.length(mk, 'refY', 'y', mctx, 0.0)
-        (rpx, rpy), = vbt.apply([[rx, ry]]).tolist()
-        s = 1.0 if mk.get('markerUnits') == 'userSpaceOnUse' else sw
-        if not s > 0:
-            return None
-        scale = Affine.scale(s) @ Affine.translate(-rpx, -rpy)
-        o = (mk.get('orient') or '0').strip()
-        if o not in ('auto', 'auto-start-reverse'):
-            o = parse_angle(o)
-            o = 0.0 if o is None else o
-        self._active_refs.add(mk)
-        try:
-            nodes = []
-            sub = _State(vw, vh, st.ctm @ scale @ vbt, st.use_depth, None, context)
-            self.children(mk, inh, own, sub, nodes)
-        finally:
-            self._active_refs.discard(mk)
-        if not nodes:
-            return None
-        if not vbt.is_identity:
-            nodes = [Group(transform=vbt, children=nodes)]
-        ov = own.get('overflow', 'hidden').strip()
-        clip = None if ov in ('visible', 'auto') else self.clip_rect(0, 0, mw, mh)
-        return Group(clip_path=clip, children=nodes), scale, o
-
     def stroke(self, paint, inh, ctx):
+        key = (inh.get('stroke-width'), inh.get('stroke-linejoin'), inh.get('stroke-linecap'),
+               inh.get('stroke-miterlimit'), inh.get('stroke-dasharray'),
+               inh.get('stroke-dashoffset'), inh.get('stroke-opacity'), ctx)
+        params = self._stroke_cache.get(key)
+        if params is None:
+            params = self._stroke_params(inh, ctx)
+            if len(self._stroke_cache) < 4096:
+                self._stroke_cache[key] = params
+        if params is False:
+            return None
+        return Stroke(paint, *params)
+
+    def _stroke_params(self, inh, ctx):
+        """(width, opacity, join, cap, miterlimit, dash, dash_offset) or
+        False when the stroke is not drawn."""
         w = 1.0
         s = inh.get('stroke-width')
         if s is not None:
@@ -1171,7 +1096,7 @@ class _Builder:
             if v is not None:
                 w = v
         if not w > 0:
-            return None
+            return False
         join = inh.get('stroke-linejoin', 'miter')
         cap = inh.get('stroke-linecap', 'butt')
         ml = _parse_float(inh.get('stroke-miterlimit', '4'))
@@ -1191,10 +1116,8 @@ class _Builder:
             v = parse_length(do, 'other', ctx)
             if v is not None:
                 off = v
-        return Stroke(paint, width=w, opacity=_opacity(inh.get('stroke-opacity')),
-                      join=join if join in _JOINS else 'miter',
-                      cap=cap if cap in _CAPS else 'butt', miterlimit=ml, dash=dash,
-                      dash_offset=off)
+        return (w, _opacity(inh.get('stroke-opacity')), join if join in _JOINS else 'miter',
+                cap if cap in _CAPS else 'butt', ml, dash, off)
 
 
 def _paint_order(v):
@@ -1326,101 +1249,22 @@ def build_tree(root, *, base_dir=None, allow_files_under=None, resources_dir=Non
 
 
 def _content_box(group):
-    """Approximate visual bounds (control boxes, half stroke widths) of a
-    group's content in its parent's coordinates, or None."""
+    """Visual bounds (exact fill boxes widened by half the stroke width) of
+    a group's content in its parent's coordinates, or None."""
     from .tree import walk
-    import numpy as np
-    lo = np.array([np.inf, np.inf])
-    hi = -lo
+    lo = [math.inf, math.inf]
+    hi = [-math.inf, -math.inf]
     for n, t in walk(group):
-        if isinstance(n, PathNode) and len(n.path.points):
-            pts = t.apply(n.path.points)
+        if isinstance(n, PathNode) and n.path is not None and len(n.path.points):
+            try:
+                x0, y0, x1, y1 = exact_bbox(n.path, t)
+            except RasterError:
+                continue
             pad = 0.0
             if n.stroke is not None:
                 pad = n.stroke.width * 0.5 * t.max_scale()
-            lo = np.minimum(lo, pts.min(0) - pad)
-            hi = np.maximum(hi, pts.max(0) + pad)
-    if not np.all(np.isfinite(lo)) or not np.all(hi > lo):
+            lo = [min(lo[0], x0 - pad), min(lo[1], y0 - pad)]
+            hi = [max(hi[0], x1 + pad), max(hi[1], y1 + pad)]
+    if not (math.isfinite(lo[0]) and hi[0] > lo[0] and hi[1] > lo[1]):
         return None
-    return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
-
-
-def _marker_vertices(path):
-    """Marker positions of a path and the marker angle (degrees) at each,
-    following resvg's rules.
-
-    A vertex is the end point of every command (``CLOSE``: its contour's
-    start).  The first vertex takes the direction leaving it, the last the
-    direction arriving at it, a middle vertex the bisector of both (only one
-    at a contour's open end or start).  ``CLOSE`` vertices get no mid marker.
-
-    Returns
-    -------
-    pts : (V, 2) float64 ndarray
-    angles : (V,) float64 ndarray, degrees
-    kind : (V,) int8 ndarray
-        0 start, 1 mid, 2 end.
-    """
-    verbs = path.verbs.astype(np.int64)
-    pts = path.points
-    n = len(verbs)
-    if n == 0:
-        return np.zeros((0, 2)), np.zeros(0), np.zeros(0, np.int8)
-    npts = np.array([1, 1, 2, 3, 0])[verbs]
-    off = np.cumsum(npts) - npts
-    contour = np.cumsum(verbs == MOVE) - 1
-    move_pts = pts[off[verbs == MOVE]]
-    last_idx = np.maximum(off + npts - 1, 0)
-    end = pts[np.minimum(last_idx, len(pts) - 1)].copy()
-    close = verbs == CLOSE
-    end[close] = move_pts[contour[close]]
-    prev = np.vstack([end[:1], end[:-1]])
-    c1 = pts[np.minimum(off, len(pts) - 1)]                     # first control point
-    c2 = pts[np.minimum(off + np.maximum(npts - 2, 0), len(pts) - 1)]  # last control point
-
-    def first_nonzero(*vecs):
-        out = vecs[0].copy()
-        for v in vecs[1:]:
-            z = np.all(out == 0, axis=1)
-            out[z] = v[z]
-        return out
-    curve = (verbs == QUAD) | (verbs == CUBIC)
-    # direction arriving at each command's end point
-    vin = end - prev
-    vin[curve] = first_nonzero(end - c2, end - c1, end - prev)[curve]
-    # direction leaving the previous vertex along each command
-    vout = end - prev
-    vout[curve] = first_nonzero(c1 - prev, c2 - prev, end - prev)[curve]
-    ain = np.degrees(np.arctan2(vin[:, 1], vin[:, 0]))
-    aout = np.degrees(np.arctan2(vout[:, 1], vout[:, 0]))
-    draws = verbs != MOVE
-    ang = np.zeros(n)
-    nxt_draws = np.append(draws[1:], False)
-    nxt_aout = np.append(aout[1:], 0.0)
-    both = draws & nxt_draws
-    # bisector as resvg computes it: both angles in [0, 360), half the
-    # difference, flipped when the half turn is more than 90 degrees
-    a1 = ain % 360.0
-    half = (nxt_aout % 360.0 - a1) * 0.5
-    bis = a1 + half - np.where(np.abs(half) > 90.0, 180.0, 0.0)
-    ang = np.where(both, bis, ang)
-    ang = np.where(draws & ~nxt_draws, ain, ang)
-    ang = np.where(~draws & nxt_draws, nxt_aout, ang)
-    # first vertex: the direction leaving it; last: the direction arriving
-    ang[0] = nxt_aout[0] if n > 1 and nxt_draws[0] else 0.0
-    if n > 1:
-        lv = verbs[-1]
-        if lv == MOVE:
-            ang[-1] = 0.0
-        elif lv == CLOSE:
-            ang[-1] = ain[-1] if verbs[-2] == LINE else 0.0
-        else:
-            ang[-1] = ain[-1]
-    kind = np.ones(n, np.int8)
-    kind[0] = 0
-    kind[-1] = 2
-    keep = np.ones(n, bool)
-    keep[1:-1] = ~close[1:-1]
-    if n == 1:
-        return end[:1], ang[:1], np.array([0], np.int8)
-    return end[keep], ang[keep], kind[keep]
+    return lo[0], lo[1], hi[0], hi[1]

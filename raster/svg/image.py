@@ -30,7 +30,10 @@ Like a browser showing an SVG through ``<img>``, an SVG image is
 self-contained: images inside it may only come from ``data:`` URIs (file
 references are refused with a warning, so a document that references itself
 stops after one level, as resvg's ``recursive-*`` tests expect), and images
-nest at most :data:`MAX_IMAGE_DEPTH` levels deep.
+nest at most :data:`MAX_IMAGE_DEPTH` levels deep.  The builder's
+``tolerance`` (device pixels at the document's natural size) is honoured
+inside SVG images: an image document drawn larger than its natural size is
+built with a proportionally finer tolerance.
 
 Geometry: ``x``, ``y``, ``width``, ``height`` (``auto`` or absent: the
 intrinsic size, the other side keeping the aspect ratio; zero or negative:
@@ -73,10 +76,8 @@ import numpy as np
 from .. import limits
 from ..errors import RasterError
 from ..svgpath import rect_path
-from ..transform import Affine
 from .tree import Group, ImageNode, PathNode
-from .values import (parse_length, parse_preserve_aspect_ratio, parse_viewbox,  # noqa: F401
-                     viewbox_transform)
+from .values import parse_length, parse_preserve_aspect_ratio, viewbox_transform
 
 __all__ = ['build_image', 'load_image', 'decode_raster', 'sniff', 'parse_data_uri',
            'ImageSource', 'ImageError', 'MAX_IMAGE_DEPTH', 'MAX_IMAGE_BYTES', 'MAX_IMAGE_PIXELS']
@@ -201,8 +202,8 @@ def _resolve_file(href, source):
     else:
         cand = href
     if not os.path.exists(cand) and '%' in href:
-        alt = urllib.parse.unquote(href)
-        cand2 = alt if os.path.isabs(alt) else os.path.join(base, alt)
+        alt = urllib.parse.unquote(href)       # a URL-escaped file name
+        cand2 = alt if os.path.isabs(alt) or base is None else os.path.join(base, alt)
         if os.path.exists(cand2):
             cand = cand2
     real = os.path.realpath(cand)
@@ -334,7 +335,7 @@ def decode_raster(data, kind=None):
         raise ImageError('cannot decode %s image (%s)' % (kind.upper(), _short(msg))) from None
 
 
-def _load_svg(data, builder, source, depth, cache):
+def _load_svg(data, builder, source, depth, cache, tolerance):
     """Parse and build an SVG image one nesting level deeper."""
     from .build import build_tree
     from .document import load_document
@@ -346,12 +347,50 @@ def _load_svg(data, builder, source, depth, cache):
         return build_tree(root, base_dir=source.base_dir, dpi=getattr(builder, 'dpi', 96),
                           font_size=getattr(builder, 'font_size', 12),
                           languages=getattr(builder, 'languages', ('en',)) or ('en',),
-                          tolerance=getattr(builder, 'tolerance', 0.1))
+                          tolerance=tolerance)
     finally:
         _NESTING.reset(token)
 
 
-def load_image(href, source=ImageSource(), *, builder=None, depth=0, cache=None):
+def _fetch(href, source, cache):
+    """(key, kind, payload): payload is read-only pixels for raster kinds,
+    the document bytes for 'svg'.  Results and errors are cached by key."""
+    href = href.strip()
+    scheme = urllib.parse.urlsplit(href).scheme.lower() if ':' in href else ''
+    if len(scheme) == 1:        # a Windows drive letter
+        scheme = ''
+    if href.startswith('//') or href.startswith('\\\\'):
+        scheme = 'network'      # protocol-relative URL or UNC path
+    if scheme == 'data':
+        key = ('data', href)
+    elif scheme in ('', 'file'):
+        key = ('file', _resolve_file(href, source))
+    elif scheme in ('http', 'https', 'ftp', 'network'):
+        raise ImageError('network image reference not fetched: %s' % _short(href))
+    else:
+        raise ImageError('image URL with scheme %r is not supported: %s'
+                         % (scheme, _short(href)))
+    r = cache.get(key)
+    if r is None:
+        try:
+            data = parse_data_uri(href)[1] if key[0] == 'data' else _read_file(key[1])
+            kind = sniff(data)
+            if kind is None:
+                raise ImageError('unrecognised image data: %s' % _short(href))
+            if kind != 'svg':
+                data = decode_raster(data, kind)
+                data.setflags(write=False)
+            r = (key, kind, data)
+        except ImageError as e:
+            r = e
+        cache[key] = r
+    if isinstance(r, ImageError):
+        raise r
+    return r
+
+
+def load_image(href, source=ImageSource(), *, builder=None, depth=0, cache=None,
+               tolerance=None):
     """Fetch and decode the image an ``href`` names.
 
     Parameters
@@ -367,7 +406,13 @@ def load_image(href, source=ImageSource(), *, builder=None, depth=0, cache=None)
         Nesting depth of the document the reference appears in (0: the
         outermost document).
     cache : dict, optional
-        Results by resolved reference, shared between uses.
+        Results by resolved reference (and tolerance for SVG images), shared
+        between uses.
+    tolerance : float, optional
+        Flattening tolerance for an SVG image, in pixels of the image
+        document at its natural size (see
+        :func:`raster.svg.build.build_tree`); default: the builder's, else
+        0.1.
 
     Returns
     -------
@@ -380,50 +425,29 @@ def load_image(href, source=ImageSource(), *, builder=None, depth=0, cache=None)
         The reference is refused or the image cannot be used (see the
         module docstring).
     """
-    href = href.strip()
-    scheme = urllib.parse.urlsplit(href).scheme.lower() if ':' in href else ''
-    if len(scheme) == 1:        # a Windows drive letter
-        scheme = ''
-    if scheme == 'data':
-        key = ('data', href)
-    elif scheme in ('', 'file'):
-        key = ('file', _resolve_file(href, source))
-    else:
-        raise ImageError('image URL with scheme %r is not fetched: %s' % (scheme, _short(href)))
-    if cache is not None and key in cache:
-        r = cache[key]
-        if isinstance(r, ImageError):
-            raise r
-        return r
-    try:
-        if key[0] == 'data':
-            _, data = parse_data_uri(href)
-            sub_source = ImageSource(None, (), False)
-        else:
-            data = _read_file(key[1])
-            sub_source = ImageSource(os.path.dirname(key[1]), (), False)
-        kind = sniff(data)
-        if kind is None:
-            raise ImageError('unrecognised image data: %s' % _short(href))
-        if kind == 'svg':
-            try:
-                result = _load_svg(data, builder, sub_source, depth + 1, cache)
-            except ImageError:
-                raise
-            except (RasterError, OSError, ValueError) as e:
-                msg = str(e).splitlines()[0] if str(e) else type(e).__name__
-                raise ImageError('cannot use SVG image %s (%s)' % (_short(href, 40), msg)) \
-                    from None
-        else:
-            result = decode_raster(data, kind)
-            result.setflags(write=False)
-    except ImageError as e:
-        if cache is not None:
-            cache[key] = e
-        raise
-    if cache is not None:
-        cache[key] = result
-    return result
+    if cache is None:
+        cache = {}
+    key, kind, payload = _fetch(href, source, cache)
+    if kind != 'svg':
+        return payload
+    if tolerance is None:
+        tolerance = getattr(builder, 'tolerance', 0.1)
+    tkey = ('tree', key, float(tolerance))
+    r = cache.get(tkey)
+    if r is None:
+        base = os.path.dirname(key[1]) if key[0] == 'file' else None
+        try:
+            r = _load_svg(payload, builder, ImageSource(base, (), False), depth + 1, cache,
+                          tolerance)
+        except ImageError as e:
+            r = e
+        except (RasterError, OSError, ValueError) as e:
+            msg = str(e).splitlines()[0] if str(e) else type(e).__name__
+            r = ImageError('cannot use SVG image %s (%s)' % (_short(href, 40), msg))
+        cache[tkey] = r
+    if isinstance(r, ImageError):
+        raise r
+    return r
 
 
 # ---------------------------------------------------------------------------
@@ -511,9 +535,10 @@ def build_image(builder, el, pinh, pown, st, out):
             builder._image_cache = cache
         except AttributeError:
             pass
+    source = _source_of(builder, depth)
+    tol = float(getattr(builder, 'tolerance', 0.1))
     try:
-        img = load_image(href, _source_of(builder, depth), builder=builder, depth=depth,
-                         cache=cache)
+        img = load_image(href, source, builder=builder, depth=depth, cache=cache, tolerance=tol)
     except ImageError as e:
         builder.warn(('image', str(e)), 'image not rendered: %s' % e)
         return None
@@ -538,6 +563,18 @@ def build_image(builder, el, pinh, pown, st, out):
         m = viewbox_transform((0.0, 0.0, iw, ih), par, w, h, x, y)
     except RasterError:
         return None
+    if tree is not None:
+        # the image document's tolerance is in its own pixels: when it is
+        # scaled up, rebuild it finer (by powers of two, so uses share)
+        scale = (st.ctm @ t @ m).max_scale()
+        if scale > 1.0 and math.isfinite(scale):
+            fine = tol * 2.0 ** math.floor(math.log2(1.0 / scale))
+            try:
+                tree = load_image(href, source, builder=builder, depth=depth, cache=cache,
+                                  tolerance=max(fine, 1e-9))
+            except ImageError as e:
+                builder.warn(('image', str(e)), 'image not rendered: %s' % e)
+                return None
     clip = None
     slice_ = par is not None and par[0] != 'none' and par[1] == 'slice'
     if tree is not None or slice_:

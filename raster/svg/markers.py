@@ -55,7 +55,7 @@ from ..errors import RasterError
 from ..path import CLOSE, CUBIC, LINE, MOVE, QUAD
 from ..transform import Affine
 from ..bbox import bbox as exact_bbox
-from .tree import Group, LinearGradient, Pattern, RadialGradient, SolidPaint
+from .tree import Group, LinearGradient, PathNode, Pattern, RadialGradient, SolidPaint
 from .values import (parse_angle, parse_length, parse_preserve_aspect_ratio, parse_url,
                      parse_viewbox, viewbox_transform)
 
@@ -395,7 +395,8 @@ def _ref(mk, name, axis, ctx, lo, size):
 class _Marker:
     """Everything about one marker element that does not depend on the
     vertex."""
-    __slots__ = ('el', 'inh', 'own', 'scale', 'ref', 'clip', 'orient', 'vw', 'vh')
+    __slots__ = ('el', 'inh', 'own', 'scale', 'ref', 'clip', 'clip_rect', 'orient', 'vw',
+                 'vh')
 
 
 def _resolve_marker(builder, mk, ctx, sw):
@@ -439,8 +440,55 @@ def _resolve_marker(builder, mk, ctx, sw):
     m.ref = (_ref(mk, 'refX', 'x', ctx, lox, vw), _ref(mk, 'refY', 'y', ctx, loy, vh))
     ov = own.get('overflow', 'hidden').strip()
     m.clip = None if ov in ('visible', 'auto') else builder.clip_rect(*clip_rect)
+    m.clip_rect = clip_rect
     m.orient = parse_orient(mk.get('orient'))
     return m
+
+
+def _content_box(nodes):
+    """Conservative (x0, y0, x1, y1) bounds of marker content in its own
+    coordinates (control points, strokes padded by their reach), or None
+    when unknown (images, text, filters) or empty."""
+    lo = np.array([np.inf, np.inf])
+    hi = -lo
+    stack = [(n, None) for n in nodes]
+    while stack:
+        n, t = stack.pop()
+        if isinstance(n, Group):
+            if n.filters:
+                return None
+            ct = n.transform if t is None else t @ n.transform
+            stack.extend((c, ct) for c in n.children)
+        elif isinstance(n, PathNode):
+            if n.path is None or len(n.path.points) == 0:
+                continue
+            pts = n.path.points if t is None else t.apply(n.path.points)
+            pad = 0.0
+            if n.stroke is not None:
+                s = n.stroke
+                k = max(1.0, s.miterlimit) if s.join in ('miter', 'miter-clip', 'arcs') else 1.0
+                if s.cap == 'square':
+                    k = max(k, math.sqrt(2.0))
+                pad = 0.5 * s.width * k * (1.0 if t is None else t.max_scale())
+            lo = np.minimum(lo, pts.min(0) - pad)
+            hi = np.maximum(hi, pts.max(0) + pad)
+            if n.markers is not None:
+                stack.append((n.markers, t))
+        else:
+            return None
+    if not np.all(hi >= lo):
+        return None
+    return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
+
+
+def _needs_clip(nodes, rect):
+    """False when the content provably lies inside the clip rectangle
+    (x, y, w, h): the clip changes nothing and costs a layer."""
+    b = _content_box(nodes)
+    if b is None:
+        return True
+    x, y, w, h = rect
+    return not (b[0] >= x and b[1] >= y and b[2] <= x + w and b[3] <= y + h)
 
 
 def _content(builder, m, st, T, context):
@@ -546,6 +594,7 @@ def build_markers(builder, el, name, path, inh, own, ctx, st, fill=None, stroke=
         if m is None:
             continue
         shared = None
+        shared_clip = m.clip
         for i in idx:
             o = m.orient
             if o == 'auto':
@@ -558,12 +607,18 @@ def build_markers(builder, el, name, path, inh, own, ctx, st, fill=None, stroke=
             if simple:
                 if shared is None:
                     shared = _content(builder, m, st, T, (cfill, cstroke))
+                    if m.clip is not None and not _needs_clip(shared, m.clip_rect):
+                        shared_clip = None
                 nodes = list(shared)
+                clip = shared_clip
             else:
                 nodes = _content(builder, m, st, T, (context_paint(cfill, T, box),
                                                      context_paint(cstroke, T, box)))
+                clip = m.clip
+                if clip is not None and not _needs_clip(nodes, m.clip_rect):
+                    clip = None
             if nodes:
-                out.append(Group(transform=T, clip_path=m.clip, children=nodes))
+                out.append(Group(transform=T, clip_path=clip, children=nodes))
             if builder.stopped:
                 break
     if not out:

@@ -393,10 +393,21 @@ class _Renderer:
         content = p.content_transform
         if p.view_box is None and p.content_units == 'objectBoundingBox':
             content = content @ Affine.scale(bw, bh)
+        elif p.view_box is not None and p.units == 'objectBoundingBox':
+            # the viewBox maps onto the tile, whose size depends on the bbox
+            # (the builder cannot resolve it); patternContentUnits is ignored
+            from .values import viewbox_transform
+            try:
+                content = viewbox_transform(p.view_box, None, w, h)
+            except RasterError:
+                return None
+        # As resvg: the tile raster has whole-pixel size (rounded up) and the
+        # content is drawn at the device scale, so the period is tw / sx
+        # (up to a pixel longer than the tile): references tile this way.
         tile = Canvas(tw, th)
-        self.node(p.root, Affine.scale(tw / w, th / h) @ content, tile)
+        self.node(p.root, Affine.scale(sx, sy) @ content, tile)
         try:
-            inv = (tile_to_dev @ Affine.scale(w / tw, h / th)).inverse()
+            inv = (tile_to_dev @ Affine.scale(1.0 / sx, 1.0 / sy)).inverse()
         except RasterError:
             return None
         hh, ww = mask.data.shape
@@ -481,6 +492,16 @@ def _points_box(pts):
     return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
 
 
+def _geometry_box(path, t):
+    """Exact device box of a path's geometry (control box if the exact one
+    is unavailable)."""
+    try:
+        from ..bbox import bbox as exact_bbox
+        return tuple(float(v) for v in exact_bbox(path, transform=t))
+    except (ImportError, RasterError):
+        return _points_box(t.apply(path.points))
+
+
 def _stroke_reach(s):
     """How far (in user units) a stroke can reach beyond the path."""
     r = s.width / 2.0
@@ -511,8 +532,7 @@ def _node_box(n, t):
     if isinstance(n, PathNode):
         if n.path is None or len(n.path.points) == 0:
             return None
-        pts = t.apply(n.path.points)
-        box = _points_box(pts) if (n.fill is not None or n.stroke is not None) else None
+        box = _geometry_box(n.path, t) if (n.fill is not None or n.stroke is not None) else None
         if box is not None and n.stroke is not None:
             reach = _stroke_reach(n.stroke) * max(t.max_scale(), 1e-12) + 1.0
             box = (box[0] - reach, box[1] - reach, box[2] + reach, box[3] + reach)
