@@ -986,10 +986,12 @@ def stroke(path, style=None, *, transform=None, tolerance=0.25, **style_kwargs):
     Returns
     -------
     Path
-        Closed polygons only (``MOVE``, ``LINE``, ``CLOSE``), in device
-        space, all with the same orientation; their nonzero union is the
-        stroke.  Empty for a zero width, an empty path or a transform with
-        no scale.
+        Closed polygons only (``MOVE``, ``LINE``, ``CLOSE``) in device
+        space: one per open subpath or dash, two (its two sides) per closed
+        subpath, one per dot.  Their winding number is never negative
+        (never positive after a mirroring transform), so the nonzero rule
+        fills the stroke, overlaps included.  Empty for a zero width, an
+        empty path or a transform with no scale.
 
     Raises
     ------
@@ -1012,12 +1014,15 @@ def stroke(path, style=None, *, transform=None, tolerance=0.25, **style_kwargs):
     """
     if not isinstance(path, Path):
         raise StrokeError('stroke() needs a raster.Path, got %s' % type(path).__name__)
+    if style is not None and not isinstance(style, StrokeStyle):
+        raise StrokeError('style must be a StrokeStyle, got %s' % type(style).__name__)
+    unknown = set(style_kwargs) - {f.name for f in dataclasses.fields(StrokeStyle)}
+    if unknown:
+        raise StrokeError('unknown stroke parameter(s): %s' % ', '.join(sorted(unknown)))
     if style is None:
         style = StrokeStyle(**style_kwargs)
     elif style_kwargs:
         style = dataclasses.replace(style, **style_kwargs)
-    elif not isinstance(style, StrokeStyle):
-        raise StrokeError('style must be a StrokeStyle, got %s' % type(style).__name__)
     tol = _finite('tolerance', tolerance)
     if tol <= 0:
         raise StrokeError('tolerance must be > 0, got %r' % (tolerance,))
@@ -1029,11 +1034,12 @@ def stroke(path, style=None, *, transform=None, tolerance=0.25, **style_kwargs):
         return Path.empty()
     tol_u = tol / scale
     pattern = dash_pattern(style.dash)
-    sharp = style.cap != 'round' or style.join != 'round'
     # dash positions follow the arc length of the flattening, which falls
     # short of the curve's by up to tol/3 per radian: flatten 4x finer
     tol_f = tol_u if pattern is None else 0.25 * tol_u
-    lines = _path_lines(path, tol_f, 0.5 * style.width if sharp else 0.0)
+    # straight caps and sharp joins rest on the end chords of curves
+    all_round = style.cap == 'round' and style.join == 'round'
+    lines = _path_lines(path, tol_f, 0.0 if all_round else 0.5 * style.width)
     lines = _clean(lines, _eps(lines.points))
     if pattern is not None:
         lines = _clean(_dash(lines, pattern, style.dash_offset), _eps(lines.points))

@@ -137,6 +137,10 @@ def test_bad_arguments_to_stroke():
         stroke(p, tolerance=float('nan'))
     with pytest.raises(StrokeError):
         stroke(p, width=-2)
+    with pytest.raises(StrokeError):
+        stroke(p, colour='red')
+    with pytest.raises(StrokeError):
+        stroke(p, {'width': 2})
 
 
 def test_style_and_keyword_override():
@@ -261,6 +265,10 @@ def test_rectangle_with_miter_joins_is_outer_minus_inner():
     p = line((0, 0), (Wr, 0), (Wr, Hr), (0, Hr), closed=True)
     out = stroke(p, width=w)
     assert out.control_box() == (-2.0, -2.0, 32.0, 22.0)
+    # the outline is exactly the two rectangles (inner offsets end where they
+    # cross, miter tips replace the outer offset ends)
+    loops = sorted(sorted(map(tuple, q.tolist())) for q in polygons(out))
+    assert loops == [[(-2, -2), (-2, 22), (32, -2), (32, 22)], [(2, 2), (2, 18), (28, 2), (28, 18)]]
     h = 0.25                                       # edges fall between samples
     g = grid(-3, -3, 33, 23, h)
     got = inside(out, g)
@@ -554,6 +562,49 @@ def test_stroke_is_union_of_its_two_segment_strokes(seed, n, w, join, limit):
         assert np.array_equal(got[ok], ref[ok])
     else:
         assert np.array_equal(got, ref)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2 ** 32 - 1), st.sampled_from(['miter', 'miter-clip', 'bevel', 'round']),
+       st.sampled_from(['butt', 'square', 'round']), st.booleans(), st.booleans(),
+       st.sampled_from([None, Affine.scale(1, -2), Affine.rotate(40) @ Affine.skew_x(30)]))
+def test_random_paths_fill_with_one_sign(seed, join, cap, dashed, closed, t):
+    # property: for any path (lines, quadratics, cubics, repeated points, zero
+    # length pieces) the outline's winding never takes both signs, and points
+    # on the path itself are inside
+    rng = np.random.default_rng(seed)
+    b = PathBuilder()
+    b.moveTo(tuple(rng.uniform(0, 40, 2)))
+    for _ in range(rng.integers(1, 6)):
+        kind = rng.integers(0, 4)
+        pts = [tuple(p) for p in rng.uniform(0, 40, (3, 2)).round(rng.integers(0, 3))]
+        if kind == 0:
+            b.lineTo(pts[0])
+        elif kind == 1:
+            b.qCurveTo(pts[0], pts[1])
+        elif kind == 2:
+            b.curveTo(*pts)
+        else:
+            b.lineTo(b.current_point)                     # zero-length segment
+    if closed:
+        b.closePath()
+    p = b.path()
+    w = float(rng.uniform(0.5, 15))
+    kw = dict(width=w, join=join, cap=cap, miterlimit=float(rng.uniform(1, 5)))
+    if dashed:
+        kw.update(dash=list(rng.uniform(0, 8, rng.integers(1, 4))), dash_offset=float(rng.uniform(-20, 20)))
+    out = stroke(p, transform=t, tolerance=0.1, **kw)
+    t = t or Affine()
+    g = t.apply(rng.uniform(-20, 60, size=(3000, 2)))
+    wn = winding(out, g)
+    assert np.all(wn >= 0) or np.all(wn <= 0)
+    if not dashed:
+        # points of the path, away from its two ends (on a butt cap's edge)
+        on = bezier_points(p.to_svg(), n=50)
+        seg = p.segments()
+        ends = np.concatenate([seg.contour_start, seg.contour_end])
+        far = np.min([np.hypot(*(on - e).T) for e in ends], axis=0) > 1.0
+        assert inside(out, t.apply(on[far])).all()
 
 
 # -- dashes -----------------------------------------------------------------------------

@@ -47,7 +47,7 @@ def instances(tree):
 
 
 MARKER = ('<marker id="m" markerWidth="4" markerHeight="4" refX="2" refY="2" %s>'
-          '<rect width="4" height="4" fill="blue"/></marker>')
+          '<rect width="4" height="4" fill="blue" fill-opacity="0.5"/></marker>')
 
 
 # -- vertices and angles --------------------------------------------------------------
@@ -112,6 +112,12 @@ def test_zero_length_and_degenerate_paths():
     for d in ('M 5 5', ''):
         mv = marker_vertices(parse_path(d) if d else Path.empty())
         assert (mv.start, mv.end, len(mv.points)) == (-1, -1, 0)
+
+
+def test_bad_input_raises_path_error():
+    from raster.errors import PathError
+    with pytest.raises(PathError, match='raster.Path'):
+        marker_vertices([[0, 0], [1, 1]])
 
 
 def test_repeated_moves_collapse():
@@ -412,3 +418,62 @@ def test_wrong_angle_would_fail_the_reference():
         warnings.simplefilter('ignore', RasterWarning)
         got = raster.render(doc, width=300)
     assert not compare_images(ref, got).passed
+
+
+# -- merging of identical instances ---------------------------------------------------------
+
+ARROW = ('<marker id="m" orient="auto" markerWidth="6" markerHeight="6" refX="3" refY="3">'
+         '<path d="M 0 0 L 6 3 L 0 6 Z" fill="%s"/></marker>')
+ZIGZAG = '<polyline id="p" points="10,10 40,30 70,10 100,30 130,10 160,30 190,10" ' \
+         'fill="none" stroke="black" marker-mid="url(#m)"/>'
+
+
+def test_opaque_single_path_instances_are_merged():
+    t = tree_of(ARROW % 'blue' + ZIGZAG)
+    (n,) = instances(t)
+    assert isinstance(n, PathNode)
+    assert int(np.count_nonzero(n.path.verbs == 0)) == 5        # one contour per mid vertex
+    # translucent content is drawn instance by instance (overlaps composite twice)
+    t = tree_of(ARROW.replace('fill="%s"', 'fill="%s" fill-opacity="0.5"') % 'blue' + ZIGZAG)
+    assert len(instances(t)) == 5 and all(isinstance(g, Group) for g in instances(t))
+
+
+@pytest.mark.parametrize('d', ['M 0 0 L 6 6 L 6 0 L 0 6 Z',          # figure eight
+                               'M 0 0 L 2 0 L 2 2 Z M 4 4 L 4 6 L 6 6 Z'])   # two contours
+def test_fills_that_might_cancel_are_not_merged(d):
+    t = tree_of(ARROW.replace('M 0 0 L 6 3 L 0 6 Z', d) % 'blue' + ZIGZAG)
+    assert len(instances(t)) == 5
+
+
+def test_merged_render_equals_separate_instances(monkeypatch):
+    import raster.svg.markers as mk
+    doc = ('<svg xmlns="http://www.w3.org/2000/svg" width="200" height="40">%s%s</svg>'
+           % (ARROW % 'blue', ZIGZAG)).encode()
+    merged = raster.render(doc)
+    monkeypatch.setattr(mk, '_merged', lambda *a: None)
+    separate = raster.render(doc)
+    r = compare_images(separate, merged)
+    assert r.passed and r.max_diff <= 8
+    assert np.count_nonzero(merged[..., 2] > 200) > 100          # the arrows are there
+
+
+_ATTR = hs.sampled_from(['', '0', '-3', '5', '1e308', 'nan', 'inf', '50%', '2em', 'x', 'auto',
+                         'center', 'right', '0 0 10 10', '0 0 0 10', '1 2 3', 'none',
+                         'xMaxYMin slice', '1.5rad', 'userSpaceOnUse'])
+
+
+@settings(max_examples=60, deadline=None)
+@given(hs.fixed_dictionaries({k: _ATTR for k in (
+    'markerWidth', 'markerHeight', 'refX', 'refY', 'viewBox', 'preserveAspectRatio', 'orient',
+    'markerUnits', 'overflow')}), _ATTR)
+def test_any_marker_attributes_build(attrs, sw):
+    """Whatever the attribute values, building never fails and every
+    instance transform is finite."""
+    a = ' '.join('%s="%s"' % kv for kv in attrs.items() if kv[1])
+    sws = 'stroke-width="%s"' % sw if sw else ''
+    t = tree_of('<marker id="m" %s><path d="M 0 0 L 4 2 L 0 4 Z" fill="red"/></marker>'
+                '<path id="p" d="M 10 10 Q 50 0 60 40 L 90 90 Z" %s marker-start="url(#m)" '
+                'marker-mid="url(#m)" marker-end="url(#m)"/>' % (a, sws))
+    for n in marked(t):
+        for g, tf in walk(n.markers):
+            assert all(math.isfinite(v) for v in tf)

@@ -1024,7 +1024,8 @@ class _Builder:
 
     def shape(self, el, name, inh, own, ctx, t, st, out):
         vis = inh.get('visibility', 'visible')
-        if vis == 'hidden' or vis == 'collapse':
+        hidden = vis == 'hidden' or vis == 'collapse'
+        if hidden and st.mode == 'clip':
             return
         try:
             path = self.geometry(el, name, ctx, self.arc_tolerance(st, t))
@@ -1033,7 +1034,11 @@ class _Builder:
         if path is None or len(path.verbs) == 0:
             return
         fill = stroke = None
-        if st.mode == 'clip':
+        if hidden:
+            # an invisible shape paints nothing but still counts in its
+            # parent's object bounding box (resvg): keep it unpainted
+            pass
+        elif st.mode == 'clip':
             rule = inh.get('clip-rule', 'nonzero')
             fill = Fill(SolidPaint(_BLACK), 1.0, 'evenodd' if rule == 'evenodd' else 'nonzero')
         else:
@@ -1048,11 +1053,11 @@ class _Builder:
                 if sp is not None:
                     stroke = self.stroke(sp, inh, ctx)
         markers = None
-        if st.mode != 'clip' and (inh['marker-start'] != 'none' or inh['marker-mid'] != 'none'
+        if not hidden and st.mode != 'clip' and (inh['marker-start'] != 'none' or inh['marker-mid'] != 'none'
                                   or inh['marker-end'] != 'none'):
             from .markers import build_markers      # marker logic: raster/svg/markers.py
             markers = build_markers(self, el, name, path, inh, own, ctx, st.sub(t), fill, stroke)
-        if fill is None and stroke is None and markers is None:
+        if fill is None and stroke is None and markers is None and not hidden:
             return
         order = _paint_order(inh.get('paint-order'))
         sr = inh.get('shape-rendering', 'auto')
