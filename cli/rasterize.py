@@ -45,7 +45,6 @@ def _body(args):
         raise UsageError('--zoom cannot be combined with --width/--height')
     if not (math.isfinite(args.dpi) and args.dpi > 0):
         raise CanvasError('--dpi must be positive and finite, got %g' % args.dpi)
-    from PIL import Image
     from raster.svg import _background, load_svg
     from raster.svg.render import render_tree
     bg = _background(args.background)            # a bad colour fails before any work

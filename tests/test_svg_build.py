@@ -279,7 +279,19 @@ def test_display_and_visibility():
                 '<g visibility="hidden"><rect id="b" width="1" height="1"/>'
                 '<rect id="c" visibility="visible" width="1" height="1"/></g>'
                 '<rect id="d" visibility="collapse" width="1" height="1"/>')
-    assert [n.id for n, _ in paths(t)] == ['c']
+    painted = [n.id for n, _ in paths(t) if n.fill is not None or n.stroke is not None]
+    assert painted == ['c']
+    # invisible shapes stay in the tree unpainted (they count in bounding boxes)
+    assert [n.id for n, _ in paths(t)] == ['b', 'c', 'd']
+
+
+def test_hidden_shape_counts_in_object_bounding_box():
+    t = tree_of('<clipPath id="c" clipPathUnits="objectBoundingBox"><rect width="1" height="1"/>'
+                '</clipPath><g id="g" clip-path="url(#c)">'
+                '<rect x="20" y="20" width="160" height="160" visibility="hidden"/>'
+                '<rect x="40" y="40" width="120" height="120"/></g>')
+    cp = t.ids['g'].clip_path
+    assert cp.transform == Affine(160, 0, 0, 160, 20, 20)
 
 
 def test_use_inherits_from_use_and_translates():
@@ -641,3 +653,16 @@ def test_bad_tolerance_and_root():
     with pytest.raises(SVGError, match='root element'):
         build_tree(root[0] if len(root) else load_document(
             b'<svg xmlns="http://www.w3.org/2000/svg"><g/></svg>')[0])
+
+
+def test_overflowing_numbers_skip_only_that_element():
+    for inner in (b'<rect id="a" transform="scale(1e200)" width="1" height="1"/>',
+                  b'<use id="a" href="#b" transform="scale(1e200)"/>',
+                  b'<svg id="a" viewBox="0 0 1e-200 1e-200"><rect width="1" height="1"/></svg>'):
+        with warnings.catch_warnings():
+            warnings.simplefilter('ignore', RasterWarning)
+            t = build_tree(load_document(
+                b'<svg xmlns="http://www.w3.org/2000/svg" width="5" height="5">'
+                b'<g transform="scale(1e200)">' + inner + b'</g>'
+                b'<rect id="b" width="1" height="1"/></svg>'))
+        assert [n.id for n, _ in paths(t)] == ['b']

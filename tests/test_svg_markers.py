@@ -191,6 +191,20 @@ def test_marker_transform_maps_ref_point_to_vertex():
     np.testing.assert_allclose(t.apply([[4.0, 6.0]]), [[7, -3]], atol=1e-12)
 
 
+def test_marker_matrices_equal_composed_affines():
+    from raster.svg.markers import marker_matrices
+    rng = np.random.default_rng(7)
+    pts = rng.uniform(-100, 100, (50, 2))
+    ang = rng.uniform(-720, 720, 50)
+    mats = marker_matrices(pts, ang, 1.5, 0.5, (3.0, -2.0))
+    for row, p, a in zip(mats, pts, ang):
+        want = (Affine.translate(*p) @ Affine.rotate(a) @ Affine.scale(1.5, 0.5)
+                @ Affine.translate(-3.0, 2.0))
+        np.testing.assert_allclose(row, tuple(want), rtol=1e-12, atol=1e-9)
+    # quarter turns are exact
+    assert tuple(marker_matrices([[0, 0]], [90], 1, 1, (0, 0))[0]) == (0, 1, -1, 0, 0, 0)
+
+
 def _dir(g):
     """Unit direction of the marker's +x axis in user space."""
     v = g.transform.apply_vector(np.array([1.0, 0.0]))
@@ -265,6 +279,14 @@ def test_overflow_clip():
     for ov in ('visible', 'auto'):
         (g,) = instances(tree_of(BIG % ('overflow="%s"' % ov)))
         assert g.clip_path is None
+
+
+def test_overflow_inherit():
+    # from a parent that sets it; without one, the initial value (visible)
+    (g,) = instances(tree_of('<g overflow="hidden">%s</g>' % (BIG % 'overflow="inherit"')))
+    assert g.clip_path is not None
+    (g,) = instances(tree_of(BIG % 'overflow="inherit"'))
+    assert g.clip_path is None
 
 
 def test_clip_dropped_when_content_fits():

@@ -58,7 +58,8 @@ from .css import declared_styles
 from .properties import INHERITED, PROPERTIES
 from .tree import (ClipPath, Fill, GradientStop, Group, LinearGradient, Mask, PathNode,
                    Pattern, RadialGradient, SolidPaint, Stroke, Tree)
-from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length, parse_url,
+from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length, parse_number,
+                     parse_url,
                      parse_length_list, parse_paint, parse_preserve_aspect_ratio,
                      parse_transform, parse_transform_origin, parse_viewbox, viewbox_transform)
 
@@ -90,7 +91,7 @@ _BLEND = frozenset(['normal', 'multiply', 'screen', 'overlay', 'darken', 'lighte
                     'exclusion', 'hue', 'saturation', 'color', 'luminosity'])
 _BLACK = (0.0, 0.0, 0.0, 1.0)
 _EMPTY = object()         # a clip path or mask that leaves nothing visible
-_UNSUPPORTED = object()   # a paint server we cannot paint yet: use the fallback
+_UNSUPPORTED = object()   # a paint server that cannot paint (no stops, empty box): fallback
 _ARC_SAFETY = 0.1   # arcs are made 10x finer than `tolerance` so zooming in stays smooth
 
 
@@ -105,14 +106,10 @@ def _local(el):
 def _number_or_percent(s):
     """A number or a percentage (as a fraction), or None."""
     s = s.strip()
-    try:
-        if s.endswith('%'):
-            v = float(s[:-1]) / 100.0
-        else:
-            v = float(s)
-    except ValueError:
-        return None
-    return v if math.isfinite(v) else None
+    if s.endswith('%'):
+        v = parse_number(s[:-1])
+        return None if v is None else v / 100.0
+    return parse_number(s)
 
 
 def _opacity(s, default=1.0):
@@ -122,14 +119,6 @@ def _opacity(s, default=1.0):
     if v is None:
         return default
     return min(max(v, 0.0), 1.0)
-
-
-def _parse_float(s):
-    try:
-        v = float(s)
-    except (TypeError, ValueError):
-        return None
-    return v if math.isfinite(v) else None
 
 
 class _State:
@@ -338,6 +327,16 @@ class _Builder:
             return
         if not self.tick():
             return
+        mark = len(out)
+        try:
+            self._element(el, name, pinh, pown, st, out)
+        except RasterError as e:
+            # numbers that overflow when combined (1e308 scales, ...): the
+            # element is left out, the rest of the document still renders
+            del out[mark:]
+            self.warn('element-error', 'element <%s> not rendered: %s' % (name, e))
+
+    def _element(self, el, name, pinh, pown, st, out):
         inh, own = self.style(el, pinh, pown)
         ctx = self.ctx(inh, st)
         t = self.transform_of(el, own, ctx)
@@ -914,7 +913,8 @@ class _Builder:
         if ts is not None:
             t = parse_transform(ts)
             if t is not None and t.determinant != 0:
-                tf = self._with_origin(el, t, lctx)
+                # patternTransform acts in user space whatever the units
+                tf = self._with_origin(el, t, ctx)
         vb = None
         content_t = IDENTITY
         vbs = attr('viewBox')
@@ -1104,7 +1104,7 @@ class _Builder:
             return False
         join = inh.get('stroke-linejoin', 'miter')
         cap = inh.get('stroke-linecap', 'butt')
-        ml = _parse_float(inh.get('stroke-miterlimit', '4'))
+        ml = parse_number(inh.get('stroke-miterlimit', '4'))
         if ml is None or ml < 1:
             ml = 4.0
         dash = None

@@ -71,7 +71,7 @@ from .values import (parse_angle, parse_length, parse_preserve_aspect_ratio, par
                      parse_viewbox, viewbox_transform)
 
 __all__ = ['MARKABLE', 'MarkerVertices', 'marker_vertices', 'vertex_angles', 'parse_orient',
-           'marker_transform', 'context_paint', 'build_markers']
+           'marker_matrices', 'marker_transform', 'context_paint', 'build_markers']
 
 #: Elements that take markers (SVG 2: every shape; resvg draws them too).
 MARKABLE = frozenset(['path', 'line', 'polyline', 'polygon', 'rect', 'circle', 'ellipse'])
@@ -302,6 +302,37 @@ def parse_orient(s):
     return 0.0 if a is None else float(a)
 
 
+def marker_matrices(points, angles, sx, sy, ref):
+    """Instance transforms of one marker at many vertices, vectorized.
+
+    Parameters
+    ----------
+    points : (K, 2) array_like of float
+        Vertices.
+    angles : (K,) array_like of float
+        Marker angles in degrees.
+    sx, sy : float
+        Scale of the content (stroke width times viewBox scale).
+    ref : (2,) floats
+        The reference point in content coordinates.
+
+    Returns
+    -------
+    (K, 6) float64 ndarray
+        Rows ``(a, b, c, d, e, f)`` of ``translate(point) @ rotate(angle) @
+        scale(sx, sy) @ translate(-ref)``; sines and cosines below 1e-15 are
+        snapped to 0 so quarter turns are exact.
+    """
+    p = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    r = np.radians(np.mod(np.asarray(angles, dtype=np.float64).reshape(-1), 360.0))
+    co, si = np.cos(r), np.sin(r)
+    co[np.abs(co) < 1e-15] = 0.0
+    si[np.abs(si) < 1e-15] = 0.0
+    rx, ry = -sx * float(ref[0]), -sy * float(ref[1])
+    return np.stack([co * sx, si * sx, -si * sy, co * sy,
+                     p[:, 0] + co * rx - si * ry, p[:, 1] + si * rx + co * ry], axis=1)
+
+
 def marker_transform(point, angle, sx, sy, ref):
     """Affine mapping marker content to the path's user space:
     ``translate(point) @ rotate(angle) @ scale(sx, sy) @ translate(-ref)``.
@@ -309,10 +340,7 @@ def marker_transform(point, angle, sx, sy, ref):
     >>> marker_transform((10, 20), 90, 2, 2, (1, 0)).apply([[1.0, 0.0], [2.0, 0.0]]).tolist()
     [[10.0, 20.0], [10.0, 22.0]]
     """
-    t = Affine.translate(float(point[0]), float(point[1]))
-    if angle:
-        t = t @ Affine.rotate(float(angle))
-    return t @ Affine(sx, 0, 0, sy, -sx * float(ref[0]), -sy * float(ref[1]))
+    return Affine(*marker_matrices([point], [angle], sx, sy, ref)[0])
 
 
 def context_paint(paint, to_context, box=None):
@@ -456,7 +484,11 @@ def _resolve_marker(builder, mk, ctx, sw):
     m.scale = (sx, sy)
     m.vw, m.vh = vw, vh
     m.ref = (_ref(mk, 'refX', 'x', ctx, lox, vw), _ref(mk, 'refY', 'y', ctx, loy, vh))
-    ov = own.get('overflow', 'hidden').strip()
+    # markers default to overflow: hidden (user agent style sheet); `inherit`
+    # takes the parent's value, whose initial value is visible
+    decl = builder.styles.get(mk) or {}
+    inherit = decl.get('overflow', '').strip() == 'inherit'
+    ov = own.get('overflow', 'visible' if inherit else 'hidden').strip()
     m.clip = None if ov in ('visible', 'auto') else builder.clip_rect(*clip_rect)
     m.clip_rect = clip_rect
     m.orient = parse_orient(mk.get('orient'))
@@ -530,9 +562,9 @@ def _convex_single_contour(path):
     return abs(abs(turn) - _TWO_PI) < 1e-6
 
 
-def _merged(nodes, transforms, scale):
+def _merged(nodes, mats, scale):
     """One PathNode drawing a single-path marker content at every instance
-    transform at once (the renderer's cost is per node), or None when that
+    transform (rows of ``mats``, (K, 6)) at once (the renderer's cost is per node), or None when that
     could change the picture: more than one node, both fill and stroke,
     translucent or non-solid paint, evenodd, dashes, nested markers, a
     non-uniform scale, or a fill that is not one convex contour."""
@@ -552,11 +584,14 @@ def _merged(nodes, transforms, scale):
         return None
     if s is not None and s.dash is not None:
         return None
-    mats = np.array([[[t.a, t.c, t.e], [t.b, t.d, t.f]] for t in transforms])   # (K, 2, 3)
-    pts = np.einsum('kij,nj->kni', mats[:, :, :2], n.path.points) + mats[:, None, :, 2]
+    m = np.asarray(mats, dtype=np.float64)                     # (K, 6): a b c d e f
+    x, y = n.path.points[:, 0], n.path.points[:, 1]
+    px = m[:, 0:1] * x + m[:, 2:3] * y + m[:, 4:5]
+    py = m[:, 1:2] * x + m[:, 3:4] * y + m[:, 5:6]
+    pts = np.stack([px, py], axis=-1)                          # (K, N, 2)
     if not np.all(np.isfinite(pts)):
         return None
-    path = Path(np.tile(n.path.verbs, len(transforms)), pts.reshape(-1, 2))
+    path = Path(np.tile(n.path.verbs, len(m)), pts.reshape(-1, 2))
     if s is not None:
         s = dataclasses.replace(s, width=s.width * abs(scale[0]))
     return PathNode(path=path, fill=f, stroke=s, antialias=n.antialias)
@@ -664,39 +699,45 @@ def build_markers(builder, el, name, path, inh, own, ctx, st, fill=None, stroke=
             m = resolved[mk] = _resolve_marker(builder, mk, ctx, sw)
         if m is None:
             continue
-        shared = None
-        shared_clip = m.clip
-        first = len(out)
-        for i in idx:
-            o = m.orient
-            if o == 'auto':
-                a = float(mv.angles[i])
-            elif o == 'auto-start-reverse':
-                a = float(mv.angles[i]) + (180.0 if kind == 0 else 0.0)
-            else:
-                a = o
-            T = marker_transform(mv.points[i], a % 360.0, m.scale[0], m.scale[1], m.ref)
-            if simple:
-                if shared is None:
-                    shared = _content(builder, m, st, T, (cfill, cstroke))
-                    if m.clip is not None and not _needs_clip(shared, m.clip_rect):
-                        shared_clip = None
-                nodes = list(shared)
-                clip = shared_clip
-            else:
-                nodes = _content(builder, m, st, T, (context_paint(cfill, T, box),
-                                                     context_paint(cstroke, T, box)))
-                clip = m.clip
-                if clip is not None and not _needs_clip(nodes, m.clip_rect):
-                    clip = None
+        o = m.orient
+        if o == 'auto':
+            ang = mv.angles[idx]
+        elif o == 'auto-start-reverse':
+            ang = mv.angles[idx] + (180.0 if kind == 0 else 0.0)
+        else:
+            ang = np.full(len(idx), o)
+        mats = marker_matrices(mv.points[idx], ang, m.scale[0], m.scale[1], m.ref)
+        if not np.all(np.isfinite(mats)):
+            continue
+        if simple:
+            T0 = Affine(*mats[0])
+            shared = _content(builder, m, st, T0, (cfill, cstroke))
+            if not shared:
+                continue
+            clip = m.clip
+            if clip is not None and not _needs_clip(shared, m.clip_rect):
+                clip = None
+            if clip is None and len(idx) > 2:
+                g = _merged(shared, mats, m.scale)
+                if g is not None:
+                    out.append(g)
+                    continue
+            for row in mats:
+                if not builder.tick():
+                    break
+                out.append(Group(transform=Affine(*row), clip_path=clip, children=list(shared)))
+            continue
+        for row in mats:
+            T = Affine(*row)
+            nodes = _content(builder, m, st, T, (context_paint(cfill, T, box),
+                                                 context_paint(cstroke, T, box)))
+            clip = m.clip
+            if clip is not None and not _needs_clip(nodes, m.clip_rect):
+                clip = None
             if nodes:
                 out.append(Group(transform=T, clip_path=clip, children=nodes))
             if builder.stopped:
                 break
-        if simple and shared_clip is None and len(out) - first > 2:
-            g = _merged(shared, [x.transform for x in out[first:]], m.scale)
-            if g is not None:
-                out[first:] = [g]
     if not out:
         return None
     return Group(children=out)
