@@ -135,22 +135,40 @@ class Canvas:
             return
         dst_sl, src_sl = win
         k = cov[src_sl]
-        region = self.data[dst_sl]
-        vec = np.array([r, g, b, 1.0], np.float32)
+        # crop to the rows holding coverage (masks are often mostly empty)
+        rows = np.flatnonzero(k.any(axis=1))
+        if len(rows) == 0:
+            return
+        r0, r1 = int(rows[0]), int(rows[-1]) + 1
+        k = k[r0:r1]
+        region = self.data[dst_sl][r0:r1]
         alpha = np.float32(a)
-        # region += k * (vec - region), in blocks of rows to keep the
-        # (rows, w, 4) temporaries small; blocks with no coverage are skipped
-        step = max(1, _BLOCK // max(1, k.shape[1]))
+        vec = (np.float32(r), np.float32(g), np.float32(b), np.float32(1.0))
+        # region += k * (vec - region), channel by channel (long strided
+        # loops; a broadcast over the 4 channels runs 4-element inner
+        # loops), in blocks of rows that stay in cache; each block is
+        # cropped to its columns holding coverage
+        w = k.shape[1]
+        step = max(1, _BLOCK // max(1, w))
+        tmp = np.empty(min(step, k.shape[0]) * w, np.float32)
+        kbuf = np.empty(min(step, k.shape[0]) * w, np.float32) if alpha != 1.0 else None
         for i0 in range(0, k.shape[0], step):
             kk = k[i0:i0 + step]
-            if not kk.any():
+            cols = np.flatnonzero(kk.any(axis=0))
+            if len(cols) == 0:
                 continue
-            if alpha != 1.0:
-                kk = kk * alpha
-            reg = region[i0:i0 + step]
-            t = vec - reg
-            t *= kk[..., None]
-            reg += t
+            c0, c1 = int(cols[0]), int(cols[-1]) + 1
+            kk = kk[:, c0:c1]
+            n = kk.size
+            if kbuf is not None:
+                kk = np.multiply(kk, alpha, out=kbuf[:n].reshape(kk.shape))
+            reg = region[i0:i0 + step, c0:c1]
+            t = tmp[:n].reshape(kk.shape)
+            for ch in range(4):
+                rc = reg[..., ch]
+                np.subtract(vec[ch], rc, out=t)
+                t *= kk
+                rc += t
 
     def composite(self, src_premul, x0=0, y0=0, opacity=1.0):
         """Source-over of a premultiplied RGBA layer onto the canvas.

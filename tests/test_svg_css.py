@@ -61,8 +61,11 @@ def test_property_table():
     assert initial_value('nope') is None and not is_inherited('nope')
     assert 'transform' not in PRESENTATION_ATTRIBUTES
     assert 'marker' not in PRESENTATION_ATTRIBUTES  # resvg: attribute ignored
-    assert {'fill', 'stroke', 'opacity', 'mix-blend-mode', 'transform-origin'} \
+    assert {'fill', 'stroke', 'opacity', 'mask-type', 'transform-origin'} \
         <= PRESENTATION_ATTRIBUTES <= set(PROPERTIES)
+    # Compositing 1: mix-blend-mode and isolation are CSS-only (resvg suite
+    # painting/mix-blend-mode/as-property, painting/isolation/as-property)
+    assert not {'mix-blend-mode', 'isolation'} & PRESENTATION_ATTRIBUTES
     assert SHORTHANDS['marker'] == ('marker-start', 'marker-mid', 'marker-end')
 
 

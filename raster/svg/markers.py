@@ -211,30 +211,32 @@ def vertex_angles(kinds, vert, c1, c2, sp):
         p = vert[j - 1:j]
         a, b = _curves(p, c2[j - 1:j], p, sp[j:j + 1], sp[j:j + 1])
         vin[j], vout[j] = a[0], b[0]
-    # -- middle vertices, all at once
+    # -- middle vertices: each (this kind, next kind) case over its subset
     if S > 2:
-        i = np.arange(1, S - 1)
-        cur, nk = kinds[i], kinds[i + 1]
-        pv, x, nv = vert[i - 1], vert[i], vert[i + 1]
-        a_in = np.zeros((len(i), 2))
-        a_out = np.zeros((len(i), 2))
+        cur, nk = kinds[1:-1], kinds[2:]
 
-        def put(sel, vi, vo):
-            a_in[sel] = vi[sel]
-            a_out[sel] = vo[sel]
-        line = lambda d: (d, d)                                   # noqa: E731
-        put((cur == _M) & (nk == _L), *line(nv - x))
-        put((cur == _M) & (nk == _C), *line(c1[i + 1] - x))
-        put((cur == _L) & (nk == _L), x - pv, nv - x)
-        put((cur == _C) & (nk == _C), *_curves(pv, c2[i], x, c1[i + 1], nv))
-        put((cur == _L) & (nk == _C), *_curves(pv, pv, x, c1[i + 1], nv))
-        put((cur == _C) & (nk == _L), *_curves(pv, c2[i], x, nv, nv))
-        put((cur == _L) & (nk == _M), *line(x - pv))
-        cm = np.where(_near(x, c2[i])[:, None], x - pv, x - c2[i])
-        put((cur == _C) & (nk == _M), *line(cm))
-        put((cur == _L) & (nk == _Z), x - pv, sp[i] - x)
-        put(((cur == _M) | (cur == _C)) & (nk == _Z), *line(sp[i] - pv))
-        vin[1:-1], vout[1:-1] = a_in, a_out
+        def case(sel, fn):
+            j = np.flatnonzero(sel) + 1                     # vertex indices
+            if len(j):
+                vin[j], vout[j] = fn(j)
+
+        def line(d):
+            return d, d
+        case((cur == _M) & (nk == _L), lambda j: line(vert[j + 1] - vert[j]))
+        case((cur == _M) & (nk == _C), lambda j: line(c1[j + 1] - vert[j]))
+        case((cur == _L) & (nk == _L), lambda j: (vert[j] - vert[j - 1], vert[j + 1] - vert[j]))
+        case((cur == _C) & (nk == _C),
+             lambda j: _curves(vert[j - 1], c2[j], vert[j], c1[j + 1], vert[j + 1]))
+        case((cur == _L) & (nk == _C),
+             lambda j: _curves(vert[j - 1], vert[j - 1], vert[j], c1[j + 1], vert[j + 1]))
+        case((cur == _C) & (nk == _L),
+             lambda j: _curves(vert[j - 1], c2[j], vert[j], vert[j + 1], vert[j + 1]))
+        case((cur == _L) & (nk == _M), lambda j: line(vert[j] - vert[j - 1]))
+        case((cur == _C) & (nk == _M),
+             lambda j: line(np.where(_near(vert[j], c2[j])[:, None], vert[j] - vert[j - 1],
+                                     vert[j] - c2[j])))
+        case((cur == _L) & (nk == _Z), lambda j: (vert[j] - vert[j - 1], sp[j] - vert[j]))
+        case(((cur == _M) | (cur == _C)) & (nk == _Z), lambda j: line(sp[j] - vert[j - 1]))
     return _bisector(vin, vout)
 
 
