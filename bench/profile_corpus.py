@@ -7,8 +7,9 @@ Run from the repository root::
 FILES are corpus file names or substrings (default: every file of
 ``../shared/corpus``).  For each file two measurements are made:
 
-1. *Stage wall times, no profiler*: the public stages are timed one after
-   the other (median of ``--repeat`` runs): XML parse
+1. *Stage times, no profiler*: the public stages are timed one after
+   the other, in wall-clock and in process CPU time (median of
+   ``--repeat`` runs each): XML parse
    (``raster.svg.document.load_document``), tree build incl. CSS cascade
    (``raster.svg.build.build_tree``), rendering (``render_tree``: path
    parse, flatten, stroke, scan conversion, compositing), conversion to
@@ -118,8 +119,9 @@ def attribute(stats):
     return by_stage, by_func
 
 
-def stage_times(path, width, repeat):
-    """Median wall time of each public stage, without profiler."""
+def stage_times(path, width, repeat, cpu=False):
+    """Median wall (or, with ``cpu``, process CPU) time of each public stage,
+    without profiler."""
     from PIL import Image
 
     from raster.canvas import DEFAULT_COMPRESS_LEVEL
@@ -128,19 +130,20 @@ def stage_times(path, width, repeat):
     from raster.svg.document import load_document
     from raster.svg.render import render_tree
     rows = defaultdict(list)
+    clock = time.process_time if cpu else time.perf_counter
     for _ in range(repeat):
-        t0 = time.perf_counter()
+        t0 = clock()
         root = load_document(path)
-        t1 = time.perf_counter()
+        t1 = clock()
         tree = build_tree(root, base_dir=os.path.dirname(os.path.abspath(path)), dpi=96)
-        t2 = time.perf_counter()
+        t2 = clock()
         canvas = render_tree(tree, width=width)
-        t3 = time.perf_counter()
+        t3 = clock()
         arr = canvas.to_rgba8()
-        t4 = time.perf_counter()
+        t4 = clock()
         buf = io.BytesIO()
         Image.fromarray(arr, 'RGBA').save(buf, format='PNG', compress_level=DEFAULT_COMPRESS_LEVEL)
-        t5 = time.perf_counter()
+        t5 = clock()
         for k, v in (('XML parse', t1 - t0), ('tree build + CSS', t2 - t1),
                      ('render_tree', t3 - t2), ('to_rgba8', t4 - t3), ('PNG encode', t5 - t4)):
             rows[k].append(v)
@@ -174,14 +177,17 @@ def profile_file(path, width, top, repeat):
     try:
         render_png(path, width)            # warm-up (imports, caches)
         st, shape = stage_times(path, width, repeat)
+        st_cpu, _ = stage_times(path, width, repeat, cpu=True)
     except Exception as exc:
         print('  error: %s: %s' % (type(exc).__name__, str(exc).splitlines()[0] if str(exc) else ''))
         return None
     total = sum(st.values())
-    print('Stage wall times (median of %d, no profiler), output %dx%d, total %.0f ms:'
-          % (repeat, shape[1], shape[0], total * 1000))
+    total_cpu = sum(st_cpu.values())
+    print('Stage times (median of %d, no profiler), output %dx%d, total %.0f ms wall, '
+          '%.0f ms CPU:' % (repeat, shape[1], shape[0], total * 1000, total_cpu * 1000))
     for k, v in st.items():
-        print('  %-22s %8.1f ms  %5.1f %%' % (k, v * 1000, 100 * v / total))
+        print('  %-22s %8.1f ms  %5.1f %%   CPU %8.1f ms  %5.1f %%'
+              % (k, v * 1000, 100 * v / total, st_cpu[k] * 1000, 100 * st_cpu[k] / total_cpu))
     prof = cProfile.Profile()
     prof.enable()
     render_png(path, width)

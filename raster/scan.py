@@ -59,6 +59,13 @@ _CHUNK_PIECES = 1 << 21
 # Largest box (cells) for which flagged cells are found through a dense
 # int32 map rather than a binary search.
 _CELLMAP_MAX = 1 << 25
+# Boxes with more than this many cells per piece accumulate cover and
+# partial sums over the touched cells only (sorting the pieces' cells
+# costs less than sweeping the whole box).
+_SPARSE_RATIO = 8
+# The dense cell map of _exact_cells is used when the box has at most this
+# many cells per piece (else a binary search over the flagged cells).
+_CELLMAP_RATIO = 16
 # Longest stretch of a chain checked for monotonicity when it visits one
 # cell several times.
 _STRETCH_MAX = 256
@@ -536,6 +543,7 @@ def _area_coverage(loc, w, h, evenodd):
     touched_cells, bad_cells = [], []
     chunks = _chunks(loc, w, h)
     saved = None
+    sparse = None
     for lo, hi in chunks:
         pc = _pieces(loc[lo:hi], w, h)
         if pc is None:
@@ -547,23 +555,35 @@ def _area_coverage(loc, w, h, evenodd):
         dy = yb - ya
         # mean x offset inside the cell; virtual pieces act as if at x = 0
         fx = np.where(real, 0.5 * (xa + xb) - col, 0.0)
-        c1 = np.bincount(cell, weights=dy, minlength=ncell)
-        p1 = np.bincount(cell, weights=dy * fx, minlength=ncell)
-        if cover is None:
-            cover, partial = c1, p1
+        if len(chunks) == 1 and len(cell) * _SPARSE_RATIO < ncell:
+            # few pieces in a large box: accumulate over the touched cells
+            # only (the same sums, in the same order, as the dense bincount)
+            cells, inv = np.unique(cell, return_inverse=True)
+            sparse = (cells, np.bincount(inv, weights=dy, minlength=len(cells)),
+                      np.bincount(inv, weights=dy * fx, minlength=len(cells)))
         else:
-            cover += c1
-            partial += p1
+            c1 = np.bincount(cell, weights=dy, minlength=ncell)
+            p1 = np.bincount(cell, weights=dy * fx, minlength=ncell)
+            if cover is None:
+                cover, partial = c1, p1
+            else:
+                cover += c1
+                partial += p1
         # virtual pieces get cell ids < 0 (never flagged)
         touched, bad = _flag_cells(xa, ya, xb, yb, np.where(real, cell, -1))
         touched_cells.append(touched)
         bad_cells.append(bad)
         if len(chunks) == 1:
             saved = (xa, ya, xb, yb, col, row)
-    if cover is None:
+    if sparse is not None:
+        cells, cv, pv = sparse
+        nz = (cv != 0) | (pv != 0)
+        data = _resolve_cells(cells[nz], cv[nz], pv[nz], w, h, evenodd)
+    elif cover is not None:
+        data = _resolve(cover, partial, w, h, evenodd)
+        del cover, partial
+    else:
         return None
-    data = _resolve(cover, partial, w, h, evenodd)
-    del cover, partial
 
     # flagged cells, and cells touched by pieces of several chunks (a chain
     # cut at a chunk boundary is not followed across it)
@@ -612,10 +632,15 @@ def _resolve(cover, partial, w, h, evenodd):
     then (when the row ends first) zeros up to the next touched cell.
     """
     touched = np.flatnonzero((cover != 0) | (partial != 0))
+    return _resolve_cells(touched, cover[touched], partial[touched], w, h, evenodd)
+
+
+def _resolve_cells(touched, cv, pv, w, h, evenodd):
+    """:func:`_resolve` from the touched cells only: ``touched`` (sorted
+    flat indices) and their cover ``cv`` and partial ``pv`` sums."""
     n = w * h
     if len(touched) == 0:
         return np.zeros((h, w), np.float32)
-    cv = cover[touched]
     tr = touched // w
     cs = np.cumsum(cv)
     first = np.empty(len(touched), bool)
@@ -623,7 +648,7 @@ def _resolve(cover, partial, w, h, evenodd):
     first[1:] = tr[1:] != tr[:-1]
     base = (cs - cv)[first][np.cumsum(first) - 1]
     run = cs - base                           # winding right of the cell
-    cell = run - partial[touched]             # winding integral over the cell
+    cell = run - pv                           # winding integral over the cell
     row_end = (tr + 1) * w
     nxt = np.append(touched[1:], n)
     gap = np.minimum(nxt, row_end) - touched - 1
@@ -678,7 +703,7 @@ def _exact_cells(pieces, flagged, w, h, evenodd):
     frow = flagged // w
     fcol = flagged % w
 
-    if h * (w + 1) <= _CELLMAP_MAX:
+    if h * (w + 1) <= min(_CELLMAP_MAX, _CELLMAP_RATIO * len(xa)):
         # flagged index of every cell, -1 elsewhere (extra column for c = w)
         cellmap = np.full(h * (w + 1), -1, np.int32)
         cellmap[frow * (w + 1) + fcol] = np.arange(F)

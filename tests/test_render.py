@@ -359,6 +359,53 @@ def test_blend_modes_over_grey(mode, src, expect):
     assert np.allclose(c[5, 5], list(expect) + [1], atol=1e-5)
 
 
+# Non-separable modes (Compositing 1, section 10.2), worked by hand with
+# Lum = 0.3 R + 0.59 G + 0.11 B.  Backdrop Cb = (0.2, 0.4, 0.6): Lum 0.362,
+# Sat 0.4.
+#   hue        SetLum(SetSat(Cs, Sat(Cb)), Lum(Cb)), Cs red: SetSat -> (0.4, 0, 0),
+#              Lum 0.12, + 0.242 -> (0.642, 0.242, 0.242)
+#   saturation SetLum(SetSat(Cb, Sat(Cs)), Lum(Cb)), Cs (0.5, 0.5, 0.6), Sat 0.1:
+#              SetSat -> (0, 0.05, 0.1), Lum 0.0405, + 0.3215
+#   color      SetLum(Cs, Lum(Cb)), Cs red: (1.062, 0.062, 0.062) is above 1, so
+#              ClipColor: L + (C - L)(1 - L)/(max - L) -> (1, 0.08857..., 0.08857...)
+#   luminosity SetLum(Cb, Lum(Cs)), Cs grey 0.5: + 0.138
+CB = (0.2, 0.4, 0.6, 1)
+
+
+@pytest.mark.parametrize('mode,src,expect', [
+    ('hue', (1, 0, 0, 1), (0.642, 0.242, 0.242)),
+    ('saturation', (0.5, 0.5, 0.6, 1), (0.3215, 0.3715, 0.4215)),
+    ('color', (1, 0, 0, 1), (1.0, 0.362 - 0.3 * 0.638 / 0.7, 0.362 - 0.3 * 0.638 / 0.7)),
+    ('luminosity', (0.5, 0.5, 0.5, 1), (0.338, 0.538, 0.738))])
+def test_non_separable_modes_known_values(mode, src, expect):
+    g = Group(blend_mode=mode, children=[filled(rect(0, 0, 20, 20), SolidPaint(src))])
+    c = render_tree(tree(g), background=CB).data
+    assert np.allclose(c[5, 5], list(expect) + [1], atol=2e-6)
+
+
+def test_non_separable_negative_channel_clamps_like_resvg():
+    """Saturation of green (0, 0.5, 0) with saturated yellow: SetSat gives
+    (0, 1, 0), SetLum to Lum 0.295 gives (-0.295, 0.705, -0.295).  The
+    specification's ClipColor would scale that to (0, 0.5, 0); resvg clamps
+    the negative channels and keeps G = 0.705 (its suite's references
+    painting/mix-blend-mode/saturation and color are drawn this way)."""
+    g = Group(blend_mode='saturation',
+              children=[filled(rect(0, 0, 20, 20), SolidPaint((1, 1, 0, 1)))])
+    c = render_tree(tree(g), background=(0, 0.5, 0, 1)).data
+    assert np.allclose(c[5, 5], [0, 0.705, 0, 1], atol=2e-6)
+
+
+def test_non_separable_with_partial_alphas():
+    """Source-over with a blend: Co = Cs Sa (1 - Ba) + Cb Ba (1 - Sa) + Sa Ba B
+    (premultiplied result); luminosity of grey 0.5 over Cb, both at alpha 0.5."""
+    g = Group(blend_mode='luminosity',
+              children=[filled(rect(0, 0, 20, 20), SolidPaint((0.5, 0.5, 0.5, 0.5)))])
+    c = render_tree(tree(g), background=(0.2, 0.4, 0.6, 0.5)).data
+    b = np.array([0.338, 0.538, 0.738])
+    want = 0.5 * 0.5 * 0.5 + np.array([0.2, 0.4, 0.6]) * 0.5 * 0.5 + 0.25 * b
+    assert np.allclose(c[5, 5, :3], want, atol=2e-6) and c[5, 5, 3] == pytest.approx(0.75)
+
+
 def test_blend_with_transparent_backdrop_is_source():
     g = Group(blend_mode='multiply', children=[filled(rect(0, 0, 10, 10), BLUE)])
     c = render_tree(tree(g)).data

@@ -499,3 +499,134 @@ def test_any_marker_attributes_build(attrs, sw):
     for n in marked(t):
         for g, tf in walk(n.markers):
             assert all(math.isfinite(v) for v in tf)
+
+
+# -- the vectorized angles against a plain per-vertex statement of the rules ----------------
+
+
+def _ref_angles(segs):
+    """segs: list of (kind, c1, c2, vertex) with kinds 'M', 'L', 'C', 'Z'
+    (vertex of Z: its subpath start).  Returns angles per the module rules,
+    written one vertex at a time."""
+    def ang(v):
+        return math.atan2(v[1], v[0]) % (2 * math.pi)
+
+    def bis(vi, vo):
+        a, b = ang(vi), ang(vo)
+        d = (b - a) / 2
+        if abs(abs(d) - math.pi / 2) < 1e-9:
+            return math.nan           # opposite directions: either normal, by rounding
+        r = a + d - (math.pi if abs(d) > math.pi / 2 else 0)
+        return math.degrees(r % (2 * math.pi)) % 360
+
+    def sub(p, q):
+        return (p[0] - q[0], p[1] - q[1])
+
+    def start_before(i):
+        for k in range(i - 1, -1, -1):
+            if segs[k][0] == 'M':
+                return segs[k][3]
+        return (0.0, 0.0)
+
+    def curves(prev, c1, x, c2, nxt):
+        if c1 == x:
+            return sub(x, prev), sub(c2, x)
+        if x == c2:
+            return sub(x, c1), sub(nxt, x)
+        return sub(x, c1), sub(c2, x)
+    n = len(segs)
+    out = []
+    for i in range(n):
+        k, c1, c2, x = segs[i]
+        vi = vo = (0.0, 0.0)
+        if i == 0:
+            k1, d1, _, x1 = segs[1]
+            if k1 == 'L':
+                vi = vo = sub(x1, x)
+            elif k1 == 'C':
+                vi = vo = sub(x1, x) if d1 == x else sub(d1, x)
+        elif i == n - 1:
+            pk, _, pc2, pv = segs[i - 1]
+            if k == 'L':
+                vi = vo = sub(x, pv)
+            elif k == 'C':
+                vi = vo = sub(x, c1) if c2 == x else sub(x, c2)
+            elif k == 'Z' and pk == 'L':
+                vi = vo = sub(start_before(i), pv)
+            elif k == 'Z' and pk == 'C':
+                s0 = start_before(i)
+                vi, vo = curves(pv, pc2, pv, s0, s0)
+        else:
+            pv = segs[i - 1][3]
+            nk, nc1, _, nv = segs[i + 1]
+            s0 = start_before(i)
+            if k == 'M' and nk == 'L':
+                vi = vo = sub(nv, x)
+            elif k == 'M' and nk == 'C':
+                vi = vo = sub(nc1, x)
+            elif k == 'L' and nk == 'L':
+                vi, vo = sub(x, pv), sub(nv, x)
+            elif k == 'C' and nk == 'C':
+                vi, vo = curves(pv, c2, x, nc1, nv)
+            elif k == 'L' and nk == 'C':
+                vi, vo = curves(pv, pv, x, nc1, nv)
+            elif k == 'C' and nk == 'L':
+                vi, vo = curves(pv, c2, x, nv, nv)
+            elif k == 'L' and nk == 'M':
+                vi = vo = sub(x, pv)
+            elif k == 'C' and nk == 'M':
+                vi = vo = sub(x, pv) if x == c2 else sub(x, c2)
+            elif k == 'L' and nk == 'Z':
+                vi, vo = sub(x, pv), sub(s0, x)
+            elif k in 'MC' and nk == 'Z':
+                vi = vo = sub(s0, pv)
+        out.append(bis(vi, vo))
+    return out
+
+
+_CMD = hs.sampled_from(['M', 'L', 'C', 'Z', 'L', 'C'])
+_PT = hs.tuples(hs.integers(0, 4), hs.integers(0, 4))    # small grid: many coincidences
+
+
+@settings(max_examples=200, deadline=None)
+@given(_PT, hs.lists(hs.tuples(_CMD, _PT, _PT, _PT), min_size=1, max_size=12))
+def test_vectorized_angles_match_per_vertex_rules(p0, cmds):
+    from raster.path import PathBuilder
+    b = PathBuilder()
+    b.moveTo(p0)
+    segs = [('M', None, None, tuple(map(float, p0)))]
+    start = segs[0][3]
+    closed = False
+    for k, a, c, e in cmds:
+        a, c, e = (tuple(map(float, q)) for q in (a, c, e))
+        if k == 'Z':
+            if closed:
+                continue                          # repeated closes collapse
+            b.closePath()
+            segs.append(('Z', None, None, start))
+            closed = True
+            continue
+        if closed and k != 'M':                   # drawing after Z: implicit move
+            segs.append(('M', None, None, start))
+        closed = False
+        if k == 'M':
+            if segs[-1][0] == 'M':
+                segs.pop()                        # a move after a move replaces it
+            b.moveTo(e)
+            start = e
+            segs.append(('M', None, None, e))
+        elif k == 'L':
+            b.lineTo(e)
+            segs.append(('L', None, None, e))
+        else:
+            b.curveTo(a, c, e)
+            segs.append(('C', a, c, e))
+    mv = marker_vertices(b.path())
+    if len(segs) < 2:
+        assert len(mv.points) == 0
+        return
+    assert [tuple(p) for p in mv.points.tolist()] == [s[3] for s in segs]
+    want = np.array(_ref_angles(segs))
+    ok = ~np.isnan(want)
+    diff = np.mod(mv.angles[ok] - want[ok] + 180, 360) - 180
+    np.testing.assert_allclose(diff, 0, atol=1e-9)

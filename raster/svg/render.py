@@ -805,13 +805,27 @@ def _lum(c):
 
 
 def _clip_color(c):
+    """ClipColor of Compositing 1, as resvg (tiny-skia) computes it.
+
+    The specification first pulls a colour with a negative channel towards
+    its luminosity (``C = L + (C - L) L / (L - min)``), then one with a
+    channel above 1 (``C = L + (C - L) (1 - L) / (max - L)``).  tiny-skia
+    guards the first step with ``max >= 0`` instead of ``min < 0``, so the
+    first step never runs (after SetLum the maximum is at least the
+    luminosity, which is >= 0) and negative channels are clamped to 0 at
+    the end.  The resvg suite's references are drawn that way (e.g.
+    painting/mix-blend-mode/saturation: green under a saturated yellow keeps
+    G = 0.637, not the specification's 0.5), so we follow it.
+
+    ``c`` is (..., 3) float64 straight RGB; returns the same shape.
+    """
     lum = _lum(c)[..., None]
-    n = c.min(-1, keepdims=True)
     x = c.max(-1, keepdims=True)
-    with np.errstate(divide='ignore', invalid='ignore'):
-        lo = np.where(n < 0, lum + (c - lum) * lum / np.maximum(lum - n, 1e-12), c)
-        hi = np.where(x > 1, lum + (lo - lum) * (1 - lum) / np.maximum(x - lum, 1e-12), lo)
-    return hi
+    over = x > 1
+    if over.any():
+        with np.errstate(divide='ignore', invalid='ignore'):
+            c = np.where(over, lum + (c - lum) * (1 - lum) / np.maximum(x - lum, 1e-12), c)
+    return np.maximum(c, 0.0)
 
 
 def _set_lum(c, lum):
