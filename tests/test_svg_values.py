@@ -233,7 +233,7 @@ CTX = LengthContext(font_size=20.0, width=300.0, height=400.0)
 @pytest.mark.parametrize('s, axis, v', [
     ('10', 'x', 10.0), ('10px', 'x', 10.0), ('1in', 'x', 96.0),
     ('2.54cm', 'x', 96.0), ('25.4mm', 'x', 96.0), ('72pt', 'x', 96.0),
-    ('3pt', 'x', 4.0), ('6pc', 'x', 96.0), ('1pc', 'x', 16.0), ('101.6Q', 'x', 96.0),
+    ('3pt', 'x', 4.0), ('6pc', 'x', 96.0), ('1pc', 'x', 16.0),
     ('2em', 'x', 40.0), ('2ex', 'x', 20.0), ('1EM', 'x', 20.0),
     ('50%', 'x', 150.0), ('50%', 'y', 200.0),
     ('100%', 'other', math.sqrt((300 ** 2 + 400 ** 2) / 2)),
@@ -243,7 +243,7 @@ def test_lengths(s, axis, v):
     assert parse_length(s, axis, CTX) == pytest.approx(v, rel=1e-12)
 
 
-@pytest.mark.parametrize('s', ['', 'px', '1 px', '10qq', '1vw', '1rem', '44mmx',
+@pytest.mark.parametrize('s', ['', 'px', '1 px', '10qq', '10Q', '1vw', '1rem', '44mmx',
                                '1e999', '1%%', '1,', '5vmin'])
 def test_invalid_lengths(s):
     # resvg renders nothing for SVG 2 units (vw, rem ...): invalid here too

@@ -530,7 +530,9 @@ DEFAULT_CONTEXT = LengthContext()
 
 _LEN_RE = re.compile(r'\s*(' + NUMBER + r')([a-zA-Z]*|%)\s*')
 _ABS_UNITS = {'': 1.0, 'px': 1.0, 'in': None, 'cm': 1 / 2.54, 'mm': 1 / 25.4,
-              'pt': 1 / 72, 'pc': 1 / 6, 'q': 1 / 101.6}
+              'pt': 1 / 72, 'pc': 1 / 6}
+# CSS's `Q` (quarter-millimetre) unit is not an SVG length unit: resvg
+# rejects it (resvg suite shapes/rect/q-values), and so do we.
 
 
 def _resolve(v, unit, axis, ctx):
