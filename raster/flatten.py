@@ -130,6 +130,29 @@ def _blossom(P, a, b):
     # combination of the P_j: the weights are the convolution of the
     # Bernstein weights of degree n-i at a and of degree i at b.  They are
     # exact at t = 0 and t = 1 (Q_n = P_n exactly when b = 1).
+    if n > _TABLE_DEGREE:
+        return _blossom_loops(P, a, b)
+    ii, jj, rr, kk, coef, S = _blossom_table(n)
+    X = np.empty((n1, 4, m))
+    X[0] = 1.0
+    X[1:, 0] = a
+    X[1:, 1] = 1.0 - a
+    X[1:, 2] = b
+    X[1:, 3] = 1.0 - b
+    pw = np.cumprod(X, axis=0)                # pw[p, :] = a**p, (1-a)**p, b**p, (1-b)**p
+    T = pw[rr, 0] * pw[n - ii - rr, 1]
+    T *= pw[kk, 2]
+    T *= pw[ii - kk, 3]
+    T *= coef[:, None]
+    W = (S @ T).reshape(n1, n1, 1, m)         # W[i, j]: weight of P_j in Q_i
+    return (W * P[None]).sum(axis=1)
+
+
+def _blossom_loops(P, a, b):
+    """:func:`_blossom` for high degrees, term by term (the tables of
+    :func:`_blossom_table` grow like n**5)."""
+    n1, D, m = P.shape
+    n = n1 - 1
     one = np.ones(m)
     pa, qa, pb, qb = [one], [one], [one], [one]      # powers of a, 1-a, b, 1-b
     for _ in range(n):
@@ -150,6 +173,27 @@ def _blossom(P, a, b):
         for j in range(1, n1):
             Q[i] += W[i, j] * P[j]
     return Q
+
+
+# Highest degree whose blossom weights are computed from index tables.
+_TABLE_DEGREE = 8
+_BLOSSOM_TABLES = {}
+
+
+def _blossom_table(n):
+    """Index tables of the blossom weights of degree ``n``: one term per
+    (i, r, k) with weight C(n-i, r) C(i, k) a**r (1-a)**(n-i-r) b**k
+    (1-b)**(i-k) added to W[i, r + k]; ``S`` sums the terms into W."""
+    tab = _BLOSSOM_TABLES.get(n)
+    if tab is None:
+        terms = [(i, r + k, r, k, _COMB[n - i][r] * _COMB[i][k])
+                 for i in range(n + 1) for r in range(n - i + 1) for k in range(i + 1)]
+        ii, jj, rr, kk, coef = (np.array(v) for v in zip(*terms))
+        S = np.zeros(((n + 1) ** 2, len(terms)))
+        S[ii * (n + 1) + jj, np.arange(len(terms))] = 1.0
+        tab = (ii, jj, rr, kk, coef.astype(np.float64), S)
+        _BLOSSOM_TABLES[n] = tab
+    return tab
 
 
 def _bernstein_max(c):
@@ -255,6 +299,17 @@ def _bernstein_basis(n, s):
             * s[:, None] ** i * (1.0 - s[:, None]) ** (n - i))
 
 
+_SAMPLE_BASES = {}
+
+
+def _sample_basis(n):
+    """:func:`_bernstein_basis` of degree ``n`` at the samples ``_SG`` (cached)."""
+    B = _SAMPLE_BASES.get(n)
+    if B is None:
+        B = _SAMPLE_BASES[n] = _bernstein_basis(n, _SG)
+    return B
+
+
 def _plan_split(Q, e, tol):
     """How to cut rejected pieces: piece counts and a deviation CDF.
 
@@ -290,8 +345,8 @@ def _plan_split(Q, e, tol):
         return k_uni, None
     d1 = n * np.diff(Q, axis=0)                       # (n, D, m)
     d2 = (n - 1) * np.diff(d1, axis=0)                # (n-1, D, m)
-    v = np.tensordot(_bernstein_basis(n - 1, _SG), d1, axes=1)   # (_G, D, m): B'
-    w = np.tensordot(_bernstein_basis(n - 2, _SG), d2, axes=1)   # (_G, D, m): B''
+    v = np.tensordot(_sample_basis(n - 1), d1, axes=1)   # (_G, D, m): B'
+    w = np.tensordot(_sample_basis(n - 2), d2, axes=1)   # (_G, D, m): B''
     vv = (v * v).sum(axis=1)
     ww = (w * w).sum(axis=1)
     vw = (v * w).sum(axis=1)
@@ -441,7 +496,8 @@ def flatten_beziers(ctrl, tolerance=DEFAULT_TOLERANCE):
         for lo in range(0, len(cur), _CHUNK):
             c = cur[lo:lo + _CHUNK]
             ca, cb = a[lo:lo + _CHUNK], b[lo:lo + _CHUNK]
-            Q = _blossom(PT[:, :, c], ca, cb)
+            # first round: the pieces are the whole curves (Q = P exactly)
+            Q = PT[:, :, c] if rnd == 0 else _blossom(PT[:, :, c], ca, cb)
             e = _deviation(Q)
             ok = (e <= np.maximum(tol, floor[c])) | (rnd == _MAX_ROUNDS)
             if np.any(ok):
@@ -479,6 +535,12 @@ def flatten_beziers(ctrl, tolerance=DEFAULT_TOLERANCE):
         else:
             cur = cur[:0]
 
+    if n_acc == S:
+        # nothing was split: each curve is its chord
+        out = np.empty((S, 2, D))
+        out[:, 0] = P[:, 0]
+        out[:, 1] = P[:, n]
+        return out.reshape(2 * S, D), np.full(S, 2, np.int64)
     ac = np.concatenate(acc_cur)
     at = np.concatenate(acc_t)
     ap = np.concatenate(acc_pt)

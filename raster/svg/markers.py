@@ -330,14 +330,18 @@ def marker_matrices(points, angles, sx, sy, ref):
     co, si = np.cos(r), np.sin(r)
     co[np.abs(co) < 1e-15] = 0.0
     si[np.abs(si) < 1e-15] = 0.0
-    rx, ry = -sx * float(ref[0]), -sy * float(ref[1])
-    return np.stack([co * sx, si * sx, -si * sy, co * sy,
-                     p[:, 0] + co * rx - si * ry, p[:, 1] + si * rx + co * ry], axis=1)
+    with np.errstate(all='ignore'):       # huge scales: non-finite rows, dropped by callers
+        rx, ry = -sx * float(ref[0]), -sy * float(ref[1])
+        return np.stack([co * sx, si * sx, -si * sy, co * sy,
+                         p[:, 0] + co * rx - si * ry, p[:, 1] + si * rx + co * ry], axis=1)
 
 
 def marker_transform(point, angle, sx, sy, ref):
     """Affine mapping marker content to the path's user space:
     ``translate(point) @ rotate(angle) @ scale(sx, sy) @ translate(-ref)``.
+
+    Raises :class:`~raster.errors.TransformError` when the result is not
+    finite.
 
     >>> marker_transform((10, 20), 90, 2, 2, (1, 0)).apply([[1.0, 0.0], [2.0, 0.0]]).tolist()
     [[10.0, 20.0], [10.0, 22.0]]
