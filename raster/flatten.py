@@ -223,16 +223,22 @@ def _bernstein_max(c):
         v = s * s * c0 + 2.0 * s * t * c1 + t * t * c2
         return np.minimum(lo, v), np.maximum(hi, v)
     c3 = c[3]
-    # derivative / 3 = A t**2 + B t + C
-    r = quadratic_roots(c3 - c0 + 3.0 * (c1 - c2), 2.0 * (c0 - 2.0 * c1 + c2), c1 - c0)
-    for j in range(2):
-        t = r[:, j]
-        t = np.where((t > 0.0) & (t < 1.0), t, 0.0)
-        s = 1.0 - t
-        v = s * s * s * c0 + 3.0 * s * t * (s * c1 + t * c2) + t * t * t * c3
-        lo = np.minimum(lo, v)
-        hi = np.maximum(hi, v)
-    return lo, hi
+    # derivative / 3 = A t**2 + B t + C; both roots by the cancellation-free
+    # formula (as :func:`raster.bbox.quadratic_roots`), evaluated together.
+    # Roots that are NaN, infinite or outside (0, 1) are replaced by t = 0.
+    qa = c3 - c0 + 3.0 * (c1 - c2)
+    qb = 2.0 * (c0 - 2.0 * c1 + c2)
+    qc = c1 - c0
+    t = np.empty((2, len(c0)))
+    with np.errstate(all='ignore'):
+        sq = np.sqrt(qb * qb - 4.0 * qa * qc)
+        q = -0.5 * (qb + np.where(qb >= 0, sq, -sq))
+        np.divide(q, qa, out=t[0])
+        np.divide(qc, q, out=t[1])
+    t[~((t > 0.0) & (t < 1.0))] = 0.0
+    s = 1.0 - t
+    v = s * s * s * c0 + 3.0 * s * t * (s * c1 + t * c2) + t * t * t * c3
+    return np.minimum(lo, v.min(axis=0)), np.maximum(hi, v.max(axis=0))
 
 
 def _deviation(Q):
@@ -255,6 +261,8 @@ def _deviation(Q):
     n = n1 - 1
     if n < 2:
         return np.zeros(m)
+    if D == 2:
+        return _deviation_planar(Q)
     A = Q[0]
     d = Q[n] - A                                      # (D, m) chord
     L2 = (d * d).sum(axis=0)
@@ -283,6 +291,43 @@ def _deviation(Q):
     over = np.maximum(np.maximum(-ulo, uhi - 1.0), 0.0) * L
     e = np.minimum(np.sqrt(perp * perp + over * over), hull)
     return np.where(nz, e, hull)
+
+
+def _deviation_planar(Q):
+    """:func:`_deviation` for planar pieces (D = 2), written with
+    coordinate arrays and few numpy calls (the pieces are often few, so the
+    cost per call matters).  Same bound, same formulas."""
+    n1, _, m = Q.shape
+    n = n1 - 1
+    ax, ay = Q[0, 0], Q[0, 1]
+    dx, dy = Q[n, 0] - ax, Q[n, 1] - ay              # chord
+    L2 = dx * dx + dy * dy
+    nz = L2 > 0
+    L2s = L2 + ~nz                                    # 1 where the chord is a point
+    L = np.sqrt(L2s)
+    rx, ry = Q[1:n, 0] - ax, Q[1:n, 1] - ay           # (n-1, m)
+    u = (rx * dx + ry * dy) / L2s                     # chord parameter
+    uc = np.minimum(np.maximum(u, 0.0), 1.0)
+    hx, hy = rx - uc * dx, ry - uc * dy
+    hull = np.sqrt((hx * hx + hy * hy).max(axis=0))   # convex-hull bound
+    if n <= 3:
+        # signed offsets from the chord line; offset and chord parameter
+        # are Bernstein polynomials (0, .., 0) and (0, .., 1): exact extrema
+        c = np.zeros((n1, 2 * m))
+        c[1:n, :m] = (dx * ry - dy * rx) / L
+        c[1:n, m:] = u
+        c[n, m:] = 1.0
+        lo, hi = _bernstein_max(c)
+        perp = np.maximum(-lo[:m], hi[:m])
+        ulo, uhi = lo[m:], hi[m:]
+    else:
+        px, py = rx - u * dx, ry - u * dy
+        perp = (1.0 - 2.0 ** (1 - n)) * np.sqrt((px * px + py * py).max(axis=0))
+        ulo, uhi = u.min(axis=0), u.max(axis=0)
+    over = np.maximum(np.maximum(-ulo, uhi - 1.0), 0.0) * L
+    e = np.minimum(np.sqrt(perp * perp + over * over), hull)
+    e[~nz] = hull[~nz]
+    return e
 
 
 # Local parameters where the deviation density is sampled (midpoint rule)

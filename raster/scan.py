@@ -467,6 +467,10 @@ def _flag_cells(xa, ya, xb, yb, cell):
             | ((dx > 0).astype(np.uint8) << 2) | ((dx < 0).astype(np.uint8) << 3))
     rbits = np.bitwise_or.reduceat(bits, ridx)
     merged = np.zeros(len(ridx), bool)
+    # for a merged run: start and length of its head part (the pieces at
+    # the start of the chain); its own start ridx is the tail part's
+    hstart = np.zeros(len(ridx), np.int64)
+    hlen = np.zeros(len(ridx), np.int64)
     # closed chains: merge the run at the chain's start into the run at its end
     heads = np.flatnonzero(~conn)
     tails = np.append(heads[1:], n) - 1
@@ -478,21 +482,26 @@ def _flag_cells(xa, ya, xb, yb, cell):
         two = rh != rt
         rh, rt = rh[two], rt[two]
         rbits[rt] |= rbits[rh]
+        hstart[rt] = ridx[rh]
+        hlen[rt] = rlen[rh]
         rlen[rt] += rlen[rh]
         merged[rt] = True
         keep = np.ones(len(ridx), bool)
         keep[rh] = False
         ridx, rlen, rbits, merged = ridx[keep], rlen[keep], rbits[keep], merged[keep]
+        hstart, hlen = hstart[keep], hlen[keep]
     rcell = cell[ridx]
     inside = rcell >= 0
     if not inside.any():
         return np.zeros(0, np.int64), np.zeros(0, np.int64)
-    ridx, rlen, rbits, merged, rcell = (ridx[inside], rlen[inside], rbits[inside],
-                                        merged[inside], rcell[inside])
+    ridx, rlen, rbits, merged, rcell, hstart, hlen = (
+        ridx[inside], rlen[inside], rbits[inside], merged[inside], rcell[inside],
+        hstart[inside], hlen[inside])
     # group the runs by cell (runs of a cell stay in path order)
     order = np.argsort(rcell, kind='stable')
-    ridx, rlen, rbits, merged, rcell = (ridx[order], rlen[order], rbits[order],
-                                        merged[order], rcell[order])
+    ridx, rlen, rbits, merged, rcell, hstart, hlen = (
+        ridx[order], rlen[order], rbits[order], merged[order], rcell[order],
+        hstart[order], hlen[order])
     gstart = np.flatnonzero(np.r_[True, rcell[1:] != rcell[:-1]])
     gcnt = np.diff(np.append(gstart, len(rcell)))
     cells = rcell[gstart]
@@ -507,14 +516,25 @@ def _flag_cells(xa, ya, xb, yb, cell):
     breaks = np.cumsum(~conn)
     cand = (~ok & ~has_merged & (s_last - s_first < _STRETCH_MAX)
             & (breaks[s_last] == breaks[s_first]))
+    # a cell holding one merged run (a closed chain's end and start) holds
+    # one unbroken chain too: its tail part, then its head part
+    cand_m = ~ok & single & merged[gstart] & (rlen[gstart] <= _STRETCH_MAX)
     ci = np.flatnonzero(cand)
-    if len(ci):
+    cm = np.flatnonzero(cand_m)
+    if len(ci) or len(cm):
         # the piece directions fit in an open half-plane iff, sorted by
-        # angle, some circular gap between consecutive ones exceeds pi
-        sf, sl = s_first[ci], s_last[ci]
-        L = sl - sf + 1
-        owner = np.repeat(np.arange(len(ci)), L)
+        # angle, some circular gap between consecutive ones exceeds pi.
+        # Stretches of pieces: (first piece, count, candidate)
+        gm = gstart[cm]
+        sf = np.concatenate([s_first[ci], ridx[gm], hstart[gm]])
+        L = np.concatenate([s_last[ci] - s_first[ci] + 1, rlen[gm] - hlen[gm], hlen[gm]])
+        cand_of = np.concatenate([np.arange(len(ci)), len(ci) + np.arange(len(cm)),
+                                  len(ci) + np.arange(len(cm))])
+        ci = np.concatenate([ci, cm])
+        owner = np.repeat(cand_of, L)
         idx = np.repeat(sf, L) + (np.arange(len(owner)) - np.repeat(np.cumsum(L) - L, L))
+        srt = np.argsort(owner, kind='stable')
+        owner, idx = owner[srt], idx[srt]
         pdx, pdy = dx[idx], dy[idx]
         moving = (pdx != 0) | (pdy != 0)
         owner = owner[moving]

@@ -19,6 +19,7 @@ import numpy as np
 
 from ..hull import convex_hull
 from ..path import Path, PathBuilder, TransformPen
+from ..svgpath import circle_path
 from ..transform import Affine
 from ._base import CurveError
 
@@ -74,18 +75,6 @@ def text_path(text, x, y, size=12.0):
 def text_width(text, size=12.0):
     glyphs, cmap, upem = _font()
     return sum(glyphs[cmap.get(ord(c)) or cmap.get(ord('?'))].width for c in text) * size / upem
-
-
-def _circle(cx, cy, r):
-    k = 0.5522847498 * r
-    b = PathBuilder()
-    b.moveTo((cx + r, cy))
-    b.curveTo((cx + r, cy + k), (cx + k, cy + r), (cx, cy + r))
-    b.curveTo((cx - k, cy + r), (cx - r, cy + k), (cx - r, cy))
-    b.curveTo((cx - r, cy - k), (cx - k, cy - r), (cx, cy - r))
-    b.curveTo((cx + k, cy - r), (cx + r, cy - k), (cx + r, cy))
-    b.closePath()
-    return b.path()
 
 
 def _square(cx, cy, r):
@@ -171,12 +160,12 @@ class Plot:
                              'cap': 'round'}))
         if len(pb) > 1:                 # joints: small rings on the curve
             for x, y in dev(pb.ctrl[1:, 0, :2]):
-                ring = _circle(x, y, 2.5)
+                ring = circle_path(x, y, 2.5)
                 self.layers.append(('fill', ring, {'color': COLORS['background']}))
                 self.layers.append(('stroke', ring, {'color': COLORS['curve'], 'width': 1.2}))
         self.labels = []
         for tv, (x, y) in zip(t, dev(pts)):
-            self.layers.append(('fill', _circle(x, y, 3.5), {'color': COLORS['point']}))
+            self.layers.append(('fill', circle_path(x, y, 3.5), {'color': COLORS['point']}))
             label = '%s=%s' % (label_var, _fmt(tv))
             lx = x + 6 if x + 6 + text_width(label, 12) < self.width else x - 6 - text_width(label)
             ly = y - 6 if y - 18 > 0 else y + 16

@@ -315,7 +315,8 @@ class _Builder:
             return
         if name not in _SHAPES and name not in _CONTAINERS:
             if name == 'text':
-                self.warn('text', 'text is not supported yet and is not rendered')
+                from .text import build_text    # text layout: raster/svg/text.py
+                build_text(self, el, pinh, pown, st, out)
             elif name == 'image':
                 from .image import build_image
                 build_image(self, el, pinh, pown, st, out)
@@ -388,13 +389,19 @@ class _Builder:
                 if mask is _EMPTY:
                     return 1.0, 'normal', False, None, None, False
         v = own.get('filter')
+        filters = None
         if v is not None and v.strip() != 'none':
-            self.warn('filter', 'filters are not supported yet and are ignored')
+            from .filters import resolve_filter_property
+            filters = resolve_filter_property(self, el, v, kids, st)
+            if filters is None:         # invalid reference, empty filter: not rendered
+                return 1.0, 'normal', False, None, None, False
         opacity = _opacity(own.get('opacity'))
         blend = own.get('mix-blend-mode', 'normal')
         if blend not in _BLEND:
             blend = 'normal'
-        isolate = own.get('isolation') == 'isolate'
+        # a filtered element is an isolated group; its filters travel to the
+        # renderer as ``isolate`` (a truthy raster.svg.filters.FilterList)
+        isolate = filters or own.get('isolation') == 'isolate'
         return opacity, blend, isolate, clip, mask, True
 
     def reference(self, value, kind, prop):
@@ -484,7 +491,7 @@ class _Builder:
                     if tgt is not None and _local(tgt) in _SHAPES:
                         self.node(ch, inh, own, sub, nodes, name)
                 elif name == 'text':
-                    self.warn('text', 'text is not supported yet and is not rendered')
+                    self.node(ch, inh, own, sub, nodes, name)
             nested = None
             v = own.get('clip-path')
             if v is not None and v.strip() != 'none':
@@ -1208,6 +1215,7 @@ def build_tree(root, *, base_dir=None, allow_files_under=None, resources_dir=Non
     b = _Builder(root, dpi, font_size, languages, tolerance, max_elements, max_use_depth,
                  extra_css)
     b.image_sources = (base_dir, allow_files_under, resources_dir)   # for raster.svg.image
+    b.font_dirs = tuple(font_dirs or ())      # for raster.svg.text
     inh0 = _initial_inherited(font_size)
     inh, own = b.style(root, inh0, {})
     vb_attr = root.get('viewBox')

@@ -249,7 +249,10 @@ class _Renderer:
 
     def layered(self, g, t, canvas, clip_mode=False):
         ct = t @ g.transform
-        box = _group_box(g, ct)
+        from .filters import apply_filters, filter_box, group_filters
+        filters = None if clip_mode else group_filters(g)
+        # a filtered group's layer is its filter region (effects draw outside)
+        box = _group_box(g, ct) if filters is None else filter_box(filters, ct)
         if box is None:
             return
         px = _pixel_box(box, canvas.width, canvas.height)
@@ -260,6 +263,8 @@ class _Renderer:
         lt = Affine.translate(-x0, -y0) @ ct
         for c in g.children:
             self.node(c, lt, layer, clip_mode)
+        if filters is not None:
+            layer.data[...] = apply_filters(filters, layer.data, lt, self.tol)
         if g.clip_path is not None:
             cov = self.clip_coverage(g.clip_path, lt, layer.width, layer.height)
             layer.data *= cov[..., None]
@@ -518,6 +523,9 @@ def _node_box(n, t):
     draws under the CTM ``t``, or None when it draws nothing."""
     if isinstance(n, Group):
         ct = t @ n.transform
+        from .filters import filter_box, group_filters
+        if group_filters(n) is not None:
+            return filter_box(group_filters(n), ct)
         box = None
         for c in n.children:
             box = _union(box, _node_box(c, ct))

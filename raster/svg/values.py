@@ -806,8 +806,45 @@ def _css_tf_one(name, a):
     return _tf_one({'skewx': 'skewX', 'skewy': 'skewY'}.get(name, name), a)
 
 
-@functools.lru_cache(maxsize=2048)
+# The one-function lists that real documents are full of (chart and map
+# generators emit ``translate(x,y)`` per element): parsed without building
+# intermediate transforms.  Anything else takes the general path below.
+_TF_SIMPLE_RE = re.compile(r'[ \t\r\n]*(translate|scale|matrix)[ \t\r\n]*\('
+                           r'[ \t\r\n]*(' + NUMBER + r')(?:(?:[ \t\r\n]*,[ \t\r\n]*'
+                           r'|[ \t\r\n]+|(?=[+.-]))(' + NUMBER + r'))?'
+                           r'((?:(?:[ \t\r\n]*,[ \t\r\n]*|[ \t\r\n]+|(?=[+.-]))'
+                           + NUMBER + r'){4})?[ \t\r\n]*\)[ \t\r\n]*')
+
+
+def _simple_transform(s):
+    """``translate``/``scale``/``matrix`` alone, or None (not that form)."""
+    m = _TF_SIMPLE_RE.fullmatch(s)
+    if m is None:
+        return None
+    name, a, b, rest = m.groups()
+    if name == 'matrix':
+        if b is None or rest is None:
+            return None
+        vals = [float(a), float(b)] + [float(v) for v in _NUM_RE.findall(rest)]
+        return Affine(*vals)
+    if rest is not None:
+        return None
+    x = float(a)
+    y = float(b) if b is not None else None
+    if name == 'translate':
+        return Affine(1.0, 0.0, 0.0, 1.0, x, 0.0 if y is None else y)
+    return Affine(x, 0.0, 0.0, x if y is None else y, 0.0, 0.0)
+
+
+@functools.lru_cache(maxsize=8192)
 def _parse_transform(s, css):
+    if not css:
+        try:
+            t = _simple_transform(s)
+        except Exception:     # non-finite values: the general path decides
+            t = None
+        if t is not None:
+            return t
     if css and s.strip(_WS).lower() == 'none':
         return Affine()
     pos, n = 0, len(s)

@@ -1,0 +1,403 @@
+"""Font discovery and CSS font matching.
+
+Fonts are looked for only in the directories a caller names (nothing is
+taken from the system unless ``system=True`` is passed to :class:`FontDB`).
+Every ``.ttf``, ``.otf``, ``.ttc`` and ``.otc`` file is read with fontTools
+for its family names, weight (``OS/2.usWeightClass``), style (italic or
+oblique from ``OS/2.fsSelection``/``head.macStyle``) and stretch
+(``OS/2.usWidthClass``, 1..9).  Scans are cached by path and modification
+time, so building many documents with the same font directory is cheap.
+
+Matching follows CSS Fonts level 3 (section 5.2) in a reduced form: the
+first family of a ``font-family`` list that exists wins; within it the
+closest stretch, then the style (italic, else oblique, else normal), then
+the weight by the CSS rule (400 prefers 500 next, 500 prefers 400, lighter
+weights look lighter first, heavier ones heavier first).  Generic families
+are mapped to concrete families (:data:`GENERIC_FAMILIES`, the mapping the
+resvg test harness uses).  When nothing matches, :data:`DEFAULT_FAMILY` is
+tried, then the serif family, then any font.
+
+>>> parse_font_family('"Noto Sans", Arial ,serif')
+['Noto Sans', 'Arial', 'serif']
+>>> db = FontDB([])
+>>> db.match(['serif']) is None
+True
+"""
+
+import io
+import os
+import re
+import warnings
+from dataclasses import dataclass
+
+from .errors import RasterError, RasterWarning
+
+__all__ = ['FontError', 'FontFace', 'FontDB', 'Font', 'parse_font_family',
+           'GENERIC_FAMILIES', 'DEFAULT_FAMILY', 'FONT_EXTENSIONS']
+
+#: Generic CSS families and the concrete family each maps to.
+GENERIC_FAMILIES = {'serif': 'Noto Serif', 'sans-serif': 'Noto Sans', 'cursive': 'Yellowtail',
+                    'fantasy': 'Sedgwick Ave Display', 'monospace': 'Noto Mono'}
+
+#: Family used when no family of a list is available (usvg's default).
+DEFAULT_FAMILY = 'Times New Roman'
+
+#: File name endings scanned for fonts (lower case).
+FONT_EXTENSIONS = ('.ttf', '.otf', '.ttc', '.otc')
+
+_SYSTEM_DIRS = ('/usr/share/fonts', '/usr/local/share/fonts', '~/.fonts',
+                '~/.local/share/fonts', '/Library/Fonts', '/System/Library/Fonts',
+                'C:/Windows/Fonts')
+
+_STRETCH = {'ultra-condensed': 1, 'extra-condensed': 2, 'condensed': 3,
+            'semi-condensed': 4, 'normal': 5, 'semi-expanded': 6, 'expanded': 7,
+            'extra-expanded': 8, 'ultra-expanded': 9}
+
+
+class FontError(RasterError):
+    """A font file cannot be read or used (corrupt file, no outlines)."""
+
+
+@dataclass(frozen=True)
+class FontFace:
+    """One face of a font file.
+
+    Attributes
+    ----------
+    path : str
+        File path.
+    index : int
+        Face index inside a collection (0 for plain files).
+    families : tuple of str
+        Family names (typographic family first, then the legacy family),
+        lower-cased for comparison is done by :class:`FontDB`.
+    weight : int
+        ``usWeightClass`` (100..900).
+    style : str
+        ``'normal'``, ``'italic'`` or ``'oblique'``.
+    stretch : int
+        ``usWidthClass`` (1 ultra-condensed .. 5 normal .. 9 ultra-expanded).
+    """
+    path: str
+    index: int
+    families: tuple
+    weight: int = 400
+    style: str = 'normal'
+    stretch: int = 5
+
+
+_SCAN_CACHE = {}      # (path, mtime_ns, size) -> tuple of FontFace
+_FONT_CACHE = {}      # (path, index, mtime_ns) -> Font
+
+
+def parse_font_family(value):
+    """Split a CSS ``font-family`` value into a list of names.
+
+    Quoted names keep their inner spaces; unquoted names have runs of
+    whitespace collapsed.  Empty entries are dropped.
+
+    >>> parse_font_family("'Times New Roman',  Noto   Serif, monospace")
+    ['Times New Roman', 'Noto Serif', 'monospace']
+    """
+    out = []
+    for m in re.finditer(r'"([^"]*)"|\'([^\']*)\'|([^,]+)', value or ''):
+        q = m.group(1) if m.group(1) is not None else m.group(2)
+        if q is not None:
+            name = q.strip()
+        else:
+            name = ' '.join(m.group(3).split())
+        if name:
+            out.append(name)
+    return out
+
+
+def _read_faces(path):
+    from fontTools.ttLib import TTFont, TTCollection
+    low = path.lower()
+    if low.endswith(('.ttc', '.otc')):
+        coll = TTCollection(path, lazy=True)
+        fonts = list(coll.fonts)
+    else:
+        fonts = [TTFont(path, lazy=True)]
+    try:
+        return _faces_of(path, fonts)
+    finally:
+        for f in fonts:
+            f.close()
+
+
+def _faces_of(path, fonts):
+    faces = []
+    for index, f in enumerate(fonts):
+        if 'name' not in f:
+            continue
+        name = f['name']
+        fams = []
+        for nid in (16, 1):
+            rec = name.getDebugName(nid)
+            if rec and rec not in fams:
+                fams.append(rec)
+        if not fams:
+            continue
+        weight, style, stretch = 400, 'normal', 5
+        if 'OS/2' in f:
+            os2 = f['OS/2']
+            weight = int(os2.usWeightClass) or 400
+            if weight < 10:             # some old fonts store 1..9
+                weight *= 100
+            stretch = min(max(int(os2.usWidthClass), 1), 9)
+            sel = int(os2.fsSelection)
+            if sel & 1:
+                style = 'italic'
+            elif sel & (1 << 9):
+                style = 'oblique'
+        elif 'head' in f and int(f['head'].macStyle) & 2:
+            style = 'italic'
+        faces.append(FontFace(path, index, tuple(fams), weight, style, stretch))
+    return tuple(faces)
+
+
+def _scan_file(path):
+    try:
+        s = os.stat(path)
+    except OSError:
+        return ()
+    key = (path, s.st_mtime_ns, s.st_size)
+    r = _SCAN_CACHE.get(key)
+    if r is None:
+        try:
+            r = _read_faces(path)
+        except Exception as e:      # fontTools raises many kinds on bad files
+            warnings.warn('font file %s ignored: %s' % (path, e), RasterWarning, stacklevel=3)
+            r = ()
+        _SCAN_CACHE[key] = r
+    return r
+
+
+class FontDB:
+    """The fonts of some directories, and CSS matching over them.
+
+    Parameters
+    ----------
+    dirs : sequence of str
+        Directories scanned recursively (missing ones are skipped).
+    system : bool
+        Also scan the usual system font directories.
+    generic : dict, optional
+        Generic family -> family name; defaults to :data:`GENERIC_FAMILIES`.
+
+    >>> FontDB(['/nonexistent']).faces
+    []
+    """
+
+    def __init__(self, dirs=(), system=False, generic=None):
+        self.generic = dict(GENERIC_FAMILIES if generic is None else generic)
+        self.faces = []
+        roots = [str(d) for d in (dirs or ())]
+        if system:
+            roots += [os.path.expanduser(d) for d in _SYSTEM_DIRS]
+        seen = set()
+        for root in roots:
+            if not os.path.isdir(root):
+                continue
+            for dirpath, dirnames, filenames in os.walk(root):
+                dirnames.sort()
+                for fn in sorted(filenames):
+                    if not fn.lower().endswith(FONT_EXTENSIONS):
+                        continue
+                    p = os.path.join(dirpath, fn)
+                    if p in seen:
+                        continue
+                    seen.add(p)
+                    self.faces.extend(_scan_file(p))
+        self._by_family = {}
+        for f in self.faces:
+            for fam in f.families:
+                lst = self._by_family.setdefault(fam.lower(), [])
+                if f not in lst:
+                    lst.append(f)
+
+    def family_faces(self, family):
+        """Faces of one family name (generic names resolved), maybe empty."""
+        fam = self.generic.get(family.lower(), family) if family.lower() in self.generic else family
+        return self._by_family.get(fam.lower(), [])
+
+    def match(self, families, weight=400, style='normal', stretch='normal'):
+        """The best :class:`FontFace` for a CSS font description, or None.
+
+        Parameters
+        ----------
+        families : sequence of str
+            ``font-family`` list (see :func:`parse_font_family`).
+        weight : int
+            100..900.
+        style : str
+            'normal', 'italic' or 'oblique'.
+        stretch : str or int
+            CSS keyword or 1..9.
+        """
+        if not self.faces:
+            return None
+        if isinstance(stretch, str):
+            stretch = _STRETCH.get(stretch, 5)
+        for fam in list(families) + [DEFAULT_FAMILY, 'serif']:
+            cands = self.family_faces(fam)
+            if cands:
+                return _best(cands, int(weight), style, int(stretch))
+        return _best(self.faces, int(weight), style, int(stretch))
+
+    def fallback_faces(self, face):
+        """Other faces to try for characters ``face`` has no glyph for, in
+        a fixed order (same style first)."""
+        return [f for f in self.faces if f != face]
+
+
+def _best(cands, weight, style, stretch):
+    # stretch: closest, narrower first when desired <= normal
+    def sdist(f):
+        d = f.stretch - stretch
+        if stretch <= 5:
+            return (d > 0, abs(d))
+        return (d < 0, abs(d))
+    best_s = min(sdist(f) for f in cands)
+    cands = [f for f in cands if sdist(f) == best_s]
+    order = {'italic': ('italic', 'oblique', 'normal'),
+             'oblique': ('oblique', 'italic', 'normal')}.get(style, ('normal', 'oblique', 'italic'))
+    for s in order:
+        sub = [f for f in cands if f.style == s]
+        if sub:
+            cands = sub
+            break
+
+    def wkey(f):
+        w = f.weight
+        if w == weight:
+            return (0, 0)
+        if 400 <= weight <= 500 and weight < w <= 500:
+            return (1, w - weight)
+        if weight < 400 or (weight <= 500 and w < weight):
+            # lighter first (descending), then heavier (ascending)
+            return (2, weight - w) if w < weight else (3, w - weight)
+        # heavier first (ascending), then lighter (descending)
+        return (2, w - weight) if w > weight else (3, weight - w)
+    return min(cands, key=wkey)
+
+
+class Font:
+    """A loaded face: shaping with uharfbuzz, outlines with fontTools.
+
+    Attributes
+    ----------
+    face : FontFace
+    upem : int
+        Units per em; all metrics below are in font units (y up).
+    ascender, descender, x_height, cap_height : float
+    underline_position, underline_thickness : float
+        From the ``post`` table (position of the top of the underline... as
+        stored: the centre line offset below the baseline is negative).
+    strikeout_position, strikeout_size : float
+        From ``OS/2``.
+    subscript_y, superscript_y : float
+        ``OS/2`` subscript/superscript offsets (subscript positive = down).
+    """
+
+    def __init__(self, face):
+        import uharfbuzz as hb
+        from fontTools.ttLib import TTFont
+        self.face = face
+        try:
+            with open(face.path, 'rb') as fh:
+                data = fh.read()
+            self.tt = TTFont(io.BytesIO(data), fontNumber=face.index, lazy=True)
+            self.glyph_set = self.tt.getGlyphSet()
+            self.glyph_order = self.tt.getGlyphOrder()
+            self.hb_face = hb.Face(hb.Blob(data), face.index)
+            self.hb_font = hb.Font(self.hb_face)
+        except Exception as e:
+            raise FontError('cannot load font %s: %s' % (face.path, e)) from None
+        tt = self.tt
+        self.upem = float(tt['head'].unitsPerEm)
+        hhea = tt['hhea'] if 'hhea' in tt else None
+        os2 = tt['OS/2'] if 'OS/2' in tt else None
+        self.ascender = float(hhea.ascent if hhea else 0.8 * self.upem)
+        self.descender = float(hhea.descent if hhea else -0.2 * self.upem)
+        if os2 is not None and getattr(os2, 'fsSelection', 0) & (1 << 7):
+            self.ascender = float(os2.sTypoAscender)
+            self.descender = float(os2.sTypoDescender)
+        self.x_height = float(getattr(os2, 'sxHeight', 0) or 0.5 * self.upem) if os2 else 0.5 * self.upem
+        self.cap_height = float(getattr(os2, 'sCapHeight', 0) or 0.7 * self.upem) if os2 else 0.7 * self.upem
+        post = tt['post'] if 'post' in tt else None
+        self.underline_position = float(post.underlinePosition if post else -0.1 * self.upem)
+        self.underline_thickness = float(post.underlineThickness if post else 0.05 * self.upem) \
+            or 0.05 * self.upem
+        self.strikeout_position = float(os2.yStrikeoutPosition) if os2 else 0.3 * self.upem
+        self.strikeout_size = float(os2.yStrikeoutSize) if os2 else self.underline_thickness
+        self.subscript_y = float(os2.ySubscriptYOffset) if os2 else 0.15 * self.upem
+        self.superscript_y = float(os2.ySuperscriptYOffset) if os2 else 0.45 * self.upem
+        self._outlines = {}
+        self._cmap = tt.getBestCmap() or {}
+
+    @classmethod
+    def load(cls, face):
+        """The cached :class:`Font` of a face (cache keyed by path, index and
+        modification time).  Raises :class:`FontError`."""
+        try:
+            mt = os.stat(face.path).st_mtime_ns
+        except OSError as e:
+            raise FontError('cannot read font %s: %s' % (face.path, e.strerror)) from None
+        key = (face.path, face.index, mt)
+        f = _FONT_CACHE.get(key)
+        if f is None:
+            f = cls(face)
+            if len(_FONT_CACHE) > 64:
+                _FONT_CACHE.clear()
+            _FONT_CACHE[key] = f
+        return f
+
+    def has_char(self, ch):
+        """True when the font maps the character to a glyph."""
+        return ord(ch) in self._cmap
+
+    def shape(self, text, features=None):
+        """Shape ``text`` (direction/script/language guessed).
+
+        Returns
+        -------
+        list of (glyph_id, cluster, x_advance, y_advance, x_offset, y_offset)
+            ``cluster`` is the index of the first character of the glyph's
+            cluster in ``text``; advances and offsets in font units, y up.
+        """
+        import uharfbuzz as hb
+        buf = hb.Buffer()
+        buf.add_codepoints([ord(c) for c in text])
+        buf.guess_segment_properties()
+        hb.shape(self.hb_font, buf, features or {})
+        return [(i.codepoint, i.cluster, p.x_advance, p.y_advance, p.x_offset, p.y_offset)
+                for i, p in zip(buf.glyph_infos, buf.glyph_positions)]
+
+    def outline(self, gid):
+        """The outline of glyph ``gid`` as a :class:`~raster.path.Path` in
+        font units (y up), cached."""
+        p = self._outlines.get(gid)
+        if p is None:
+            from .path import Path, PathBuilder
+            from fontTools.pens.recordingPen import DecomposingRecordingPen
+            try:
+                name = self.glyph_order[gid]
+                rec = DecomposingRecordingPen(self.glyph_set)
+                self.glyph_set[name].draw(rec)
+                b = PathBuilder()
+                for op, args in rec.value:
+                    if op == 'qCurveTo' and args and args[-1] is None:
+                        # closed contour of only off-curve points
+                        offs = list(args[:-1])
+                        mid = ((offs[-1][0] + offs[0][0]) * 0.5, (offs[-1][1] + offs[0][1]) * 0.5)
+                        b.moveTo(mid)
+                        b.qCurveTo(*offs, mid)
+                        continue
+                    getattr(b, op)(*args)
+                p = b.path()
+            except (KeyError, IndexError, RasterError):
+                p = Path.empty()
+            self._outlines[gid] = p
+        return p

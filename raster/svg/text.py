@@ -1,0 +1,553 @@
+"""SVG text converted to paths (usvg's "text as paths" model).
+
+:func:`build_text` is called by the tree builder (:mod:`raster.svg.build`)
+for every ``text`` element.  It lays the text out and appends ordinary
+:class:`~raster.svg.tree.PathNode` objects: the glyph outlines of each run
+of characters sharing one style, in the text element's user space (x right,
+y down), filled and stroked as the builder resolves paints for shapes.
+
+What is laid out:
+
+* characters of ``text`` and nested ``tspan`` (and ``a``) elements, with
+  ``xml:space`` handling (default: newlines removed, tabs to spaces, runs of
+  spaces collapsed, leading and trailing spaces dropped; ``preserve``:
+  newlines and tabs become spaces);
+* ``x``/``y``/``dx``/``dy`` lists, one value per character, on any element
+  (an absolute ``x`` or ``y`` starts a new *text chunk*);
+* fonts from :mod:`raster.fonts` (``font-family``/``-weight``/``-style``/
+  ``-stretch``; characters the chosen face lacks are taken from the first
+  other face that has them), shaping with HarfBuzz, outlines with fontTools;
+* ``text-anchor`` per chunk, ``letter-spacing``, ``word-spacing``,
+  ``baseline-shift`` (``sub``, ``super``, percentages, lengths, nested sums),
+  basic ``dominant-baseline`` values, ``text-decoration`` (underline,
+  overline, line-through from the font's ``post`` and ``OS/2`` tables).
+
+Not supported (a :class:`~raster.errors.RasterWarning` once, then the
+feature is ignored): ``textPath`` (its text is skipped), ``rotate``,
+vertical writing modes, ``textLength``.  Any other failure while laying out
+one ``text`` element warns and skips that element only: text never stops a
+document from rendering.
+"""
+
+import math
+import warnings
+
+import numpy as np
+
+from ..errors import RasterError, RasterWarning
+from ..path import Path
+from ..transform import Affine
+from .tree import Fill, Group, PathNode, SolidPaint
+from .values import LengthContext, parse_length, parse_length_list
+
+__all__ = ['build_text', 'collapse_whitespace']
+
+_XML_SPACE = '{http://www.w3.org/XML/1998/namespace}space'
+_SPAN_NAMES = frozenset(['tspan', 'a'])
+_WEIGHTS = {'normal': 400, 'bold': 700}
+_DB_CACHE = {}
+
+
+def _local(el):
+    tag = el.tag
+    if not isinstance(tag, str):
+        return None
+    return tag.rsplit('}', 1)[-1]
+
+
+def collapse_whitespace(text, preserve=False, prev_space=True):
+    """Apply SVG ``xml:space`` rules to one piece of character data.
+
+    Parameters
+    ----------
+    text : str
+    preserve : bool
+        ``xml:space="preserve"``: newlines and tabs become spaces, nothing
+        is removed.
+    prev_space : bool
+        Whether the text laid out before ends with a (kept) space; leading
+        spaces are then dropped (default mode only).
+
+    Returns
+    -------
+    (str, bool)
+        The processed text and the new ``prev_space`` state.
+
+    >>> collapse_whitespace('  a \\n  b\\tc  ')
+    ('a b c ', True)
+    >>> collapse_whitespace(' a\\nb', preserve=True)
+    (' a b', False)
+    """
+    if preserve:
+        s = text.replace('\r\n', ' ').replace('\n', ' ').replace('\r', ' ').replace('\t', ' ')
+        return s, s.endswith(' ') if s else prev_space
+    s = text.replace('\n', '').replace('\r', '').replace('\t', ' ')
+    out = []
+    for ch in s:
+        if ch == ' ':
+            if prev_space:
+                continue
+            prev_space = True
+        else:
+            prev_space = False
+        out.append(ch)
+    return ''.join(out), prev_space
+
+
+class _Span:
+    """Style of one element contributing characters."""
+    __slots__ = ('el', 'inh', 'own', 'ctx', 'face', 'font', 'fs', 'shift', 'ls', 'ws',
+                 'weight', 'parent', 'decor')
+
+    def __init__(self, el, inh, own, ctx, parent, weight):
+        self.el, self.inh, self.own, self.ctx, self.parent = el, inh, own, ctx, parent
+        self.weight = weight
+        self.fs = float(inh['_fs'])
+        self.face = self.font = None
+        self.shift = 0.0
+        self.decor = ()
+
+
+def _weight(value, parent):
+    v = (value or 'normal').strip().lower()
+    if v in _WEIGHTS:
+        return _WEIGHTS[v]
+    if v == 'bolder':
+        return 400 if parent < 350 else (700 if parent < 550 else 900)
+    if v == 'lighter':
+        return 100 if parent < 550 else (400 if parent < 750 else 700)
+    try:
+        w = float(v)
+    except ValueError:
+        return parent
+    return int(min(max(w, 1), 1000))
+
+
+def _spacing(value, ctx):
+    if value is None or value.strip() in ('normal', ''):
+        return 0.0
+    v = parse_length(value, 'x', ctx)
+    return 0.0 if v is None else float(v)
+
+
+def _font_db(b):
+    from ..fonts import FontDB
+    db = getattr(b, '_text_fontdb', None)
+    if db is None:
+        dirs = tuple(str(d) for d in (getattr(b, 'font_dirs', ()) or ()))
+        db = _DB_CACHE.get(dirs)
+        if db is None:
+            db = FontDB(dirs)
+            if len(_DB_CACHE) > 16:
+                _DB_CACHE.clear()
+            _DB_CACHE[dirs] = db
+        b._text_fontdb = db
+    return db
+
+
+def build_text(b, el, pinh, pown, st, out):
+    """Lay out the ``text`` element ``el`` and append its nodes to ``out``.
+
+    ``b`` is the tree builder (:class:`raster.svg.build._Builder`); ``pinh``/
+    ``pown`` the rendering parent's computed style; ``st`` the builder
+    state.  Never raises for bad text: problems warn
+    (:class:`~raster.errors.RasterWarning`) and the element is skipped.
+    """
+    decl = b.styles.get(el)
+    if decl and decl.get('display', '').strip() == 'none':
+        return
+    if not b.passes_conditions(el) or not b.tick():
+        return
+    mark = len(out)
+    try:
+        _build(b, el, pinh, pown, st, out)
+    except (RasterError, Exception) as e:   # text must never break a document
+        del out[mark:]
+        b.warn('text-error', 'text element not rendered: %s' % (e,))
+
+
+def _build(b, el, pinh, pown, st, out):
+    inh, own = b.style(el, pinh, pown)
+    ctx = b.ctx(inh, st)
+    t = b.transform_of(el, own, ctx)
+    if t is None:
+        return
+    wm = (inh.get('writing-mode') or 'lr-tb').strip()
+    if wm in ('tb', 'tb-rl', 'vertical-rl', 'vertical-lr'):
+        b.warn('text-vertical', 'vertical writing modes are not supported; laid out horizontally')
+    db = _font_db(b)
+    if not db.faces:
+        b.warn('text-nofont', 'no fonts available (font_dirs=%r); text is not rendered'
+               % (tuple(getattr(b, 'font_dirs', ()) or ()),))
+        return
+    # -- collect characters ---------------------------------------------------
+    chars = []          # characters after whitespace processing
+    owner = []          # span index of each character
+    spans = []
+    lists = []          # (start index, attr name, values)
+    state = {'prev': True}
+
+    def add_lists(e, ectx, start):
+        for name, axis in (('x', 'x'), ('y', 'y'), ('dx', 'x'), ('dy', 'y'), ('rotate', None)):
+            s = e.get(name)
+            if s is None:
+                continue
+            if axis is None:
+                if s.strip() not in ('', '0'):
+                    b.warn('text-rotate', 'the text rotate attribute is not supported; ignored')
+                continue
+            vals = parse_length_list(s, axis, ectx)
+            if vals:
+                lists.append((start, name, [float(v) for v in vals]))
+
+    def walk(e, einh, eown, ectx, parent, preserve):
+        sp = _Span(e, einh, eown, ectx, parent,
+                   _weight(einh.get('font-weight'), parent.weight if parent else 400))
+        si = len(spans)
+        spans.append(sp)
+        add_lists(e, ectx, len(chars))
+
+        def add_text(s):
+            if not s:
+                return
+            txt, state['prev'] = collapse_whitespace(s, preserve, state['prev'])
+            chars.extend(txt)
+            owner.extend([si] * len(txt))
+        add_text(e.text)
+        for ch in e:
+            name = _local(ch)
+            if name in _SPAN_NAMES:
+                d = b.styles.get(ch)
+                if not (d and d.get('display', '').strip() == 'none') and b.passes_conditions(ch):
+                    cinh, cown = b.style(ch, einh, eown)
+                    cctx = b.ctx(cinh, st)
+                    sp_pres = ch.get(_XML_SPACE)
+                    walk(ch, cinh, cown, cctx, sp,
+                         preserve if sp_pres is None else sp_pres == 'preserve')
+            elif name == 'textPath':
+                b.warn('text-textpath', 'textPath is not supported; its text is not rendered')
+            elif name == 'tref':
+                b.warn('text-tref', 'tref is not supported; ignored')
+            add_text(ch.tail)
+
+    walk(el, inh, own, ctx, None, el.get(_XML_SPACE) == 'preserve')
+    # default mode: drop trailing spaces
+    while chars and chars[-1] == ' ' and not _preserved(spans[owner[-1]].el):
+        chars.pop()
+        owner.pop()
+    n = len(chars)
+    if n == 0:
+        return
+    owner = np.asarray(owner, np.int64)
+    ax = np.full(n, np.nan)
+    ay = np.full(n, np.nan)
+    dx = np.zeros(n)
+    dy = np.zeros(n)
+    arrs = {'x': ax, 'y': ay, 'dx': dx, 'dy': dy}
+    for start, name, vals in lists:
+        k = min(len(vals), n - start)
+        if k > 0:
+            arrs[name][start:start + k] = vals[:k]
+    if math.isnan(ax[0]):
+        ax[0] = 0.0
+    if math.isnan(ay[0]):
+        ay[0] = 0.0
+    # -- fonts and per-span metrics --------------------------------------------
+    from ..fonts import Font, parse_font_family
+    for sp in spans:
+        i = sp.inh
+        fam = parse_font_family(i.get('font-family', ''))
+        style = (i.get('font-style') or 'normal').strip()
+        stretch = (i.get('font-stretch') or 'normal').strip()
+        sp.face = db.match(fam, sp.weight, style, stretch)
+        sp.font = Font.load(sp.face) if sp.face is not None else None
+        sp.ls = _spacing(i.get('letter-spacing'), sp.ctx)
+        sp.ws = _spacing(i.get('word-spacing'), sp.ctx)
+        sp.shift = (sp.parent.shift if sp.parent is not None else 0.0) + _baseline_shift(sp)
+        deco = sp.own.get('text-decoration', sp.el.get('text-decoration'))
+        if deco:
+            sp.decor = tuple(w for w in deco.replace(',', ' ').split()
+                             if w in ('underline', 'overline', 'line-through'))
+    # -- layout ------------------------------------------------------------------
+    starts = np.flatnonzero(~np.isnan(ax) | ~np.isnan(ay))
+    bounds = list(starts) + [n]
+    glyph_runs = []     # (span index, Path in user space)
+    under, over = [], []
+    cur_x = cur_y = 0.0
+    for ci in range(len(bounds) - 1):
+        c0, c1 = int(bounds[ci]), int(bounds[ci + 1])
+        x0 = ax[c0] if not math.isnan(ax[c0]) else cur_x
+        y0 = ay[c0] if not math.isnan(ay[c0]) else cur_y
+        res = _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy)
+        if res is None:
+            continue
+        gl, char_l, char_r, width, end_dy = res
+        anchor = (spans[owner[c0]].inh.get('text-anchor') or 'start').strip()
+        shift = 0.0
+        if anchor == 'middle':
+            shift = -width * 0.5
+        elif anchor == 'end':
+            shift = -width
+        ox, oy = x0 + shift, y0
+        cur_x, cur_y = x0 + width + (0.0 if anchor == 'start' else 0.0), y0 + end_dy
+        if anchor != 'start':
+            cur_x = ox + width
+        # glyph outlines, grouped by consecutive owner span
+        if gl:
+            g_span = np.array([g[0] for g in gl], np.int64)
+            cuts = np.flatnonzero(np.diff(g_span)) + 1
+            for a, z in zip(np.r_[0, cuts], np.r_[cuts, len(gl)]):
+                p = _glyph_path(gl[a:z], ox, oy)
+                if len(p.verbs):
+                    glyph_runs.append((int(g_span[a]), p))
+        # decorations of every span carrying text-decoration, over its chars
+        for si, sp in enumerate(spans):
+            if not sp.decor:
+                continue
+            mask = _descends(spans, owner[c0:c1], si)
+            if not mask.any():
+                continue
+            idx = np.flatnonzero(mask)
+            left = float(char_l[idx].min()) + ox
+            right = float(char_r[idx].max()) + ox
+            f = sp.font
+            if f is None or right <= left:
+                continue
+            s = sp.fs / f.upem
+            base = oy + float(dy[c0:c1][:idx[0] + 1].sum()) + sp.shift + _dominant(sp)
+            for kind in sp.decor:
+                if kind == 'underline':
+                    th = f.underline_thickness * s
+                    yc = base - f.underline_position * s
+                    under.append((si, _rect(left, yc - th / 2, right, yc + th / 2)))
+                elif kind == 'overline':
+                    th = f.underline_thickness * s
+                    yc = base - f.ascender * s
+                    under.append((si, _rect(left, yc - th / 2, right, yc + th / 2)))
+                else:
+                    th = f.strikeout_size * s
+                    yc = base - f.strikeout_position * s
+                    over.append((si, _rect(left, yc, right, yc + th)))
+    kids = []
+    for si, p in under + glyph_runs + over:
+        node = _paint_node(b, spans[si], p, st)
+        if node is not None:
+            kids.append(node)
+    out.extend(b.wrap(el, own, t, kids, st))
+
+
+def _preserved(e):
+    while e is not None:
+        v = e.get(_XML_SPACE)
+        if v is not None:
+            return v == 'preserve'
+        e = e.getparent()
+    return False
+
+
+def _descends(spans, own_idx, si):
+    """Boolean mask: which characters (span indices ``own_idx``) belong to
+    span ``si`` or a span nested in it."""
+    anc = np.zeros(len(spans), bool)
+    for j, sp in enumerate(spans):
+        p = sp
+        while p is not None:
+            if p is spans[si]:
+                anc[j] = True
+                break
+            p = p.parent
+    return anc[np.asarray(own_idx)]
+
+
+def _rect(x0, y0, x1, y1):
+    return Path.polygon([(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+
+
+def _baseline_shift(sp):
+    v = sp.own.get('baseline-shift', sp.el.get('baseline-shift'))
+    if v is None:
+        return 0.0
+    v = v.strip()
+    f = sp.font
+    if v == 'baseline' or f is None:
+        return 0.0
+    s = sp.fs / f.upem
+    if v == 'sub':
+        return f.subscript_y * s
+    if v == 'super':
+        return -f.superscript_y * s
+    if v.endswith('%'):
+        try:
+            return -float(v[:-1]) / 100.0 * sp.fs
+        except ValueError:
+            return 0.0
+    L = parse_length(v, 'other', sp.ctx)
+    return 0.0 if L is None else -float(L)
+
+
+def _dominant(sp):
+    """Downward shift of the glyphs making the dominant baseline sit at y."""
+    v = (sp.inh.get('dominant-baseline') or 'auto').strip()
+    f = sp.font
+    if f is None:
+        return 0.0
+    s = sp.fs / f.upem
+    if v == 'central':
+        return (f.ascender + f.descender) * 0.5 * s
+    if v == 'middle':
+        return f.x_height * 0.5 * s
+    if v in ('hanging',):
+        return f.ascender * 0.8 * s
+    if v == 'mathematical':
+        return f.ascender * 0.5 * s
+    if v in ('text-before-edge', 'text-top'):
+        return f.ascender * s
+    if v in ('text-after-edge', 'text-bottom', 'ideographic'):
+        return f.descender * s
+    return 0.0
+
+
+def _fallback_font(db, ch, font, cache={}):
+    from ..fonts import Font
+    key = (id(db), ch)
+    if key in cache:
+        return cache[key]
+    r = font
+    for face in db.fallback_faces(font.face):
+        try:
+            f = Font.load(face)
+        except RasterError:
+            continue
+        if f.has_char(ch):
+            r = f
+            break
+    if len(cache) > 10000:
+        cache.clear()
+    cache[key] = r
+    return r
+
+
+def _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy):
+    """Shape characters ``c0:c1`` of one chunk at origin (0, 0).
+
+    Returns ``(glyphs, char_left, char_right, width, total_dy)``: glyphs as
+    ``(span, font, gid, x, y)`` tuples in chunk coordinates (x right, y
+    down, baseline at y = 0 plus dy/baseline shifts), the horizontal extent
+    of every character and the chunk advance.
+    """
+    m = c1 - c0
+    # font of each character (fallback for missing glyphs)
+    fonts = []
+    for i in range(c0, c1):
+        sp = spans[owner[i]]
+        f = sp.font
+        ch = chars[i]
+        if f is not None and not f.has_char(ch) and ch not in ' \u00a0' and ord(ch) >= 32:
+            f = _fallback_font(db, ch, f)
+        fonts.append(f)
+    # runs of equal (span, font)
+    extra = np.zeros(m)       # spacing added after each character
+    for k in range(m):
+        sp = spans[owner[c0 + k]]
+        extra[k] = sp.ls + (sp.ws if chars[c0 + k] in ' \u00a0' else 0.0)
+    before = np.cumsum(dx[c0:c1]) + np.r_[0.0, np.cumsum(extra)[:-1]]
+    cdy = np.cumsum(dy[c0:c1])
+    char_l = np.full(m, np.nan)
+    char_r = np.full(m, np.nan)
+    glyphs = []
+    pen = 0.0
+    k = 0
+    while k < m:
+        sp_i, f = owner[c0 + k], fonts[k]
+        e = k + 1
+        while e < m and owner[c0 + e] == sp_i and fonts[e] is f:
+            e += 1
+        sp = spans[sp_i]
+        text = ''.join(chars[c0 + k:c0 + e])
+        if f is None or sp.fs <= 0:
+            char_l[k:e] = char_r[k:e] = pen + before[k:e]
+            k = e
+            continue
+        s = sp.fs / f.upem
+        yshift = sp.shift + _dominant(sp)
+        shaped = f.shape(text)
+        for gid, cl, xa, ya, xo, yo in shaped:
+            j = k + min(int(cl), e - k - 1)
+            gx = pen + before[j] + xo * s
+            gy = cdy[j] + yshift - yo * s
+            glyphs.append((sp_i, f, gid, gx, gy, s))
+            lo = pen + before[j]
+            hi = lo + xa * s
+            char_l[j] = lo if math.isnan(char_l[j]) else min(char_l[j], lo)
+            char_r[j] = hi if math.isnan(char_r[j]) else max(char_r[j], hi)
+            pen += xa * s
+        k = e
+    # characters merged into a cluster take their neighbours' extent
+    for arr in (char_l, char_r):
+        good = ~np.isnan(arr)
+        if not good.any():
+            arr[:] = 0.0
+        elif not good.all():
+            idx = np.where(good, np.arange(m), -1)
+            np.maximum.accumulate(idx, out=idx)
+            idx[idx < 0] = np.flatnonzero(good)[0]
+            arr[:] = arr[idx]
+    width = pen + float(extra.sum()) + float(dx[c0:c1].sum())
+    return glyphs, char_l, char_r, width, float(cdy[-1])
+
+
+def _glyph_path(glyphs, ox, oy):
+    """One Path of glyph outlines: each outline (font units, y up) scaled by
+    its ``s`` with y flipped and moved to its pen position."""
+    verbs, pts, scales, offs = [], [], [], []
+    for _, f, gid, gx, gy, s in glyphs:
+        p = f.outline(gid)
+        if not len(p.verbs):
+            continue
+        verbs.append(p.verbs)
+        pts.append(p.points)
+        npt = len(p.points)
+        scales.append(np.full(npt, s))
+        offs.append(np.repeat([[gx + ox, gy + oy]], npt, axis=0))
+    if not verbs:
+        return Path.empty()
+    P = np.concatenate(pts)
+    S = np.concatenate(scales)
+    O = np.concatenate(offs)
+    out = np.empty_like(P)
+    out[:, 0] = P[:, 0] * S + O[:, 0]
+    out[:, 1] = -P[:, 1] * S + O[:, 1]
+    return Path.from_arrays(np.concatenate(verbs), out)
+
+
+def _paint_node(b, sp, path, st):
+    inh = sp.inh
+    vis = inh.get('visibility', 'visible')
+    if vis in ('hidden', 'collapse'):
+        return None
+    fill = stroke = None
+    if st.mode == 'clip':
+        rule = inh.get('clip-rule', 'nonzero')
+        fill = Fill(SolidPaint((0.0, 0.0, 0.0, 1.0)), 1.0,
+                    'evenodd' if rule == 'evenodd' else 'nonzero')
+    else:
+        fp = b.paint(inh.get('fill', 'black'), inh, sp.ctx, path, st)
+        if fp is not None:
+            rule = inh.get('fill-rule', 'nonzero')
+            fill = Fill(fp, _opacity(inh.get('fill-opacity')),
+                        'evenodd' if rule == 'evenodd' else 'nonzero')
+        sv = inh.get('stroke')
+        if sv is not None:
+            spaint = b.paint(sv, inh, sp.ctx, path, st)
+            if spaint is not None:
+                stroke = b.stroke(spaint, inh, sp.ctx)
+    if fill is None and stroke is None:
+        return None
+    from .build import _paint_order
+    return PathNode(id='', path=path, fill=fill, stroke=stroke,
+                    paint_order=_paint_order(inh.get('paint-order')))
+
+
+def _opacity(s):
+    from .build import _opacity as op
+    return op(s)

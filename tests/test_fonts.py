@@ -1,0 +1,145 @@
+"""Tests of raster.fonts: discovery, CSS matching, shaping, outlines."""
+import os
+import shutil
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+
+from raster.fonts import (DEFAULT_FAMILY, GENERIC_FAMILIES, Font, FontDB, FontError,
+                          parse_font_family)
+from raster.errors import RasterError, RasterWarning
+
+FONTS = os.path.normpath(os.path.join(os.path.dirname(__file__), '..', '..', 'shared',
+                                      'resvg-suite', 'fonts'))
+needs_fonts = pytest.mark.skipif(not os.path.isdir(FONTS), reason='suite fonts not present')
+
+
+@pytest.fixture(scope='module')
+def db():
+    return FontDB([FONTS])
+
+
+def test_parse_font_family_quotes_and_spaces():
+    assert parse_font_family('"Noto  Sans" , Times   New Roman,serif') == \
+        ['Noto  Sans', 'Times New Roman', 'serif']
+    assert parse_font_family("'a, b', c") == ['a, b', 'c']
+    assert parse_font_family('') == []
+    assert parse_font_family(' , ,') == []
+
+
+@given(st.lists(st.text(alphabet='abcXYZ -', min_size=1, max_size=8), min_size=1, max_size=4))
+@settings(max_examples=100, deadline=None)
+def test_parse_font_family_roundtrip_quoted(names):
+    names = [' '.join(n.split()) for n in names]
+    names = [n for n in names if n]
+    value = ', '.join('"%s"' % n for n in names)
+    assert parse_font_family(value) == names
+
+
+def test_empty_and_missing_dirs_have_no_fonts(tmp_path):
+    assert FontDB([]).faces == []
+    assert FontDB([str(tmp_path / 'nope')]).faces == []
+    assert FontDB([str(tmp_path)]).match(['serif']) is None
+
+
+def test_corrupt_font_file_warns_and_is_skipped(tmp_path):
+    (tmp_path / 'bad.ttf').write_bytes(b'not a font at all')
+    with pytest.warns(RasterWarning, match='bad.ttf'):
+        db = FontDB([str(tmp_path)])
+    assert db.faces == []
+
+
+@needs_fonts
+def test_generic_families_map_as_resvg_harness(db):
+    for generic, fam in GENERIC_FAMILIES.items():
+        face = db.match([generic])
+        assert face is not None and fam in face.families, generic
+
+
+@needs_fonts
+def test_default_family_falls_back_to_serif(db):
+    assert DEFAULT_FAMILY == 'Times New Roman'
+    face = db.match(['No Such Family'])
+    assert 'Noto Serif' in face.families
+    assert 'Noto Serif' in db.match([]).families
+
+
+@needs_fonts
+def test_first_available_family_wins(db):
+    assert 'Noto Sans' in db.match(['Nope', 'Noto Sans', 'Noto Serif']).families
+    assert 'Noto Sans' in db.match(['noto sans']).families     # case-insensitive
+
+
+@needs_fonts
+@pytest.mark.parametrize('weight, expect', [
+    (100, 100), (200, 100), (300, 300), (400, 400), (500, 400),    # 500 -> 400 next
+    (600, 700), (700, 700), (800, 900), (900, 900), (350, 300),
+])
+def test_css_weight_matching(db, weight, expect):
+    face = db.match(['Noto Sans'], weight=weight)
+    assert face.weight == expect
+
+
+@needs_fonts
+def test_style_matching(db):
+    assert db.match(['Noto Sans'], style='italic').style == 'italic'
+    assert db.match(['Noto Sans'], style='oblique').style == 'italic'   # oblique -> italic
+    assert db.match(['Noto Sans'], style='normal').style == 'normal'
+    # a family without italics still matches
+    assert 'Noto Serif' in db.match(['Noto Serif'], style='italic').families
+
+
+@needs_fonts
+def test_scan_is_cached(db):
+    again = FontDB([FONTS])
+    assert again.faces == db.faces
+    assert all(a is b for a, b in zip(again.faces, db.faces))
+
+
+@needs_fonts
+def test_shaping_advances_match_hmtx(db):
+    """HarfBuzz advances of 'Hello World' in Noto Sans equal the hmtx
+    advances (no kerning pairs between these letters change them... so
+    compare the kerned sum with the GPOS-free sum within the kern total)."""
+    from fontTools.ttLib import TTFont
+    face = db.match(['Noto Sans'])
+    font = Font.load(face)
+    text = 'Hilmnu'          # no kerning pairs among these letters
+    shaped = font.shape(text)
+    tt = TTFont(face.path)
+    cmap = tt.getBestCmap()
+    expect = [tt['hmtx'][cmap[ord(c)]][0] for c in text]
+    assert [g[2] for g in shaped] == expect
+    assert [g[1] for g in shaped] == list(range(len(text)))
+    assert font.upem == 1000
+
+
+@needs_fonts
+def test_cff_outlines(db):
+    face = [f for f in db.faces if f.path.endswith('.otf')][0]
+    font = Font.load(face)
+    gid = font.shape('a')[0][0]
+    p = font.outline(gid)
+    # CFF glyphs are cubic
+    assert len(p.verbs) and 3 in p.verbs.tolist()
+
+
+@needs_fonts
+def test_outline_of_H_box(db):
+    """The glyph 'H' of Noto Sans lies within its advance and above the
+    baseline up to the cap height (font units, y up)."""
+    font = Font.load(db.match(['Noto Sans']))
+    gid, _, adv, _, _, _ = font.shape('H')[0]
+    pts = font.outline(gid).points
+    assert pts[:, 0].min() >= 0 and pts[:, 0].max() <= adv
+    assert pts[:, 1].min() == 0
+    assert abs(pts[:, 1].max() - font.cap_height) < 1
+
+
+def test_load_missing_file_raises_font_error():
+    from raster.fonts import FontFace
+    with pytest.raises(FontError):
+        Font.load(FontFace('/nonexistent/x.ttf', 0, ('X',)))
+    assert issubclass(FontError, RasterError)
