@@ -33,8 +33,13 @@ DEFAULT_COMPRESS_LEVEL = 3
 # zlib's Z_RLE strategy (Pillow's compress_type).
 _Z_RLE = 3
 
+# Masks of at most _SPARSE_MAX pixels with at most 1 / _SPARSE_SHARE of them
+# covered are filled pixel by pixel (gather, update, scatter).
+_SPARSE_MAX = 1 << 24
+_SPARSE_SHARE = 8
+
 # Pixels per block of rows in fill / composite (bounds temporaries).
-_BLOCK = 1 << 16
+_BLOCK = 1 << 14
 
 
 def _color(color, opacity):
@@ -71,6 +76,27 @@ def _spread4(k, lanes):
     out[:, 0] = u
     out[:, 1] = u
     return out.view(np.float32).reshape(r, 4 * c)
+
+
+def _demultiply(flat):
+    """Divide the colour of (n, 4) float32 pixels in [0, 1] by their alpha,
+    in place, where 0 < alpha < 1 (other pixels are left as they are)."""
+    one, zero = np.float32(1.0), np.float32(0.0)
+    a = flat[:, 3]
+    part = a < one
+    part &= a > zero
+    idx = np.flatnonzero(part)
+    with np.errstate(over='ignore'):     # tiny alphas: zeroed by the caller
+        if 4 * len(idx) > len(a):
+            # mostly translucent: divide everything (alpha 0 and 1 leave
+            # the colour unchanged)
+            safe = np.where(a > zero, a, one)
+            for ch in range(3):
+                np.divide(flat[:, ch], safe, out=flat[:, ch])
+        elif len(idx):
+            sub = flat[idx]
+            sub[:, :3] /= sub[:, 3:]
+            flat[idx] = sub
 
 
 class Canvas:
@@ -158,6 +184,15 @@ class Canvas:
             return
         dst_sl, src_sl = win
         k = cov[src_sl]
+        alpha = np.float32(a)
+        vec = np.array([r, g, b, 1.0], np.float32)
+        if k.size <= _SPARSE_MAX and self.data.flags.c_contiguous:
+            idx = np.flatnonzero(k)
+            if len(idx) == 0:
+                return
+            if len(idx) * _SPARSE_SHARE <= k.size:
+                self._fill_pixels(idx, k, dst_sl, alpha, vec)
+                return
         # crop to the rows holding coverage (masks are often mostly empty)
         rows = np.flatnonzero(k.any(axis=1))
         if len(rows) == 0:
@@ -165,7 +200,6 @@ class Canvas:
         r0, r1 = int(rows[0]), int(rows[-1]) + 1
         k = k[r0:r1]
         region = self.data[dst_sl][r0:r1]
-        alpha = np.float32(a)
         # region += k * (vec - region) on contiguous rows of interleaved
         # RGBA: the coverage is spread to 4 lanes per pixel (see _spread4)
         # so every operation runs long SIMD loops, in blocks of rows that
@@ -175,7 +209,7 @@ class Canvas:
         nb = min(step, k.shape[0]) * w
         tmp = np.empty(4 * nb, np.float32)
         lanes = np.empty((nb, 2), np.uint64)
-        vt = np.tile(np.array([r, g, b, 1.0], np.float32), nb)
+        vt = np.tile(vec, nb)
         for i0 in range(0, k.shape[0], step):
             kk = k[i0:i0 + step]
             cols = np.flatnonzero(kk.any(axis=0))
@@ -192,6 +226,25 @@ class Canvas:
             np.subtract(vt[:rows * n4].reshape(rows, n4), reg, out=t)
             t *= k4
             reg += t
+
+    def _fill_pixels(self, idx, k, dst_sl, alpha, vec):
+        """:meth:`fill` of the pixels ``idx`` (flat indices into the mask
+        window ``k``, the nonzero ones) by gathering and scattering them."""
+        w = k.shape[1]
+        rows, cols = np.divmod(idx, w)
+        pix = (rows + dst_sl[0].start) * self.width + (cols + dst_sl[1].start)
+        flat = self.data.reshape(-1, 4)
+        reg = flat[pix]
+        kk = k.reshape(-1)[idx] if k.flags.c_contiguous else k[rows, cols]
+        if alpha != 1.0:
+            kk = kk * alpha
+        n = len(idx)
+        k4 = _spread4(kk.reshape(1, n), np.empty((n, 2), np.uint64)).reshape(n, 4)
+        t = np.tile(vec, (n, 1))
+        t -= reg
+        t *= k4
+        reg += t
+        flat[pix] = reg
 
     def composite(self, src_premul, x0=0, y0=0, opacity=1.0):
         """Source-over of a premultiplied RGBA layer onto the canvas.
@@ -264,7 +317,7 @@ class Canvas:
         data = self.data
         H, W = self.height, self.width
         out = np.empty((H, W, 4), np.uint8)
-        step = max(1, _BLOCK // 2 // W)
+        step = max(1, 2 * _BLOCK // W)
         buf = np.empty((min(step, H), W, 4), np.float32)
         zero, one = np.float32(0.0), np.float32(1.0)
         s255, half = np.float32(255.0), np.float32(0.5)
@@ -272,21 +325,7 @@ class Canvas:
             b = buf[:min(step, H - i0)]
             np.clip(data[i0:i0 + step], zero, one, out=b)
             if not premultiplied:
-                flat = b.reshape(-1, 4)
-                a = flat[:, 3]
-                part = a < one
-                part &= a > zero
-                idx = np.flatnonzero(part)
-                if 4 * len(idx) > len(a):
-                    # mostly translucent: divide everything (alpha 0 is
-                    # replaced by 1; those pixels are zeroed below)
-                    safe = np.where(a > zero, a, one)
-                    for ch in range(3):
-                        np.divide(flat[:, ch], safe, out=flat[:, ch])
-                elif len(idx):
-                    sub = flat[idx]
-                    sub[:, :3] /= sub[:, 3:]
-                    flat[idx] = sub
+                _demultiply(b.reshape(-1, 4))
             b *= s255
             if not premultiplied:
                 np.minimum(b, s255, out=b)   # demultiplied colour may exceed 1

@@ -100,12 +100,12 @@ def parse_font_family(value):
     ['Times New Roman', 'Noto Serif', 'monospace']
     """
     out = []
-    for m in re.finditer(r'"([^"]*)"|\'([^\']*)\'|([^,]+)', value or ''):
+    for m in re.finditer(r'\s*(?:"([^"]*)"|\'([^\']*)\'|([^,]*))\s*(?:,|$)', value or ''):
         q = m.group(1) if m.group(1) is not None else m.group(2)
         if q is not None:
             name = q.strip()
         else:
-            name = ' '.join(m.group(3).split())
+            name = ' '.join((m.group(3) or '').split())
         if name:
             out.append(name)
     return out

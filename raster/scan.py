@@ -841,7 +841,7 @@ def _exact_batch(pf, pxa, pya, pxb, pyb, gcount, gfirst, ev_f, ev_y, ev_c, corne
         vx, vy = pxb[j] - pxa[j], pyb[j] - pya[j]
         qx, qy = pxa[j] - ax, pya[j] - ay
         den = ux * vy - uy * vx
-        with np.errstate(divide='ignore', invalid='ignore'):
+        with np.errstate(all='ignore'):
             t = (qx * vy - qy * vx) / den
             u = (qx * uy - qy * ux) / den
         eps = 1e-9

@@ -41,7 +41,7 @@ import numpy as np
 from .errors import LimitError, PathError
 from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
 
-__all__ = ['parse_path', 'arc_to_cubics', 'parse_points', 'rect_path',
+__all__ = ['parse_path', 'parse_paths', 'arc_to_cubics', 'parse_points', 'rect_path',
            'circle_path', 'ellipse_path', 'line_path', 'polyline_path']
 
 #: Most cubic pieces one elliptical arc may be split into; beyond this
@@ -191,6 +191,88 @@ def parse_path(d, tolerance=0.01, strict=True):
     cut = at - kb.count(b',', 0, at)              # token index without commas
     end = _VALID.match(kinds, 0, cut).end()
     return _build(kinds[:end], vals[:kinds.count(b'#', 0, end)].tolist(), tol)
+
+
+def parse_paths(ds, tolerance=0.01):
+    """Parse many path data strings at once, as SVG renders them.
+
+    The result equals ``[parse_path(d, tolerance, strict=False) for d in
+    ds]``, but the strings are tokenized by one regular-expression pass and
+    built by one vectorized pass, which is several times faster for a
+    document with thousands of short paths (a map).  Malformed strings are
+    handed to :func:`parse_path` one by one.
+
+    Parameters
+    ----------
+    ds : sequence of str
+        Path data strings.
+    tolerance : float, optional
+        Arc tolerance in path units, as for :func:`parse_path`.
+
+    Returns
+    -------
+    list of Path
+        One per string, in order.
+
+    Raises
+    ------
+    PathError
+        A string that is not a ``str``, a bad ``tolerance``, coordinates
+        that overflow.
+    LimitError
+        An arc needs more than :data:`MAX_ARC_PIECES` cubic pieces.
+
+    >>> [p.to_svg() for p in parse_paths(['M0 0 L1 1', 'm2 2 h1 z', 'M0 0 L'])]
+    ['M 0 0 L 1 1', 'M 2 2 L 3 2 Z', 'M 0 0']
+    """
+    tol = _check_tolerance(tolerance)
+    ds = list(ds)
+    for d in ds:
+        if not isinstance(d, str):
+            raise PathError('path data must be a string, got %s' % type(d).__name__)
+    out = [None] * len(ds)
+    batch = [i for i, d in enumerate(ds) if '|' not in d]    # '|' separates pieces
+    pieces = []
+    if len(batch) > 1:
+        d2, nums, kb = _lex('|'.join([ds[i] for i in batch]))
+        vals = np.array(nums, dtype=np.float64) if nums else np.zeros(0)
+        if np.isfinite(vals).all():
+            pieces = kb.split(b'|')
+    if len(pieces) == len(batch) and pieces:
+        counts = [p.count(35) for p in pieces]
+        kinds = [p.replace(b',', b'') if 44 in p else p for p in pieces]
+        # all pieces valid <=> the concatenation is valid, given that every
+        # piece starts with a moveto (no command group can span two pieces)
+        whole = b''.join(kinds)
+        if (all(k[:1] in (b'M', b'm') for k in kinds)
+                and not (len(whole) != len(kb) - len(pieces) + 1
+                         and (_COMMA_AFTER_BAD.search(kb.replace(b'|', b' '))
+                              or _COMMA_BEFORE_BAD.search(kb.replace(b'|', b' '))))
+                and _VALID.fullmatch(whole) is not None):
+            good = list(range(len(batch)))
+        else:
+            good = [j for j, (p, k) in enumerate(zip(pieces, kinds))
+                    if k and (len(k) == len(p) or not (_COMMA_AFTER_BAD.search(p)
+                                                       or _COMMA_BEFORE_BAD.search(p)))
+                    and _VALID.fullmatch(k) is not None]
+            if len(good) > 1:
+                off = np.cumsum(counts) - counts
+                vals = np.concatenate([vals[off[j]:off[j] + counts[j]] for j in good])
+                whole = b''.join([kinds[j] for j in good])
+        if len(good) > 1:
+            lens = np.array([len(kinds[j]) for j in good], np.int64)
+            starts = np.cumsum(lens) - lens
+            try:
+                with np.errstate(over='ignore', invalid='ignore'):
+                    paths = _build_vector(whole, vals, tol, starts)
+            except PathError:            # an overflow somewhere: one by one
+                paths = ()
+            for j, p in zip(good, paths):
+                out[batch[j]] = p
+    for i, d in enumerate(ds):
+        if out[i] is None:
+            out[i] = parse_path(d, tol, strict=False)
+    return out
 
 
 def _is_valid(kb, kinds, vals):
@@ -465,8 +547,12 @@ def _resolve(mode, val, is_move):
     return base[seg] + local
 
 
-def _build_vector(kinds, vals, tol):
-    """Vectorized builder: all commands at once (used for long paths)."""
+def _build_vector(kinds, vals, tol, starts=None):
+    """Vectorized builder: all commands at once (used for long paths).
+
+    With ``starts`` (token offsets into ``kinds`` where independent paths
+    begin, each with a moveto), return one Path per piece instead: many
+    paths built by one pass (:func:`parse_paths`)."""
     if not kinds:
         return Path.empty()
     codes = np.frombuffer(kinds, np.uint8)
@@ -503,6 +589,9 @@ def _build_vector(kinds, vals, tol):
     mx[isZ] = _CLOSE
     my[isZ] = _CLOSE
     mx[0] = my[0] = _SET                           # a leading 'm' is absolute
+    if starts is not None:
+        g0 = first[np.searchsorted(cmd_at, starts)]  # first group of every piece
+        mx[g0] = my[g0] = _SET
     is_move = kind == _M
     pos = np.empty((len(kind), 2))
     pos[:, 0] = _resolve(mx, ex, is_move)
@@ -615,7 +704,12 @@ def _build_vector(kinds, vals, tol):
     points = ipts[np.arange(3) < inpt[:, None]]
     if not np.isfinite(points).all():
         raise PathError('path coordinates overflow float64')
-    return Path(iverb, points, _checked=True)
+    if starts is None:
+        return Path(iverb, points, _checked=True)
+    v0 = np.append(item_at[g0], total).tolist()
+    p0 = np.concatenate([[0], np.cumsum(inpt)])[v0].tolist()
+    return [Path(iverb[v0[k]:v0[k + 1]], points[p0[k]:p0[k + 1]], _checked=True)
+            for k in range(len(v0) - 1)]
 
 
 def _t_controls(ti, prev, prevkind, qc):

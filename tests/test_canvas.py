@@ -164,3 +164,126 @@ def test_bad_colours():
         c.fill(m, (1, 0, 0), opacity=float('nan'))
     with pytest.raises(CanvasError):
         Canvas(2, 2, background=(1, 1))
+
+
+# -- fast paths: bitwise equal to the direct float32 formulas -----------------
+
+def _ref_fill(data, k, x0, y0, rgba):
+    """The defining formula, pixel-wise: dst += k a (vec - dst) in float32."""
+    out = data.copy()
+    r, g, b, a = rgba
+    vec = np.array([r, g, b, 1.0], np.float32)
+    h, w = k.shape
+    H, W = data.shape[:2]
+    for i in range(h):
+        for j in range(w):
+            y, x = y0 + i, x0 + j
+            if 0 <= y < H and 0 <= x < W and k[i, j] != 0:
+                kk = k[i, j] * np.float32(a) if a != 1.0 else k[i, j]
+                out[y, x] += (vec - out[y, x]) * kk
+    return out
+
+
+def _ref_rgba8(data, premultiplied=False):
+    d = np.clip(data, 0.0, 1.0)
+    a8 = np.floor(d[..., 3] * np.float32(255.0) + np.float32(0.5))
+    if premultiplied:
+        return np.floor(d * np.float32(255.0) + np.float32(0.5)).astype(np.uint8)
+    alpha = d[..., 3:4]
+    with np.errstate(all='ignore'):
+        rgb = np.where(alpha > 0, d[..., :3] / alpha, np.float32(0.0))
+    rgb8 = np.floor(np.clip(rgb, 0.0, 1.0) * np.float32(255.0) + np.float32(0.5))
+    rgb8[a8 == 0] = 0
+    return np.concatenate([rgb8, a8[..., None]], -1).astype(np.uint8)
+
+
+@pytest.mark.parametrize('block', [16, 1 << 14])
+@pytest.mark.parametrize('seed', [0, 1])
+def test_fill_blocks_and_crops_match_the_formula(monkeypatch, block, seed):
+    # a sparse mask (empty rows and columns, exact 0 and 1, partial values)
+    # placed partly off a translucent canvas, with translucent and opaque
+    # colours: the blocked, cropped, lane-spread fill equals the formula
+    import raster.canvas as canvas_mod
+    monkeypatch.setattr(canvas_mod, '_BLOCK', block)
+    rng = np.random.default_rng(seed)
+    k = rng.choice([0.0, 0.0, 1.0, 0.25, 0.7], (23, 31)).astype(np.float32)
+    k[:4] = 0
+    k[:, 20:] = 0
+    for rgba in [(0.2, 0.4, 0.8, 1.0), (0.9, 0.1, 0.3, 0.6)]:
+        c = Canvas(29, 19, background=(0.5, 0.25, 0.0, 0.5))
+        c.data += rng.uniform(0, 0.1, c.data.shape).astype(np.float32)
+        ref = _ref_fill(c.data, k, -3, 2, rgba)
+        c.fill(Mask(k, -3, 2), rgba)
+        assert np.array_equal(c.data, ref)
+
+
+def test_spread4_repeats_bits():
+    from raster.canvas import _spread4
+    rng = np.random.default_rng(3)
+    k = rng.normal(size=(5, 40)).astype(np.float32)
+    k[0, :3] = [-0.0, np.inf, 1e-45]
+    lanes = np.empty((k.size, 2), np.uint64)
+    s = _spread4(k[:, 7:30], lanes)
+    assert np.array_equal(s.view(np.uint32), np.repeat(k[:, 7:30], 4, axis=1).view(np.uint32))
+
+
+@pytest.mark.parametrize('opaque_share', [0.0, 0.9, 1.0])
+def test_to_rgba8_matches_the_formula(opaque_share):
+    # blocks that are mostly opaque divide only their translucent pixels,
+    # mostly translucent ones divide everything: both equal the formula,
+    # including alphas that round to 0, tiny and out-of-range values
+    rng = np.random.default_rng(5)
+    d = rng.uniform(-0.2, 1.2, (70, 130, 4)).astype(np.float32)
+    kind = rng.random((70, 130))
+    d[..., 3] = np.where(kind < opaque_share, 1.0, d[..., 3])
+    d[kind > 0.97, 3] = 0.0
+    d[(kind > 0.94) & (kind <= 0.97), 3] = 1e-3
+    d[0, :5, 3] = [1e-39, 0.5 / 255, 1.0 / 255, 0.0, 2.0]
+    c = Canvas(130, 70)
+    c.data = d
+    assert np.array_equal(c.to_rgba8(), _ref_rgba8(d))
+    assert np.array_equal(c.to_rgba8(premultiplied=True), _ref_rgba8(d, True))
+
+
+@pytest.mark.parametrize('opacity', [1.0, 0.35])
+def test_composite_matches_the_formula(opacity):
+    rng = np.random.default_rng(9)
+    base = rng.uniform(0, 1, (17, 21, 4)).astype(np.float32)
+    layer = rng.uniform(0, 1, (9, 30, 4)).astype(np.float32)
+    c = Canvas(21, 17)
+    c.data = base.copy()
+    c.composite(layer, -4, 11, opacity)
+    s = layer[:6, 4:25] * np.float32(opacity) if opacity != 1.0 else layer[:6, 4:25]
+    ref = base.copy()
+    ref[11:17, 0:21] = ref[11:17, 0:21] * (np.float32(1.0) - s[..., 3:4]) + s
+    assert np.array_equal(c.data, ref)
+
+
+@pytest.mark.parametrize('level', [0, 1, 3, 6, 9])
+def test_png_levels_round_trip_identically(level):
+    # levels 1-3 use zlib's run-length strategy, the others the default:
+    # the decoded pixels are the same
+    rng = np.random.default_rng(2)
+    c = Canvas(40, 30, background=(1, 1, 1))
+    c.fill(Mask(rng.random((20, 25)).astype(np.float32), 5, 4), (0.1, 0.5, 0.9, 0.8))
+    buf = io.BytesIO()
+    c.save_png(buf, compress_level=level)
+    assert np.array_equal(np.asarray(Image.open(io.BytesIO(buf.getvalue()))), c.to_rgba8())
+
+
+@pytest.mark.parametrize('contiguous', [True, False])
+def test_sparse_fill_matches_the_formula(contiguous):
+    # few covered pixels (a thin diagonal line): gathered and scattered
+    rng = np.random.default_rng(4)
+    k = np.zeros((40, 60), np.float32)
+    i = np.arange(40)
+    k[i, i + 7] = rng.uniform(0.1, 1.0, 40)
+    k[i[::3], i[::3] + 8] = 1.0
+    if not contiguous:
+        k = np.asfortranarray(k)
+    assert np.count_nonzero(k) * 8 <= k.size
+    for rgba in [(0.3, 0.6, 0.9, 1.0), (1.0, 0.5, 0.0, 0.4)]:
+        c = Canvas(50, 45, background=(0.1, 0.2, 0.3, 0.6))
+        ref = _ref_fill(c.data, k, -5, 9, rgba)
+        c.fill(Mask(k, -5, 9), rgba)
+        assert np.array_equal(c.data, ref)

@@ -61,8 +61,9 @@ def test_output_sizes(kw, size):
     assert (c.width, c.height) == size and c.data.shape == (size[1], size[0], 4)
 
 
-def test_natural_size_rounds_up():
-    assert output_size(10.2, 4.5)[:2] == (11, 5)
+def test_natural_size_rounds_half_up():
+    # resvg's natural size (see tests/test_output_size.py)
+    assert output_size(10.2, 4.5)[:2] == (10, 5)
 
 
 @pytest.mark.parametrize('kw', [{'width': 0}, {'height': -5}, {'zoom': 0}, {'zoom': float('nan')},
@@ -359,6 +360,24 @@ def test_blend_modes_over_grey(mode, src, expect):
     assert np.allclose(c[5, 5], list(expect) + [1], atol=1e-5)
 
 
+@pytest.mark.parametrize('par,area,red_at,empty_at', [
+    (None, 100.0, (5, 10), (5, 2)),                     # xMidYMid meet: x 5..15
+    (('none', 'meet'), 200.0, (5, 2), None),             # stretched over the tile
+    (('xMinYMin', 'meet'), 100.0, (5, 2), (5, 15)),      # x 0..10
+    (('xMaxYMax', 'meet'), 100.0, (5, 15), (5, 2)),      # x 10..20
+    (('xMinYMin', 'slice'), 200.0, (5, 2), None)])       # scale 2, cropped
+def test_pattern_bbox_units_viewbox_aspect_ratio(par, area, red_at, empty_at):
+    """objectBoundingBox tile = the whole 20 x 10 bbox; a 10 x 10 viewBox
+    holding a full red square is mapped onto it per preserveAspectRatio."""
+    pat = Pattern(rect=(0, 0, 1, 1), root=Group(children=[filled(rect(0, 0, 10, 10))]),
+                  view_box=(0, 0, 10, 10), preserve_aspect_ratio=par)
+    c = render_tree(tree(filled(rect(0, 0, 20, 10), pat)))
+    assert alpha(c).sum() == pytest.approx(area, abs=0.5)
+    assert c.data[red_at][3] == pytest.approx(1.0, abs=1e-3)
+    if empty_at is not None:
+        assert c.data[empty_at][3] == pytest.approx(0.0, abs=1e-3)
+
+
 # Non-separable modes (Compositing 1, section 10.2), worked by hand with
 # Lum = 0.3 R + 0.59 G + 0.11 B.  Backdrop Cb = (0.2, 0.4, 0.6): Lum 0.362,
 # Sat 0.4.
@@ -429,6 +448,25 @@ def test_image_clip_and_opacity():
     n = ImageNode(view_rect=(0, 0, 8, 8), transform=Affine.scale(2), pixels=pix,
                   clip=(0, 0, 8, 4), opacity=0.5)
     assert alpha(render_tree(tree(n))).sum() == pytest.approx(32 * 0.5)
+
+
+@pytest.mark.parametrize('smooth', [True, False])
+def test_image_window_sampling_matches_full_image(smooth):
+    """A 64 x 64 random image scaled by 3 and shifted so that the 40 x 30
+    canvas sees an interior window: the renderer samples only the source
+    pixels it needs, and must give what sampling the whole (premultiplied)
+    image at the pixel centres gives."""
+    rng = np.random.default_rng(7)
+    pix = rng.integers(0, 256, (64, 64, 4), dtype=np.uint8)
+    tf = Affine.translate(-50, -60) @ Affine.scale(3)
+    img = ImageNode(view_rect=(-50, -60, 192, 192), transform=tf, pixels=pix, smooth=smooth)
+    c = render_tree(Tree(40, 30, Group(children=[img]))).data
+    p = pix.astype(np.float32) / 255
+    pm = np.concatenate([p[..., :3] * p[..., 3:], p[..., 3:]], -1)
+    jj, ii = np.meshgrid(np.arange(40) + 0.5, np.arange(30) + 0.5)
+    uv = tf.inverse().apply(np.stack([jj, ii], -1))
+    want = render_mod._sample(pm, uv[..., 0], uv[..., 1], smooth=smooth)
+    assert np.allclose(c, want, atol=1e-5)
 
 
 def test_svg_image_renders_nested_tree():

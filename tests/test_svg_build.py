@@ -666,3 +666,70 @@ def test_overflowing_numbers_skip_only_that_element():
                 b'<g transform="scale(1e200)">' + inner + b'</g>'
                 b'<rect id="b" width="1" height="1"/></svg>'))
         assert [n.id for n, _ in paths(t)] == ['b']
+
+
+# -- context paints rebased to the use element; path sharing --------------------------------
+def test_context_gradient_in_use_spans_the_use_bounding_box():
+    # objectBoundingBox gradient through context-fill: the box is the use
+    # element's (both rects together: x 0..50 and, scaled about x=10,
+    # 30..55), not each rect's own
+    t = build_tree(load_document(
+        b'<svg xmlns="http://www.w3.org/2000/svg" width="100" height="10">'
+        b'<linearGradient id="lg"><stop offset="0" stop-color="red"/>'
+        b'<stop offset="1" stop-color="blue"/></linearGradient>'
+        b'<defs><g id="g"><rect width="50" height="10" fill="context-fill"/>'
+        b'<rect x="50" width="50" height="10" fill="context-fill" '
+        b'transform="translate(10 0) scale(0.5 1) translate(-10 0)"/></g></defs>'
+        b'<use href="#g" fill="url(#lg)" x="0"/></svg>'))
+    ps = paths(t)
+    assert len(ps) == 2
+    for n, m in ps:
+        g = n.fill.paint
+        assert g.units == 'userSpaceOnUse'
+        # the gradient's x axis, mapped to the document, runs 0 -> 55
+        gm = m @ g.transform
+        assert gm.apply([[g.x1, g.y1], [g.x2, g.y2]])[:, 0].tolist() == \
+            pytest.approx([0.0, 55.0])
+
+
+def test_context_pattern_ignores_transforms_inside_use_content():
+    # a user-space pattern painted through context-fill stays in the use's
+    # user space although the shape is rotated inside the referenced group
+    t = build_tree(load_document(
+        b'<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100">'
+        b'<pattern id="p" patternUnits="userSpaceOnUse" width="10" height="10">'
+        b'<rect width="5" height="5"/></pattern>'
+        b'<defs><g id="g" transform="rotate(30)"><rect width="50" height="50" '
+        b'fill="context-fill"/></g></defs>'
+        b'<use href="#g" fill="url(#p)" transform="translate(5 5)"/></svg>'))
+    (n, m), = paths(t)
+    p = n.fill.paint
+    assert np.allclose(list(m @ p.transform), list(Affine.translate(5, 5)))
+
+
+def test_identical_path_data_share_one_path():
+    d = b'M0 0 A 5 5 0 1 1 10 0 A 5 5 0 1 1 0 0'
+    body = b''.join(b'<path d="%s" transform="translate(%d 0)"/>' % (d, i) for i in range(5))
+    t = build_tree(load_document(b'<svg xmlns="http://www.w3.org/2000/svg" width="100" '
+                                 b'height="100">' + body + b'</svg>'))
+    ps = paths(t)
+    assert len(ps) == 5 and all(n.path is ps[0][0].path for n, _ in ps)
+
+
+def test_many_paths_batch_parsed_like_one_by_one():
+    from raster.svgpath import parse_path
+    rng = np.random.default_rng(11)
+    ds = ['M%d,%d' % tuple(rng.integers(0, 90, 2)) +
+          ''.join('l%d,%d' % tuple(rng.integers(-5, 6, 2)) for _ in range(5)) + 'z'
+          for _ in range(60)]
+    ds[7] = 'M 1 1 L 2'                  # malformed: its valid prefix is kept
+    body = ''.join('<path d="%s"/>' % d for d in ds).encode()
+    t = build_tree(load_document(b'<svg xmlns="http://www.w3.org/2000/svg" width="100" '
+                                 b'height="100">' + body + b'</svg>'))
+    got = [n.path for n, _ in paths(t)]
+    want = [parse_path(d, strict=False) for d in ds]
+    want = [p for p in want if len(p.verbs)]
+    assert len(got) == len(want)
+    for a, b in zip(got, want):
+        assert a.verbs.tolist() == b.verbs.tolist()
+        assert np.allclose(a.points, b.points, rtol=0, atol=1e-9)

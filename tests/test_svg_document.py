@@ -130,3 +130,20 @@ def test_bad_source_type():
 def test_missing_file():
     with pytest.raises(OSError):
         load_document('/nonexistent/file.svg')
+
+
+def test_xlink_href_inside_an_entity_is_accepted():
+    # libxml2 parses entity text without the root's xmlns:xlink in scope;
+    # the document is retried with plain href inside the DTD only
+    doc = (b'<!DOCTYPE svg [<!ENTITY R "<rect id=\'r\' width=\'2\' height=\'2\'/>'
+           b'<use xlink:href=\'#r\' x=\'3\'/>">]>'
+           b'<svg xmlns="http://www.w3.org/2000/svg" '
+           b'xmlns:xlink="http://www.w3.org/1999/xlink">&R;</svg>')
+    root = load_document(doc)
+    use = root.find('{%s}use' % SVG_NS)
+    assert use is not None and use.get('href') == '#r'
+
+
+def test_other_namespace_errors_still_fail():
+    with pytest.raises(SVGError, match='Namespace prefix foo'):
+        load_document(b'<svg xmlns="http://www.w3.org/2000/svg"><rect foo:x="1"/></svg>')

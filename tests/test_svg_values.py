@@ -585,3 +585,18 @@ def test_parsers_never_raise_on_text(s):
     assert o is None or len(o) == 2
     fs = parse_font_size(s, 10.0)
     assert fs is None or fs >= 0
+
+
+def test_single_function_transforms_match_the_general_parser():
+    # the fast path for translate/scale/matrix alone agrees with composing
+    # the same function after an identity through the general path
+    from raster.svg.values import parse_transform
+    for s, want in [('translate(3,4)', Affine.translate(3, 4)),
+                    ('translate(3)', Affine.translate(3, 0)),
+                    (' scale( 2 ) ', Affine.scale(2)), ('scale(2 -1)', Affine.scale(2, -1)),
+                    ('matrix(1-2.5.5,3 4 5)', Affine(1, -2.5, 0.5, 3, 4, 5))]:
+        assert tuple(parse_transform(s)) == tuple(want)
+        assert tuple(parse_transform(s + ' rotate(0)')) == pytest.approx(tuple(want))
+    for bad in ('translate(1,2,3)', 'translate(1,)', 'matrix(1 0 0 1 5)', 'scale()',
+                'translate(1e999)', 'translate(1,,2)'):
+        assert parse_transform(bad) is None

@@ -45,14 +45,15 @@ other documents.
 (20.0, 10.0, (1.0, 0.0, 0.0, 1.0))
 """
 
+import dataclasses
 import math
 import warnings
 
 from .. import limits
-from ..errors import RasterError, RasterWarning, SVGError
+from ..errors import RasterError, RasterWarning, SVGError, TransformError
 from ..bbox import bbox as exact_bbox
-from ..svgpath import (circle_path, ellipse_path, line_path, parse_path, polyline_path,
-                       rect_path)
+from ..svgpath import (circle_path, ellipse_path, line_path, parse_path, parse_paths,
+                       polyline_path, rect_path)
 from ..transform import IDENTITY, Affine
 from .css import declared_styles
 from .properties import INHERITED, PROPERTIES
@@ -123,20 +124,44 @@ def _opacity(s, default=1.0):
 
 class _State:
     """Per-subtree context: viewport size for percentages, the CTM at the
-    document's natural size (for arc tolerances), the active ``use`` depth."""
-    __slots__ = ('vw', 'vh', 'ctm', 'use_depth', 'mode', 'context')
+    document's natural size (for arc tolerances and overflow checks), the
+    active ``use`` depth.  The CTM's scale is memoized."""
+    __slots__ = ('vw', 'vh', 'ctm', '_scale', 'use_depth', 'mode', 'context')
 
     def __init__(self, vw, vh, ctm, use_depth=0, mode=None, context=None):
         self.vw, self.vh, self.ctm, self.use_depth = vw, vh, ctm, use_depth
+        self._scale = None
         self.mode = mode        # None, or 'clip' inside a clipPath
         self.context = context  # (fill paint, stroke paint) for context-fill/-stroke
 
+    def scale(self):
+        """Largest singular value of the CTM (memoized)."""
+        s = self._scale
+        if s is None:
+            s = self._scale = self.ctm.max_scale()
+        return s
+
+    def check(self, t):
+        """Raise :class:`~raster.errors.TransformError` when ``ctm @ t``
+        overflows (no Affine is built for a translation)."""
+        if t.is_translation:
+            m = self.ctm
+            e = m.a * t.e + m.c * t.f + m.e
+            f = m.b * t.e + m.d * t.f + m.f
+            if not (math.isfinite(e) and math.isfinite(f)):
+                raise TransformError('transform overflows')
+        else:
+            self.ctm @ t
+
     def sub(self, transform=None, vw=None, vh=None, use_depth=None, context=False):
-        return _State(self.vw if vw is None else vw, self.vh if vh is None else vh,
-                      self.ctm if transform is None or transform.is_identity
-                      else self.ctm @ transform,
-                      self.use_depth if use_depth is None else use_depth, self.mode,
-                      self.context if context is False else context)
+        same = transform is None or transform.is_identity
+        st = _State(self.vw if vw is None else vw, self.vh if vh is None else vh,
+                    self.ctm if same else self.ctm @ transform,
+                    self.use_depth if use_depth is None else use_depth, self.mode,
+                    self.context if context is False else context)
+        if same or transform.is_translation:
+            st._scale = self._scale
+        return st
 
 
 class _Builder:
@@ -168,6 +193,8 @@ class _Builder:
         self._servers = {}
         self._inh0 = _initial_inherited(font_size)
         self._ctx_cache = {}
+        self._path_cache = {}
+        self._path_batch = None
 
     # -- helpers ---------------------------------------------------------------
     def warn(self, kind, msg):
@@ -421,8 +448,8 @@ class _Builder:
         """Wrap ``kids`` in a Group when the element changes something (or
         has an id); return the list of nodes to add to the parent.
         ``clip`` is a viewport clip (nested svg, symbol)."""
-        if not kids:
-            return []
+        if not kids and own.get('filter', 'none').strip() == 'none':
+            return []       # (a filter can draw for an empty element: feFlood)
         opacity, blend, isolate, cp, mask, ok = self.effects(el, own, st, kids, t)
         if not ok or opacity <= 0.0:
             return []
@@ -710,6 +737,7 @@ class _Builder:
             self.viewport_group(tgt, sinh, sown, IDENTITY, st2.sub(t), sym, x, y, w, h,
                                 tgt, tgt, sown)
             kids = sym
+            self._rebase_context(kids, IDENTITY, inh, cfill, cstroke)
             out.extend(self.wrap(el, own, t, kids, st))
             return
         move = Affine.translate(x, y) if (x or y) else IDENTITY
@@ -730,16 +758,100 @@ class _Builder:
             self.nested_svg(tgt, sinh, sown, sctx, stt, st2.sub(tt), kids, use_size=(w, h))
         else:
             self.node(tgt, inh, own, st2.sub(tt), kids, name)
+        self._rebase_context(kids, move, inh, cfill, cstroke)
         out.extend(self.wrap(el, own, tt, kids, st))
+
+    def _rebase_context(self, kids, move, inh, cfill, cstroke):
+        """Make the gradients and patterns that ``use`` content paints with
+        ``context-fill``/``context-stroke`` act in the ``use`` element's user
+        space, with its bounding box for ``objectBoundingBox`` units (as
+        resvg does), whatever the transforms inside the content.
+
+        ``kids`` are in content space, ``move`` maps it to the ``use``
+        element's user space (its x/y).  Paints that the ``use`` itself took
+        from an outer context are left to that outer ``use``."""
+        todo = []
+        for p, prop in ((cfill, 'fill'), (cstroke, 'stroke')):
+            if p is None or isinstance(p, SolidPaint):
+                continue
+            v = inh.get(prop) or ''
+            if 'context-' in v and not v.lstrip().startswith('url('):
+                continue
+            todo.append(p)
+        if not todo or not kids:
+            return
+        box = None
+        if any(p.units == 'objectBoundingBox' or
+               getattr(p, 'content_units', '') == 'objectBoundingBox' for p in todo):
+            b = _layer_box(kids, move)
+            if b is not None:
+                box = (b[0], b[1], b[2] - b[0], b[3] - b[1])
+        cache = {}
+        stack = [(n, move) for n in kids]
+        while stack:
+            n, m = stack.pop()
+            if isinstance(n, Group):
+                m2 = m @ n.transform
+                stack.extend((c, m2) for c in n.children)
+                continue
+            for attr in ('fill', 'stroke'):
+                f = getattr(n, attr, None)
+                if f is None or not any(f.paint is p for p in todo):
+                    continue
+                key = (id(f.paint), m)
+                if key not in cache:
+                    cache[key] = _rebased(f.paint, m, box)
+                f.paint = cache[key]
 
     # -- shapes -----------------------------------------------------------------------
     def arc_tolerance(self, st, t):
-        m = st.ctm if t.is_identity else st.ctm @ t
-        s = m.max_scale()
+        if t.is_translation:
+            s = st.scale()
+        else:
+            s = (st.ctm @ t).max_scale()
         tol = self.tolerance * _ARC_SAFETY
         if s > 0 and math.isfinite(s):
             tol = tol / s
         return min(max(tol, 1e-9), 1e9)
+
+    def path_data(self, d, tol):
+        """``parse_path(d, tol, strict=False)``, memoized per document.
+
+        Paths are immutable, so repeated ``d`` strings (chart symbols, map
+        markers) share one Path.  Data without arcs does not depend on the
+        tolerance and is cached under one key."""
+        key = (d, tol) if ('a' in d or 'A' in d) else d
+        cache = self._path_cache
+        if self._path_batch is None:
+            self._batch_paths()
+        p = cache.get(key)
+        if p is None:
+            p = parse_path(d, tol, strict=False)
+            if len(cache) < 65536:
+                cache[key] = p
+        return p
+
+    def _batch_paths(self):
+        """Parse the document's arc-free path data in one vectorized pass
+        (:func:`raster.svgpath.parse_paths`) into the path cache: a map
+        with thousands of ``path`` elements would otherwise pay the
+        per-string overhead thousands of times."""
+        ds = {}
+        for el in self.root.iter(_P + 'path'):
+            d = el.get('d')
+            if d and 'a' not in d and 'A' not in d and d not in self._path_cache:
+                ds[d] = None
+                if len(ds) >= 65536:
+                    break
+        self._path_batch = len(ds)
+        if len(ds) < 32:
+            return
+        ds = list(ds)
+        try:
+            paths = parse_paths(ds, self.tolerance)
+        except RasterError:
+            return                  # one of them overflows: parsed one by one later
+        self._path_cache.update(zip(ds, paths))
 
     def geometry(self, el, name, ctx, tol):
         L = self.length
@@ -747,7 +859,7 @@ class _Builder:
             d = el.get('d')
             if not d:
                 return None
-            return parse_path(d, tol, strict=False)
+            return self.path_data(d, tol)
         if name == 'rect':
             w = L(el, 'width', 'x', ctx, None)
             h = L(el, 'height', 'y', ctx, None)
@@ -1035,7 +1147,19 @@ class _Builder:
         if hidden and st.mode == 'clip':
             return
         try:
-            path = self.geometry(el, name, ctx, self.arc_tolerance(st, t))
+            if not t.is_identity:
+                st.check(t)     # an overflowing CTM: the element is left out
+            if name == 'line' or name == 'polyline' or name == 'polygon':
+                tol = self.tolerance        # no curves: the tolerance is not used
+            elif name == 'path':
+                d = el.get('d')
+                tol = (self.arc_tolerance(st, t) if d and ('a' in d or 'A' in d)
+                       else self.tolerance)
+            elif name == 'rect' and 'rx' not in el.attrib and 'ry' not in el.attrib:
+                tol = self.tolerance
+            else:
+                tol = self.arc_tolerance(st, t)
+            path = self.geometry(el, name, ctx, tol)
         except RasterError:
             return
         if path is None or len(path.verbs) == 0:
@@ -1130,6 +1254,64 @@ class _Builder:
                 off = v
         return (w, _opacity(inh.get('stroke-opacity')), join if join in _JOINS else 'miter',
                 cap if cap in _CAPS else 'butt', ml, dash, off)
+
+
+def _layer_box(nodes, t):
+    """(x0, y0, x1, y1) bounding box of ``nodes`` mapped by ``t``, composed
+    the way resvg composes the box of a ``use`` element: each group's box
+    is the box of its children's boxes' corners under the group transform
+    (not the exact box of the transformed geometry).  None when empty."""
+    lo = [math.inf, math.inf]
+    hi = [-math.inf, -math.inf]
+    for n in nodes:
+        if isinstance(n, Group):
+            b = _layer_box(n.children, IDENTITY)
+        elif isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
+            try:
+                b = exact_bbox(n.path)
+            except RasterError:
+                b = None
+        else:
+            b = None
+        if b is None:
+            continue
+        m = t @ n.transform if isinstance(n, Group) else t
+        c = m.apply([[b[0], b[1]], [b[2], b[1]], [b[2], b[3]], [b[0], b[3]]])
+        lo = [min(lo[0], c[:, 0].min()), min(lo[1], c[:, 1].min())]
+        hi = [max(hi[0], c[:, 0].max()), max(hi[1], c[:, 1].max())]
+    if not math.isfinite(lo[0]):
+        return None
+    return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+
+
+def _rebased(p, m, box):
+    """Paint server ``p`` (in the coordinates that ``m`` maps a shape's user
+    space into, with bounding box ``box`` there) as a user-space paint of
+    the shape; None when an object bounding box is needed but empty."""
+    try:
+        inv = m.inverse()
+    except RasterError:
+        return None
+    obb = p.units == 'objectBoundingBox'
+    cobb = getattr(p, 'content_units', '') == 'objectBoundingBox'
+    if (obb or cobb) and (box is None or not (box[2] > 0 and box[3] > 0)):
+        return None
+    if isinstance(p, Pattern):
+        x, y, w, h = p.rect
+        content = p.content_transform
+        if obb:
+            x, y, w, h = box[0] + x * box[2], box[1] + y * box[3], w * box[2], h * box[3]
+            if p.view_box is not None:
+                content = viewbox_transform(p.view_box, None, w, h)
+        if p.view_box is None and cobb:
+            content = content @ Affine.scale(box[2], box[3])
+        return dataclasses.replace(p, rect=(x, y, w, h), units='userSpaceOnUse',
+                                   content_units='userSpaceOnUse', transform=inv @ p.transform,
+                                   content_transform=content)
+    t = p.transform
+    if obb:
+        t = Affine(box[2], 0, 0, box[3], box[0], box[1]) @ t
+    return dataclasses.replace(p, units='userSpaceOnUse', transform=inv @ t)
 
 
 def _paint_order(v):

@@ -28,6 +28,7 @@ raster.errors.SVGError: not an SVG document: root element is <html>
 import gzip
 import io
 import os
+import re
 import zlib
 
 from lxml import etree
@@ -128,7 +129,13 @@ def load_document(source, *, max_bytes=MAX_DOCUMENT_BYTES):
     if not data.strip():
         raise SVGError('empty document')
     try:
-        root = etree.fromstring(data, _parser())
+        try:
+            root = etree.fromstring(data, _parser())
+        except etree.XMLSyntaxError as e:
+            data2 = _xlink_in_entities(data, e)
+            if data2 is None:
+                raise
+            root = etree.fromstring(data2, _parser())
     except etree.XMLSyntaxError as e:
         msg = str(e.msg if getattr(e, 'msg', None) else e).splitlines()[0]
         # lxml appends ", line L, column C" to some messages
@@ -153,6 +160,33 @@ def load_document(source, *, max_bytes=MAX_DOCUMENT_BYTES):
         # entity reference have no namespace.  Give them their parent's.
         _adopt_svg_namespace(root, only_under_svg=True)
     return root
+
+
+_XLINK_HREF_IN_DTD = re.compile(rb'(\s)xlink:href(\s*=)')
+
+
+def _xlink_in_entities(data, err):
+    """The document with ``xlink:href`` inside its internal DTD subset
+    rewritten to plain ``href`` (SVG 2's equivalent), or None.
+
+    libxml2 parses the replacement text of an internal entity without the
+    namespace declarations of the place where it is used, so an entity
+    holding ``<use xlink:href=...>`` is a namespace error although the root
+    declares ``xlink`` (resvg renders such files).  Only this error is
+    retried; the retry uses the same hardened parser and limits."""
+    msg = str(getattr(err, 'msg', '') or err)
+    if 'Namespace prefix xlink' not in msg:
+        return None
+    i = data.find(b'<!DOCTYPE')
+    if i < 0:
+        return None
+    j = data.find(b']>', i)
+    if j < 0:
+        return None
+    sub = _XLINK_HREF_IN_DTD.sub(rb'\1href\2', data[i:j])
+    if sub == data[i:j]:
+        return None
+    return data[:i] + sub + data[j:]
 
 
 def _adopt_svg_namespace(root, only_under_svg=False):

@@ -88,7 +88,7 @@ def output_size(doc_width, doc_height, width=None, height=None, zoom=None):
         The document's natural size in px (> 0).
     width, height : int or None
         Requested output size.  Only ``width``: the height keeps the aspect
-        ratio of the natural pixel size (rounded up); only ``height``:
+        ratio of the natural pixel size (rounded half up), the scaled side rounded up; only ``height``:
         likewise for the width; both: non-uniform scale.
     zoom : float or None
         Scale factor of the natural size (not with ``width``/``height``).
@@ -119,7 +119,9 @@ def output_size(doc_width, doc_height, width=None, height=None, zoom=None):
     dh = _positive('document height', doc_height)
     if zoom is not None and (width is not None or height is not None):
         raise CanvasError('give a zoom or an output size, not both')
-    nw, nh = math.ceil(dw), math.ceil(dh)
+    # natural pixel size: rounded half up, as resvg does (1000 x 507.224 ->
+    # 1000 x 507; 10.5 x 10 -> 11 x 10)
+    nw, nh = max(1, math.floor(dw + 0.5)), max(1, math.floor(dh + 0.5))
     if zoom is not None:
         z = _positive('zoom', zoom)
         w, h = math.ceil(nw * z), math.ceil(nh * z)
@@ -215,6 +217,7 @@ _CLIP_FILL = SolidPaint((0.0, 0.0, 0.0, 1.0))
 class _Renderer:
     def __init__(self, tolerance):
         self.tol = tolerance
+        self._flat_key = self._flat_path = self._flat = None
 
     # -- dispatch ------------------------------------------------------------
     def node(self, node, t, canvas, clip_mode=False):
@@ -264,7 +267,7 @@ class _Renderer:
         for c in g.children:
             self.node(c, lt, layer, clip_mode)
         if filters is not None:
-            layer.data[...] = apply_filters(filters, layer.data, lt, self.tol)
+            layer.data[...] = apply_filters(filters, layer.data, lt)
         if g.clip_path is not None:
             cov = self.clip_coverage(g.clip_path, lt, layer.width, layer.height)
             layer.data *= cov[..., None]
@@ -333,9 +336,23 @@ class _Renderer:
         f = n.fill
         if f.opacity <= 0:
             return
-        m = _cover(n.path, t, canvas.width, canvas.height, f.rule, n.antialias, self.tol)
+        edges = self.flat(n.path, t).edges(close_all=True)
+        if len(edges) == 0:
+            return
+        m = coverage(edges, canvas.width, canvas.height, f.rule, n.antialias)
         if m is not None:
             self.paint(canvas, m, f.paint, f.opacity, n.path, t)
+
+    def flat(self, path, t):
+        """Polylines of ``path`` flattened under ``t`` (device pixels).  The
+        last result is kept: a filled and stroked hairline path is
+        flattened once."""
+        key = (id(path), t)
+        if self._flat_key == key and self._flat_path is path:
+            return self._flat
+        pl = flatten(path, self.tol, transform=t)
+        self._flat_key, self._flat_path, self._flat = key, path, pl
+        return pl
 
     def stroke(self, n, t, canvas):
         s = n.stroke
@@ -349,6 +366,14 @@ class _Renderer:
             style = StrokeStyle(width=1.0 / t.mean_scale(), join=s.join, cap=s.cap,
                                 miterlimit=s.miterlimit, dash=s.dash, dash_offset=s.dash_offset)
             opacity *= hair
+            if s.dash is None:
+                edges = _hairline_edges(self.flat(n.path, t), s.cap, s.join, s.miterlimit)
+                if edges is not None:
+                    m = coverage(edges, canvas.width, canvas.height, 'nonzero', n.antialias) \
+                        if len(edges) else None
+                    if m is not None:
+                        self.paint(canvas, m, s.paint, opacity, n.path, t)
+                    return
         outline = stroke_outline(n.path, style, transform=t, tolerance=self.tol)
         if len(outline.verbs) == 0:
             return
@@ -403,7 +428,8 @@ class _Renderer:
             # (the builder cannot resolve it); patternContentUnits is ignored
             from .values import viewbox_transform
             try:
-                content = viewbox_transform(p.view_box, None, w, h)
+                content = viewbox_transform(p.view_box,
+                                            getattr(p, 'preserve_aspect_ratio', None), w, h)
             except RasterError:
                 return None
         # As resvg: the tile raster has whole-pixel size (rounded up) and the
@@ -468,6 +494,104 @@ def _cover(path, t, w, h, rule, antialias, tol):
     return coverage(edges, w, h, rule, antialias)
 
 
+def _signed_area(p):
+    """Twice the signed area of polygons ``p`` (M, K, 2) -> (M,)."""
+    x, y = p[..., 0], p[..., 1]
+    return (x * np.roll(y, -1, axis=-1) - np.roll(x, -1, axis=-1) * y).sum(-1)
+
+
+def _polygon_edges(p):
+    """Closed polygons (M, K, 2), all oriented clockwise on screen (negative
+    signed area, y down), as (M K, 2, 2) edges: under the nonzero rule
+    their union is filled and overlaps never cancel."""
+    if len(p) == 0:
+        return np.zeros((0, 2, 2))
+    flip = _signed_area(p) > 0
+    if flip.any():
+        p = p.copy()
+        p[flip] = p[flip][:, ::-1]
+    return np.stack([p, np.roll(p, -1, axis=1)], 2).reshape(-1, 2, 2)
+
+
+def _hairline_edges(pl, cap, join, miterlimit):
+    """Outline edges of a 1 device pixel wide stroke along device-space
+    polylines ``pl`` (:class:`raster.flatten.Polylines`), for hairlines.
+
+    The stroke of a polyline is the union of a 1 px wide rectangle per
+    segment, a bevel triangle at each vertex between two segments (plus the
+    miter triangle when ``join`` is a miter join within ``miterlimit``) and,
+    for square and round caps, a half-pixel extension at the ends of open
+    polylines (a round cap is drawn square: at most 0.054 px^2 more per
+    end).  Round joins are drawn bevelled (at most 0.04 px^2 less per
+    join).  The pieces are emitted as separate polygons of one orientation,
+    filled with the nonzero rule, all in one vectorized pass: no offset
+    curves and no per-vertex Python work.  The polylines are within the
+    flattening tolerance of the curves, and so is this outline.
+
+    Returns
+    -------
+    (E, 2, 2) float64 ndarray, or None when the general stroker must be used
+    (a polyline of one distinct point with a non-butt cap: a dot).
+    """
+    r = 0.5
+    P = pl.points
+    n = len(P)
+    if n == 0:
+        return np.zeros((0, 2, 2))
+    starts, ends, closed = pl.starts, pl.ends, pl.closed
+    nxt = np.arange(1, n + 1)
+    nxt[ends - 1] = np.where(closed, starts, -1)
+    a_idx = np.flatnonzero(nxt >= 0)
+    a, b = P[a_idx], P[nxt[a_idx]]
+    d = b - a
+    length = np.hypot(d[:, 0], d[:, 1])
+    keep = length > 1e-9
+    a_idx, a, b, d, length = a_idx[keep], a[keep], b[keep], d[keep], length[keep]
+    poly = np.searchsorted(starts, a_idx, side='right') - 1
+    counts = np.bincount(poly, minlength=len(starts))
+    if cap != 'butt' and (counts == 0).any():
+        return None
+    if len(a) == 0:
+        return np.zeros((0, 2, 2))
+    u = d / length[:, None]
+    nv = np.stack([-u[:, 1], u[:, 0]], 1) * r
+    S = len(a)
+    j = np.arange(S)
+    first = np.ones(S, bool)
+    first[1:] = poly[1:] != poly[:-1]
+    last = np.ones(S, bool)
+    last[:-1] = poly[1:] != poly[:-1]
+    if cap != 'butt':
+        # square (and round, drawn square) caps on open polylines
+        op = ~closed[poly]
+        a = a - (u * r) * (first & op)[:, None]
+        b = b + (u * r) * (last & op)[:, None]
+    pieces = [_polygon_edges(np.stack([a + nv, b + nv, b - nv, a - nv], 1))]
+    # joins: each segment with the next one of its polyline (closed: wrap)
+    head = np.maximum.accumulate(np.where(first, j, 0))
+    nseg = np.where(~last, j + 1, np.where(closed[poly], head, -1))
+    ok = nseg >= 0
+    i1, i2 = j[ok], nseg[ok]
+    if len(i1):
+        v = P[nxt[a_idx[i1]]]
+        cr = u[i1, 0] * u[i2, 1] - u[i1, 1] * u[i2, 0]
+        side = np.where(cr > 0, -1.0, 1.0)[:, None]          # the outer side
+        p1, p2 = v + side * nv[i1], v + side * nv[i2]
+        pieces.append(_polygon_edges(np.stack([v, p1, p2], 1)))
+        if join in ('miter', 'miter-clip', 'arcs'):
+            cos_t = np.clip((u[i1] * u[i2]).sum(1), -1.0, 1.0)   # turning angle
+            # miter length / stroke width = 1 / sin(phi / 2), phi the angle
+            # between the segments = pi - turning angle: 1 / cos(turn / 2)
+            half = np.sqrt(np.maximum((1.0 + cos_t) / 2.0, 0.0))
+            within = (half > 1e-12) & (1.0 <= miterlimit * half) & (cos_t < 1.0 - 1e-12)
+            if within.any():
+                bis = side[within] * (nv[i1][within] + nv[i2][within])
+                bl = np.hypot(bis[:, 0], bis[:, 1])[:, None]
+                tip = v[within] + bis / np.maximum(bl, 1e-300) * (r / half[within][:, None])
+                pieces.append(_polygon_edges(np.stack([p1[within], tip, p2[within]], 1)))
+    return np.concatenate(pieces)
+
+
 def _pixel_box(box, w, h, margin=1):
     """Float device box -> integer pixel box clipped to the target, or None."""
     x0, y0, x1, y1 = box
@@ -498,13 +622,11 @@ def _points_box(pts):
 
 
 def _geometry_box(path, t):
-    """Exact device box of a path's geometry (control box if the exact one
-    is unavailable)."""
-    try:
-        from ..bbox import bbox as exact_bbox
-        return tuple(float(v) for v in exact_bbox(path, transform=t))
-    except (ImportError, RasterError):
-        return _points_box(t.apply(path.points))
+    """Conservative device box of a path's geometry: the box of its
+    transformed control points (a Bezier lies in the hull of its control
+    points).  Used only to size layers, where a slightly large box costs
+    nothing and an exact box costs a root solve per segment."""
+    return _points_box(t.apply(path.points))
 
 
 def _stroke_reach(s):
@@ -713,25 +835,40 @@ def _draw_pixels(n, t, canvas, tol):
     m = _cover(region, t, canvas.width, canvas.height, 'nonzero', True, tol)
     if m is None:
         return
-    cov = m.data
+    cov, x0, y0 = m.data, m.x0, m.y0
     if n.clip is not None:
         x, y, w, h = n.clip
         rect = Path.polygon([(x, y), (x + w, y), (x + w, y + h), (x, y + h)])
         cm = _cover(rect, t, canvas.width, canvas.height, 'nonzero', True, tol)
         if cm is None:
             return
-        cov = cov * cm.full(canvas.width, canvas.height)[m.y0:m.y0 + cov.shape[0],
-                                                         m.x0:m.x0 + cov.shape[1]]
+        # the two windows' intersection only (no canvas-sized arrays)
+        ax0, ay0 = max(m.x0, cm.x0), max(m.y0, cm.y0)
+        ax1 = min(m.x0 + cov.shape[1], cm.x0 + cm.data.shape[1])
+        ay1 = min(m.y0 + cov.shape[0], cm.y0 + cm.data.shape[0])
+        if ax1 <= ax0 or ay1 <= ay0:
+            return
+        cov = (cov[ay0 - m.y0:ay1 - m.y0, ax0 - m.x0:ax1 - m.x0]
+               * cm.data[ay0 - cm.y0:ay1 - cm.y0, ax0 - cm.x0:ax1 - cm.x0])
+        x0, y0 = ax0, ay0
     h, w = cov.shape
-    jj, ii = np.meshgrid(np.arange(w) + m.x0 + 0.5, np.arange(h) + m.y0 + 0.5)
+    jj, ii = np.meshgrid(np.arange(w) + x0 + 0.5, np.arange(h) + y0 + 0.5)
     src = inv.apply(np.stack([jj, ii], -1))
-    p = pix.astype(np.float32) / 255.0
+    u, v = src[..., 0], src[..., 1]
+    # convert only the source pixels the window samples (one pixel of margin
+    # for bilinear neighbours; clamping at a crop edge that is not an image
+    # edge never happens because of the margin)
+    u0 = min(max(int(math.floor(float(u.min()))) - 2, 0), iw - 1)
+    v0 = min(max(int(math.floor(float(v.min()))) - 2, 0), ih - 1)
+    u1 = max(min(int(math.ceil(float(u.max()))) + 2, iw), u0 + 1)
+    v1 = max(min(int(math.ceil(float(v.max()))) + 2, ih), v0 + 1)
+    p = pix[v0:v1, u0:u1].astype(np.float32) * np.float32(1.0 / 255.0)
     pm = np.empty_like(p)
     pm[..., :3] = p[..., :3] * p[..., 3:4]
     pm[..., 3] = p[..., 3]
-    col = _sample(pm, src[..., 0], src[..., 1], smooth=n.smooth, wrap=False)
+    col = _sample(pm, u - u0, v - v0, smooth=n.smooth, wrap=False)
     col = col * cov[..., None]
-    canvas.composite(col.astype(np.float32), m.x0, m.y0, n.opacity)
+    canvas.composite(col.astype(np.float32), x0, y0, n.opacity)
 
 
 def _sample(img, u, v, smooth=True, wrap=False):

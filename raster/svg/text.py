@@ -13,7 +13,8 @@ What is laid out:
   spaces collapsed, leading and trailing spaces dropped; ``preserve``:
   newlines and tabs become spaces);
 * ``x``/``y``/``dx``/``dy`` lists, one value per character, on any element
-  (an absolute ``x`` or ``y`` starts a new *text chunk*);
+  (an absolute ``x`` or ``y`` starts a new *text chunk*), ``rotate`` (one
+  angle per character about its glyph origin, the last angle repeating);
 * fonts from :mod:`raster.fonts` (``font-family``/``-weight``/``-style``/
   ``-stretch``; characters the chosen face lacks are taken from the first
   other face that has them), shaping with HarfBuzz, outlines with fontTools;
@@ -23,22 +24,21 @@ What is laid out:
   overline, line-through from the font's ``post`` and ``OS/2`` tables).
 
 Not supported (a :class:`~raster.errors.RasterWarning` once, then the
-feature is ignored): ``textPath`` (its text is skipped), ``rotate``,
-vertical writing modes, ``textLength``.  Any other failure while laying out
+feature is ignored): ``textPath`` (its text is skipped), vertical writing modes, ``textLength``.  Any other failure while laying out
 one ``text`` element warns and skips that element only: text never stops a
 document from rendering.
 """
 
 import math
-import warnings
 
 import numpy as np
 
-from ..errors import RasterError, RasterWarning
+from .. import limits
+from ..errors import RasterError
 from ..path import Path
 from ..transform import Affine
 from .tree import Fill, Group, PathNode, SolidPaint
-from .values import LengthContext, parse_length, parse_length_list
+from .values import parse_length, parse_length_list, parse_number_list
 
 __all__ = ['build_text', 'collapse_whitespace']
 
@@ -120,7 +120,9 @@ def _weight(value, parent):
         w = float(v)
     except ValueError:
         return parent
-    return int(min(max(w, 1), 1000))
+    if not 1 <= w <= 1000:
+        return parent       # invalid: the inherited weight
+    return int(w)
 
 
 def _spacing(value, ctx):
@@ -185,6 +187,8 @@ def _build(b, el, pinh, pown, st, out):
     owner = []          # span index of each character
     spans = []
     lists = []          # (start index, attr name, values)
+    rot = []            # [start index, angles, element] (last angle repeats)
+    ends = {}           # element -> index after its last character
     state = {'prev': True}
 
     def add_lists(e, ectx, start):
@@ -193,12 +197,13 @@ def _build(b, el, pinh, pown, st, out):
             if s is None:
                 continue
             if axis is None:
-                if s.strip() not in ('', '0'):
-                    b.warn('text-rotate', 'the text rotate attribute is not supported; ignored')
+                vals = parse_number_list(s) if s.strip() else []
+                if vals:
+                    rot.append([start, [float(v) for v in vals], e])
                 continue
             vals = parse_length_list(s, axis, ectx)
             if vals:
-                lists.append((start, name, [float(v) for v in vals]))
+                lists.append((start, name, [float(v) for v in vals], e))
 
     def walk(e, einh, eown, ectx, parent, preserve):
         sp = _Span(e, einh, eown, ectx, parent,
@@ -229,8 +234,11 @@ def _build(b, el, pinh, pown, st, out):
             elif name == 'tref':
                 b.warn('text-tref', 'tref is not supported; ignored')
             add_text(ch.tail)
+        ends[e] = len(chars)
 
-    walk(el, inh, own, ctx, None, el.get(_XML_SPACE) == 'preserve')
+    root_span = _Span(None, pinh, pown, ctx, None, _parent_weight(b, el))
+    walk(el, inh, own, ctx, root_span, el.get(_XML_SPACE) == 'preserve')
+    spans[0].parent = None
     # default mode: drop trailing spaces
     while chars and chars[-1] == ' ' and not _preserved(spans[owner[-1]].el):
         chars.pop()
@@ -244,10 +252,18 @@ def _build(b, el, pinh, pown, st, out):
     dx = np.zeros(n)
     dy = np.zeros(n)
     arrs = {'x': ax, 'y': ay, 'dx': dx, 'dy': dy}
-    for start, name, vals in lists:
-        k = min(len(vals), n - start)
+    for start, name, vals, e in lists:
+        k = min(len(vals), min(ends.get(e, n), n) - start)   # own characters only
         if k > 0:
             arrs[name][start:start + k] = vals[:k]
+    angle = np.zeros(n)
+    for start, vals, e in rot:
+        end = min(ends.get(e, n), n)
+        if start >= end:
+            continue
+        k = min(len(vals), end - start)
+        angle[start:start + k] = vals[:k]
+        angle[start + k:end] = vals[-1]
     if math.isnan(ax[0]):
         ax[0] = 0.0
     if math.isnan(ay[0]):
@@ -263,11 +279,13 @@ def _build(b, el, pinh, pown, st, out):
         sp.font = Font.load(sp.face) if sp.face is not None else None
         sp.ls = _spacing(i.get('letter-spacing'), sp.ctx)
         sp.ws = _spacing(i.get('word-spacing'), sp.ctx)
-        sp.shift = (sp.parent.shift if sp.parent is not None else 0.0) + _baseline_shift(sp)
-        deco = sp.own.get('text-decoration', sp.el.get('text-decoration'))
-        if deco:
-            sp.decor = tuple(w for w in deco.replace(',', ' ').split()
-                             if w in ('underline', 'overline', 'line-through'))
+        # baseline-shift applies to tspans; on the text element itself it
+        # has no effect (as in resvg)
+        sp.shift = (sp.parent.shift + _baseline_shift(sp)) if sp.parent is not None else 0.0
+        decos = [sp.own.get('text-decoration', sp.el.get('text-decoration'))]
+        if sp is spans[0]:
+            decos += _ancestor_decorations(b, el)
+        sp.decor = tuple(w for d in decos for w in _decoration(d))
     # -- layout ------------------------------------------------------------------
     starts = np.flatnonzero(~np.isnan(ax) | ~np.isnan(ay))
     bounds = list(starts) + [n]
@@ -278,7 +296,7 @@ def _build(b, el, pinh, pown, st, out):
         c0, c1 = int(bounds[ci]), int(bounds[ci + 1])
         x0 = ax[c0] if not math.isnan(ax[c0]) else cur_x
         y0 = ay[c0] if not math.isnan(ay[c0]) else cur_y
-        res = _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy)
+        res = _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle)
         if res is None:
             continue
         gl, char_l, char_r, width, end_dy = res
@@ -330,10 +348,51 @@ def _build(b, el, pinh, pown, st, out):
                     over.append((si, _rect(left, yc, right, yc + th)))
     kids = []
     for si, p in under + glyph_runs + over:
+        if len(p.points) and np.abs(p.points).max() > limits.MAX_COORD:
+            b.warn('text-coord', 'text beyond the coordinate limit is not rendered')
+            continue
         node = _paint_node(b, spans[si], p, st)
         if node is not None:
             kids.append(node)
     out.extend(b.wrap(el, own, t, kids, st))
+
+
+def _parent_weight(b, el):
+    """Computed font-weight of the document parent of ``el`` (relative
+    keywords resolved along the ancestor chain)."""
+    chain = []
+    e = el.getparent()
+    while e is not None:
+        chain.append(e)
+        e = e.getparent()
+    w = 400
+    for e in reversed(chain):
+        d = b.styles.get(e)
+        if d and 'font-weight' in d and d['font-weight'] != 'inherit':
+            w = _weight(d['font-weight'], w)
+    return w
+
+
+def _decoration(value):
+    """Decoration kinds of one ``text-decoration`` value (space-separated
+    keywords; anything else makes the whole value invalid: none)."""
+    words = (value or '').split()
+    if not all(w in ('underline', 'overline', 'line-through', 'none') for w in words):
+        return ()
+    return tuple(w for w in words if w != 'none')
+
+
+def _ancestor_decorations(b, el):
+    """text-decoration values declared on document ancestors of ``el``
+    (they decorate the text too)."""
+    out = []
+    e = el.getparent()
+    while e is not None:
+        d = b.styles.get(e)
+        if d and d.get('text-decoration'):
+            out.append(d['text-decoration'])
+        e = e.getparent()
+    return out
 
 
 def _preserved(e):
@@ -387,7 +446,10 @@ def _baseline_shift(sp):
 
 def _dominant(sp):
     """Downward shift of the glyphs making the dominant baseline sit at y."""
-    v = (sp.inh.get('dominant-baseline') or 'auto').strip()
+    v = (sp.own.get('alignment-baseline') or 'auto').strip()
+    if v in ('auto', 'baseline', 'inherit'):
+        v = (sp.inh.get('dominant-baseline') or 'auto').strip()
+    v = {'before-edge': 'text-before-edge', 'after-edge': 'text-after-edge'}.get(v, v)
     f = sp.font
     if f is None:
         return 0.0
@@ -427,7 +489,7 @@ def _fallback_font(db, ch, font, cache={}):
     return r
 
 
-def _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy):
+def _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle):
     """Shape characters ``c0:c1`` of one chunk at origin (0, 0).
 
     Returns ``(glyphs, char_left, char_right, width, total_dy)``: glyphs as
@@ -457,27 +519,44 @@ def _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy):
     glyphs = []
     pen = 0.0
     k = 0
+    # runs of one font are shaped together even across spans (kerning and
+    # ligatures across tspan boundaries, as usvg does); each glyph is then
+    # scaled by the font size of its own span
+    yshift = {}
     while k < m:
-        sp_i, f = owner[c0 + k], fonts[k]
+        f = fonts[k]
         e = k + 1
-        while e < m and owner[c0 + e] == sp_i and fonts[e] is f:
-            e += 1
-        sp = spans[sp_i]
-        text = ''.join(chars[c0 + k:c0 + e])
-        if f is None or sp.fs <= 0:
+        if chars[c0 + k] == ' ':
+            # leading/trailing spaces are shaped on their own: between
+            # right-to-left text and the end of an LTR chunk they stay at
+            # the visual end (a minimal stand-in for the bidi algorithm)
+            while e < m and fonts[e] is f and chars[c0 + e] == ' ':
+                e += 1
+        else:
+            while e < m and fonts[e] is f:
+                e += 1
+            while e - 1 > k and chars[c0 + e - 1] == ' ':
+                e -= 1
+        if f is None:
             char_l[k:e] = char_r[k:e] = pen + before[k:e]
             k = e
             continue
-        s = sp.fs / f.upem
-        yshift = sp.shift + _dominant(sp)
-        shaped = f.shape(text)
+        sp0 = spans[owner[c0 + k]]
+        kern = (sp0.inh.get('font-kerning') or 'auto').strip()
+        no_kern = kern == 'none' or (sp0.inh.get('kerning') or 'auto').strip() == '0'
+        shaped = f.shape(''.join(chars[c0 + k:c0 + e]), {'kern': False} if no_kern else None)
         for gid, cl, xa, ya, xo, yo in shaped:
             j = k + min(int(cl), e - k - 1)
-            gx = pen + before[j] + xo * s
-            gy = cdy[j] + yshift - yo * s
-            glyphs.append((sp_i, f, gid, gx, gy, s))
+            sp_i = int(owner[c0 + j])
+            sp = spans[sp_i]
+            s = sp.fs / f.upem
+            ys = yshift.get(sp_i)
+            if ys is None:
+                ys = yshift[sp_i] = sp.shift + _dominant(sp)
             lo = pen + before[j]
             hi = lo + xa * s
+            if s > 0:
+                glyphs.append((sp_i, f, gid, lo + xo * s, cdy[j] + ys - yo * s, s, angle[c0 + j]))
             char_l[j] = lo if math.isnan(char_l[j]) else min(char_l[j], lo)
             char_r[j] = hi if math.isnan(char_r[j]) else max(char_r[j], hi)
             pen += xa * s
@@ -492,15 +571,17 @@ def _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy):
             np.maximum.accumulate(idx, out=idx)
             idx[idx < 0] = np.flatnonzero(good)[0]
             arr[:] = arr[idx]
-    width = pen + float(extra.sum()) + float(dx[c0:c1].sum())
+    # the letter spacing after the last character is not part of the advance
+    last = spans[owner[c1 - 1]]
+    width = pen + float(extra.sum()) - last.ls + float(dx[c0:c1].sum())
     return glyphs, char_l, char_r, width, float(cdy[-1])
 
 
 def _glyph_path(glyphs, ox, oy):
     """One Path of glyph outlines: each outline (font units, y up) scaled by
     its ``s`` with y flipped and moved to its pen position."""
-    verbs, pts, scales, offs = [], [], [], []
-    for _, f, gid, gx, gy, s in glyphs:
+    verbs, pts, scales, offs, rots = [], [], [], [], []
+    for _, f, gid, gx, gy, s, rot in glyphs:
         p = f.outline(gid)
         if not len(p.verbs):
             continue
@@ -509,14 +590,21 @@ def _glyph_path(glyphs, ox, oy):
         npt = len(p.points)
         scales.append(np.full(npt, s))
         offs.append(np.repeat([[gx + ox, gy + oy]], npt, axis=0))
+        rots.append(np.full(npt, rot))
     if not verbs:
         return Path.empty()
     P = np.concatenate(pts)
     S = np.concatenate(scales)
     O = np.concatenate(offs)
+    X = P[:, 0] * S
+    Y = -P[:, 1] * S
+    R = np.radians(np.concatenate(rots))
+    if R.any():
+        c, s_ = np.cos(R), np.sin(R)
+        X, Y = c * X - s_ * Y, s_ * X + c * Y
     out = np.empty_like(P)
-    out[:, 0] = P[:, 0] * S + O[:, 0]
-    out[:, 1] = -P[:, 1] * S + O[:, 1]
+    out[:, 0] = X + O[:, 0]
+    out[:, 1] = Y + O[:, 1]
     return Path.from_arrays(np.concatenate(verbs), out)
 
 

@@ -84,6 +84,10 @@ class Pattern:
     content_transform: Affine = IDENTITY
     view_box: Optional[Tuple[float, float, float, float]] = None
     id: str = ''
+    # (align, meet_or_slice) for a viewBox; None: 'xMidYMid meet'.  Needed
+    # when patternUnits=objectBoundingBox, where the tile size (and so the
+    # viewBox mapping) is only known when the painted element is.
+    preserve_aspect_ratio: Optional[Tuple[str, str]] = None
 
 
 Paint = Union[SolidPaint, LinearGradient, RadialGradient, Pattern]

@@ -809,31 +809,28 @@ def _css_tf_one(name, a):
 # The one-function lists that real documents are full of (chart and map
 # generators emit ``translate(x,y)`` per element): parsed without building
 # intermediate transforms.  Anything else takes the general path below.
-_TF_SIMPLE_RE = re.compile(r'[ \t\r\n]*(translate|scale|matrix)[ \t\r\n]*\('
-                           r'[ \t\r\n]*(' + NUMBER + r')(?:(?:[ \t\r\n]*,[ \t\r\n]*'
-                           r'|[ \t\r\n]+|(?=[+.-]))(' + NUMBER + r'))?'
-                           r'((?:(?:[ \t\r\n]*,[ \t\r\n]*|[ \t\r\n]+|(?=[+.-]))'
-                           + NUMBER + r'){4})?[ \t\r\n]*\)[ \t\r\n]*')
+_TF_SIMPLE_RE = re.compile(r'[ \t\r\n]*(translate|scale|matrix)[ \t\r\n]*'
+                           r'\(([^()]*)\)[ \t\r\n]*')
 
 
 def _simple_transform(s):
-    """``translate``/``scale``/``matrix`` alone, or None (not that form)."""
+    """``translate``/``scale``/``matrix`` alone (same arguments as the
+    general path accepts), or None when ``s`` is not that form."""
     m = _TF_SIMPLE_RE.fullmatch(s)
     if m is None:
         return None
-    name, a, b, rest = m.groups()
-    if name == 'matrix':
-        if b is None or rest is None:
-            return None
-        vals = [float(a), float(b)] + [float(v) for v in _NUM_RE.findall(rest)]
-        return Affine(*vals)
-    if rest is not None:
+    name = m.group(1)
+    args = parse_number_list(m.group(2))
+    if args is None:
         return None
-    x = float(a)
-    y = float(b) if b is not None else None
-    if name == 'translate':
-        return Affine(1.0, 0.0, 0.0, 1.0, x, 0.0 if y is None else y)
-    return Affine(x, 0.0, 0.0, x if y is None else y, 0.0, 0.0)
+    n = len(args)
+    if name == 'translate' and (n == 1 or n == 2):
+        return Affine(1.0, 0.0, 0.0, 1.0, args[0], args[1] if n == 2 else 0.0)
+    if name == 'scale' and (n == 1 or n == 2):
+        return Affine(args[0], 0.0, 0.0, args[-1], 0.0, 0.0)
+    if name == 'matrix' and n == 6:
+        return Affine(*args)
+    return None
 
 
 @functools.lru_cache(maxsize=8192)

@@ -1,0 +1,344 @@
+"""Tests of raster.svg.filters: pixel operations, resolution and rendering."""
+
+import os
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+from PIL import Image
+
+import raster
+from raster.errors import RasterError
+from raster.svg import filters as F
+from raster.testing import compare_images
+
+SUITE = '/work/shared/resvg-suite'
+
+
+def _img(h, w, seed=0):
+    """Random premultiplied RGBA image (colour <= alpha)."""
+    rng = np.random.default_rng(seed)
+    a = rng.random((h, w, 1), dtype=np.float32)
+    c = rng.random((h, w, 3), dtype=np.float32) * a
+    return np.concatenate([c, a], -1).astype(np.float32)
+
+
+# ---------------------------------------------------------------------------
+# Gaussian blur
+# ---------------------------------------------------------------------------
+
+@pytest.mark.parametrize('sigma', [0.7, 1.5, 3.0, 6.0])
+def test_blur_of_constant_image_is_constant_inside(sigma):
+    img = np.zeros((80, 80, 4), np.float32)
+    img[...] = (0.2, 0.3, 0.1, 0.5)
+    out = F.gaussian_blur(img, sigma)
+    r = int(4 * sigma) + 3
+    inner = out[r:-r, r:-r]
+    assert np.allclose(inner, (0.2, 0.3, 0.1, 0.5), atol=1e-5)
+    # at the border transparency leaks in
+    assert out[0, 40, 3] < 0.5 - 0.05
+
+
+@pytest.mark.parametrize('sigma', [0.8, 1.9, 2.5, 7.0])
+def test_blur_conserves_total_alpha_away_from_edges(sigma):
+    img = np.zeros((101, 101, 4), np.float32)
+    img[45:56, 40:60] = 1.0
+    out = F.gaussian_blur(img, sigma, sigma * 0.5)
+    assert abs(out[..., 3].sum() - img[..., 3].sum()) < 1e-3 * img[..., 3].sum()
+
+
+def test_blur_of_a_point_matches_the_gaussian_variance():
+    # the variance of the blurred delta equals sigma^2 (exact kernel) and
+    # is close to it for the box approximation (3 boxes of width d:
+    # variance 3 (d^2 - 1) / 12)
+    img = np.zeros((1, 201, 4), np.float32)
+    img[0, 100] = 1
+    x = np.arange(201) - 100.0
+    for s in (1.0, 1.5):
+        out = F.gaussian_blur(img, s, 0)[0, :, 3]
+        assert abs((out * x * x).sum() - s * s) < 0.02 * s * s
+    out = F.gaussian_blur(img, 10.0, 0, tolerance=None)[0, :, 3]
+    d = int(np.floor(10 * 3 * np.sqrt(2 * np.pi) / 4 + 0.5))
+    assert d == 19
+    assert abs((out * x * x).sum() - 3 * (d * d - 1) / 12) < 1e-3
+
+
+def test_blur_tolerance_is_honoured():
+    # the blur of a delta has the variance of the kernel; with the default
+    # tolerance its standard deviation is within 0.25 px of sigma (box
+    # blurs allowed), with a tight tolerance the exact kernel is used and
+    # the centre value is the Gaussian's 1 / (sqrt(2 pi) sigma)
+    img = np.zeros((1, 201, 4), np.float32)
+    img[0, 100] = 1
+    x = np.arange(201) - 100.0
+    for s in np.linspace(1.0, 12.0, 23):
+        for tol in (0.25, 0.1, 0.02):
+            out = F.gaussian_blur(img, s, 0, tolerance=tol)[0, :, 3]
+            assert abs(np.sqrt((out * x * x).sum()) - s) <= tol + 0.01
+    s = 3.0
+    exact = F.gaussian_blur(img, s, 0, tolerance=0.01)[0, 100, 3]
+    assert abs(exact - 1 / (np.sqrt(2 * np.pi) * s)) < 1e-3
+
+
+def test_zero_sigma_is_identity():
+    img = _img(10, 12)
+    assert np.array_equal(F.gaussian_blur(img, 0, 0), img)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.floats(0.3, 12.0), st.integers(0, 10_000))
+def test_blur_keeps_premultiplied_invariants(sigma, seed):
+    out = F.gaussian_blur(_img(24, 30, seed), sigma)
+    assert out.dtype == np.float32 and out.shape == (24, 30, 4)
+    assert (out >= -1e-6).all() and (out <= 1 + 1e-5).all()
+    assert (out[..., :3] <= out[..., 3:4] + 1e-5).all()
+
+
+def test_blur_bad_input_raises():
+    with pytest.raises(F.FilterError):
+        F.gaussian_blur(np.zeros((4, 4)), 1.0)
+    with pytest.raises(RasterError):
+        F.gaussian_blur(np.zeros((4, 4, 4), np.float32), float('nan'))
+    with pytest.raises(F.FilterError):
+        F.gaussian_blur(np.zeros((4, 4, 4), np.float32), 1.0, tolerance=0)
+    with pytest.raises(F.FilterError):
+        F.offset(np.zeros((4, 4, 4), np.float32), float('inf'), 0)
+
+
+# ---------------------------------------------------------------------------
+# Offset, flood, composite, colour
+# ---------------------------------------------------------------------------
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(-12, 12), st.integers(-12, 12))
+def test_offset_shifts_by_whole_pixels(dx, dy):
+    img = _img(20, 20, 3)
+    out = F.offset(img, dx, dy)
+    h, w = img.shape[:2]
+    for i, j in [(5, 5), (10, 3), (0, 19), (19, 0)]:
+        ii, jj = i + dy, j + dx
+        if 0 <= ii < h and 0 <= jj < w:
+            assert np.array_equal(out[ii, jj], img[i, j])
+    # what moved in from outside is transparent
+    if dx > 0:
+        assert not out[:, :dx].any()
+    if dy < 0:
+        assert not out[h + dy:].any()
+
+
+def test_offset_inverse_restores_inside():
+    img = _img(16, 16, 4)
+    back = F.offset(F.offset(img, 3, -2), -3, 2)
+    assert np.array_equal(back[2:, :13], img[2:, :13])
+
+
+# premultiplied (r, g, b, a) for a = half-transparent red over b = opaque blue
+A = np.array([[[0.5, 0.0, 0.0, 0.5]]], np.float32)
+B = np.array([[[0.0, 0.0, 1.0, 1.0]]], np.float32)
+
+
+@pytest.mark.parametrize('op,expected', [
+    ('over', [0.5, 0.0, 0.5, 1.0]),        # A + B (1 - Aa)
+    ('in', [0.5, 0.0, 0.0, 0.5]),          # A Ba
+    ('out', [0.0, 0.0, 0.0, 0.0]),         # A (1 - Ba)
+    ('atop', [0.5, 0.0, 0.5, 1.0]),        # A Ba + B (1 - Aa)
+    ('xor', [0.0, 0.0, 0.5, 0.5]),         # A (1 - Ba) + B (1 - Aa)
+])
+def test_composite_operators_hand_computed(op, expected):
+    assert np.allclose(F.composite(A, B, op)[0, 0], expected)
+
+
+def test_composite_arithmetic_hand_computed():
+    # k1 A B + k2 A + k3 B + k4 = 0.5 A + 0.5 B, then colour <= alpha
+    out = F.composite(A, B, 'arithmetic', (0, 0.5, 0.5, 0))[0, 0]
+    assert np.allclose(out, [0.25, 0.0, 0.5, 0.75])
+    # k4 alone: a flat grey, clamped
+    out = F.composite(A, B, 'arithmetic', (0, 0, 0, 2))[0, 0]
+    assert np.allclose(out, [1, 1, 1, 1])
+    # k1 A B only: product
+    out = F.composite(A, B, 'arithmetic', (1, 0, 0, 0))[0, 0]
+    assert np.allclose(out, [0, 0, 0, 0.5])
+
+
+def test_composite_bad_operator_and_shapes():
+    with pytest.raises(F.FilterError):
+        F.composite(A, B, 'plus')
+    with pytest.raises(F.FilterError):
+        F.composite(A, np.zeros((2, 2, 4), np.float32))
+
+
+def test_blend_normal_is_over_and_multiply_hand_computed():
+    img1, img2 = _img(6, 7, 1), _img(6, 7, 2)
+    assert np.allclose(F.blend(img1, img2, 'normal'), F.composite(img1, img2, 'over'),
+                       atol=1e-6)
+    # opaque colours: multiply is the product of the colours
+    a = np.array([[[0.5, 1.0, 0.2, 1.0]]], np.float32)
+    b = np.array([[[0.4, 0.5, 1.0, 1.0]]], np.float32)
+    assert np.allclose(F.blend(a, b, 'multiply')[0, 0], [0.2, 0.5, 0.2, 1.0])
+
+
+def test_color_matrix_identity_and_luminance_to_alpha():
+    img = _img(9, 11, 5)
+    ident = F._color_matrix_of('matrix', None)
+    assert np.allclose(F.color_matrix(img, ident), img, atol=1e-6)
+    # saturate 1 and hueRotate 0 are the identity too
+    for kind, v in (('saturate', '1'), ('hueRotate', '0')):
+        m = F._color_matrix_of(kind, v)
+        assert np.allclose(F.color_matrix(img, m), img, atol=2e-3)
+    m = F._color_matrix_of('luminanceToAlpha', None)
+    white = np.ones((1, 1, 4), np.float32)
+    assert np.allclose(F.color_matrix(white, m)[0, 0], [0, 0, 0, 1.0], atol=1e-4)
+    with pytest.raises(F.FilterError):
+        F.color_matrix(img, np.eye(4))
+
+
+def test_component_transfer_functions():
+    img = np.array([[[0.25, 0.5, 0.75, 1.0]]], np.float32)
+    out = F.component_transfer(img, {0: ('linear', (2.0, 0.1)),        # 0.6
+                                     1: ('table', (0.0, 1.0, 0.0)),     # 1.0 at the middle
+                                     2: ('discrete', (0.2, 0.4)),       # 0.4
+                                     3: ('gamma', (0.5, 1.0, 0.0))})    # 0.5
+    a = 0.5
+    assert np.allclose(out[0, 0], [0.6 * a, 1.0 * a, 0.4 * a, a], atol=1e-6)
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.floats(0, 1), st.floats(0, 1), st.floats(0, 1))
+def test_linear_rgb_round_trip(r, g, b):
+    c = np.array([r, g, b], np.float32)
+    back = F.linear_to_srgb(F.srgb_to_linear(c))
+    assert np.allclose(back, c, atol=2e-5)
+
+
+def test_srgb_to_linear_known_values():
+    # sRGB 0.5 is 21.4 % linear light; the curve is monotone
+    assert abs(float(F.srgb_to_linear(0.5)) - 0.21404) < 1e-4
+    x = np.linspace(0, 1, 101)
+    assert (np.diff(F.srgb_to_linear(x)) > 0).all()
+
+
+def test_morphology_dilate_and_erode_of_a_square():
+    img = np.zeros((21, 21, 4), np.float32)
+    img[8:13, 8:13] = 1
+    d = F.morphology(img, 2, 1, 'dilate')
+    assert d[..., 3].sum() == (5 + 4) * (5 + 2)
+    e = F.morphology(img, 1, 1, 'erode')
+    assert e[..., 3].sum() == 3 * 3
+    assert np.array_equal(F.morphology(d, 2, 1, 'erode')[..., 3], img[..., 3])
+
+
+# ---------------------------------------------------------------------------
+# Documents
+# ---------------------------------------------------------------------------
+
+def _svg(defs, body, size=40):
+    return ('<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d">%s%s</svg>'
+            % (size, size, defs, body)).encode()
+
+
+def _render(src, **kw):
+    with warnings.catch_warnings():
+        warnings.simplefilter('ignore')
+        return raster.render(src, **kw)
+
+
+def test_invalid_filter_reference_is_not_rendered():
+    img = _render(_svg('', '<rect width="40" height="40" fill="red" filter="url(#nope)"/>'))
+    assert not img[..., 3].any()
+    # a reference to something that is not a filter: not rendered either
+    img = _render(_svg('<linearGradient id="g"/>',
+                       '<rect width="40" height="40" fill="red" filter="url(#g)"/>'))
+    assert not img[..., 3].any()
+
+
+def test_empty_filter_and_zero_region_are_not_rendered():
+    for f in ('<filter id="f"/>',
+              '<filter id="f" width="-1"><feOffset/></filter>'):
+        img = _render(_svg(f, '<rect width="40" height="40" fill="red" filter="url(#f)"/>'))
+        assert not img[..., 3].any()
+
+
+def test_flood_fills_the_subregion():
+    defs = ('<filter id="f" filterUnits="userSpaceOnUse" x="0" y="0" width="40" height="40">'
+            '<feFlood flood-color="#00ff00" flood-opacity="0.5" x="10" y="5" width="20" '
+            'height="10"/></filter>')
+    img = _render(_svg(defs, '<rect width="1" height="1" filter="url(#f)"/>'))
+    a = img[..., 3]
+    assert (a[5:15, 10:30] == 128).all()
+    assert a.sum() == 128 * 200
+    assert tuple(img[8, 15, :3]) == (0, 255, 0)
+
+
+def test_offset_in_a_document_moves_by_device_pixels():
+    defs = '<filter id="f" x="-1" y="-1" width="3" height="3"><feOffset dx="3" dy="2"/></filter>'
+    img = _render(_svg(defs, '<rect x="10" y="10" width="10" height="10" fill="blue" '
+                             'filter="url(#f)"/>'), zoom=2)
+    a = img[..., 3]
+    ys, xs = np.nonzero(a)
+    assert (ys.min(), ys.max(), xs.min(), xs.max()) == (24, 43, 26, 45)
+
+
+def test_filter_region_clips_and_default_region_is_ten_percent():
+    # a huge offset moves everything outside the default region (-10%..120%)
+    defs = '<filter id="f"><feOffset dx="15"/></filter>'
+    img = _render(_svg(defs, '<rect x="10" y="10" width="10" height="10" fill="blue" '
+                             'filter="url(#f)"/>'))
+    assert not img[..., 3].any()
+    defs = '<filter id="f"><feOffset dx="1"/></filter>'
+    img = _render(_svg(defs, '<rect x="10" y="10" width="10" height="10" fill="blue" '
+                             'filter="url(#f)"/>'))
+    ys, xs = np.nonzero(img[..., 3])
+    assert (xs.min(), xs.max()) == (11, 20)
+
+
+def test_blur_in_document_is_translation_invariant():
+    defs = '<filter id="f"><feGaussianBlur stdDeviation="2"/></filter>'
+    a = _render(_svg(defs, '<rect x="8" y="8" width="10" height="10" fill="teal" '
+                           'filter="url(#f)"/>', 60))
+    b = _render(_svg(defs, '<rect x="28" y="18" width="10" height="10" fill="teal" '
+                           'filter="url(#f)"/>', 60))
+    assert np.array_equal(np.roll(a, (10, 20), (0, 1)), b)
+
+
+def test_unsupported_primitive_warns_and_does_not_break():
+    defs = '<filter id="f"><feTurbulence baseFrequency="0.1"/></filter>'
+    with pytest.warns(raster.errors.RasterWarning):
+        img = raster.render(_svg(defs, '<rect width="40" height="40" fill="red" '
+                                       'filter="url(#f)"/>'
+                                       '<rect width="5" height="5" fill="blue"/>'))
+    assert img[2, 2, 2] == 255
+
+
+# ---------------------------------------------------------------------------
+# resvg suite cases
+# ---------------------------------------------------------------------------
+
+SUITE_CASES = [
+    'filters/filter/simple-case', 'filters/filter/no-children',
+    'filters/filter/invalid-FuncIRI', 'filters/filter/in-to-invalid-1',
+    'filters/filter/invalid-region', 'filters/filter/negative-subregion',
+    'filters/filter/color-interpolation-filters=sRGB',
+    'filters/filter/in=SourceAlpha',
+    'filters/feGaussianBlur/stdDeviation-with-two-values',
+    'filters/feGaussianBlur/huge-stdDeviation',
+    'filters/feOffset/only-dx', 'filters/feOffset/with-primitiveUnits=objectBoundingBox',
+    'filters/feFlood/partial-subregion', 'filters/feFlood/with-opacity',
+    'filters/feComposite/operator=xor', 'filters/feComposite/operator=arithmetic-with-some-k1-4',
+    'filters/feBlend/mode=multiply', 'filters/feColorMatrix/type=hueRotate',
+    'filters/feColorMatrix/type=luminanceToAlpha',
+    'filters/feComponentTransfer/type=table-on-blue', 'filters/feComponentTransfer/mixed-types',
+    'filters/feDropShadow/only-stdDeviation', 'filters/feMorphology/radius=10-1',
+    'filters/feMerge/color-interpolation-filters=linearRGB',
+]
+
+
+@pytest.mark.skipif(not os.path.isdir(SUITE), reason='resvg suite not available')
+@pytest.mark.parametrize('case', SUITE_CASES)
+def test_suite_case(case):
+    base = os.path.join(SUITE, 'tests', case)
+    expected = np.asarray(Image.open(base + '.png').convert('RGBA'))
+    actual = _render(base + '.svg', width=expected.shape[1],
+                     resources_dir=os.path.join(SUITE, 'resources'))
+    r = compare_images(expected, actual)
+    assert r.passed, (case, r)

@@ -1,0 +1,240 @@
+"""Tests of raster.svg.text: SVG text laid out as glyph outlines."""
+import os
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+from PIL import Image
+
+from raster.bbox import bbox
+from raster.errors import RasterWarning
+from raster.fonts import Font, FontDB
+from raster.path import Path
+from raster.svg import load_svg, render
+from raster.svg.text import collapse_whitespace
+from raster.svg.tree import PathNode, walk
+from raster.testing import compare_images
+
+HERE = os.path.dirname(__file__)
+SUITE = os.path.normpath(os.path.join(HERE, '..', '..', 'shared', 'resvg-suite'))
+FONTS = os.path.join(SUITE, 'fonts')
+NS = 'xmlns="http://www.w3.org/2000/svg"'
+
+
+def doc(body, extra=''):
+    return ('<svg %s width="400" height="200" %s>%s</svg>' % (NS, extra, body)).encode()
+
+
+def text_paths(body, font_dirs=(FONTS,)):
+    """(path, abs transform, node) of every PathNode of a document."""
+    tree = load_svg(doc(body), font_dirs=font_dirs)
+    return [(n.path.transform(t), n) for n, t in walk(tree.root) if isinstance(n, PathNode)]
+
+
+def ink(body):
+    ps = text_paths(body)
+    assert ps, 'no text drawn'
+    return bbox(Path.concat([p for p, _ in ps]))
+
+
+@pytest.fixture(scope='module')
+def noto():
+    return Font.load(FontDB([FONTS]).match(['Noto Sans']))
+
+
+def advance(font, text, size):
+    return sum(g[2] for g in font.shape(text)) * size / font.upem
+
+
+# -- whitespace ---------------------------------------------------------------
+
+def test_collapse_whitespace_default_and_preserve():
+    assert collapse_whitespace('\n  Hello \t  world\n ') == ('Hello world ', True)
+    assert collapse_whitespace('a  b', prev_space=False) == ('a b', False)
+    assert collapse_whitespace('  x ', preserve=True) == ('  x ', True)
+    assert collapse_whitespace('a\tb\nc', preserve=True) == ('a b c', False)
+
+
+def test_collapsed_text_draws_like_single_spaces():
+    a = text_paths('<text x="10" y="50" font-family="Noto Sans">A B</text>')
+    b = text_paths('<text x="10" y="50" font-family="Noto Sans">\n   A  \n  B   </text>')
+    assert len(a) == len(b) == 1
+    assert a[0][0] == b[0][0]
+
+
+# -- positions ------------------------------------------------------------------
+
+def test_glyph_origin_and_advance_of_known_string(noto):
+    """'Hilmn' in Noto Sans 50px: the ink box lies in [x, x + advance],
+    the advance being the hmtx sum (no kerning among these letters); the
+    'H' stem sits on the baseline y."""
+    x, y, size = 20.0, 100.0, 50.0
+    x0, y0, x1, y1 = ink('<text x="%g" y="%g" font-family="Noto Sans" font-size="%g">'
+                         'Hilmn</text>' % (x, y, size))
+    adv = advance(noto, 'Hilmn', size)
+    assert x < x0 < x + 0.2 * size
+    assert x + adv - 0.2 * size < x1 < x + adv
+    assert y1 == pytest.approx(y)          # no descenders: bottom is the baseline
+    assert y0 < y - noto.cap_height * size / noto.upem + 0.5     # 'l' rises above 'H'
+
+
+@pytest.mark.parametrize('anchor, frac', [('start', 0.0), ('middle', 0.5), ('end', 1.0)])
+def test_text_anchor_shifts_by_advance_fraction(noto, anchor, frac):
+    base = ink('<text x="200" y="80" font-family="Noto Sans" font-size="40">Hello</text>')
+    box = ink('<text x="200" y="80" font-family="Noto Sans" font-size="40" '
+              'text-anchor="%s">Hello</text>' % anchor)
+    w = advance(noto, 'Hello', 40)
+    np.testing.assert_allclose(np.subtract(box, base), [-frac * w, 0, -frac * w, 0], atol=1e-9)
+
+
+def test_text_anchor_middle_centres_symmetric_ink_box():
+    """'HOH' is nearly mirror-symmetric: with text-anchor=middle its ink
+    box is centred on x within half a pixel."""
+    x0, _, x1, _ = ink('<text x="200" y="80" font-family="Noto Sans" font-size="40" '
+                       'text-anchor="middle">HOH</text>')
+    assert abs((x0 + x1) / 2 - 200) < 0.5
+
+
+def test_tspan_dx_dy_shift_following_glyphs():
+    plain = text_paths('<text x="10" y="50" font-family="Noto Sans">A<tspan>B</tspan></text>')
+    moved = text_paths('<text x="10" y="50" font-family="Noto Sans">'
+                       'A<tspan dx="7" dy="-3">B</tspan></text>')
+    assert len(plain) == len(moved) == 2
+    np.testing.assert_allclose(moved[0][0].points, plain[0][0].points)
+    np.testing.assert_allclose(moved[1][0].points, plain[1][0].points + [7, -3])
+
+
+def test_dx_list_applies_per_character():
+    plain = text_paths('<text x="10" y="50" font-family="Noto Sans">ABC</text>')[0][0]
+    moved = text_paths('<text x="10" y="50" dx="1 2 3" font-family="Noto Sans">ABC</text>')[0][0]
+    # A moves 1, B 1+2, C 1+2+3: the difference takes exactly those values
+    d = np.unique(np.round(moved.points[:, 0] - plain.points[:, 0], 9))
+    assert d.tolist() == [1.0, 3.0, 6.0]
+
+
+def test_absolute_x_list_starts_chunks():
+    """Every absolute x starts a new chunk: one PathNode per 'I', each
+    starting just right of its x (the left side bearing)."""
+    ps = text_paths('<text x="10 100 200" y="50" font-family="Noto Sans">III</text>')
+    lefts = [bbox(p)[0] for p, _ in ps]
+    assert len(lefts) == 3
+    np.testing.assert_allclose(np.subtract(lefts, [10, 100, 200]), lefts[0] - 10)
+    assert 0 < lefts[0] - 10 < 5
+
+
+def test_letter_and_word_spacing_widen_by_count(noto):
+    a = ink('<text x="10" y="50" font-family="Noto Sans" font-size="20">HI HI</text>')
+    b = ink('<text x="10" y="50" font-family="Noto Sans" font-size="20" '
+            'letter-spacing="3" word-spacing="5">HI HI</text>')
+    # last glyph 'I' is preceded by 4 characters (3 letter gaps + 1 space gap)
+    assert b[2] - a[2] == pytest.approx(4 * 3 + 5)
+    assert b[0] == pytest.approx(a[0])
+
+
+@given(st.floats(-500, 500), st.floats(-500, 500))
+@settings(max_examples=30, deadline=None)
+def test_translation_invariance(tx, ty):
+    a = text_paths('<text x="10" y="50" font-family="Noto Sans">Ag</text>')[0][0]
+    b = text_paths('<text x="%r" y="%r" font-family="Noto Sans">Ag</text>'
+                   % (10 + tx, 50 + ty))[0][0]
+    np.testing.assert_allclose(b.points, a.points + [tx, ty], atol=1e-9)
+
+
+def test_font_size_scales_outline_about_origin():
+    a = text_paths('<text x="0" y="0" font-family="Noto Sans" font-size="10">g</text>')[0][0]
+    b = text_paths('<text x="0" y="0" font-family="Noto Sans" font-size="30">g</text>')[0][0]
+    np.testing.assert_allclose(b.points, a.points * 3, atol=1e-9)
+
+
+def test_baseline_shift_super_and_length():
+    base = ink('<text x="10" y="100" font-family="Noto Sans" font-size="20">'
+               'x<tspan>x</tspan></text>')
+    up = text_paths('<text x="10" y="100" font-family="Noto Sans" font-size="20">'
+                    'x<tspan baseline-shift="7">x</tspan></text>')
+    assert bbox(up[1][0])[3] == pytest.approx(base[3] - 7)
+
+
+# -- paint ----------------------------------------------------------------------
+
+def test_fill_stroke_and_opacity_resolved_per_span():
+    ps = text_paths('<text x="10" y="50" font-family="Noto Sans" fill="red" '
+                    'stroke="blue" stroke-width="2">A<tspan fill="#00ff00">B</tspan></text>')
+    (_, a), (_, b) = ps
+    assert a.fill.paint.color == (1.0, 0.0, 0.0, 1.0)
+    assert b.fill.paint.color == (0.0, 1.0, 0.0, 1.0)
+    assert a.stroke.width == 2 and b.stroke.paint.color == (0.0, 0.0, 1.0, 1.0)
+
+
+def test_underline_adds_a_rectangle_below_baseline(noto):
+    ps = text_paths('<text x="10" y="50" font-family="Noto Sans" font-size="20" '
+                    'text-decoration="underline">HI</text>')
+    assert len(ps) == 2                     # underline first, then glyphs
+    ux0, uy0, ux1, uy1 = bbox(ps[0][0])
+    s = 20 / noto.upem
+    assert ux0 == pytest.approx(10) and ux1 == pytest.approx(10 + advance(noto, 'HI', 20))
+    assert (uy0 + uy1) / 2 == pytest.approx(50 - noto.underline_position * s)
+    assert uy1 - uy0 == pytest.approx(noto.underline_thickness * s)
+
+
+def test_text_in_clip_path_clips():
+    img = render(doc('<clipPath id="c"><text x="0" y="150" font-size="200" '
+                     'font-family="Noto Sans">I</text></clipPath>'
+                     '<rect width="400" height="200" fill="blue" clip-path="url(#c)"/>'),
+                 font_dirs=[FONTS])
+    assert img[100, 2, 3] == 0 and img[100, 300, 3] == 0
+    assert (img[:, :, 3] == 255).sum() > 1000
+
+
+# -- robustness -------------------------------------------------------------------
+
+def test_missing_font_dir_warns_and_renders_rest(tmp_path):
+    body = '<rect width="10" height="10" fill="red"/><text x="20" y="50">Hi</text>'
+    with pytest.warns(RasterWarning, match='no fonts'):
+        img = render(doc(body), font_dirs=[str(tmp_path / 'missing')])
+    assert tuple(img[5, 5]) == (255, 0, 0, 255)
+    assert img[:, 15:].max() == 0
+
+
+@pytest.mark.parametrize('body', [
+    '<text x="a" y="b" font-size="-3">x</text>',
+    '<text font-size="0">x</text>',
+    '<text x="1e308" y="1e308" font-size="1e300">xyz</text>',
+    '<text font-family="">\ue000\ud7ff\U0010fff0</text>',
+    '<text><textPath href="#p">on a path</textPath></text>',
+    '<text rotate="30">r</text>',
+    '<text letter-spacing="1e308">ab</text>',
+    '<text><tspan><tspan><tspan dx="1 2 3 4 5 6 7">deep</tspan></tspan></tspan></text>',
+])
+def test_bad_or_unsupported_text_never_raises(body):
+    with warnings.catch_warnings():
+        warnings.simplefilter('ignore')
+        img = render(doc('<rect width="5" height="5"/>' + body), font_dirs=[FONTS])
+    assert img[2, 2, 3] == 255
+
+
+# -- suite cases ------------------------------------------------------------------
+
+PASSING = [
+    'text/text/simple-case', 'text/text/nested', 'text/text/xml-space', 'text/text/transform',
+    'text/text/x-and-y-with-multiple-values', 'text/text/dx-and-dy-with-multiple-values',
+    'text/text/x-and-y-with-multiple-values-and-tspan', 'text/text/zalgo',
+    'text/tspan/mixed', 'text/tspan/nested', 'text/tspan/with-dy', 'text/tspan/xml-space-2',
+    'text/font-size/simple-case', 'text/font-size/percent-value', 'text/font-family/serif',
+    'text/font-family/sans-serif', 'text/font-family/cursive', 'text/font-weight/700',
+    'text/font-style/italic', 'text/text-anchor/end-on-text', 'text/text-anchor/on-tspan',
+    'text/letter-spacing/1mm', 'text/word-spacing/10', 'text/baseline-shift/sub',
+    'text/baseline-shift/nested-super', 'text/text-decoration/line-through',
+    'text/text-decoration/overline', 'text/text-decoration/tspan-decoration',
+]
+
+
+@pytest.mark.parametrize('case', PASSING)
+def test_suite_case_matches_resvg_reference(case):
+    svg = os.path.join(SUITE, 'tests', case + '.svg')
+    ref = np.asarray(Image.open(svg[:-4] + '.png').convert('RGBA'))
+    with warnings.catch_warnings():
+        warnings.simplefilter('ignore')
+        img = render(svg, width=ref.shape[1], font_dirs=[FONTS])
+    r = compare_images(ref, img)
+    assert r.passed, r.reason
