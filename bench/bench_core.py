@@ -10,7 +10,8 @@ of timed repeats; the median is reported).  Rows:
     boundary pixel hold a tangled chain (recomputed exactly).
 (b) flatten 10,000 random cubics at tolerance 0.25.
 (c) stroke a 10,000-segment dashed polyline (raster.stroke) and fill it.
-(d) PNG encode time of the 2000x2000 result at zlib levels 1, 3, 6.
+(d) PNG encode time of the 2000x2000 result at zlib levels 1, 3, 6 with
+    the default and the run-length (Z_RLE) strategies, and Canvas.save_png.
 
 For each row: median wall time, segments per second through
 flatten + scan conversion (the canvas fill is timed separately), and the
@@ -176,12 +177,22 @@ def bench_stroke(repeats):
 def bench_png(canvas):
     img = canvas.to_image()
     for level in (1, 3, 6):
-        def enc():
-            b = io.BytesIO()
-            img.save(b, format='PNG', compress_level=level)
-            return len(b.getvalue())
-        t, size = timed(enc, 3)
-        print('(d) PNG 2000x2000 level %d: %7.1f ms  %8d bytes' % (level, t * 1e3, size))
+        for strategy, name in ((-1, 'default'), (3, 'Z_RLE')):
+            def enc():
+                b = io.BytesIO()
+                img.save(b, format='PNG', compress_level=level, compress_type=strategy)
+                return len(b.getvalue())
+            t, size = timed(enc, 3)
+            print('(d) PNG 2000x2000 level %d %-7s: %7.1f ms (cpu %6.1f)  %8d bytes'
+                  % (level, name, t * 1e3, CPU['enc'] * 1e3, size))
+
+    def save():
+        b = io.BytesIO()
+        canvas.save_png(b)
+        return len(b.getvalue())
+    t, size = timed(save, 3)
+    print('(d) Canvas.save_png default (to_rgba8 + encode): %7.1f ms (cpu %6.1f)  %8d bytes'
+          % (t * 1e3, CPU['save'] * 1e3, size))
 
 
 def main():

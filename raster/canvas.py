@@ -187,11 +187,11 @@ class Canvas:
         alpha = np.float32(a)
         vec = np.array([r, g, b, 1.0], np.float32)
         if k.size <= _SPARSE_MAX and self.data.flags.c_contiguous:
-            idx = np.flatnonzero(k)
-            if len(idx) == 0:
+            nnz = np.count_nonzero(k)
+            if nnz == 0:
                 return
-            if len(idx) * _SPARSE_SHARE <= k.size:
-                self._fill_pixels(idx, k, dst_sl, alpha, vec)
+            if nnz * _SPARSE_SHARE <= k.size:
+                self._fill_pixels(np.flatnonzero(k), k, dst_sl, alpha, vec)
                 return
         # crop to the rows holding coverage (masks are often mostly empty)
         rows = np.flatnonzero(k.any(axis=1))

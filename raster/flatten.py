@@ -130,7 +130,7 @@ def _blossom(P, a, b):
     # combination of the P_j: the weights are the convolution of the
     # Bernstein weights of degree n-i at a and of degree i at b.  They are
     # exact at t = 0 and t = 1 (Q_n = P_n exactly when b = 1).
-    if n > _TABLE_DEGREE:
+    if n > _TABLE_DEGREE or m > _TABLE_PIECES:
         return _blossom_loops(P, a, b)
     ii, jj, rr, kk, coef, S = _blossom_table(n)
     X = np.empty((n1, 4, m))
@@ -175,8 +175,11 @@ def _blossom_loops(P, a, b):
     return Q
 
 
-# Highest degree whose blossom weights are computed from index tables.
+# Highest degree, and most pieces, for which the blossom weights are
+# computed from index tables (fewer numpy calls; the term-by-term loops are
+# faster for many pieces).
 _TABLE_DEGREE = 8
+_TABLE_PIECES = 256
 _BLOSSOM_TABLES = {}
 
 

@@ -337,6 +337,59 @@ class Font:
         self._outlines = {}
         self._cmap = tt.getBestCmap() or {}
 
+    @property
+    def axes(self):
+        """Variation axes: dict tag -> (min, default, max); empty for a
+        static font."""
+        if 'fvar' not in self.tt:
+            return {}
+        return {a.axisTag: (float(a.minValue), float(a.defaultValue), float(a.maxValue))
+                for a in self.tt['fvar'].axes}
+
+    def variant(self, coords):
+        """This font at a variation-space location.
+
+        Parameters
+        ----------
+        coords : dict
+            Axis tag -> user-space value (``{'wght': 700}``); unknown axes
+            are ignored, values are clamped to the axis range.
+
+        Returns
+        -------
+        Font
+            ``self`` for a static font or the default location, else a
+            cached instance sharing the file data (shaping and outlines at
+            that location).
+        """
+        axes = self.axes
+        loc = {}
+        for tag, v in coords.items():
+            if tag in axes:
+                lo, dflt, hi = axes[tag]
+                v = min(max(float(v), lo), hi)
+                if v != dflt:
+                    loc[tag] = v
+        if not loc:
+            return self
+        key = tuple(sorted(loc.items()))
+        cache = self.__dict__.setdefault('_variants', {})
+        f = cache.get(key)
+        if f is None:
+            import copy
+            import uharfbuzz as hb
+            f = copy.copy(self)
+            f._variants = {}
+            f._outlines = {}
+            f.hb_font = hb.Font(self.hb_face)
+            f.hb_font.set_variations(loc)
+            f.glyph_set = self.tt.getGlyphSet(location=loc)
+            f.location = loc
+            if len(cache) > 64:
+                cache.clear()
+            cache[key] = f
+        return f
+
     @classmethod
     def load(cls, face):
         """The cached :class:`Font` of a face (cache keyed by path, index and

@@ -18,6 +18,8 @@ How it works
    over a cell is then exactly
    ``sum(cover[r, :c+1]) - partial[r, c]`` (a running sum along the row).
    This is linear in the edges, so it is exact for any set of polygons.
+   When the pieces are few for the size of the box (fewer than one per
+   ``_SPARSE_RATIO`` cells) the sums are kept for the touched cells only.
 3. The fill rule ``f`` (nonzero: ``min(1, |w|)``; evenodd: distance of ``w``
    to the nearest even integer) is applied to that integral.  This equals the
    integral of ``f(w)`` -- the true coverage -- whenever ``w`` takes at most
@@ -430,6 +432,23 @@ def _chunks(loc, w, h):
     return list(zip(bounds[:-1], bounds[1:]))
 
 
+def _group_starts(key):
+    """Indices where a run of equal values of ``key`` (1-D, non-empty)
+    starts."""
+    new = np.empty(len(key), bool)
+    new[0] = True
+    np.not_equal(key[1:], key[:-1], out=new[1:])
+    return np.flatnonzero(new)
+
+
+def _run_lengths(starts, n):
+    """Lengths of the runs starting at ``starts`` (increasing) in 0..n-1."""
+    out = np.empty_like(starts)
+    out[:-1] = starts[1:] - starts[:-1]
+    out[-1:] = n - starts[-1:]
+    return out
+
+
 def _flag_cells(xa, ya, xb, yb, cell):
     """Cells whose winding may take more than two adjacent values.
 
@@ -460,7 +479,7 @@ def _flag_cells(xa, ya, xb, yb, cell):
     start = ~conn
     start[1:] |= cell[1:] != cell[:-1]
     ridx = np.flatnonzero(start)
-    rlen = np.diff(np.append(ridx, n))
+    rlen = _run_lengths(ridx, n)
     dx = xb - xa
     dy = yb - ya
     bits = ((dy > 0).astype(np.uint8) | ((dy < 0).astype(np.uint8) << 1)
@@ -473,7 +492,9 @@ def _flag_cells(xa, ya, xb, yb, cell):
     hlen = np.zeros(len(ridx), np.int64)
     # closed chains: merge the run at the chain's start into the run at its end
     heads = np.flatnonzero(~conn)
-    tails = np.append(heads[1:], n) - 1
+    tails = np.empty_like(heads)
+    tails[:-1] = heads[1:] - 1
+    tails[-1] = n - 1
     cyc = ((xa[heads] == xb[tails]) & (ya[heads] == yb[tails])
            & (cell[heads] == cell[tails]))
     if cyc.any():
@@ -502,8 +523,8 @@ def _flag_cells(xa, ya, xb, yb, cell):
     ridx, rlen, rbits, merged, rcell, hstart, hlen = (
         ridx[order], rlen[order], rbits[order], merged[order], rcell[order],
         hstart[order], hlen[order])
-    gstart = np.flatnonzero(np.r_[True, rcell[1:] != rcell[:-1]])
-    gcnt = np.diff(np.append(gstart, len(rcell)))
+    gstart = _group_starts(rcell)
+    gcnt = _run_lengths(gstart, len(rcell))
     cells = rcell[gstart]
     single = gcnt == 1
     axis_ok = (rlen[gstart] <= 2) | ((rbits[gstart] & 3) != 3) | ((rbits[gstart] & 12) != 12)
@@ -542,8 +563,8 @@ def _flag_cells(xa, ya, xb, yb, cell):
         ang = np.sort(owner * 8.0 + ang) - owner * 8.0               # sorted per stretch
         m = len(ang)
         if m:
-            gfirst = np.flatnonzero(np.r_[True, owner[1:] != owner[:-1]])
-            glast = np.append(gfirst[1:], m) - 1
+            gfirst = _group_starts(owner)
+            glast = gfirst + _run_lengths(gfirst, m) - 1
             gap = np.empty(m)
             gap[1:] = ang[1:] - ang[:-1]
             gap[gfirst] = ang[gfirst] + 2 * np.pi - ang[glast]
@@ -898,7 +919,8 @@ def _exact_batch(pf, pxa, pya, pxb, pyb, gcount, gfirst, ev_f, ev_y, ev_c, corne
         oya = pya[owner]
         oxa = pxa[owner]
         ody = pyb[owner] - oya
-        xc = oxa + (sy[smp] - oya) * ((pxb[owner] - oxa) / ody)
+        with np.errstate(over='ignore'):
+            xc = oxa + (sy[smp] - oya) * ((pxb[owner] - oxa) / ody)
         np.clip(xc, 0.0, 1.0, out=xc)
         sgn = np.where(ody > 0, 1, -1)
         corder = np.argsort(smp * 2.0 + xc, kind='stable')

@@ -1,6 +1,7 @@
 """Tests of raster.flatten: Hausdorff guarantee, near-minimal point counts,
 path assembly, errors."""
 
+import importlib
 from math import comb
 
 import numpy as np
@@ -505,3 +506,70 @@ def test_to_path_round_trip():
     assert np.array_equal(pl2.starts, pl.starts)
     assert np.array_equal(pl2.closed, pl.closed)
     assert len(Polylines(np.zeros((0, 2)), [], []).to_path()) == 0
+
+
+# -- fast paths -----------------------------------------------------------------
+
+@pytest.mark.parametrize('n', range(1, 9))
+def test_blossom_tables_match_term_by_term(n):
+    # the index-table blossom (few pieces) equals the term-by-term one, and
+    # keeps the end points exact at t = 0 and t = 1
+    fl = importlib.import_module('raster.flatten')
+    rng = np.random.default_rng(n)
+    m = 50
+    P = rng.normal(0, 100, (n + 1, 2, m))
+    a = rng.uniform(0, 1, m)
+    b = np.where(np.arange(m) % 3 == 0, 1.0, a + rng.uniform(0, 1, m) * (1 - a))
+    a[::5] = 0.0
+    Q = fl._blossom(P, a, b)
+    R = fl._blossom_loops(P, a, b)
+    assert np.abs(Q - R).max() <= 1e-12 * np.abs(P).max()
+    one = b == 1.0
+    assert np.array_equal(Q[n][:, one], P[n][:, one])
+    zero = a == 0.0
+    assert np.array_equal(Q[0][:, zero], P[0][:, zero])
+
+
+def test_bernstein_max_of_known_cubics():
+    fl = importlib.import_module('raster.flatten')
+    # (0, 1, 1, 0): 3 t (1 - t), maximum 3/4 at t = 1/2
+    # (0, -1, 1, 0): 3 t (1 - t) (1 - 2 t), extrema -+sqrt(3)/6 at t = 1/2 -+ sqrt(3)/6
+    c = np.array([[0.0, 0.0], [1.0, -1.0], [1.0, 1.0], [0.0, 0.0]])
+    lo, hi = fl._bernstein_max(c)
+    assert lo[0] == 0.0 and abs(hi[0] - 0.75) < 1e-15
+    assert abs(lo[1] + np.sqrt(3) / 6) < 1e-15 and abs(hi[1] - np.sqrt(3) / 6) < 1e-15
+
+
+def test_planar_deviation_bounds_sampled_distance():
+    # the planar bound is at least the sampled distance of the curve to its
+    # chord segment, and within rounding of it for curves that stay over
+    # the chord (exact bound)
+    fl = importlib.import_module('raster.flatten')
+    rng = np.random.default_rng(8)
+    for n in (2, 3):
+        P = rng.normal(0, 10, (n + 1, 2, 200))
+        e = fl._deviation(P)
+        t = np.linspace(0, 1, 2001)
+        B = np.stack([comb(n, k) * t ** k * (1 - t) ** (n - k) for k in range(n + 1)])
+        pts = np.einsum('kt,kdm->tdm', B, P)
+        A, d = P[0], P[n] - P[0]
+        rel = pts - A
+        u = np.clip((rel * d).sum(1) / (d * d).sum(0), 0, 1)
+        dist = np.sqrt(((rel - u[:, None] * d) ** 2).sum(1)).max(0)
+        assert np.all(e >= dist - 1e-9)
+        uu = (rel * d).sum(1) / (d * d).sum(0)
+        inside = (uu.min(0) >= 0) & (uu.max(0) <= 1)
+        assert inside.sum() > 20
+        assert np.all(e[inside] <= dist[inside] + 1e-3)
+
+
+def test_curves_flat_enough_come_back_as_chords():
+    # every curve passes the first test: each polyline is its chord, copied
+    rng = np.random.default_rng(4)
+    p0 = rng.uniform(0, 100, (30, 1, 2))
+    d = rng.normal(0, 20, (30, 1, 2))
+    s = np.array([0.0, 0.3, 0.7, 1.0])[None, :, None]
+    ctrl = p0 + s * d + rng.normal(0, 0.01, (30, 4, 2)) * (s * (1 - s) > 0)
+    pts, counts = flatten_beziers(ctrl, 0.25)
+    assert counts.tolist() == [2] * 30
+    assert np.array_equal(pts[0::2], ctrl[:, 0]) and np.array_equal(pts[1::2], ctrl[:, 3])

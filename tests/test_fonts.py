@@ -134,3 +134,24 @@ def test_load_missing_file_raises_font_error():
     with pytest.raises(FontError):
         Font.load(FontFace('/nonexistent/x.ttf', 0, ('X',)))
     assert issubclass(FontError, RasterError)
+
+
+def test_variable_font_variant(db):
+    """Roboto Flex is variable: heavier weights widen 'H'; values are
+    clamped to the axis range; a static font and the default location
+    give the font itself."""
+    font = Font.load(db.match(['Roboto Flex']))
+    lo, dflt, hi = font.axes['wght']
+    assert (lo, dflt, hi) == (100.0, 400.0, 1000.0)
+    assert font.variant({'wght': dflt}) is font
+    assert font.variant({'nope': 3}) is font
+    bold = font.variant({'wght': 900})
+    assert bold is font.variant({'wght': 900.0})          # cached
+    assert font.variant({'wght': 5000}) is font.variant({'wght': 1000})
+    gid = font.shape('H')[0][0]
+    assert bold.shape('H')[0][2] > font.shape('H')[0][2]
+    w_reg = np.ptp(font.outline(gid).points[:, 0])
+    w_bold = np.ptp(bold.outline(gid).points[:, 0])
+    assert w_bold > w_reg
+    static = Font.load(db.match(['Noto Sans']))
+    assert static.axes == {} and static.variant({'wght': 700}) is static

@@ -187,6 +187,73 @@ def test_markers_group_drawn_with_node():
     assert np.allclose(c[9, 17], [0, 0, 1, 1])
 
 
+# -- hairlines (device width < 1 px: drawn 1 px wide, coverage scaled) --------------
+
+def _l_path():
+    b = PathBuilder()
+    b.moveTo((2, 5))
+    b.lineTo((15, 5))
+    b.lineTo((15, 15))
+    return b.path()
+
+
+@pytest.mark.parametrize('join,cap,area', [
+    # 1 px wide L: 13 + 10 - 0.25 overlap, + 0.25 outer miter square (miter)
+    # or + 0.125 bevel triangle; square caps add 2 x 0.5 x 1
+    ('miter', 'butt', 23.0), ('bevel', 'butt', 22.875),
+    ('miter', 'square', 24.0), ('bevel', 'square', 23.875)])
+def test_hairline_l_shape_area(join, cap, area):
+    n = PathNode(path=_l_path(), stroke=Stroke(RED, width=0.5, join=join, cap=cap))
+    a = alpha(render_tree(tree(n)))
+    assert a.sum() == pytest.approx(0.5 * area, abs=1e-6)
+    assert a[5, 8] == pytest.approx(0.25)          # row 4.5..5.5 half in row 5
+
+
+def test_hairline_miter_limit_falls_back_to_bevel():
+    """The L turns by 90 degrees: miter ratio sqrt(2) > limit 1.2: bevel."""
+    n = PathNode(path=_l_path(), stroke=Stroke(RED, width=0.5, miterlimit=1.2))
+    assert alpha(render_tree(tree(n))).sum() == pytest.approx(0.5 * 22.875, abs=1e-6)
+
+
+@pytest.mark.parametrize('seed', range(6))
+@pytest.mark.parametrize('join', ['miter', 'bevel'])
+def test_hairline_matches_general_stroker_on_convex_polygons(seed, join):
+    """Invariance: on a convex polygon (no spikes) the hairline outline
+    (union of segment rectangles and join triangles) covers exactly what the
+    general stroker's 1 px wide outline covers."""
+    from raster.hull import convex_hull
+    from raster.scan import coverage
+    from raster.stroke import StrokeStyle, stroke as stroke_outline
+    rng = np.random.default_rng(seed)
+    pts = np.asarray(convex_hull(rng.uniform(3, 37, (12, 2))))
+    path = Path.polygon(pts)
+    pl = render_mod.flatten(path, 0.25)
+    e = render_mod._hairline_edges(pl, 'butt', join, 4.0)
+    a = coverage(e, 40, 40).full(40, 40)
+    o = stroke_outline(path, StrokeStyle(width=1.0, join=join, miterlimit=4.0))
+    b = render_mod._cover(o, Affine(), 40, 40, 'nonzero', True, 0.25).full(40, 40)
+    assert np.abs(a - b).max() < 1e-6
+
+
+@pytest.mark.parametrize('tol', [0.02, 0.1, 0.5])
+def test_hairline_circle_area_within_tolerance(tol):
+    """Hairline (width 0.5) on the circle r = 8: the 1 px annulus has area
+    2 pi r; the flattened circle is within ``tol`` of it, so the area is
+    within (perimeter x tol) of it; coverage is scaled by 0.5."""
+    n = PathNode(path=circle(10, 10, 8), stroke=Stroke(RED, width=0.5))
+    a = alpha(render_tree(tree(n), tolerance=tol)).sum()
+    assert abs(a - 0.5 * 2 * math.pi * 8) <= 0.5 * 2 * math.pi * 8.5 * tol + 1e-3
+
+
+def test_filled_hairline_path_is_flattened_once(monkeypatch):
+    calls = []
+    orig = render_mod.flatten
+    monkeypatch.setattr(render_mod, 'flatten', lambda *a, **k: calls.append(1) or orig(*a, **k))
+    n = PathNode(path=circle(10, 10, 8), fill=Fill(BLUE), stroke=Stroke(RED, width=0.5))
+    c = render_tree(tree(n)).data
+    assert len(calls) == 1 and c[10, 10, 2] == pytest.approx(1.0)
+
+
 # -- groups and layers --------------------------------------------------------------
 
 def test_group_opacity_uses_a_layer():

@@ -930,3 +930,26 @@ def test_matches_resvg(d, kw, t):
     assert err[touched].mean() < 0.05                # measured <= 0.037
     assert err.max() < 0.4                           # measured <= 0.34
     assert cov.sum() == pytest.approx(ref.sum(), rel=0.025)   # measured <= 2.1 %
+
+
+@pytest.mark.parametrize('join', ['miter', 'bevel', 'miter-clip'])
+@pytest.mark.parametrize('w, tol, t', [(2, 0.25, None), (30, 0.05, None), (8, 0.1, Affine.scale(3)),
+                                       (0.5, 0.01, Affine.rotate(33) @ Affine.scale(5))])
+def test_circle_of_cubics_with_sharp_joins_is_annulus_within_tolerance(join, w, tol, t):
+    # a circle of four cubics (the standard kappa approximation, radius 10)
+    # meets itself with one tangent at the cubic ends, so the stroke with
+    # any join is the annulus between radii 10 -+ w/2: every outline
+    # vertex lies within tol (device px) of one of the two circles (up to
+    # the kappa error of the cubics, 2.7e-4 of the radius)
+    k = 10 * 0.5522847498
+    circle = Path.from_arrays([MOVE, 3, 3, 3, 3, CLOSE], [
+        (10, 0), (10, k), (k, 10), (0, 10), (-k, 10), (-10, k), (-10, 0),
+        (-10, -k), (-k, -10), (0, -10), (k, -10), (10, -k), (10, 0)])
+    t = t or Affine()
+    out = stroke(circle, join=join, width=w, transform=t, tolerance=tol)
+    q = t.inverse().apply(out.points)
+    rad = np.hypot(q[:, 0], q[:, 1])
+    s = t.min_scale()
+    err = np.minimum(np.abs(rad - (10 + w / 2)), np.abs(rad - (10 - w / 2)))
+    assert np.all(err * s <= tol + 2.7e-3 * s)
+    assert np.any(rad > 10 + w / 2 - tol / s) and np.any(rad < 10 - w / 2 + tol / s)

@@ -733,3 +733,38 @@ def test_many_paths_batch_parsed_like_one_by_one():
     for a, b in zip(got, want):
         assert a.verbs.tolist() == b.verbs.tolist()
         assert np.allclose(a.points, b.points, rtol=0, atol=1e-9)
+
+
+def test_root_background_color_fills_the_whole_viewport():
+    # viewBox 0 0 10 10 shown in 40 x 20 px (meet: centred, 2 px per unit);
+    # the background covers the whole 40 x 20 viewport, under the content
+    t = build_tree(load_document(
+        b'<svg xmlns="http://www.w3.org/2000/svg" width="40" height="20" viewBox="0 0 10 10" '
+        b'style="background-color: #0000ff80"><rect width="1" height="1"/></svg>'))
+    (bg, m), (rect, _) = paths(t)
+    assert bg.fill.paint.color == pytest.approx((0.0, 0.0, 1.0, 128 / 255))
+    x0, y0, x1, y1 = bg.path.control_box()
+    corners = m.apply([[x0, y0], [x1, y1]])
+    assert corners.ravel().tolist() == pytest.approx([0.0, 0.0, 40.0, 20.0])
+    plain = build_tree(load_document(
+        b'<svg xmlns="http://www.w3.org/2000/svg" width="4" height="2" '
+        b'style="background-color: transparent"><rect width="1" height="1"/></svg>'))
+    assert len(paths(plain)) == 1
+
+
+def test_mask_cycle_through_children_is_cut_at_the_back_reference():
+    # mask1's rect references mask2, whose rect references mask1 again: the
+    # back reference (rect in mask2) is dropped for the whole document, so
+    # mask2 applied anywhere has an unmasked rect, and mask1's rect keeps
+    # mask2 (resvg's choice: painting order decides nothing here)
+    t = build_tree(load_document(
+        b'<svg xmlns="http://www.w3.org/2000/svg" width="10" height="10">'
+        b'<mask id="m1"><rect id="r1" width="10" height="10" fill="white" mask="url(#m2)"/></mask>'
+        b'<mask id="m2"><rect id="r2" width="10" height="10" fill="white" mask="url(#m1)"/></mask>'
+        b'<rect id="a" width="10" height="5" mask="url(#m1)"/>'
+        b'<rect id="b" y="5" width="10" height="5" mask="url(#m2)"/></svg>'))
+    groups = {n.id: n for n, _ in walk(t.root) if isinstance(n, Group) and n.id}
+    m1, m2 = groups['a'].mask, groups['b'].mask
+    inner1 = [n for n, _ in walk(m1.root) if isinstance(n, Group) and n.mask is not None]
+    assert len(inner1) == 1 and inner1[0].mask.id == 'm2'          # r1 keeps mask2
+    assert not [n for n, _ in walk(m2.root) if isinstance(n, Group) and n.mask is not None]

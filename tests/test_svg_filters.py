@@ -310,6 +310,75 @@ def test_unsupported_primitive_warns_and_does_not_break():
     assert img[2, 2, 2] == 255
 
 
+def test_filter_functions_resolve_to_primitives():
+    from raster.svg.filters import _functions
+    assert _functions('url(#a) drop-shadow(rgb(0, 0, 255) 1 2)') == \
+        [('url', '#a'), ('drop-shadow', 'rgb(0, 0, 255) 1 2')]
+    assert _functions('blur(2') is None
+
+
+def test_opacity_function_halves_alpha_and_invert_inverts():
+    body = '<rect width="40" height="40" fill="#ff0000" filter="opacity(50%)"/>'
+    img = _render(_svg('', body))
+    assert abs(int(img[20, 20, 3]) - 128) <= 1 and tuple(img[20, 20, :3]) == (255, 0, 0)
+    img = _render(_svg('', '<rect width="40" height="40" fill="#ff0000" filter="invert()"/>'))
+    assert tuple(img[20, 20]) == (0, 255, 255, 255)
+
+
+def test_invalid_filter_function_renders_unfiltered():
+    img = _render(_svg('', '<rect width="40" height="40" fill="#ff0000" filter="blur(-2)"/>'))
+    assert tuple(img[0, 0]) == (255, 0, 0, 255)
+
+
+def test_filter_on_an_empty_group_can_flood():
+    defs = ('<filter id="f" filterUnits="userSpaceOnUse" x="5" y="5" width="10" height="10">'
+            '<feFlood flood-color="blue"/></filter>')
+    img = _render(_svg(defs, '<g filter="url(#f)"/>'))
+    assert img[..., 3].sum() == 255 * 100 and tuple(img[10, 10]) == (0, 0, 255, 255)
+    # objectBoundingBox units on an empty group: nothing
+    defs = '<filter id="f"><feFlood flood-color="blue"/></filter>'
+    assert not _render(_svg(defs, '<g filter="url(#f)"/>'))[..., 3].any()
+
+
+def test_tile_repeats_the_input_subregion():
+    img = np.zeros((8, 8, 4), np.float32)
+    img[1, 1] = 1                                    # tile (1..3) x (1..3)
+    out = F._tile(img, (1, 1, 3, 3), (0, 0, 8, 8))
+    assert out[1::2, 1::2, 3].all() and out[..., 3].sum() == 16
+
+
+def test_color_interpolation_filters_linear_vs_srgb():
+    # a half-transparent flood merged over nothing is the same in both
+    # spaces; a blur of a red/blue edge differs (averaging in linear light
+    # is brighter)
+    def render(cif):
+        defs = ('<filter id="f" color-interpolation-filters="%s"><feGaussianBlur '
+                'stdDeviation="3"/></filter>' % cif)
+        body = ('<g filter="url(#f)"><rect width="20" height="40" fill="red"/>'
+                '<rect x="20" width="20" height="40" fill="blue"/></g>')
+        return _render(_svg(defs, body)).astype(int)
+    lin, srgb = render('linearRGB'), render('sRGB')
+    assert lin[20, 20, 0] > srgb[20, 20, 0] + 20
+
+
+def test_feimage_draws_a_referenced_element_at_the_subregion_origin():
+    defs = ('<rect id="r" width="10" height="10" fill="lime"/>'
+            '<filter id="f" filterUnits="userSpaceOnUse" x="5" y="20" width="30" height="20">'
+            '<feImage href="#r"/></filter>')
+    img = _render(_svg('<defs>%s</defs>' % defs, '<rect width="1" height="1" filter="url(#f)"/>'))
+    ys, xs = np.nonzero(img[..., 3])
+    assert (ys.min(), ys.max(), xs.min(), xs.max()) == (20, 29, 5, 14)
+
+
+def test_recursive_feimage_drops_the_inner_filter():
+    defs = ('<filter id="f"><feImage href="#r"/></filter>'
+            '<rect id="r" x="5" y="5" width="10" height="10" fill="lime" filter="url(#f)"/>')
+    with pytest.warns(raster.errors.RasterWarning):
+        img = raster.render(_svg('<defs>%s</defs>' % defs,
+                                 '<rect x="5" y="5" width="10" height="10" filter="url(#f)"/>'))
+    assert img[..., 3].any()
+
+
 # ---------------------------------------------------------------------------
 # resvg suite cases
 # ---------------------------------------------------------------------------
@@ -330,6 +399,15 @@ SUITE_CASES = [
     'filters/feComponentTransfer/type=table-on-blue', 'filters/feComponentTransfer/mixed-types',
     'filters/feDropShadow/only-stdDeviation', 'filters/feMorphology/radius=10-1',
     'filters/feMerge/color-interpolation-filters=linearRGB',
+    'filters/feTile/simple-case', 'filters/filter/subregion-bigger-that-region',
+    'filters/filter/on-zero-sized-shape', 'filters/filter/transform-on-shape-with-filter-region',
+    'filters/feGaussianBlur/complex-transform', 'filters/feColorMatrix/invalid-type',
+    'filters/feMorphology/zero-radius', 'filters/feGaussianBlur/negative-stdDeviation',
+    'filters/filter-functions/blur-function', 'filters/filter-functions/drop-shadow-function',
+    'filters/filter-functions/drop-shadow-function-em-values',
+    'filters/filter-functions/hue-rotate-function-45', 'filters/filter-functions/url-and-grayscale',
+    'filters/feImage/link-to-an-element', 'filters/feImage/recursive-links-1',
+    'filters/feImage/with-subregion-2', 'filters/feOffset/complex-transform',
 ]
 
 

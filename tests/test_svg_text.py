@@ -238,3 +238,56 @@ def test_suite_case_matches_resvg_reference(case):
         img = render(svg, width=ref.shape[1], font_dirs=[FONTS])
     r = compare_images(ref, img)
     assert r.passed, r.reason
+
+
+# -- textPath, textLength, variations --------------------------------------------
+
+def test_text_on_straight_horizontal_path_equals_plain_text():
+    """On the line M 10 50 H 390 a glyph's middle sits at arc length
+    x + advance/2, so the text lands exactly where x=10 y=50 puts it."""
+    plain = text_paths('<text x="10" y="50" font-family="Noto Sans">Ab c</text>')[0][0]
+    on = text_paths('<path id="p" d="M 10 50 H 390"/><text font-family="Noto Sans">'
+                    '<textPath href="#p">Ab c</textPath></text>')
+    on = [p for p, n in on if n.fill is not None and len(p.points) > 10][0]
+    np.testing.assert_allclose(on.points, plain.points, atol=1e-9)
+
+
+def test_text_on_vertical_path_is_rotated_quarter_turn():
+    """On the line M 50 10 V 390 (pointing down, +90 degrees) every glyph
+    point (x, y) of the plain text at origin (0, 0) maps to
+    (50 - y, 10 + x)."""
+    plain = text_paths('<text x="0" y="0" font-family="Noto Sans">Hi</text>')[0][0]
+    on = text_paths('<path id="p" d="M 50 10 V 390"/><text font-family="Noto Sans">'
+                    '<textPath href="#p">Hi</textPath></text>')
+    on = [p for p, n in on if len(p.points) > 10][0]
+    x, y = plain.points.T
+    np.testing.assert_allclose(on.points, np.c_[50 - y, 10 + x], atol=1e-9)
+
+
+def test_text_path_drops_glyphs_past_the_end_and_bad_links():
+    short = text_paths('<defs><path id="p" d="M 10 50 H 25"/></defs><text font-family='
+                       '"Noto Sans" font-size="16"><textPath href="#p">HHHHHH</textPath></text>')
+    # the H advance is ~11.9 px at 16px: only the first middle (~16) is within 25
+    assert len(short) == 1
+    box = bbox(short[0][0])
+    assert 10 < box[0] and box[2] < 10 + 12
+    assert text_paths('<text><textPath href="#nope">x</textPath></text>') == []
+
+
+def test_text_length_spreads_characters(noto):
+    """textLength=300 on 'HHHH' (advance A each): the natural length 4A
+    grows by 3 equal gaps, so the last 'H' starts at x + 300 - A."""
+    x0, _, x1, _ = ink('<text x="10" y="50" font-family="Noto Sans" textLength="300">'
+                       'HHHH</text>')
+    a = ink('<text x="10" y="50" font-family="Noto Sans">H</text>')
+    A = advance(noto, 'H', 12)
+    assert x0 == pytest.approx(a[0])
+    assert x1 == pytest.approx(a[2] + 300 - A)
+
+
+def test_font_variation_settings_change_outline():
+    thin = ink('<text x="10" y="50" font-family="Roboto Flex" '
+               'style="font-variation-settings: \'wght\' 100">H</text>')
+    bold = ink('<text x="10" y="50" font-family="Roboto Flex" '
+               'style="font-variation-settings: \'wght\' 900">H</text>')
+    assert bold[2] - bold[0] > thin[2] - thin[0]

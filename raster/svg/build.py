@@ -32,6 +32,13 @@ nested references; a recursive reference is ignored, as resvg does),
 by :mod:`raster.svg.markers` and images by :mod:`raster.svg.image`, both
 called from here.
 
+Speed: path data of ``path`` elements without arcs is parsed for the
+whole document in one vectorized pass (:func:`raster.svgpath.parse_paths`),
+and parsed paths are shared by every element with the same ``d`` (paths are
+immutable); transform lists, colours, paints and opacities are parsed once
+per distinct string; the CTM's scale, needed only for arc tolerances, is
+memoized per subtree.
+
 Not supported yet, each reported once per build with a
 :class:`raster.errors.RasterWarning` (through :func:`warnings.warn`) and then
 left out rather than drawn wrongly: text; filters are ignored; references to
@@ -113,13 +120,19 @@ def _number_or_percent(s):
     return parse_number(s)
 
 
+_OPACITY_CACHE = {}
+
+
 def _opacity(s, default=1.0):
     if s is None:
         return default
-    v = _number_or_percent(s)
+    v = _OPACITY_CACHE.get(s)
     if v is None:
-        return default
-    return min(max(v, 0.0), 1.0)
+        v = _number_or_percent(s)
+        v = False if v is None else min(max(v, 0.0), 1.0)
+        if len(_OPACITY_CACHE) < 4096:
+            _OPACITY_CACHE[s] = v
+    return default if v is False else v
 
 
 class _State:
@@ -195,6 +208,7 @@ class _Builder:
         self._ctx_cache = {}
         self._path_cache = {}
         self._path_batch = None
+        self._cut_masks = None
 
     # -- helpers ---------------------------------------------------------------
     def warn(self, kind, msg):
@@ -409,7 +423,7 @@ class _Builder:
         if st.mode == 'clip':
             return 1.0, 'normal', False, clip, None, True
         v = own.get('mask')
-        if v is not None and v.strip() != 'none':
+        if v is not None and v.strip() != 'none' and el not in self.cut_masks():
             mask = self.reference(v, 'mask', 'mask')
             if mask is not None:
                 mask = self.build_mask(mask, kids, st)
@@ -430,6 +444,47 @@ class _Builder:
         # renderer as ``isolate`` (a truthy raster.svg.filters.FilterList)
         isolate = filters or own.get('isolation') == 'isolate'
         return opacity, blend, isolate, clip, mask, True
+
+    def cut_masks(self):
+        """Elements inside ``mask`` elements whose ``mask`` property is
+        dropped to break a cycle, decided once per document as resvg does:
+        for every mask M in document order, a descendant that references M
+        itself loses its ``mask``; one that references another mask N
+        keeps it, and the descendants of N that reference M lose theirs.
+        (Which link of a cycle to cut is not specified; this order matches
+        resvg's output.)"""
+        cut = self._cut_masks
+        if cut is not None:
+            return cut
+        cut = self._cut_masks = set()
+        masks = [m for m in self.root.iter(_P + 'mask')]
+        if not masks:
+            return cut
+
+        def target(e):
+            if e in cut:
+                return None
+            decl = self.styles.get(e)
+            v = decl.get('mask') if decl else None
+            if not v or v.strip() == 'none':
+                return None
+            u = parse_url(v)
+            t = self.by_id.get(u[0]) if u is not None else None
+            return t if t is not None and _local(t) == 'mask' else None
+        for m in masks:
+            for e in m.iter():
+                if e is m or not isinstance(e.tag, str):
+                    continue
+                n = target(e)
+                if n is None:
+                    continue
+                if n is m:
+                    cut.add(e)
+                    continue
+                for f in n.iter():
+                    if f is not n and isinstance(f.tag, str) and target(f) is m:
+                        cut.add(f)
+        return cut
 
     def reference(self, value, kind, prop):
         """The element of local name ``kind`` referenced by a ``url(#id)``
@@ -1430,6 +1485,9 @@ def build_tree(root, *, base_dir=None, allow_files_under=None, resources_dir=Non
     opacity, blend, isolate, clip, mask, ok = b.effects(root, own, st, kids)
     if not ok:
         kids = []
+    bg = _root_background(root, rt, w, h) if not auto else None
+    if bg is not None:
+        kids = [bg] + kids
     group = Group(id=root.get('id') or '', transform=rt, opacity=opacity, clip_path=clip,
                   mask=mask, blend_mode=blend, isolate=isolate, children=kids)
     if auto and kids:
@@ -1441,6 +1499,34 @@ def build_tree(root, *, base_dir=None, allow_files_under=None, resources_dir=Non
     if group.id:
         b.tree_ids.setdefault(group.id, group)
     return Tree(width=float(w), height=float(h), root=group, ids=b.tree_ids)
+
+
+def _root_background(root, rt, w, h):
+    """A PathNode filling the whole viewport (0, 0, w, h) in document px
+    with the root element's CSS ``background-color`` (from its ``style``
+    attribute), in the root's user space (``rt`` maps it to document px);
+    None when there is none or it is transparent.  resvg paints it under
+    the content."""
+    style = root.get('style')
+    if not style or 'background-color' not in style.lower():
+        return None
+    from .css import parse_declarations
+    value = None
+    for d in parse_declarations(style):
+        if d.name == 'background-color':
+            value = d.value
+    c = parse_color(value) if value is not None else None
+    if c is None or c is CURRENT_COLOR or c[3] <= 0:
+        return None
+    try:
+        inv = rt.inverse()
+    except RasterError:
+        return None
+    pts = inv.apply([[0.0, 0.0], [w, 0.0], [w, h], [0.0, h]])
+    x0, y0 = pts.min(0)
+    x1, y1 = pts.max(0)
+    return PathNode(path=rect_path(float(x0), float(y0), float(x1 - x0), float(y1 - y0)),
+                    fill=Fill(SolidPaint(tuple(float(v) for v in c))))
 
 
 def _content_box(group):

@@ -23,15 +23,18 @@ Semantics follow the specification and resvg where they differ:
   whole pixels; everything outside it is transparent;
 * an ``in`` naming no earlier ``result`` is taken as unspecified (the
   previous result, or ``SourceGraphic`` for the first primitive);
-* unsupported primitives (lighting, turbulence, convolution, displacement,
-  ``feImage``) give transparent black in their subregion, with a warning.
+* ``feImage`` referencing an element draws it in the filtered element's user
+  space translated to the subregion's origin (as resvg); an image (data URI
+  or file) is fitted into the subregion with ``preserveAspectRatio``;
+* unsupported primitives (lighting, turbulence, convolution, displacement)
+  give transparent black, with a warning.
 
 Transforms: the filter works on device pixels.  An axis-aligned CTM
-(scale + translate) is exact.  Under rotation or skew the region used is the
-device bounding box of the user-space region, blur radii are scaled by the
-lengths of the transformed unit vectors and offsets are transformed as
-vectors: an approximation (resvg renders such filters in a canvas aligned
-with the user space instead).
+(scale + translate) is exact.  Under rotation or skew the region is the
+device bounding box of the transformed user-space region; blur radii and
+offsets are scaled by the lengths of the CTM matrix's rows (not rotated): an
+approximation, the one resvg makes (its references show device-
+aligned region edges and device-isotropic blurs under skew).
 
 Colour: results carry their colour space; an input is converted to the
 primitive's ``color-interpolation-filters`` space (``linearRGB`` by default)
@@ -55,6 +58,7 @@ from ..errors import RasterError, RasterWarning
 from ..transform import Affine
 
 __all__ = ['FilterError', 'Filter', 'Primitive', 'resolve_filter_property', 'filter_box',
+           'filter_pixel_box', 'group_filters',
            'apply_filters', 'gaussian_blur', 'box_blur', 'box_sigma', 'offset', 'composite', 'blend',
            'color_matrix', 'component_transfer', 'morphology', 'srgb_to_linear',
            'linear_to_srgb', 'DEFAULT_TOLERANCE']
@@ -119,8 +123,9 @@ class FilterList(list):
 
 
 _SUPPORTED = {'feGaussianBlur', 'feOffset', 'feFlood', 'feMerge', 'feComposite', 'feBlend',
-              'feColorMatrix', 'feComponentTransfer', 'feDropShadow', 'feMorphology', 'feTile'}
-_UNSUPPORTED = {'feImage', 'feTurbulence', 'feConvolveMatrix', 'feDiffuseLighting',
+              'feColorMatrix', 'feComponentTransfer', 'feDropShadow', 'feMorphology', 'feTile',
+              'feImage'}
+_UNSUPPORTED = {'feTurbulence', 'feConvolveMatrix', 'feDiffuseLighting',
                 'feSpecularLighting', 'feDisplacementMap'}
 _SVG_NS = '{http://www.w3.org/2000/svg}'
 
@@ -173,7 +178,8 @@ def resolve_filter_property(builder, el, value, kids, st):
     FilterList or None
         ``None`` when the element must not be rendered (invalid reference,
         empty filter, zero region); an empty list when the value is ignored
-        (unsupported filter functions, with a warning).
+        (an invalid filter function list, a recursive reference; with a
+        warning).
     """
     from .values import parse_url
     refs = _functions(value)
@@ -193,6 +199,10 @@ def resolve_filter_property(builder, el, value, kids, st):
         tgt = builder.by_id.get(u[0]) if u is not None else None
         if tgt is None or _local(tgt) != 'filter':
             return None
+        if tgt in builder._active_refs:
+            # used inside its own feImage: the inner use is dropped (resvg)
+            builder.warn('filter-recursive', 'recursive filter reference ignored')
+            continue
         f = _resolve_filter(builder, tgt, kids, st)
         if f is None:
             return None
@@ -392,21 +402,25 @@ def _resolve_filter(b, fel, kids, st):
         return None
     src = next((e for e in chain if any(_local(c) for c in e)), fel)
     prims = []
-    for c in src:
-        name = _local(c)
-        if name is None or not name.startswith('fe'):
-            continue
-        p = _resolve_primitive(b, c, name, region, box if pobb else None,
-                               unit_ctx if pobb else user_ctx)
-        if p is not None:
-            prims.append(p)
+    b._active_refs.add(fel)
+    try:
+        for c in src:
+            name = _local(c)
+            if name is None or not name.startswith('fe'):
+                continue
+            p = _resolve_primitive(b, c, name, region, box if pobb else None,
+                                   unit_ctx if pobb else user_ctx, st)
+            if p is not None:
+                prims.append(p)
+    finally:
+        b._active_refs.discard(fel)
     if not prims:
         return None
     return Filter(region=tuple(float(v) for v in region), primitives=prims,
                   id=fel.get('id') or '')
 
 
-def _resolve_primitive(b, el, name, region, pbox, ctx):
+def _resolve_primitive(b, el, name, region, pbox, ctx, st):
     from .values import parse_color, parse_length
     inh, own = b.doc_style(el)
     if name not in _SUPPORTED:
@@ -485,9 +499,68 @@ def _resolve_primitive(b, el, name, region, pbox, ctx):
         if len(v) == 1:
             v = [v[0], v[0]]
         pr['radius'] = (v[0] * sx, v[1] * sy)
+    if name == 'feImage':
+        ins = ()
+        rect = tuple(r if v is None else v for v, r in zip(sub, region))
+        pr['nodes'], is_element = _image_nodes(b, el, st, rect)
+        # as resvg: an element is placed at the subregion's origin
+        pr['shift'] = rect[:2] if is_element else (0.0, 0.0)
     return Primitive(kind=name, inputs=ins, result=el.get('result') or '',
                      subregion=tuple(None if v is None else float(v) for v in sub),
                      linear=linear, params=pr)
+
+
+def _image_nodes(b, el, st, rect):
+    """``(nodes, is_element)``: tree nodes of an feImage.  A reference to
+    an element gives that element's nodes (drawn in the filtered element's
+    user space, like ``use``); an image (data URI or file) gives an
+    ImageNode fitted into ``rect`` (x, y, w, h) with preserveAspectRatio."""
+    href = el.get('href') or el.get('{http://www.w3.org/1999/xlink}href') or ''
+    href = href.strip()
+    if not href.startswith('#'):
+        return _image_file_nodes(b, el, href, rect), False
+    tgt = b.by_id.get(href[1:])
+    if tgt is None or _local(tgt) is None or tgt in b._active_refs:
+        return [], True
+    if st.use_depth >= b.max_use_depth:
+        return [], True
+    parent = tgt.getparent()
+    pinh, pown = b.doc_style(parent) if parent is not None else (b._inh0, {})
+    nodes = []
+    b._active_refs.add(tgt)
+    try:
+        b.node(tgt, pinh, pown, st.sub(use_depth=st.use_depth + 1), nodes)
+    finally:
+        b._active_refs.discard(tgt)
+    return nodes, True
+
+
+def _image_file_nodes(b, el, href, rect):
+    from .image import _NESTING, ImageError, _source_of, load_image
+    from .tree import ImageNode
+    from .values import parse_preserve_aspect_ratio, viewbox_transform
+    x, y, w, h = rect
+    if not href or not (w > 0 and h > 0):
+        return []
+    cache = getattr(b, '_image_cache', None)
+    nest = _NESTING.get()
+    depth = 0 if nest is None else nest.depth     # nested documents read no files
+    try:
+        img = load_image(href, _source_of(b, depth), builder=b, depth=depth, cache=cache)
+    except (ImageError, RasterError) as e:
+        b.warn(('image', str(e)), 'feImage not rendered: %s' % e)
+        return []
+    tree = None if isinstance(img, np.ndarray) else img
+    iw, ih = (img.shape[1], img.shape[0]) if tree is None else (tree.width, tree.height)
+    if not (iw > 0 and ih > 0):
+        return []
+    par = parse_preserve_aspect_ratio(el.get('preserveAspectRatio', ''))
+    try:
+        m = viewbox_transform((0.0, 0.0, float(iw), float(ih)), par, w, h, x, y)
+    except RasterError:
+        return []
+    return [ImageNode(view_rect=(x, y, w, h), transform=m, clip=(x, y, w, h),
+                      pixels=None if tree is not None else img, tree=tree)]
 
 
 def _color_matrix_of(kind, values):
@@ -927,6 +1000,28 @@ def filter_box(filters, t):
     return box
 
 
+def filter_pixel_box(box, width, height):
+    """Integer pixel box ``(x0, y0, x1, y1)`` of a filter layer for the
+    device box ``box`` on a ``width x height`` target, or None if empty.
+
+    The box is rounded outwards and may reach past the target by up to the
+    target's size on each side, so that content just outside the canvas
+    still feeds offsets and blurs (as resvg); pixel counts stay bounded.
+
+    >>> filter_pixel_box((-20.5, 3.2, 10.1, 8.0), 100, 50)
+    (-21, 3, 11, 8)
+    """
+    if box is None or not all(math.isfinite(v) for v in box):
+        return None
+    x0 = max(int(math.floor(box[0] + 1e-6)), -width)
+    y0 = max(int(math.floor(box[1] + 1e-6)), -height)
+    x1 = min(int(math.ceil(box[2] - 1e-6)), 2 * width)
+    y1 = min(int(math.ceil(box[3] - 1e-6)), 2 * height)
+    if x1 <= max(x0, 0) or y1 <= max(y0, 0) or x0 >= width or y0 >= height:
+        return None
+    return x0, y0, x1, y1
+
+
 def _pixel_rect(box, w, h):
     x0, y0, x1, y1 = box
     if not all(math.isfinite(v) for v in box):
@@ -938,7 +1033,7 @@ def _pixel_rect(box, w, h):
     return px0, py0, px1, py1
 
 
-def apply_filters(filters, data, t, tolerance=None):
+def apply_filters(filters, data, t, tolerance=None, draw=None):
     """Apply a list of filters to a rendered layer.
 
     Parameters
@@ -952,6 +1047,11 @@ def apply_filters(filters, data, t, tolerance=None):
         Passed to :func:`gaussian_blur` (None: the specification's box
         blurs, as resvg).
 
+    draw : callable or None
+        ``draw(nodes, m, w, h)`` renders tree nodes with the CTM ``m`` into
+        a new ``(h, w, 4)`` premultiplied array (for ``feImage``; without it
+        feImage is transparent).
+
     Returns
     -------
     (H, W, 4) float32 ndarray
@@ -959,11 +1059,11 @@ def apply_filters(filters, data, t, tolerance=None):
     """
     out = _check(data, 'layer')
     for f in filters:
-        out = _apply_one(f, out, t, tolerance)
+        out = _apply_one(f, out, t, tolerance, draw)
     return out
 
 
-def _apply_one(f, data, t, tol):
+def _apply_one(f, data, t, tol, draw=None):
     h, w = data.shape[:2]
     rx0, ry0, rx1, ry1 = _pixel_rect(_device_box(f.region, t), w, h)
     result = np.zeros_like(data)
@@ -975,8 +1075,9 @@ def _apply_one(f, data, t, tol):
     full = (0, 0, rw, rh)
     alpha = np.zeros_like(src)
     alpha[..., 3] = src[..., 3]
-    sx = math.hypot(t.a, t.b)
-    sy = math.hypot(t.c, t.d)
+    # resvg's scale of a transform: the lengths of the matrix rows
+    sx = math.hypot(t.a, t.c)
+    sy = math.hypot(t.b, t.d)
     named = {}
     prev = None                       # (img, linear, rect)
     for p in f.primitives:
@@ -999,7 +1100,7 @@ def _apply_one(f, data, t, tol):
             sub = _pixel_rect(_device_box(urect, rt), rw, rh)
         lin = p.linear
         imgs = [_convert(i[0], i[1], lin) for i in ins]
-        img = _run(p, imgs, ins, sx, sy, t, tol, sub, lin, src.shape)
+        img = _run(p, imgs, ins, sx, sy, rt, tol, sub, lin, src.shape, draw)
         if img is None:
             img = np.zeros_like(src)
             out_lin = lin
@@ -1021,7 +1122,7 @@ def _apply_one(f, data, t, tol):
     return result
 
 
-def _run(p, imgs, ins, sx, sy, t, tol, sub, lin, shape):
+def _run(p, imgs, ins, sx, sy, t, tol, sub, lin, shape, draw=None):
     """The result of one primitive: an image in the primitive's colour
     space, ``(image, linear)`` for another space, or None (transparent)."""
     k, pr = p.kind, p.params
@@ -1031,9 +1132,12 @@ def _run(p, imgs, ins, sx, sy, t, tol, sub, lin, shape):
             return imgs[0]                      # disabled: the input (resvg)
         return gaussian_blur(imgs[0], s_x, s_y, tol)
     if k == 'feOffset':
-        ddx = t.a * pr['dx'] + t.c * pr['dy']
-        ddy = t.b * pr['dx'] + t.d * pr['dy']
-        return offset(imgs[0], ddx, ddy)
+        return offset(imgs[0], pr['dx'] * sx, pr['dy'] * sy)
+    if k == 'feImage':
+        if not pr.get('nodes') or draw is None:
+            return None
+        img = draw(pr['nodes'], t @ Affine.translate(*pr['shift']), shape[1], shape[0])
+        return _check(img, 'feImage content'), False
     if k == 'feFlood':
         c = pr['color']
         out = np.empty(shape, np.float32)
@@ -1069,7 +1173,7 @@ def _run(p, imgs, ins, sx, sy, t, tol, sub, lin, shape):
         a[..., 3] = src[..., 3]
         if s_x > 0 or s_y > 0:
             a = gaussian_blur(a, max(s_x, 0.0), max(s_y, 0.0), tol)
-        a = offset(a, t.a * pr['dx'] + t.c * pr['dy'], t.b * pr['dx'] + t.d * pr['dy'])
+        a = offset(a, pr['dx'] * sx, pr['dy'] * sy)
         c = pr['color']
         col = np.array(c[:3], np.float32)
         if lin:

@@ -17,15 +17,19 @@ Per node:
   (:func:`raster.stroke.stroke`), scan converted with the nonzero rule and
   composited likewise.  A stroke thinner than one device pixel is drawn one
   pixel wide with its coverage scaled by its device width
-  (:func:`raster.stroke.hairline_scale`).  Markers are a group drawn with the
-  node's CTM.
+  (:func:`raster.stroke.hairline_scale`); an undashed hairline is outlined
+  here from the fill's flattened polylines (:func:`_hairline_edges`: one
+  rectangle per segment plus join triangles, one vectorized pass) instead
+  of by the general stroker.  Markers are a group drawn with the node's
+  CTM.
 * :class:`~raster.svg.tree.Group`: a group that only transforms composes
   its transform with the CTM.  A group that needs a layer (opacity, clip
   path, mask, isolation, blend mode) renders its children into a transparent
   layer covering only the group's device bounding box (clipped to the
   target), applies the clip path and mask, and composites the layer with its
   opacity.  Filters are not implemented: a filtered group is drawn without
-  its filter.  Blend modes other than ``normal`` composite as ``normal``.
+  its filter.  Blend modes follow Compositing 1 (the non-separable ones
+  with resvg's ClipColor, see :func:`_clip_color`).
 * :class:`~raster.svg.tree.ImageNode`: raster pixels are resampled
   (bilinear when ``smooth``, else nearest) through the inverse of the CTM
   and clipped to the image's viewport; an SVG image is rendered as a nested
@@ -33,7 +37,8 @@ Per node:
 * :class:`~raster.svg.tree.TextNode`: not rendered yet.
 
 Paints: solid colours and linear and radial gradients (pad, reflect and
-repeat spreads; ``objectBoundingBox`` units).  Patterns are skipped.
+repeat spreads; ``objectBoundingBox`` units) and patterns (a tile raster
+at device resolution, sampled with wrapping).
 
 >>> from raster.path import Path
 >>> from raster.svg.tree import Tree, Group, PathNode, Fill, SolidPaint
@@ -252,13 +257,14 @@ class _Renderer:
 
     def layered(self, g, t, canvas, clip_mode=False):
         ct = t @ g.transform
-        from .filters import apply_filters, filter_box, group_filters
+        from .filters import apply_filters, filter_box, filter_pixel_box, group_filters
         filters = None if clip_mode else group_filters(g)
         # a filtered group's layer is its filter region (effects draw outside)
         box = _group_box(g, ct) if filters is None else filter_box(filters, ct)
         if box is None:
             return
-        px = _pixel_box(box, canvas.width, canvas.height)
+        px = (_pixel_box(box, canvas.width, canvas.height) if filters is None
+              else filter_pixel_box(box, canvas.width, canvas.height))
         if px is None:
             return
         x0, y0, x1, y1 = px
@@ -267,7 +273,12 @@ class _Renderer:
         for c in g.children:
             self.node(c, lt, layer, clip_mode)
         if filters is not None:
-            layer.data[...] = apply_filters(filters, layer.data, lt)
+            def draw(nodes, m, w, h):       # feImage content
+                img = Canvas(w, h)
+                for n in nodes:
+                    self.node(n, m, img)
+                return img.data
+            layer.data[...] = apply_filters(filters, layer.data, lt, draw=draw)
         if g.clip_path is not None:
             cov = self.clip_coverage(g.clip_path, lt, layer.width, layer.height)
             layer.data *= cov[..., None]
@@ -494,23 +505,24 @@ def _cover(path, t, w, h, rule, antialias, tol):
     return coverage(edges, w, h, rule, antialias)
 
 
-def _signed_area(p):
-    """Twice the signed area of polygons ``p`` (M, K, 2) -> (M,)."""
-    x, y = p[..., 0], p[..., 1]
-    return (x * np.roll(y, -1, axis=-1) - np.roll(x, -1, axis=-1) * y).sum(-1)
-
-
-def _polygon_edges(p):
-    """Closed polygons (M, K, 2), all oriented clockwise on screen (negative
-    signed area, y down), as (M K, 2, 2) edges: under the nonzero rule
-    their union is filled and overlaps never cancel."""
-    if len(p) == 0:
-        return np.zeros((0, 2, 2))
-    flip = _signed_area(p) > 0
-    if flip.any():
-        p = p.copy()
-        p[flip] = p[flip][:, ::-1]
-    return np.stack([p, np.roll(p, -1, axis=1)], 2).reshape(-1, 2, 2)
+def _polygon_edges(p, oriented=False):
+    """Closed polygons (M, K, 2) as (M K, 2, 2) edges, every polygon turned
+    to negative signed area (clockwise on screen, y down) unless
+    ``oriented`` says it already is: under the nonzero rule their union is
+    filled and overlaps never cancel."""
+    m, k = p.shape[:2]
+    if not oriented and m:
+        x, y = p[..., 0], p[..., 1]
+        nx, ny = np.roll(x, -1, axis=1), np.roll(y, -1, axis=1)
+        flip = (x * ny - nx * y).sum(1) > 0
+        if flip.any():
+            p = p.copy()
+            p[flip] = p[flip][:, ::-1]
+    e = np.empty((m, k, 2, 2))
+    e[:, :, 0] = p
+    e[:, :-1, 1] = p[:, 1:]
+    e[:, -1, 1] = p[:, 0]
+    return e.reshape(-1, 2, 2)
 
 
 def _hairline_edges(pl, cap, join, miterlimit):
@@ -566,7 +578,8 @@ def _hairline_edges(pl, cap, join, miterlimit):
         op = ~closed[poly]
         a = a - (u * r) * (first & op)[:, None]
         b = b + (u * r) * (last & op)[:, None]
-    pieces = [_polygon_edges(np.stack([a + nv, b + nv, b - nv, a - nv], 1))]
+    # a + n, b + n, b - n, a - n with n = r (-uy, ux): negative signed area
+    pieces = [_polygon_edges(np.stack([a + nv, b + nv, b - nv, a - nv], 1), oriented=True)]
     # joins: each segment with the next one of its polyline (closed: wrap)
     head = np.maximum.accumulate(np.where(first, j, 0))
     nseg = np.where(~last, j + 1, np.where(closed[poly], head, -1))

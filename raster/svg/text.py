@@ -20,16 +20,26 @@ What is laid out:
   other face that has them), shaping with HarfBuzz, outlines with fontTools;
 * ``text-anchor`` per chunk, ``letter-spacing``, ``word-spacing``,
   ``baseline-shift`` (``sub``, ``super``, percentages, lengths, nested sums),
-  basic ``dominant-baseline`` values, ``text-decoration`` (underline,
-  overline, line-through from the font's ``post`` and ``OS/2`` tables).
+  basic ``dominant-baseline``/``alignment-baseline`` values,
+  ``text-decoration`` (underline, overline, line-through from the font's
+  ``post`` and ``OS/2`` tables, also when set on ancestors);
+* ``textPath`` (``href`` to a ``path``, ``startOffset``): every glyph's
+  horizontal middle is put on the path at its arc length and the glyph
+  turned to the path's direction; glyphs off the path are dropped;
+* ``textLength`` with ``lengthAdjust="spacing"``; ``tref``;
+* variable fonts: ``font-variation-settings`` over automatic ``wght``,
+  ``wdth``, ``slnt``/``ital`` and ``opsz`` (= font size) coordinates.
 
-Not supported (a :class:`~raster.errors.RasterWarning` once, then the
-feature is ignored): ``textPath`` (its text is skipped), vertical writing modes, ``textLength``.  Any other failure while laying out
+Not supported, ignored or approximated: vertical writing modes (laid out
+horizontally, with a :class:`~raster.errors.RasterWarning`), ``lengthAdjust="spacingAndGlyphs"`` (spacing only), the
+Unicode bidi algorithm (each run gets HarfBuzz's guessed direction), colour
+glyphs (outlines only).  Any other failure while laying out
 one ``text`` element warns and skips that element only: text never stops a
 document from rendering.
 """
 
 import math
+import re
 
 import numpy as np
 
@@ -96,8 +106,8 @@ def collapse_whitespace(text, preserve=False, prev_space=True):
 
 class _Span:
     """Style of one element contributing characters."""
-    __slots__ = ('el', 'inh', 'own', 'ctx', 'face', 'font', 'fs', 'shift', 'ls', 'ws',
-                 'weight', 'parent', 'decor')
+    __slots__ = ('el', 'inh', 'own', 'ctx', 'face', 'font', 'fs', 'shift', 'ls', 'ws', 'tl',
+                 'weight', 'parent', 'decor', 'vertical')
 
     def __init__(self, el, inh, own, ctx, parent, weight):
         self.el, self.inh, self.own, self.ctx, self.parent = el, inh, own, ctx, parent
@@ -106,6 +116,7 @@ class _Span:
         self.face = self.font = None
         self.shift = 0.0
         self.decor = ()
+        self.vertical = False
 
 
 def _weight(value, parent):
@@ -175,8 +186,10 @@ def _build(b, el, pinh, pown, st, out):
     if t is None:
         return
     wm = (inh.get('writing-mode') or 'lr-tb').strip()
-    if wm in ('tb', 'tb-rl', 'vertical-rl', 'vertical-lr'):
-        b.warn('text-vertical', 'vertical writing modes are not supported; laid out horizontally')
+    vertical = wm in ('tb', 'tb-rl', 'vertical-rl', 'vertical-lr')
+    if vertical:
+        b.warn('text-vertical', 'vertical writing modes are approximated: every glyph is '
+               'turned a quarter turn clockwise (no upright CJK, no vertical metrics)')
     db = _font_db(b)
     if not db.faces:
         b.warn('text-nofont', 'no fonts available (font_dirs=%r); text is not rendered'
@@ -189,6 +202,7 @@ def _build(b, el, pinh, pown, st, out):
     lists = []          # (start index, attr name, values)
     rot = []            # [start index, angles, element] (last angle repeats)
     ends = {}           # element -> index after its last character
+    path_ranges = []    # (first char, end, text path geometry)
     state = {'prev': True}
 
     def add_lists(e, ectx, start):
@@ -205,7 +219,7 @@ def _build(b, el, pinh, pown, st, out):
             if vals:
                 lists.append((start, name, [float(v) for v in vals], e))
 
-    def walk(e, einh, eown, ectx, parent, preserve):
+    def walk(e, einh, eown, ectx, parent, preserve, content=None):
         sp = _Span(e, einh, eown, ectx, parent,
                    _weight(einh.get('font-weight'), parent.weight if parent else 400))
         si = len(spans)
@@ -218,6 +232,10 @@ def _build(b, el, pinh, pown, st, out):
             txt, state['prev'] = collapse_whitespace(s, preserve, state['prev'])
             chars.extend(txt)
             owner.extend([si] * len(txt))
+        if content is not None:         # tref: the referenced element's text
+            add_text(content)
+            ends[e] = len(chars)
+            return
         add_text(e.text)
         for ch in e:
             name = _local(ch)
@@ -229,10 +247,28 @@ def _build(b, el, pinh, pown, st, out):
                     sp_pres = ch.get(_XML_SPACE)
                     walk(ch, cinh, cown, cctx, sp,
                          preserve if sp_pres is None else sp_pres == 'preserve')
-            elif name == 'textPath':
-                b.warn('text-textpath', 'textPath is not supported; its text is not rendered')
+            elif name == 'textPath' and e is el:
+                d = b.styles.get(ch)
+                if not (d and d.get('display', '').strip() == 'none'):
+                    cinh, cown = b.style(ch, einh, eown)
+                    cctx = b.ctx(cinh, st)
+                    tp = _text_path_geometry(b, ch, cctx)
+                    if tp is not None:
+                        first = len(chars)
+                        sp_pres = ch.get(_XML_SPACE)
+                        walk(ch, cinh, cown, cctx, sp,
+                             preserve if sp_pres is None else sp_pres == 'preserve')
+                        path_ranges.append((first, len(chars), tp))
             elif name == 'tref':
-                b.warn('text-tref', 'tref is not supported; ignored')
+                href = ch.get('{http://www.w3.org/1999/xlink}href') or ch.get('href') or ''
+                tgt = b.by_id.get(href[1:].strip()) if href.startswith('#') else None
+                d = b.styles.get(ch)
+                if tgt is not None and not (d and d.get('display', '').strip() == 'none'):
+                    cinh, cown = b.style(ch, einh, eown)
+                    sp_pres = ch.get(_XML_SPACE)
+                    walk(ch, cinh, cown, b.ctx(cinh, st), sp,
+                         preserve if sp_pres is None else sp_pres == 'preserve',
+                         ''.join(t for t in tgt.itertext() if isinstance(t, str)))
             add_text(ch.tail)
         ends[e] = len(chars)
 
@@ -277,7 +313,14 @@ def _build(b, el, pinh, pown, st, out):
         stretch = (i.get('font-stretch') or 'normal').strip()
         sp.face = db.match(fam, sp.weight, style, stretch)
         sp.font = Font.load(sp.face) if sp.face is not None else None
+        if sp.font is not None and sp.font.axes:
+            sp.font = sp.font.variant(_variations(sp, style, stretch))
         sp.ls = _spacing(i.get('letter-spacing'), sp.ctx)
+        tl = sp.el.get('textLength')
+        sp.tl = None
+        if tl is not None and tl.strip() != 'inherit':
+            v = parse_length(tl, 'x', sp.ctx)
+            sp.tl = float(v) if v is not None and v >= 0 else None
         sp.ws = _spacing(i.get('word-spacing'), sp.ctx)
         # baseline-shift applies to tspans; on the text element itself it
         # has no effect (as in resvg)
@@ -286,8 +329,23 @@ def _build(b, el, pinh, pown, st, out):
         if sp is spans[0]:
             decos += _ancestor_decorations(b, el)
         sp.decor = tuple(w for d in decos for w in _decoration(d))
+    for sp in spans:
+        sp.vertical = vertical
     # -- layout ------------------------------------------------------------------
-    starts = np.flatnonzero(~np.isnan(ax) | ~np.isnan(ay))
+    brk = ~np.isnan(ax) | ~np.isnan(ay)
+    onpath = np.full(n, -1, np.int64)
+    for pi, (p0, p1, tp) in enumerate(path_ranges):
+        p1 = min(p1, n)
+        if p0 >= p1:
+            continue
+        ax[p0:p1] = np.nan
+        ay[p0:p1] = np.nan
+        brk[p0:p1] = False
+        brk[p0] = True
+        if p1 < n:
+            brk[p1] = True
+        onpath[p0:p1] = pi
+    starts = np.flatnonzero(brk)
     bounds = list(starts) + [n]
     glyph_runs = []     # (span index, Path in user space)
     under, over = [], []
@@ -297,9 +355,12 @@ def _build(b, el, pinh, pown, st, out):
         x0 = ax[c0] if not math.isnan(ax[c0]) else cur_x
         y0 = ay[c0] if not math.isnan(ay[c0]) else cur_y
         res = _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle)
+        adj = _text_length_spacing(spans, owner[c0:c1], res[1], res[2])
+        if adj is not None:
+            res = _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle, adj)
         if res is None:
             continue
-        gl, char_l, char_r, width, end_dy = res
+        gl, char_l, char_r, width, end_dy, cdy = res
         anchor = (spans[owner[c0]].inh.get('text-anchor') or 'start').strip()
         shift = 0.0
         if anchor == 'middle':
@@ -307,9 +368,21 @@ def _build(b, el, pinh, pown, st, out):
         elif anchor == 'end':
             shift = -width
         ox, oy = x0 + shift, y0
-        cur_x, cur_y = x0 + width + (0.0 if anchor == 'start' else 0.0), y0 + end_dy
-        if anchor != 'start':
-            cur_x = ox + width
+        cur_x, cur_y = ox + width, y0 + end_dy
+        if onpath[c0] >= 0:
+            tp = path_ranges[int(onpath[c0])][2]
+            gl, end = _on_path(gl, tp, tp[2] + shift)
+            ox = oy = 0.0
+            cur_x, cur_y = end
+            char_l = char_r = None
+        elif vertical:
+            # vertical: the chunk runs down a line through (x0, y0), each
+            # glyph turned clockwise and centred on it (central baseline)
+            tp = (np.array([[[x0, y0], [x0, y0 + 1e7]]]), np.array([0.0, 1e7]), 0.0)
+            gl, end = _on_path(gl, tp, shift)
+            ox = oy = 0.0
+            cur_x, cur_y = end
+            char_l = char_r = None
         # glyph outlines, grouped by consecutive owner span
         if gl:
             g_span = np.array([g[0] for g in gl], np.int64)
@@ -320,32 +393,37 @@ def _build(b, el, pinh, pown, st, out):
                     glyph_runs.append((int(g_span[a]), p))
         # decorations of every span carrying text-decoration, over its chars
         for si, sp in enumerate(spans):
-            if not sp.decor:
+            if not sp.decor or char_l is None:
                 continue
             mask = _descends(spans, owner[c0:c1], si)
             if not mask.any():
                 continue
             idx = np.flatnonzero(mask)
-            left = float(char_l[idx].min()) + ox
-            right = float(char_r[idx].max()) + ox
             f = sp.font
-            if f is None or right <= left:
+            if f is None:
                 continue
             s = sp.fs / f.upem
-            base = oy + float(dy[c0:c1][:idx[0] + 1].sum()) + sp.shift + _dominant(sp)
-            for kind in sp.decor:
-                if kind == 'underline':
-                    th = f.underline_thickness * s
-                    yc = base - f.underline_position * s
-                    under.append((si, _rect(left, yc - th / 2, right, yc + th / 2)))
-                elif kind == 'overline':
-                    th = f.underline_thickness * s
-                    yc = base - f.ascender * s
-                    under.append((si, _rect(left, yc - th / 2, right, yc + th / 2)))
-                else:
-                    th = f.strikeout_size * s
-                    yc = base - f.strikeout_position * s
-                    over.append((si, _rect(left, yc, right, yc + th)))
+            # one line piece per run of characters on the same dy level
+            cuts = np.flatnonzero((np.diff(idx) != 1) | (np.diff(cdy[idx]) != 0)) + 1
+            for grp in np.split(idx, cuts):
+                left = float(char_l[grp].min()) + ox
+                right = float(char_r[grp].max()) + ox
+                if not right > left:
+                    continue
+                base = oy + float(cdy[grp[0]]) + sp.shift + _dominant(sp)
+                for kind in sp.decor:
+                    if kind == 'underline':
+                        th = f.underline_thickness * s
+                        yc = base - f.underline_position * s
+                        under.append((si, _rect(left, yc - th / 2, right, yc + th / 2)))
+                    elif kind == 'overline':
+                        th = f.underline_thickness * s
+                        yc = base - f.ascender * s
+                        under.append((si, _rect(left, yc - th / 2, right, yc + th / 2)))
+                    else:
+                        th = f.strikeout_size * s
+                        yc = base - f.strikeout_position * s
+                        over.append((si, _rect(left, yc, right, yc + th)))
     kids = []
     for si, p in under + glyph_runs + over:
         if len(p.points) and np.abs(p.points).max() > limits.MAX_COORD:
@@ -371,6 +449,41 @@ def _parent_weight(b, el):
         if d and 'font-weight' in d and d['font-weight'] != 'inherit':
             w = _weight(d['font-weight'], w)
     return w
+
+
+_STRETCH_PCT = {'ultra-condensed': 50, 'extra-condensed': 62.5, 'condensed': 75,
+                'semi-condensed': 87.5, 'normal': 100, 'semi-expanded': 112.5,
+                'expanded': 125, 'extra-expanded': 150, 'ultra-expanded': 200}
+
+
+def _variations(sp, style, stretch):
+    """Variation coordinates of a span: automatic ones from font-weight,
+    font-stretch and font-style, overridden by font-variation-settings."""
+    coords = {'wght': sp.weight, 'opsz': sp.fs}     # font-optical-sizing: auto
+    if stretch in _STRETCH_PCT:
+        coords['wdth'] = _STRETCH_PCT[stretch]
+    elif stretch.endswith('%'):
+        try:
+            coords['wdth'] = float(stretch[:-1])
+        except ValueError:
+            pass
+    if style == 'oblique':
+        coords['slnt'] = -14.0
+    elif style == 'italic':
+        coords['ital'] = 1.0
+    v = (sp.inh.get('font-variation-settings') or 'normal').strip()
+    if v != 'normal':
+        for item in v.split(','):
+            m = re.fullmatch(r"\s*(['\"])(.{4})\1\s+([-+0-9.eE]+)\s*", item)
+            if m is None:
+                return coords       # invalid list: automatic values only
+        for item in v.split(','):
+            m = re.fullmatch(r"\s*(['\"])(.{4})\1\s+([-+0-9.eE]+)\s*", item)
+            try:
+                coords[m.group(2)] = float(m.group(3))
+            except ValueError:
+                pass
+    return coords
 
 
 def _decoration(value):
@@ -449,6 +562,8 @@ def _dominant(sp):
     v = (sp.own.get('alignment-baseline') or 'auto').strip()
     if v in ('auto', 'baseline', 'inherit'):
         v = (sp.inh.get('dominant-baseline') or 'auto').strip()
+    if sp.vertical and v == 'auto':
+        v = 'central'
     v = {'before-edge': 'text-before-edge', 'after-edge': 'text-after-edge'}.get(v, v)
     f = sp.font
     if f is None:
@@ -489,7 +604,111 @@ def _fallback_font(db, ch, font, cache={}):
     return r
 
 
-def _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle):
+def _text_path_geometry(b, tp_el, ctx):
+    """(edges (E, 2, 2), cumulative start lengths (E,), start offset) of
+    the path a textPath follows, or None when it has no usable path."""
+    from ..flatten import flatten
+    from ..svgpath import parse_path
+    from .values import parse_transform
+    # the SVG 2 ``path`` attribute is not used (resvg ignores it too)
+    href = tp_el.get('{http://www.w3.org/1999/xlink}href') or tp_el.get('href')
+    if not href or not href.startswith('#'):
+        return None
+    tgt = b.by_id.get(href[1:].strip())
+    if tgt is None or _local(tgt) != 'path':
+        return None
+    d = tgt.get('d')
+    ts = tgt.get('transform')
+    t = parse_transform(ts) if ts else None
+    if not d:
+        return None
+    path = parse_path(d, 0.01, strict=False)
+    if t is not None:
+        path = path.transform(t)
+    pl = flatten(path, 0.01)
+    if not len(pl):
+        return None
+    edges = pl.edges(close_all=False)
+    if not len(edges):
+        return None
+    seg = np.hypot(*(edges[:, 1] - edges[:, 0]).T)
+    cum = np.r_[0.0, np.cumsum(seg)]
+    total = float(cum[-1])
+    if not total > 0:
+        return None
+    so = (tp_el.get('startOffset') or '0').strip()
+    if so.endswith('%'):
+        try:
+            off = float(so[:-1]) / 100.0 * total
+        except ValueError:
+            off = 0.0
+    else:
+        v = parse_length(so, 'x', ctx)
+        off = 0.0 if v is None else float(v)
+    return edges, cum, off
+
+
+def _on_path(glyphs, tp, offset):
+    """Move chunk-local glyphs onto a text path: each glyph's horizontal
+    middle goes to the point at arc length ``offset + x + advance / 2``,
+    the glyph turned to the path's direction there; glyphs off the path's
+    ends are dropped.  Returns ``(glyphs, end point)``."""
+    edges, cum, _ = tp
+    total = cum[-1]
+    if not glyphs:
+        return [], tuple(edges[-1, 1])
+    gx = np.array([g[3] for g in glyphs])
+    gy = np.array([g[4] for g in glyphs])
+    adv = np.array([g[7] for g in glyphs])
+    mid = offset + gx + adv * 0.5
+    keep = (mid >= 0) & (mid <= total)
+    i = np.clip(np.searchsorted(cum, mid, 'right') - 1, 0, len(edges) - 1)
+    a, bpt = edges[i, 0], edges[i, 1]
+    seg = cum[i + 1] - cum[i]
+    tt = np.where(seg > 0, (mid - cum[i]) / np.where(seg > 0, seg, 1.0), 0.0)
+    P = a + (bpt - a) * tt[:, None]
+    th = np.arctan2(bpt[:, 1] - a[:, 1], bpt[:, 0] - a[:, 0])
+    c, s = np.cos(th), np.sin(th)
+    lx, ly = -adv * 0.5, gy
+    ox = P[:, 0] + c * lx - s * ly
+    oy = P[:, 1] + s * lx + c * ly
+    deg = np.degrees(th)
+    out = [(g[0], g[1], g[2], float(ox[k]), float(oy[k]), g[5], float(deg[k] + g[6]), g[7])
+           for k, g in enumerate(glyphs) if keep[k]]
+    # the text after the path continues where the last glyph ends (also
+    # when it fell off the path's end: extrapolated along the last edge)
+    end = (float(P[-1, 0] + c[-1] * adv[-1] * 0.5), float(P[-1, 1] + s[-1] * adv[-1] * 0.5))
+    return out, end
+
+
+def _text_length_spacing(spans, own_idx, char_l, char_r):
+    """Extra spacing after each character of a chunk that stretches the
+    elements with ``textLength`` to that length (``lengthAdjust`` spacing),
+    or None when no element asks for it."""
+    adj = None
+    present = set()
+    for i in set(int(i) for i in own_idx):      # the owners and their ancestors
+        sp = spans[i]
+        while sp is not None:
+            present.add(sp)
+            sp = sp.parent
+    for si, sp in enumerate(spans):
+        tl = sp.tl if sp in present else None
+        if tl is None:
+            continue
+        mask = _descends(spans, own_idx, si)
+        idx = np.flatnonzero(mask)
+        if len(idx) < 2:
+            continue
+        natural = float(char_r[idx].max() - char_l[idx].min())
+        if adj is None:
+            adj = np.zeros(len(own_idx))
+        # every character, the last one too, gets the same extra (resvg)
+        adj[idx] += (tl - natural) / (len(idx) - 1)
+    return adj
+
+
+def _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle, adjust=None):
     """Shape characters ``c0:c1`` of one chunk at origin (0, 0).
 
     Returns ``(glyphs, char_left, char_right, width, total_dy)``: glyphs as
@@ -512,6 +731,8 @@ def _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle):
     for k in range(m):
         sp = spans[owner[c0 + k]]
         extra[k] = sp.ls + (sp.ws if chars[c0 + k] in ' \u00a0' else 0.0)
+    if adjust is not None:
+        extra = extra + adjust
     before = np.cumsum(dx[c0:c1]) + np.r_[0.0, np.cumsum(extra)[:-1]]
     cdy = np.cumsum(dy[c0:c1])
     char_l = np.full(m, np.nan)
@@ -556,7 +777,8 @@ def _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle):
             lo = pen + before[j]
             hi = lo + xa * s
             if s > 0:
-                glyphs.append((sp_i, f, gid, lo + xo * s, cdy[j] + ys - yo * s, s, angle[c0 + j]))
+                glyphs.append((sp_i, f, gid, lo + xo * s, cdy[j] + ys - yo * s, s,
+                               angle[c0 + j], xa * s))
             char_l[j] = lo if math.isnan(char_l[j]) else min(char_l[j], lo)
             char_r[j] = hi if math.isnan(char_r[j]) else max(char_r[j], hi)
             pen += xa * s
@@ -574,14 +796,14 @@ def _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle):
     # the letter spacing after the last character is not part of the advance
     last = spans[owner[c1 - 1]]
     width = pen + float(extra.sum()) - last.ls + float(dx[c0:c1].sum())
-    return glyphs, char_l, char_r, width, float(cdy[-1])
+    return glyphs, char_l, char_r, width, float(cdy[-1]), cdy
 
 
 def _glyph_path(glyphs, ox, oy):
     """One Path of glyph outlines: each outline (font units, y up) scaled by
     its ``s`` with y flipped and moved to its pen position."""
     verbs, pts, scales, offs, rots = [], [], [], [], []
-    for _, f, gid, gx, gy, s, rot in glyphs:
+    for _, f, gid, gx, gy, s, rot, _adv in glyphs:
         p = f.outline(gid)
         if not len(p.verbs):
             continue

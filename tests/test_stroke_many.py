@@ -1,0 +1,213 @@
+"""Tests of raster.stroke.stroke_many: batch stroking gives, path by path, the
+outline stroke() gives for each path alone."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+
+from raster.errors import LimitError, RasterError
+from raster.path import Path, PathBuilder
+from raster.stroke import StrokeError, StrokeStyle, stroke, stroke_many
+from raster.svgpath import parse_path
+from raster.transform import Affine
+
+
+def random_path(rng, kind=None):
+    """A random path of 1-3 contours of lines, quadratics and cubics (some
+    closed, some of zero length, some lone moves)."""
+    b = PathBuilder()
+    kind = kind if kind is not None else int(rng.integers(0, 6))
+    if kind == 0:
+        return Path.empty()
+    for _ in range(int(rng.integers(1, 4))):
+        b.moveTo(rng.uniform(0, 50, 2))
+        if rng.random() < 0.1:
+            continue                                     # lone move
+        for _ in range(int(rng.integers(1, 5))):
+            v = rng.integers(1, 4)
+            if v == 1:
+                b.lineTo(rng.uniform(0, 50, 2))
+            elif v == 2:
+                b.qCurveTo(rng.uniform(0, 50, 2), rng.uniform(0, 50, 2))
+            else:
+                b.curveTo(rng.uniform(0, 50, 2), rng.uniform(0, 50, 2), rng.uniform(0, 50, 2))
+        if rng.random() < 0.5:
+            b.closePath()
+    return b.path()
+
+
+def polygons_only(rng, n):
+    return [Path.polygon(rng.uniform(0, 100, (int(rng.integers(2, 7)), 2)),
+                         closed=bool(rng.random() < 0.5)) for _ in range(n)]
+
+
+def assert_same(batch, single, exact=False):
+    """Same outlines: bit for bit when ``exact`` (paths of lines), else to
+    rounding (flatten_beziers rounds a curve differently in a batch)."""
+    assert len(batch) == len(single)
+    for a, b in zip(batch, single):
+        assert np.array_equal(a.verbs, b.verbs)
+        if exact:
+            assert np.array_equal(a.points, b.points)
+        else:
+            assert np.allclose(a.points, b.points, rtol=0, atol=1e-9)
+
+
+def winding(path, pts):
+    """Nonzero winding number of the outline ``path`` at points (P, 2)."""
+    segs = path.segments()
+    a = np.concatenate([segs.ctrl[:, 0], segs.contour_end[segs.contour_closed]])
+    b = np.concatenate([segs.ctrl[:, 3], segs.contour_start[segs.contour_closed]])
+    x, y = pts[:, 0:1], pts[:, 1:2]
+    up = (a[:, 1] <= y) & (b[:, 1] > y)
+    down = (b[:, 1] <= y) & (a[:, 1] > y)
+    side = (b[:, 0] - a[:, 0]) * (y - a[:, 1]) - (x - a[:, 0]) * (b[:, 1] - a[:, 1])
+    return (up & (side > 0)).sum(1) - (down & (side < 0)).sum(1)
+
+
+def boundary_distance(path, pts):
+    segs = path.segments()
+    a = np.concatenate([segs.ctrl[:, 0], segs.contour_end[segs.contour_closed]])
+    b = np.concatenate([segs.ctrl[:, 3], segs.contour_start[segs.contour_closed]])
+    d = b - a
+    L2 = np.maximum((d ** 2).sum(1), 1e-300)
+    rel = pts[:, None, :] - a[None]
+    t = np.clip((rel * d[None]).sum(2) / L2, 0, 1)
+    q = a[None] + t[..., None] * d[None]
+    return np.sqrt(((pts[:, None, :] - q) ** 2).sum(2)).min(1)
+
+
+@pytest.mark.parametrize('join', ['miter', 'miter-clip', 'round', 'bevel'])
+@pytest.mark.parametrize('cap', ['butt', 'round', 'square'])
+def test_mixed_paths_equal_single_strokes(join, cap):
+    rng = np.random.default_rng(7)
+    paths = [random_path(rng) for _ in range(40)]
+    style = StrokeStyle(width=float(rng.uniform(0.5, 8)), join=join, cap=cap, miterlimit=3)
+    t = Affine.rotate(30) @ Affine.scale(2.5, 1.5)
+    assert_same(stroke_many(paths, style, transforms=t, tolerance=0.1),
+                [stroke(p, style, transform=t, tolerance=0.1) for p in paths])
+
+
+def test_per_path_translations_equal_single_strokes():
+    # translations do not change the scale: one tolerance for all paths
+    rng = np.random.default_rng(3)
+    paths = [random_path(rng, kind=1) for _ in range(30)]
+    ts = [Affine.translate(*rng.uniform(-100, 100, 2)) @ Affine.scale(3) for _ in paths]
+    style = StrokeStyle(width=1.5, join='round')
+    assert_same(stroke_many(paths, style, transforms=ts),
+                [stroke(p, style, transform=t) for p, t in zip(paths, ts)])
+
+
+def test_power_of_two_scales_equal_single_strokes():
+    # per-path tolerances that differ by powers of two scale exactly
+    rng = np.random.default_rng(11)
+    paths = [random_path(rng, kind=1) for _ in range(24)]
+    ts = [Affine.scale(2.0 ** int(rng.integers(-2, 4))) for _ in paths]
+    style = StrokeStyle(width=3, cap='square')
+    assert_same(stroke_many(paths, style, transforms=ts, tolerance=0.2),
+                [stroke(p, style, transform=t, tolerance=0.2) for p, t in zip(paths, ts)])
+    polys = polygons_only(rng, 20)
+    assert_same(stroke_many(polys, style, transforms=ts[:20]),
+                [stroke(p, style, transform=t) for p, t in zip(polys, ts)], exact=True)
+
+
+def test_mixed_scales_fill_the_same_region_within_tolerance():
+    # a circle of 4 cubics under scales 1, 3 and 7: the outlines may differ
+    # only by rounding, so the fill agrees away from the boundary
+    circle = parse_path('M10 0 C15.5 0 20 4.5 20 10 C20 15.5 15.5 20 10 20 '
+                        'C4.5 20 0 15.5 0 10 C0 4.5 4.5 0 10 0 Z')
+    paths = [circle, circle, circle]
+    ts = [Affine.scale(1), Affine.scale(3), Affine.scale(7)]
+    style = StrokeStyle(width=4)
+    tol = 0.25
+    batch = stroke_many(paths, style, transforms=ts, tolerance=tol)
+    rng = np.random.default_rng(5)
+    for a, p, t in zip(batch, paths, ts):
+        b = stroke(p, style, transform=t, tolerance=tol)
+        x0, y0, x1, y1 = b.control_box()
+        pts = rng.uniform((x0 - 1, y0 - 1), (x1 + 1, y1 + 1), (3000, 2))
+        far = boundary_distance(b, pts) > 1e-6
+        assert np.array_equal(winding(a, pts[far]) != 0, winding(b, pts[far]) != 0)
+        # and the two outlines are close vertex by vertex where they match
+        if len(a.points) == len(b.points):
+            assert np.allclose(a.points, b.points, atol=1e-9 * max(x1, y1))
+
+
+@pytest.mark.parametrize('seed', [0, 1])
+def test_dashed_paths_equal_single_strokes_to_rounding(seed):
+    rng = np.random.default_rng(seed)
+    paths = [random_path(rng) for _ in range(30)]
+    style = StrokeStyle(width=2, dash=(3.0, 1.5, 0.0, 2.0), dash_offset=1.25, cap='round')
+    batch = stroke_many(paths, style, tolerance=0.25)
+    for a, p in zip(batch, paths):
+        b = stroke(p, style, tolerance=0.25)
+        assert np.array_equal(a.verbs, b.verbs)
+        assert np.allclose(a.points, b.points, rtol=0, atol=1e-9)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2 ** 32 - 1), st.integers(1, 12),
+       st.sampled_from(['miter', 'bevel', 'round']), st.sampled_from(['butt', 'square', 'round']))
+def test_polygon_batches_equal_single_strokes(seed, n, join, cap):
+    rng = np.random.default_rng(seed)
+    paths = polygons_only(rng, n)
+    style = StrokeStyle(width=float(rng.uniform(0.1, 20)), join=join, cap=cap)
+    t = Affine(*rng.uniform(-2, 2, 4), 5, 7)
+    assert_same(stroke_many(paths, style, transforms=[t] * n),
+                [stroke(p, style, transform=t) for p in paths], exact=True)
+
+
+def test_outline_is_split_per_path():
+    # two unit-spaced lines: each result holds exactly its own rectangle
+    a = Path.polygon([(0, 0), (10, 0)], closed=False)
+    b = Path.polygon([(0, 5), (0, 15)], closed=False)
+    ra, rb = stroke_many([a, b], StrokeStyle(width=2))
+    assert ra.control_box() == (0.0, -1.0, 10.0, 1.0)
+    assert rb.control_box() == (-1.0, 5.0, 1.0, 15.0)
+
+
+def test_degenerate_inputs_give_empty_paths():
+    line = Path.polygon([(0, 0), (10, 0)], closed=False)
+    assert stroke_many([]) == []
+    assert all(p.is_empty for p in stroke_many([line, line], StrokeStyle(width=0)))
+    out = stroke_many([line, Path.empty(), line],
+                      transforms=[Affine.scale(0), Affine(), Affine.scale(2)])
+    assert [len(p.verbs) for p in out] == [0, 0, 5]
+    assert out[2] == stroke(line, transform=Affine.scale(2))
+    # a lone move draws nothing, alone or in a batch
+    lone = parse_path('M 5 5')
+    assert [len(p.verbs) for p in stroke_many([lone, line, lone])] == [0, 5, 0]
+
+
+def test_bad_arguments_raise_stroke_error():
+    line = Path.polygon([(0, 0), (10, 0)], closed=False)
+    with pytest.raises(StrokeError):
+        stroke_many([line, 'M 0 0 L 1 1'])
+    with pytest.raises(StrokeError):
+        stroke_many([line, line], transforms=[Affine()])
+    with pytest.raises(StrokeError):
+        stroke_many([line], tolerance=0)
+    with pytest.raises(StrokeError):
+        stroke_many([line], tolerance=float('nan'))
+    with pytest.raises(StrokeError):
+        stroke_many([line], style={'width': 2})
+    with pytest.raises(RasterError):
+        stroke_many([line], transforms=['not a transform'])
+    with pytest.raises(LimitError):
+        stroke_many([line], transforms=[Affine.scale(1e300)])
+
+
+@pytest.mark.parametrize('tol', [0.01, 0.1, 1.0])
+def test_round_caps_in_batch_honour_tolerance(tol):
+    # a round-capped line: the outline's distance from its segment is
+    # within tol of the half width (the round cap, a named exact shape)
+    rng = np.random.default_rng(2)
+    paths = [Path.polygon([p, p + (20, 0)], closed=False) for p in rng.uniform(0, 50, (5, 2))]
+    outs = stroke_many(paths, StrokeStyle(width=10, cap='round'), tolerance=tol)
+    for p, o in zip(paths, outs):
+        a, b = p.points
+        q = o.points
+        t = np.clip((q[:, 0] - a[0]) / 20.0, 0, 1)
+        d = np.hypot(q[:, 0] - (a[0] + 20 * t), q[:, 1] - a[1])
+        assert np.all(np.abs(d - 5) <= tol)
+        assert np.max(d) > 5 - tol                  # not a degenerate outline
