@@ -188,6 +188,8 @@ class StrokeStyle:
         object.__setattr__(self, 'dash_offset', _finite('dash offset', self.dash_offset))
 
 
+_STYLE_FIELDS = frozenset(f.name for f in dataclasses.fields(StrokeStyle))
+
 #: Short alias of :class:`StrokeStyle`.
 Stroke = StrokeStyle
 
@@ -892,7 +894,9 @@ class _Items:
         return start
 
     def add(self, poly, key, start, count, reverse=False):
-        self.cols.append((poly, key, start, count, reverse))
+        col = np.empty((5, len(poly)), np.int64)
+        col[0], col[1], col[2], col[3], col[4] = poly, key, start, count, reverse
+        self.cols.append(col)
 
     def polygons(self):
         """Gather the items: ``(points (M, 2), counts (K,), ids (K,))``, the
@@ -900,16 +904,9 @@ class _Items:
         and the polygon numbers they came from."""
         if not self.cols:
             return np.zeros((0, 2)), np.zeros(0, np.int64), np.zeros(0, np.int64)
-        n = [len(c[0]) for c in self.cols]
-
-        def column(i, dtype):
-            if len(self.cols) == 1 and np.ndim(self.cols[0][i]):
-                return np.asarray(self.cols[0][i], dtype)
-            return np.concatenate([np.asarray(c[i], dtype) if np.ndim(c[i])
-                                   else np.full(m, c[i], dtype)
-                                   for c, m in zip(self.cols, n)])
-        poly, key, start, cnt = (column(i, np.int64) for i in range(4))
-        rev = column(4, bool)
+        poly, key, start, cnt, rev = np.concatenate(self.cols, axis=1) \
+            if len(self.cols) > 1 else self.cols[0]
+        rev = rev.astype(bool)
         keep = cnt > 0
         if not keep.all():
             poly, key, start, cnt, rev = poly[keep], key[keep], start[keep], cnt[keep], rev[keep]
@@ -1080,12 +1077,13 @@ def _outline(lines, style, tol):
         lo = left_outer[x]
         quads[qpos[prv[jv[x]]] + np.where(lo, 2, 1)] = X    # inner end of the segment in
         quads[qpos[jv[x]] + np.where(lo, 3, 0)] = X         # inner start of the segment out
-        lkey = 4 * ((l - 1) % S) + 2
-        rkey = np.where(is_ring[c], 4 * (S - 1 - l) + 2, 4 * S + 4 + 4 * (S - 1 - l))
-        items.add(pbase[c], lkey, np.where(left_outer, ostart, pstart),
-                  np.where(left_outer, ocnt, pcnt))
-        items.add(pbase[c] + is_ring[c], rkey, np.where(left_outer, pstart, ostart),
-                  np.where(left_outer, pcnt, ocnt), ~left_outer)
+        if pivot.any() or ocnt.any():               # (else the joins add no point)
+            lkey = 4 * ((l - 1) % S) + 2
+            rkey = np.where(is_ring[c], 4 * (S - 1 - l) + 2, 4 * S + 4 + 4 * (S - 1 - l))
+            items.add(pbase[c], lkey, np.where(left_outer, ostart, pstart),
+                      np.where(left_outer, ocnt, pcnt))
+            items.add(pbase[c] + is_ring[c], rkey, np.where(left_outer, pstart, ostart),
+                      np.where(left_outer, pcnt, ocnt), ~left_outer)
 
     # caps of open subpaths: end cap from b+n to b-n, start cap from a-n to a+n
     co = np.flatnonzero(is_open)
@@ -1189,9 +1187,10 @@ def stroke(path, style=None, *, transform=None, tolerance=0.25, **style_kwargs):
         raise StrokeError('stroke() needs a raster.Path, got %s' % type(path).__name__)
     if style is not None and not isinstance(style, StrokeStyle):
         raise StrokeError('style must be a StrokeStyle, got %s' % type(style).__name__)
-    unknown = set(style_kwargs) - {f.name for f in dataclasses.fields(StrokeStyle)}
-    if unknown:
-        raise StrokeError('unknown stroke parameter(s): %s' % ', '.join(sorted(unknown)))
+    if style_kwargs:
+        unknown = set(style_kwargs) - _STYLE_FIELDS
+        if unknown:
+            raise StrokeError('unknown stroke parameter(s): %s' % ', '.join(sorted(unknown)))
     if style is None:
         style = StrokeStyle(**style_kwargs)
     elif style_kwargs:

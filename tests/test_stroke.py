@@ -933,7 +933,7 @@ def test_matches_resvg(d, kw, t):
 
 
 @pytest.mark.parametrize('join', ['miter', 'bevel', 'miter-clip'])
-@pytest.mark.parametrize('w, tol, t', [(2, 0.25, None), (30, 0.05, None), (8, 0.1, Affine.scale(3)),
+@pytest.mark.parametrize('w, tol, t', [(2, 0.25, None), (16, 0.05, None), (8, 0.1, Affine.scale(3)),
                                        (0.5, 0.01, Affine.rotate(33) @ Affine.scale(5))])
 def test_circle_of_cubics_with_sharp_joins_is_annulus_within_tolerance(join, w, tol, t):
     # a circle of four cubics (the standard kappa approximation, radius 10)

@@ -81,6 +81,17 @@ def test_blur_tolerance_is_honoured():
     assert abs(exact - 1 / (np.sqrt(2 * np.pi) * s)) < 1e-3
 
 
+@settings(max_examples=80, deadline=None)
+@given(st.integers(1, 20), st.integers(1, 45), st.data())
+def test_box_sums_match_direct_window_sums(n, d, data):
+    left = data.draw(st.integers(0, d - 1))
+    a = np.random.default_rng(n * 100 + d).random((n, 3)).astype(np.float32)
+    out = F._box_axis(a, d, left, 0)
+    ref = np.array([a[max(i - left, 0):max(min(i - left + d, n), 0)].sum(0)
+                    for i in range(n)]) / d
+    assert np.allclose(out, ref, atol=1e-6)
+
+
 def test_zero_sigma_is_identity():
     img = _img(10, 12)
     assert np.array_equal(F.gaussian_blur(img, 0, 0), img)
@@ -216,6 +227,33 @@ def test_srgb_to_linear_known_values():
     assert abs(float(F.srgb_to_linear(0.5)) - 0.21404) < 1e-4
     x = np.linspace(0, 1, 101)
     assert (np.diff(F.srgb_to_linear(x)) > 0).all()
+
+
+def test_convolve_identity_and_shift_kernels():
+    img = _img(7, 9, 6)
+    ident = np.zeros((3, 3)); ident[1, 1] = 1
+    for edge in ('duplicate', 'wrap', 'none'):
+        assert np.allclose(F.convolve(img, ident, edge=edge), img, atol=1e-6)
+    # the kernel is applied rotated by 180 degrees: K[1, 2] takes the
+    # left neighbour; with wrap the left column comes from the right edge
+    k = np.zeros((3, 3)); k[1, 2] = 1
+    out = F.convolve(img, k, edge='wrap')
+    assert np.allclose(out, np.roll(img, 1, axis=1), atol=1e-6)
+
+
+def test_convolve_box_kernel_hand_computed_and_errors():
+    img = np.zeros((3, 3, 4), np.float32)
+    img[1, 1] = (0.9, 0.0, 0.0, 0.9)
+    out = F.convolve(img, np.ones((3, 3)), edge='none')     # divisor 9
+    assert np.allclose(out[0, 0], [0.1, 0, 0, 0.1], atol=1e-6)
+    with pytest.raises(F.FilterError):
+        F.convolve(img, np.ones((3, 3)), divisor=0)
+    with pytest.raises(F.FilterError):
+        F.convolve(img, np.ones((3, 3)), edge='mirror')
+    # a kernel of the wrong size makes the primitive transparent
+    defs = ('<filter id="f"><feConvolveMatrix order="3" kernelMatrix="1 2 3"/></filter>')
+    img = _render(_svg(defs, '<rect x="5" y="5" width="20" height="20" filter="url(#f)"/>'))
+    assert not img[..., 3].any()
 
 
 def test_morphology_dilate_and_erode_of_a_square():
@@ -408,6 +446,7 @@ SUITE_CASES = [
     'filters/filter-functions/hue-rotate-function-45', 'filters/filter-functions/url-and-grayscale',
     'filters/feImage/link-to-an-element', 'filters/feImage/recursive-links-1',
     'filters/feImage/with-subregion-2', 'filters/feOffset/complex-transform',
+    'filters/feConvolveMatrix/order=4-2', 'filters/feConvolveMatrix/edgeMode=none',
 ]
 
 

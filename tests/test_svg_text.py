@@ -291,3 +291,52 @@ def test_font_variation_settings_change_outline():
     bold = ink('<text x="10" y="50" font-family="Roboto Flex" '
                'style="font-variation-settings: \'wght\' 900">H</text>')
     assert bold[2] - bold[0] > thin[2] - thin[0]
+
+
+def test_vertical_writing_mode_is_quarter_turn_of_central_baseline_text():
+    """writing-mode=tb at the origin: every point (x, y) of the same text
+    laid out horizontally on its central baseline maps to (-y, x)."""
+    plain = text_paths('<text font-family="Noto Sans" dominant-baseline="central">Hi</text>')
+    with pytest.warns(RasterWarning, match='vertical'):
+        vert = text_paths('<text font-family="Noto Sans" writing-mode="tb">Hi</text>')
+    x, y = plain[0][0].points.T
+    np.testing.assert_allclose(vert[0][0].points, np.c_[-y, x], atol=1e-9)
+
+
+def test_unusable_font_warns_and_falls_back(tmp_path):
+    """A bitmap-only (CBDT) font has no outlines: the text is drawn with
+    another face of the directory, with a warning."""
+    import shutil
+    for fn in ('NotoColorEmojiCBDT.subset.ttf', 'NotoSans-Regular.ttf'):
+        shutil.copy(os.path.join(FONTS, fn), tmp_path / fn)
+    with pytest.warns(RasterWarning, match='not usable'):
+        ps = text_paths('<text x="10" y="50" font-family="Noto Color Emoji">A</text>',
+                        font_dirs=(str(tmp_path),))
+    ref = text_paths('<text x="10" y="50" font-family="Noto Sans">A</text>')
+    assert len(ps) == 1 and ps[0][0] == ref[0][0]
+
+
+_XML_CHARS = st.characters(blacklist_categories=('Cs', 'Cc'), blacklist_characters='<&>')
+
+
+@given(st.text(_XML_CHARS, max_size=12),
+       st.lists(st.floats(-50, 50, allow_nan=False), max_size=5),
+       st.sampled_from(['start', 'middle', 'end']),
+       st.sampled_from(['Noto Sans', 'serif', 'Amiri', 'Nope', 'monospace']))
+@settings(max_examples=40, deadline=None)
+def test_arbitrary_text_builds_and_stays_finite(text, dxs, anchor, family):
+    """Any characters, dx lists, anchors and families: the tree builds
+    without an exception and every glyph point is finite."""
+    dx = ' '.join('%r' % v for v in dxs)
+    body = ('<text x="20" y="60" text-anchor="%s" font-family="%s" %s>%s'
+            '<tspan dy="3">%s</tspan></text>'
+            % (anchor, family, 'dx="%s"' % dx if dx else '', text, text[::-1]))
+    with warnings.catch_warnings():
+        warnings.simplefilter('error', RasterWarning)
+        try:
+            ps = text_paths(body)
+        except RasterWarning as w:      # only the documented kinds
+            assert 'vertical' in str(w) or 'not usable' in str(w), str(w)
+            return
+    for p, _ in ps:
+        assert np.isfinite(p.points).all()

@@ -41,7 +41,7 @@ memoized per subtree.
 
 Not supported yet, each reported once per build with a
 :class:`raster.errors.RasterWarning` (through :func:`warnings.warn`) and then
-left out rather than drawn wrongly: text; filters are ignored; references to
+left out rather than drawn wrongly: text; references to
 other documents.
 
 >>> from raster.svg.document import load_document

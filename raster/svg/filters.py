@@ -26,8 +26,10 @@ Semantics follow the specification and resvg where they differ:
 * ``feImage`` referencing an element draws it in the filtered element's user
   space translated to the subregion's origin (as resvg); an image (data URI
   or file) is fitted into the subregion with ``preserveAspectRatio``;
-* unsupported primitives (lighting, turbulence, convolution, displacement)
-  give transparent black, with a warning.
+* an feConvolveMatrix in error (bad order, kernel size, target, zero
+  divisor) gives transparent black;
+* unsupported primitives (lighting, turbulence, displacement) give
+  transparent black, with a warning.
 
 Transforms: the filter works on device pixels.  An axis-aligned CTM
 (scale + translate) is exact.  Under rotation or skew the region is the
@@ -60,7 +62,7 @@ from ..transform import Affine
 __all__ = ['FilterError', 'Filter', 'Primitive', 'resolve_filter_property', 'filter_box',
            'filter_pixel_box', 'group_filters',
            'apply_filters', 'gaussian_blur', 'box_blur', 'box_sigma', 'offset', 'composite', 'blend',
-           'color_matrix', 'component_transfer', 'morphology', 'srgb_to_linear',
+           'color_matrix', 'component_transfer', 'morphology', 'convolve', 'srgb_to_linear',
            'linear_to_srgb', 'DEFAULT_TOLERANCE']
 
 #: Default tolerance (device pixels) for explicit-accuracy blurs (see
@@ -124,8 +126,8 @@ class FilterList(list):
 
 _SUPPORTED = {'feGaussianBlur', 'feOffset', 'feFlood', 'feMerge', 'feComposite', 'feBlend',
               'feColorMatrix', 'feComponentTransfer', 'feDropShadow', 'feMorphology', 'feTile',
-              'feImage'}
-_UNSUPPORTED = {'feTurbulence', 'feConvolveMatrix', 'feDiffuseLighting',
+              'feImage', 'feConvolveMatrix'}
+_UNSUPPORTED = {'feTurbulence', 'feDiffuseLighting',
                 'feSpecularLighting', 'feDisplacementMap'}
 _SVG_NS = '{http://www.w3.org/2000/svg}'
 
@@ -499,6 +501,8 @@ def _resolve_primitive(b, el, name, region, pbox, ctx, st):
         if len(v) == 1:
             v = [v[0], v[0]]
         pr['radius'] = (v[0] * sx, v[1] * sy)
+    if name == 'feConvolveMatrix':
+        pr['conv'] = _convolve_params(el)
     if name == 'feImage':
         ins = ()
         rect = tuple(r if v is None else v for v, r in zip(sub, region))
@@ -561,6 +565,97 @@ def _image_file_nodes(b, el, href, rect):
         return []
     return [ImageNode(view_rect=(x, y, w, h), transform=m, clip=(x, y, w, h),
                       pixels=None if tree is not None else img, tree=tree)]
+
+
+def _convolve_params(el):
+    """(kernel (oy, ox) float64, divisor, bias, (tx, ty), edge mode,
+    preserve alpha) of an feConvolveMatrix, or None when it is in error
+    (its result is then transparent black)."""
+    order = _numbers(el.get('order', '3'))
+    if not order or len(order) > 2 or any(o != int(o) or o < 1 for o in order):
+        return None
+    ox = int(order[0])
+    oy = int(order[-1])
+    k = _numbers(el.get('kernelMatrix'))
+    if not k or len(k) != ox * oy:
+        return None
+    kern = np.array(k, np.float64).reshape(oy, ox)
+    if el.get('divisor') is not None:
+        div = _number(el.get('divisor'), 0.0)
+        if div == 0:
+            return None
+    else:
+        div = float(kern.sum()) or 1.0
+    tx = _number(el.get('targetX'), ox // 2)
+    ty = _number(el.get('targetY'), oy // 2)
+    if not (0 <= tx < ox and 0 <= ty < oy) or tx != int(tx) or ty != int(ty):
+        return None
+    edge = el.get('edgeMode', 'duplicate')
+    edge = edge if edge in ('duplicate', 'wrap', 'none') else 'duplicate'
+    return (kern, div, _number(el.get('bias'), 0.0), (int(tx), int(ty)), edge,
+            el.get('preserveAlpha') == 'true')
+
+
+def convolve(img, kernel, divisor=None, bias=0.0, target=None, edge='duplicate',
+             preserve_alpha=False):
+    """feConvolveMatrix: ``out[y, x] = sum_ij src[y - ty + i, x - tx + j]
+    * K[oy-1-i, ox-1-j] / divisor`` on premultiplied values, then ``bias``
+    added to alpha and ``bias * alpha`` to the colours (as resvg); on
+    unpremultiplied colour plus ``bias``, alpha kept, when
+    ``preserve_alpha``.
+
+    Parameters
+    ----------
+    img : (H, W, 4) float32 ndarray, premultiplied
+    kernel : (oy, ox) array of floats
+    divisor : float or None (None: the kernel's sum, or 1 when it is 0)
+    bias : float
+    target : (tx, ty) or None (None: the kernel's centre, rounded down)
+    edge : {'duplicate', 'wrap', 'none'}
+        How pixels outside the image are taken.
+
+    >>> img = np.zeros((3, 3, 4), np.float32); img[1, 1] = 1
+    >>> convolve(img, [[0, 0, 0], [0, 0, 1], [0, 0, 0]], edge='none')[1, 2].tolist()
+    [1.0, 1.0, 1.0, 1.0]
+    """
+    src = _check(img)
+    k = np.asarray(kernel, np.float64)
+    if k.ndim != 2 or k.size == 0 or not np.isfinite(k).all():
+        raise FilterError('convolution kernel must be a finite non-empty 2-D array')
+    oy, ox = k.shape
+    if divisor is None:
+        divisor = float(k.sum()) or 1.0
+    _finite(divisor, bias)
+    if divisor == 0:
+        raise FilterError('convolution divisor must not be 0')
+    tx, ty = (ox // 2, oy // 2) if target is None else target
+    if preserve_alpha:
+        c, a = _unpremul(src)
+        work = c
+    else:
+        work = src
+    h, w = src.shape[:2]
+    mode = {'duplicate': 'edge', 'wrap': 'wrap', 'none': 'constant'}.get(edge)
+    if mode is None:
+        raise FilterError('unknown edge mode %r' % (edge,))
+    pad = np.pad(work, ((ty, oy - 1 - ty), (tx, ox - 1 - tx), (0, 0)), mode=mode)
+    acc = np.zeros(work.shape, np.float64)
+    for i in range(oy):                   # loop over kernel taps, not pixels
+        for j in range(ox):
+            wgt = k[oy - 1 - i, ox - 1 - j]
+            if wgt:
+                acc += wgt * pad[i:i + h, j:j + w]
+    acc = acc / divisor
+    if preserve_alpha:
+        acc += bias
+    else:                                  # bias added to straight colour (resvg)
+        acc[..., 3] += bias
+        acc[..., :3] += bias * acc[..., 3:4]
+    if preserve_alpha:
+        return _premul(np.clip(acc, 0, 1).astype(np.float32), a)
+    out = np.clip(acc, 0.0, 1.0)
+    out[..., :3] = np.minimum(out[..., :3], out[..., 3:4])
+    return out.astype(np.float32)
 
 
 def _color_matrix_of(kind, values):
@@ -671,12 +766,17 @@ def _box_axis(a, d, left, axis):
     i-left+d]) / d`` with zeros outside the array."""
     a = np.moveaxis(a, axis, 0)
     n = a.shape[0]
-    cs = np.zeros((n + 1,) + a.shape[1:], np.float64)
-    np.cumsum(a, axis=0, out=cs[1:])
-    i = np.arange(n)
-    hi = np.clip(i - left + d, 0, n)
-    lo = np.clip(i - left, 0, n)
-    out = (cs[hi] - cs[lo]) / d
+    # window [i - left, i - left + d) clipped to [0, n]: offsets beyond n
+    # clip the same way, so a huge box costs no more than n
+    lo_off = -min(left, n + 1)
+    hi_off = min(d - left, n + 1)
+    pl, pr = -lo_off, max(hi_off, 0)
+    cs = np.empty((pl + n + 1 + pr,) + a.shape[1:], np.float64)
+    cs[:pl + 1] = 0.0
+    np.cumsum(a, axis=0, out=cs[pl + 1:pl + n + 1])
+    cs[pl + n + 1:] = cs[pl + n]
+    out = cs[pl + hi_off:pl + hi_off + n] - cs[pl + lo_off:pl + lo_off + n]
+    out *= 1.0 / d
     return np.moveaxis(out.astype(np.float32), 0, axis)
 
 
@@ -1133,6 +1233,11 @@ def _run(p, imgs, ins, sx, sy, t, tol, sub, lin, shape, draw=None):
         return gaussian_blur(imgs[0], s_x, s_y, tol)
     if k == 'feOffset':
         return offset(imgs[0], pr['dx'] * sx, pr['dy'] * sy)
+    if k == 'feConvolveMatrix':
+        if pr['conv'] is None:
+            return None
+        kern, div, bias, target, edge, keep = pr['conv']
+        return convolve(imgs[0], kern, div, bias, target, edge, keep)
     if k == 'feImage':
         if not pr.get('nodes') or draw is None:
             return None

@@ -27,9 +27,10 @@ Per node:
   path, mask, isolation, blend mode) renders its children into a transparent
   layer covering only the group's device bounding box (clipped to the
   target), applies the clip path and mask, and composites the layer with its
-  opacity.  Filters are not implemented: a filtered group is drawn without
-  its filter.  Blend modes follow Compositing 1 (the non-separable ones
-  with resvg's ClipColor, see :func:`_clip_color`).
+  opacity.  A filtered group's layer is its filter region and the filters
+  (:mod:`raster.svg.filters`) run on it before clip, mask and opacity.
+  Blend modes follow Compositing 1 (the non-separable ones with resvg's
+  ClipColor, see :func:`_clip_color`).
 * :class:`~raster.svg.tree.ImageNode`: raster pixels are resampled
   (bilinear when ``smooth``, else nearest) through the inverse of the CTM
   and clipped to the image's viewport; an SVG image is rendered as a nested

@@ -174,7 +174,7 @@ def build_text(b, el, pinh, pown, st, out):
     mark = len(out)
     try:
         _build(b, el, pinh, pown, st, out)
-    except (RasterError, Exception) as e:   # text must never break a document
+    except Exception as e:      # text must never break a document (RasterError too)
         del out[mark:]
         b.warn('text-error', 'text element not rendered: %s' % (e,))
 
@@ -312,7 +312,7 @@ def _build(b, el, pinh, pown, st, out):
         style = (i.get('font-style') or 'normal').strip()
         stretch = (i.get('font-stretch') or 'normal').strip()
         sp.face = db.match(fam, sp.weight, style, stretch)
-        sp.font = Font.load(sp.face) if sp.face is not None else None
+        sp.font = _load_font(b, db, sp.face)
         if sp.font is not None and sp.font.axes:
             sp.font = sp.font.variant(_variations(sp, style, stretch))
         sp.ls = _spacing(i.get('letter-spacing'), sp.ctx)
@@ -354,10 +354,13 @@ def _build(b, el, pinh, pown, st, out):
         c0, c1 = int(bounds[ci]), int(bounds[ci + 1])
         x0 = ax[c0] if not math.isnan(ax[c0]) else cur_x
         y0 = ay[c0] if not math.isnan(ay[c0]) else cur_y
-        res = _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle)
+        # vertical text advances along y: dy moves along the line, dx across
+        # it (a positive dx to the right is a negative glyph-frame y)
+        along, across = (dy, -dx) if vertical else (dx, dy)
+        res = _layout_chunk(db, chars, owner, spans, c0, c1, along, across, angle)
         adj = _text_length_spacing(spans, owner[c0:c1], res[1], res[2])
         if adj is not None:
-            res = _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle, adj)
+            res = _layout_chunk(db, chars, owner, spans, c0, c1, along, across, angle, adj)
         if res is None:
             continue
         gl, char_l, char_r, width, end_dy, cdy = res
@@ -378,8 +381,9 @@ def _build(b, el, pinh, pown, st, out):
         elif vertical:
             # vertical: the chunk runs down a line through (x0, y0), each
             # glyph turned clockwise and centred on it (central baseline)
-            tp = (np.array([[[x0, y0], [x0, y0 + 1e7]]]), np.array([0.0, 1e7]), 0.0)
-            gl, end = _on_path(gl, tp, shift)
+            big = 1e7
+            tp = (np.array([[[x0, y0 - big], [x0, y0 + big]]]), np.array([0.0, 2 * big]), big)
+            gl, end = _on_path(gl, tp, big + shift)
             ox = oy = 0.0
             cur_x, cur_y = end
             char_l = char_r = None
@@ -584,6 +588,27 @@ def _dominant(sp):
     return 0.0
 
 
+def _load_font(b, db, face):
+    """The Font of a matched face; a face that cannot be used (no outlines,
+    a broken file) warns and is replaced by the default family's face, else
+    by the first usable face."""
+    from ..fonts import Font, FontError
+    if face is None:
+        return None
+    try:
+        return Font.load(face)
+    except FontError as e:
+        b.warn('text-font-' + face.path, 'font not usable, default family used: %s' % (e,))
+    for other in [db.match([])] + list(db.faces):
+        if other is None or other == face:
+            continue
+        try:
+            return Font.load(other)
+        except FontError:
+            continue
+    return None
+
+
 def _fallback_font(db, ch, font, cache={}):
     from ..fonts import Font
     key = (id(db), ch)
@@ -608,21 +633,20 @@ def _text_path_geometry(b, tp_el, ctx):
     """(edges (E, 2, 2), cumulative start lengths (E,), start offset) of
     the path a textPath follows, or None when it has no usable path."""
     from ..flatten import flatten
-    from ..svgpath import parse_path
     from .values import parse_transform
     # the SVG 2 ``path`` attribute is not used (resvg ignores it too)
     href = tp_el.get('{http://www.w3.org/1999/xlink}href') or tp_el.get('href')
     if not href or not href.startswith('#'):
         return None
     tgt = b.by_id.get(href[1:].strip())
-    if tgt is None or _local(tgt) != 'path':
+    name = _local(tgt) if tgt is not None else None
+    if name not in ('path', 'rect', 'circle', 'ellipse', 'line', 'polyline', 'polygon'):
         return None
-    d = tgt.get('d')
     ts = tgt.get('transform')
     t = parse_transform(ts) if ts else None
-    if not d:
+    path = b.geometry(tgt, name, ctx, 0.01)     # basic shapes too (SVG 2)
+    if path is None or not len(path.verbs):
         return None
-    path = parse_path(d, 0.01, strict=False)
     if t is not None:
         path = path.transform(t)
     pl = flatten(path, 0.01)
@@ -708,6 +732,15 @@ def _text_length_spacing(spans, own_idx, char_l, char_r):
     return adj
 
 
+_CURSIVE = ((0x0600, 0x08FF), (0xFB50, 0xFDFF), (0xFE70, 0xFEFF), (0x0700, 0x074F),
+            (0x07C0, 0x07FF), (0x1800, 0x18AF))
+
+
+def _cursive(ch):
+    o = ord(ch)
+    return any(lo <= o <= hi for lo, hi in _CURSIVE)
+
+
 def _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle, adjust=None):
     """Shape characters ``c0:c1`` of one chunk at origin (0, 0).
 
@@ -730,7 +763,11 @@ def _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle, adjust=None):
     extra = np.zeros(m)       # spacing added after each character
     for k in range(m):
         sp = spans[owner[c0 + k]]
-        extra[k] = sp.ls + (sp.ws if chars[c0 + k] in ' \u00a0' else 0.0)
+        ch = chars[c0 + k]
+        # letter-spacing would break the joins of cursive scripts (Arabic,
+        # Syriac, N'Ko...): it is not applied to them (as resvg does)
+        ls = 0.0 if _cursive(ch) else sp.ls
+        extra[k] = ls + (sp.ws if ch in ' \u00a0' else 0.0)
     if adjust is not None:
         extra = extra + adjust
     before = np.cumsum(dx[c0:c1]) + np.r_[0.0, np.cumsum(extra)[:-1]]
