@@ -245,6 +245,17 @@ def test_hairline_circle_area_within_tolerance(tol):
     assert abs(a - 0.5 * 2 * math.pi * 8) <= 0.5 * 2 * math.pi * 8.5 * tol + 1e-3
 
 
+@pytest.mark.parametrize('cap,area', [('butt', 0.0), ('round', math.pi / 4), ('square', 1.0)])
+def test_hairline_zero_length_subpath_dot(cap, area):
+    """A zero-length subpath draws a cap-shaped dot (disc of diameter 1 px,
+    or a 1 px square) at the hairline's coverage factor 0.5; butt: nothing."""
+    b = PathBuilder()
+    b.moveTo((5, 5))
+    b.lineTo((5, 5))
+    n = PathNode(path=b.path(), stroke=Stroke(RED, width=0.5, cap=cap))
+    assert alpha(render_tree(tree(n))).sum() == pytest.approx(0.5 * area, abs=2e-3)
+
+
 def test_filled_hairline_path_is_flattened_once(monkeypatch):
     calls = []
     orig = render_mod.flatten

@@ -256,6 +256,47 @@ def test_convolve_box_kernel_hand_computed_and_errors():
     assert not img[..., 3].any()
 
 
+def test_diffuse_lighting_of_a_flat_surface_is_lambert():
+    # a flat bump map has the normal (0, 0, 1): N.L = sin(elevation)
+    a = np.ones((6, 6), np.float32)
+    for el in (90.0, 30.0):
+        out = F.lighting(a, ('distant', (0.0, el)), (1.0, 0.5, 0.0), 3.0, 0.8, 1.0, False)
+        assert np.allclose(out[..., 0], 0.8 * np.sin(np.radians(el)), atol=1e-6)
+        assert np.allclose(out[..., 1], 0.4 * np.sin(np.radians(el)), atol=1e-6)
+        assert np.allclose(out[..., 3], 1.0)
+
+
+def test_specular_lighting_of_a_flat_surface_and_a_slope():
+    a = np.ones((5, 5), np.float32)
+    # light from straight above: H = (0, 0, 1), N.H = 1
+    out = F.lighting(a, ('distant', (0.0, 90.0)), (1.0, 1.0, 1.0), 1.0, 0.5, 4.0, True)
+    assert np.allclose(out[..., :3], 0.5) and np.allclose(out[..., 3], 0.5)
+    # a ramp rising to the right (alpha = x / 10, surfaceScale 10): the
+    # Sobel gradient is -10 / 4 * (4 * 0.2) = -2, the normal (-2, 0, 1) /
+    # sqrt 5; a distant light along it (azimuth 180, elevation atan(1/2))
+    # gives N.L = 1, one at elevation 90 gives 1 / sqrt 5
+    ramp = np.tile(np.arange(8, dtype=np.float32) / 10.0, (8, 1))
+    el = np.degrees(np.arctan(0.5))
+    out = F.lighting(ramp, ('distant', (180.0, el)), (1, 1, 1), 10.0, 1.0, 1.0, False)
+    assert np.allclose(out[1:-1, 1:-1, 0], 1.0, atol=1e-5)
+    out = F.lighting(ramp, ('distant', (0.0, 90.0)), (1, 1, 1), 10.0, 1.0, 1.0, False)
+    assert np.allclose(out[1:-1, 1:-1, 0], 1 / np.sqrt(5), atol=1e-5)
+
+
+def test_turbulence_is_deterministic_bounded_and_seed_dependent():
+    y, x = np.mgrid[0:16, 0:16].astype(np.float64)
+    a = F.turbulence(x, y, (0.1, 0.1), 3, 7, False)
+    assert a.shape == (16, 16, 4) and a.dtype == np.float32
+    assert np.array_equal(a, F.turbulence(x, y, (0.1, 0.1), 3, 7, False))
+    assert (a >= 0).all() and (a <= 1).all() and a.std() > 0.01
+    assert not np.array_equal(a, F.turbulence(x, y, (0.1, 0.1), 3, 8, False))
+    # Perlin noise vanishes on the lattice: integer points of frequency 1
+    z = F.turbulence(x, y, (1.0, 1.0), 1, 7, False)
+    assert np.allclose(z, 0.0, atol=1e-9)
+    f = F.turbulence(x, y, (1.0, 1.0), 1, 7, True)
+    assert np.allclose(f, 0.5, atol=1e-6)
+
+
 def test_morphology_dilate_and_erode_of_a_square():
     img = np.zeros((21, 21, 4), np.float32)
     img[8:13, 8:13] = 1
@@ -340,7 +381,7 @@ def test_blur_in_document_is_translation_invariant():
 
 
 def test_unsupported_primitive_warns_and_does_not_break():
-    defs = '<filter id="f"><feTurbulence baseFrequency="0.1"/></filter>'
+    defs = '<filter id="f"><feDisplacementMap scale="3"/></filter>'
     with pytest.warns(raster.errors.RasterWarning):
         img = raster.render(_svg(defs, '<rect width="40" height="40" fill="red" '
                                        'filter="url(#f)"/>'
@@ -447,6 +488,9 @@ SUITE_CASES = [
     'filters/feImage/link-to-an-element', 'filters/feImage/recursive-links-1',
     'filters/feImage/with-subregion-2', 'filters/feOffset/complex-transform',
     'filters/feConvolveMatrix/order=4-2', 'filters/feConvolveMatrix/edgeMode=none',
+    'filters/feDiffuseLighting/single-light-source', 'filters/feSpotLight/custom-attributes',
+    'filters/feTurbulence/seed=-20', 'filters/feTurbulence/type=fractalNoise',
+    'filters/feSpecularLighting/with-feDistantLight', 'filters/fePointLight/default-attributes',
 ]
 
 

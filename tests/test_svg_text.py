@@ -340,3 +340,13 @@ def test_arbitrary_text_builds_and_stays_finite(text, dxs, anchor, family):
             return
     for p, _ in ps:
         assert np.isfinite(p.points).all()
+
+
+def test_letter_spacing_skips_cursive_arabic_letters():
+    """Arabic letters join: letter-spacing is applied to the spaces only,
+    so two Arabic words grow by exactly one spacing (right-to-left run)."""
+    words = '\u0628\u0639\u0636 \u0627\u0644\u0646\u0635'
+    a = ink('<text x="20" y="60" font-family="Amiri" font-size="20">%s</text>' % words)
+    b = ink('<text x="20" y="60" font-family="Amiri" font-size="20" '
+            'letter-spacing="10">%s</text>' % words)
+    assert (b[2] - b[0]) - (a[2] - a[0]) == pytest.approx(10)

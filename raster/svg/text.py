@@ -770,7 +770,9 @@ def _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle, adjust=None):
         extra[k] = ls + (sp.ws if ch in ' \u00a0' else 0.0)
     if adjust is not None:
         extra = extra + adjust
-    before = np.cumsum(dx[c0:c1]) + np.r_[0.0, np.cumsum(extra)[:-1]]
+    dxcum = np.cumsum(dx[c0:c1])
+    ex_before = np.r_[0.0, np.cumsum(extra)[:-1]]     # spacing of earlier characters
+    before = dxcum + ex_before
     cdy = np.cumsum(dy[c0:c1])
     char_l = np.full(m, np.nan)
     char_r = np.full(m, np.nan)
@@ -803,15 +805,26 @@ def _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle, adjust=None):
         kern = (sp0.inh.get('font-kerning') or 'auto').strip()
         no_kern = kern == 'none' or (sp0.inh.get('kerning') or 'auto').strip() == '0'
         shaped = f.shape(''.join(chars[c0 + k:c0 + e]), {'kern': False} if no_kern else None)
+        # a right-to-left run comes back in visual order: its spacing adds
+        # up from the left, i.e. from its logically last character
+        rtl = len(shaped) > 1 and shaped[0][1] > shaped[-1][1]
+        vis, prev = ex_before[k], None
         for gid, cl, xa, ya, xo, yo in shaped:
             j = k + min(int(cl), e - k - 1)
+            if rtl:
+                if prev is not None and j != prev:
+                    vis += extra[prev]
+                before_j = dxcum[j] + vis
+                prev = j
+            else:
+                before_j = before[j]
             sp_i = int(owner[c0 + j])
             sp = spans[sp_i]
             s = sp.fs / f.upem
             ys = yshift.get(sp_i)
             if ys is None:
                 ys = yshift[sp_i] = sp.shift + _dominant(sp)
-            lo = pen + before[j]
+            lo = pen + before_j
             hi = lo + xa * s
             if s > 0:
                 glyphs.append((sp_i, f, gid, lo + xo * s, cdy[j] + ys - yo * s, s,
