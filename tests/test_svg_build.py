@@ -258,7 +258,9 @@ def test_group_with_id_or_transform_kept():
 
 
 def test_opacity_wraps_shape():
-    t = tree_of('<rect id="r" opacity="50%" width="1" height="1"/>')
+    # filled and stroked: a layer is needed (a single paint is folded, see
+    # test_group_opacity_over_one_paint_is_folded_into_the_paint)
+    t = tree_of('<rect id="r" opacity="50%" width="1" height="1" stroke="red"/>')
     g = t.root.children[0]
     assert isinstance(g, Group) and g.opacity == 0.5 and isinstance(g.children[0], PathNode)
     assert t.ids['r'] is g
@@ -768,3 +770,23 @@ def test_mask_cycle_through_children_is_cut_at_the_back_reference():
     inner1 = [n for n, _ in walk(m1.root) if isinstance(n, Group) and n.mask is not None]
     assert len(inner1) == 1 and inner1[0].mask.id == 'm2'          # r1 keeps mask2
     assert not [n for n, _ in walk(m2.root) if isinstance(n, Group) and n.mask is not None]
+
+
+def test_group_opacity_over_one_paint_is_folded_into_the_paint():
+    """opacity on a shape painted once needs no layer: the builder folds it
+    into fill-opacity (or stroke-opacity); with both fill and stroke the
+    layer stays, since the stroke must not show the fill through it."""
+    import numpy as np
+    import raster
+    from raster.svg.tree import Group, PathNode, walk
+    svg = ('<svg xmlns="http://www.w3.org/2000/svg" width="40" height="20">'
+           '<circle cx="10" cy="10" r="8" fill="red" fill-opacity="0.5" opacity="0.5"/>'
+           '<circle cx="30" cy="10" r="8" fill="blue" stroke="black" opacity="0.5"/></svg>')
+    tree = raster.load_svg(svg.encode())
+    paths = [n for n, _ in walk(tree.root) if isinstance(n, PathNode)]
+    groups = [n for n, _ in walk(tree.root) if isinstance(n, Group) and n.opacity < 1]
+    assert paths[0].fill.opacity == 0.25
+    assert len(groups) == 1 and groups[0].children[0] is paths[1]
+    img = raster.render(svg.encode(), premultiplied=True)
+    # red at 25 % over transparent, in the circle's interior
+    assert abs(int(img[10, 10, 0]) - 64) <= 1 and abs(int(img[10, 10, 3]) - 64) <= 1

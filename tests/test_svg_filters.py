@@ -297,6 +297,15 @@ def test_turbulence_is_deterministic_bounded_and_seed_dependent():
     assert np.allclose(f, 0.5, atol=1e-6)
 
 
+def test_displacement_by_a_constant_map_is_an_offset():
+    img = _img(10, 12, 9)
+    dmap = np.zeros((10, 12, 4), np.float32)
+    dmap[..., 0] = 1.0                     # R = 1: x + scale / 2
+    dmap[..., 3] = 1.0                     # A = 1: y + scale / 2
+    out = F.displace(img, dmap, 4.0, 0, 3)
+    assert np.array_equal(out, F.offset(img, -2, -2))
+
+
 def test_morphology_dilate_and_erode_of_a_square():
     img = np.zeros((21, 21, 4), np.float32)
     img[8:13, 8:13] = 1
@@ -380,13 +389,13 @@ def test_blur_in_document_is_translation_invariant():
     assert np.array_equal(np.roll(a, (10, 20), (0, 1)), b)
 
 
-def test_unsupported_primitive_warns_and_does_not_break():
-    defs = '<filter id="f"><feDisplacementMap scale="3"/></filter>'
+def test_unknown_primitive_warns_and_is_skipped():
+    defs = '<filter id="f"><feFoo/><feOffset/></filter>'
     with pytest.warns(raster.errors.RasterWarning):
         img = raster.render(_svg(defs, '<rect width="40" height="40" fill="red" '
                                        'filter="url(#f)"/>'
                                        '<rect width="5" height="5" fill="blue"/>'))
-    assert img[2, 2, 2] == 255
+    assert img[2, 2, 2] == 255 and tuple(img[20, 20]) == (255, 0, 0, 255)
 
 
 def test_filter_functions_resolve_to_primitives():

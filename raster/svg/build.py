@@ -512,6 +512,9 @@ class _Builder:
             kids = [Group(clip_path=clip, children=kids)]
             clip = None
         clip = cp if cp is not None else clip
+        if (opacity < 1.0 and clip is None and mask is None and blend == 'normal'
+                and not isolate):
+            kids, opacity = _fold_opacity(kids, opacity)
         i = el.get('id') or ''
         if (not keep and not i and t.is_identity and opacity >= 1.0 and clip is None
                 and mask is None and blend == 'normal' and not isolate):
@@ -1089,7 +1092,7 @@ class _Builder:
             if t is not None and t.determinant != 0:
                 # patternTransform acts in user space whatever the units
                 tf = self._with_origin(el, t, ctx)
-        vb = None
+        vb = par = None
         content_t = IDENTITY
         vbs = attr('viewBox')
         if vbs is not None:
@@ -1113,7 +1116,7 @@ class _Builder:
             return None
         return Pattern(rect=(x, y, w, h), root=Group(children=nodes), units=units,
                        content_units=cunits, transform=tf, content_transform=content_t,
-                       view_box=vb, id=el.get('id') or '')
+                       view_box=vb, preserve_aspect_ratio=par, id=el.get('id') or '')
 
     def _gradient(self, el, name, ctx):
         chain = self.href_chain(el, ('linearGradient', 'radialGradient'))
@@ -1250,10 +1253,13 @@ class _Builder:
         node = PathNode(id=el.get('id') or '', path=path, fill=fill, stroke=stroke,
                         paint_order=order, markers=markers,
                         antialias=sr not in ('crispEdges', 'optimizeSpeed'))
-        self.note_id(el, node)
         opacity, blend, isolate, clip, mask, ok = self.effects(el, own, st, [node], t)
         if not ok or opacity <= 0.0:
             return
+        if (opacity < 1.0 and clip is None and mask is None and blend == 'normal'
+                and not isolate):
+            (node,), opacity = _fold_opacity([node], opacity)
+        self.note_id(el, node)
         if (t.is_identity and opacity >= 1.0 and blend == 'normal' and not isolate
                 and clip is None and mask is None):
             out.append(node)
@@ -1367,6 +1373,22 @@ def _rebased(p, m, box):
     if obb:
         t = Affine(box[2], 0, 0, box[3], box[0], box[1]) @ t
     return dataclasses.replace(p, units='userSpaceOnUse', transform=inv @ t)
+
+
+def _fold_opacity(kids, opacity):
+    """Group opacity over a single path painted once (fill or stroke, no
+    markers) equals that paint's own opacity times the group's: fold it in
+    and spare the renderer a layer.  Returns ``(kids, opacity)``."""
+    if len(kids) != 1 or not isinstance(kids[0], PathNode):
+        return kids, opacity
+    n = kids[0]
+    if n.markers is not None or (n.fill is None) == (n.stroke is None):
+        return kids, opacity
+    if n.fill is not None:
+        n = dataclasses.replace(n, fill=dataclasses.replace(n.fill, opacity=n.fill.opacity * opacity))
+    else:
+        n = dataclasses.replace(n, stroke=dataclasses.replace(n.stroke, opacity=n.stroke.opacity * opacity))
+    return [n], 1.0
 
 
 def _paint_order(v):

@@ -29,8 +29,7 @@ Semantics follow the specification and resvg where they differ:
 * an feConvolveMatrix in error (bad order, kernel size, target, zero
   divisor) gives transparent black;
 * feTurbulence follows the specification's reference generator (no
-  ``stitchTiles``); feDisplacementMap is not supported: transparent black,
-  with a warning.
+  ``stitchTiles``); feDisplacementMap samples the nearest pixel.
 
 Transforms: the filter works on device pixels.  An axis-aligned CTM
 (scale + translate) is exact.  Under rotation or skew the region is the
@@ -63,7 +62,7 @@ from ..transform import Affine
 __all__ = ['FilterError', 'Filter', 'Primitive', 'resolve_filter_property', 'filter_box',
            'filter_pixel_box', 'group_filters',
            'apply_filters', 'gaussian_blur', 'box_blur', 'box_sigma', 'offset', 'composite', 'blend',
-           'color_matrix', 'component_transfer', 'morphology', 'convolve', 'lighting', 'turbulence', 'srgb_to_linear',
+           'color_matrix', 'component_transfer', 'morphology', 'convolve', 'lighting', 'turbulence', 'displace', 'srgb_to_linear',
            'linear_to_srgb', 'DEFAULT_TOLERANCE']
 
 #: Default tolerance (device pixels) for explicit-accuracy blurs (see
@@ -128,8 +127,8 @@ class FilterList(list):
 _SUPPORTED = {'feGaussianBlur', 'feOffset', 'feFlood', 'feMerge', 'feComposite', 'feBlend',
               'feColorMatrix', 'feComponentTransfer', 'feDropShadow', 'feMorphology', 'feTile',
               'feImage', 'feConvolveMatrix', 'feDiffuseLighting', 'feSpecularLighting',
-              'feTurbulence'}
-_UNSUPPORTED = {'feDisplacementMap'}
+              'feTurbulence', 'feDisplacementMap'}
+_UNSUPPORTED = set()
 _SVG_NS = '{http://www.w3.org/2000/svg}'
 
 
@@ -431,21 +430,24 @@ def _resolve_primitive(b, el, name, region, pbox, ctx, st):
             b.warn('filter-' + name, 'filter primitive %s is not supported; its result is '
                    'transparent' % name)
         else:
-            return None         # unknown elements are skipped
+            b.warn('filter-unknown', 'unknown filter primitive <%s> skipped' % name)
+            return None         # unknown elements are skipped (resvg)
     sub = []
     for attr, axis, i in (('x', 'x', 0), ('y', 'y', 1), ('width', 'x', 2), ('height', 'y', 3)):
         s = el.get(attr)
         v = parse_length(s, axis, ctx) if s is not None else None
         if v is not None and pbox is not None:
-            # as resvg: fractions of the filter region, not of the bbox
-            v = region[i] + v * region[i + 2] if i < 2 else v * region[i]
+            # as resvg: fractions of the filter region, not of the bbox,
+            # except for feImage and feFlood
+            ref = pbox if name in ('feImage', 'feFlood') else region
+            v = ref[i] + v * ref[i + 2] if i < 2 else v * ref[i]
         sub.append(v)
     cif = inh.get('color-interpolation-filters', 'linearRGB')
     linear = cif == 'linearRGB'
     sx, sy = (pbox[2], pbox[3]) if pbox is not None else (1.0, 1.0)
     pr = {}
     ins = (el.get('in'),)
-    if name in ('feComposite', 'feBlend'):
+    if name in ('feComposite', 'feBlend', 'feDisplacementMap'):
         ins = (el.get('in'), el.get('in2'))
     elif name == 'feMerge':
         ins = tuple(c.get('in') for c in el if _local(c) == 'feMergeNode')
@@ -513,6 +515,11 @@ def _resolve_primitive(b, el, name, region, pbox, ctx, st):
         pr['turb'] = None if bf is None else (
             tuple(bf), max(int(octaves), 0), int(_number(el.get('seed'), 0.0)),
             el.get('type') == 'fractalNoise')
+    if name == 'feDisplacementMap':
+        pr['scale'] = _number(el.get('scale'), 0.0) * (sx + sy) / 2.0
+        pr['channels'] = tuple('RGBA'.index(v) if v in ('R', 'G', 'B', 'A') else 3
+                               for v in (el.get('xChannelSelector', 'A'),
+                                         el.get('yChannelSelector', 'A')))
     if name == 'feConvolveMatrix':
         pr['conv'] = _convolve_params(el)
     if name in ('feDiffuseLighting', 'feSpecularLighting'):
@@ -693,6 +700,25 @@ def lighting(alpha, light, color, surface, k, exponent, specular, t=None):
     f = k * np.maximum((n * lv).sum(-1), 0.0)
     rgb = np.clip(col * f[..., None], 0.0, 1.0)
     return np.concatenate([rgb, np.ones((h, w, 1))], -1).astype(np.float32)
+
+
+def displace(img, dmap, scale, xch=3, ych=3):
+    """feDisplacementMap: ``out(x, y) = img(x + scale (X(x, y) - 0.5),
+    y + scale (Y(x, y) - 0.5))`` with X, Y the channels ``xch``, ``ych``
+    (0..3 = R, G, B, A) of the unpremultiplied ``dmap``; ``scale`` in
+    device pixels; samples outside ``img`` are transparent (nearest pixel).
+    """
+    src, m = _check(img), _check(dmap, 'displacement map')
+    _finite(scale)
+    c, a = _unpremul(m)
+    mm = np.concatenate([c, a], -1)
+    h, w = src.shape[:2]
+    jj, ii = np.meshgrid(np.arange(w), np.arange(h))
+    u = np.floor(jj + 0.5 + scale * (mm[..., xch] - 0.5)).astype(np.int64)
+    v = np.floor(ii + 0.5 + scale * (mm[..., ych] - 0.5)).astype(np.int64)
+    ok = (u >= 0) & (u < w) & (v >= 0) & (v < h)
+    out = src[np.clip(v, 0, h - 1), np.clip(u, 0, w - 1)]
+    return np.where(ok[..., None], out, 0.0).astype(np.float32)
 
 
 _PERLIN = {}
@@ -1471,6 +1497,8 @@ def _run(p, imgs, ins, sx, sy, t, tol, sub, lin, shape, draw=None):
             col = srgb_to_linear(col)
         return lighting(imgs[0][..., 3], pr['light'], col, pr['surface'], pr['k'], pr['exp'],
                         k == 'feSpecularLighting', t)
+    if k == 'feDisplacementMap':
+        return displace(imgs[0], imgs[1], pr['scale'] * (sx + sy) / 2.0, *pr['channels'])
     if k == 'feTurbulence':
         if pr['turb'] is None:
             return None

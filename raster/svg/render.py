@@ -325,7 +325,7 @@ class _Renderer:
         return np.clip(m, 0.0, 1.0)
 
     # -- paths ---------------------------------------------------------------
-    def path(self, n, t, canvas, clip_mode=False, alpha=1.0):
+    def path(self, n, t, canvas, clip_mode=False):
         if n.path is None or len(n.path.verbs) == 0:
             return
         if clip_mode:
@@ -338,22 +338,22 @@ class _Renderer:
             return
         for item in n.paint_order:
             if item == 'fill' and n.fill is not None:
-                self.fill(n, t, canvas, alpha)
+                self.fill(n, t, canvas)
             elif item == 'stroke' and n.stroke is not None:
-                self.stroke(n, t, canvas, alpha)
+                self.stroke(n, t, canvas)
             elif item == 'markers' and n.markers is not None:
                 self.node(n.markers, t, canvas)
 
-    def fill(self, n, t, canvas, alpha=1.0):
+    def fill(self, n, t, canvas):
         f = n.fill
-        if f.opacity * alpha <= 0:
+        if f.opacity <= 0:
             return
         edges = self.flat(n.path, t).edges(close_all=True)
         if len(edges) == 0:
             return
         m = coverage(edges, canvas.width, canvas.height, f.rule, n.antialias)
         if m is not None:
-            self.paint(canvas, m, f.paint, f.opacity * alpha, n.path, t)
+            self.paint(canvas, m, f.paint, f.opacity, n.path, t)
 
     def flat(self, path, t):
         """Polylines of ``path`` flattened under ``t`` (device pixels).  The
@@ -366,13 +366,13 @@ class _Renderer:
         self._flat_key, self._flat_path, self._flat = key, path, pl
         return pl
 
-    def stroke(self, n, t, canvas, alpha=1.0):
+    def stroke(self, n, t, canvas):
         s = n.stroke
         if s.opacity <= 0 or s.width <= 0:
             return
         style = StrokeStyle(width=s.width, join=s.join, cap=s.cap, miterlimit=s.miterlimit,
                             dash=s.dash, dash_offset=s.dash_offset)
-        opacity = s.opacity * alpha
+        opacity = s.opacity
         hair = hairline_scale(style, t)
         if hair is not None:
             style = StrokeStyle(width=1.0 / t.mean_scale(), join=s.join, cap=s.cap,
