@@ -75,7 +75,7 @@ from . import limits
 from .transform import as_affine
 from .bbox import quadratic_roots
 
-__all__ = ['flatten', 'flatten_beziers', 'Polylines', 'DEFAULT_TOLERANCE']
+__all__ = ['flatten', 'flatten_many', 'flatten_beziers', 'Polylines', 'DEFAULT_TOLERANCE']
 
 #: Default flattening tolerance in device pixels.
 DEFAULT_TOLERANCE = 0.25
@@ -773,9 +773,20 @@ def flatten(path, tolerance=DEFAULT_TOLERANCE, transform=None):
         cstart = t.apply(cstart)
         if not (np.all(np.isfinite(ctrl)) and np.all(np.isfinite(cstart))):
             raise PathError('transformed path has non-finite coordinates')
+    out, starts, keep_c, _ = _assemble(ctrl, cstart, seg.degree, seg.contour,
+                                       seg.contour_nseg, seg.contour_closed, tol)
+    return Polylines(out, starts, seg.contour_closed[keep_c])
+
+
+def _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol):
+    """Flatten segment arrays (device space) and lay out the polyline
+    vertices: returns ``(points, starts, keep_c, item_n)``; ``keep_c`` marks
+    the contours kept, ``item_n`` the vertex count of each item (contour
+    start or segment, in path order)."""
+    seg_contour = contour
     S = len(ctrl)
     C = len(cstart)
-    deg = seg.degree.astype(np.int64)
+    deg = degree.astype(np.int64)
     # points each segment contributes (its start excluded)
     seg_n = np.ones(S, np.int64)
     seg_pts = [None] * 4
@@ -787,13 +798,13 @@ def flatten(path, tolerance=DEFAULT_TOLERANCE, transform=None):
             keep[np.cumsum(counts) - counts] = False
             seg_n[idx] = counts - 1
             seg_pts[d] = (idx, pts[keep], counts - 1)
-    keep_c = (seg.contour_nseg > 0) | seg.contour_closed
+    keep_c = (contour_nseg > 0) | contour_closed
     # item order: contour start j, then its segments; item index of start j
     # is j + (segments before contour j), of segment s is contour[s] + 1 + s
-    nseg_before = np.cumsum(seg.contour_nseg) - seg.contour_nseg
+    nseg_before = np.cumsum(contour_nseg) - contour_nseg
     item_n = np.zeros(C + S, np.int64)
     start_item = np.arange(C) + nseg_before
-    seg_item = seg.contour + 1 + np.arange(S)
+    seg_item = seg_contour + 1 + np.arange(S)
     item_n[start_item] = keep_c
     item_n[seg_item] = seg_n
     item_off = np.cumsum(item_n) - item_n
@@ -812,4 +823,104 @@ def flatten(path, tolerance=DEFAULT_TOLERANCE, transform=None):
             base = np.repeat(item_off[seg_item[idx]], cnt)
             within = np.arange(len(pts)) - np.repeat(np.cumsum(cnt) - cnt, cnt)
             out[base + within] = pts
-    return Polylines(out, starts, seg.contour_closed[keep_c])
+    return out, starts, keep_c, item_n
+
+
+def flatten_many(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
+    """Flatten many paths at once: one :func:`flatten_beziers` call per
+    degree for all their curves, so a document of thousands of small paths
+    does not pay the fixed cost of a flatten call per path.
+
+    Parameters
+    ----------
+    paths : sequence of raster.path.Path
+    transforms : sequence of Affine (or None entries), or None, optional
+        One transform per path (user to device space); None: identity.
+    tolerance : float, optional
+        As for :func:`flatten` (device pixels, default 0.25).
+
+    Returns
+    -------
+    list of Polylines
+        ``result[i]`` equals ``flatten(paths[i], tolerance, transforms[i])``
+        exactly (same vertices, starts and closed flags).
+
+    Raises
+    ------
+    PathError
+        Not a path, bad tolerance, mismatched lengths, or coordinates that
+        become non-finite after a transform.
+    TransformError
+        A transform that cannot be interpreted.
+    LimitError
+        More than :data:`raster.limits.MAX_FLATTEN_POINTS` points needed in
+        all.
+
+    Examples
+    --------
+    >>> from raster.path import Path
+    >>> sq = Path.polygon([[0, 0], [1, 0], [1, 1], [0, 1]])
+    >>> a, b = flatten_many([sq, sq], [None, (2, 0, 0, 2, 5, 0)])
+    >>> b.points.tolist()
+    [[5.0, 0.0], [7.0, 0.0], [7.0, 2.0], [5.0, 2.0]]
+    """
+    tol = _check_tolerance(tolerance)
+    paths = list(paths)
+    n = len(paths)
+    if transforms is None:
+        transforms = [None] * n
+    transforms = list(transforms)
+    if len(transforms) != n:
+        raise PathError('flatten_many needs one transform per path (%d paths, %d transforms)'
+                        % (n, len(transforms)))
+    if n == 0:
+        return []
+    segs = []
+    for p in paths:
+        if not callable(getattr(p, 'segments', None)):
+            raise PathError('flatten_many needs raster.path.Path objects, got %s'
+                            % type(p).__name__)
+        segs.append(p.segments())
+    aff = [as_affine(t) for t in transforms]
+    ns = np.array([len(s.degree) for s in segs], np.int64)
+    nc = np.array([len(s.contour_start) for s in segs], np.int64)
+    ctrl = np.concatenate([s.ctrl for s in segs]) if ns.sum() else np.zeros((0, 4, 2))
+    cstart = np.concatenate([s.contour_start for s in segs]) if nc.sum() else np.zeros((0, 2))
+    degree = np.concatenate([s.degree for s in segs]).astype(np.int8)
+    coff = np.cumsum(nc) - nc
+    contour = (np.concatenate([s.contour for s in segs]).astype(np.int64)
+               + np.repeat(coff, ns))
+    nseg = np.concatenate([s.contour_nseg for s in segs]).astype(np.int64)
+    closed = np.concatenate([s.contour_closed for s in segs]).astype(bool)
+    ident = np.array([a.is_identity for a in aff], bool)
+    if not ident.all():
+        # the same arithmetic as Affine.apply, per path (identities untouched)
+        M = np.array([tuple(a) for a in aff], np.float64)          # (n, 6)
+
+        def apply(pts, per):
+            Mi = np.repeat(M, per, axis=0)
+            move = np.repeat(~ident, per)
+            shape = (-1,) + (1,) * (pts.ndim - 2)
+            a, b, c, d, e, f = (Mi[:, k].reshape(shape) for k in range(6))
+            x, y = pts[..., 0], pts[..., 1]
+            out = pts.copy()
+            out[..., 0] = np.where(move.reshape(shape), a * x + c * y + e, x)
+            out[..., 1] = np.where(move.reshape(shape), b * x + d * y + f, y)
+            return out
+        ctrl = apply(ctrl, ns)
+        cstart = apply(cstart, nc)
+        if not (np.all(np.isfinite(ctrl)) and np.all(np.isfinite(cstart))):
+            raise PathError('transformed path has non-finite coordinates')
+    out, starts, keep_c, _ = _assemble(ctrl, cstart, degree, contour, nseg, closed, tol)
+    # kept contours of each path, then each path's range of polylines
+    per_path = np.bincount(np.repeat(np.arange(n), nc), weights=keep_c,
+                           minlength=n).astype(np.int64)
+    kept = np.concatenate([[0], np.cumsum(per_path)])
+    bounds = np.append(starts, len(out))[kept]        # point range of each path
+    closed_k = closed[keep_c]
+    res = []
+    kl, bl = kept.tolist(), bounds.tolist()
+    for i in range(n):
+        k0, k1, a0, a1 = kl[i], kl[i + 1], bl[i], bl[i + 1]
+        res.append(Polylines(out[a0:a1], starts[k0:k1] - a0, closed_k[k0:k1]))
+    return res

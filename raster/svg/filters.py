@@ -50,19 +50,18 @@ on unpremultiplied values, and the final result back to sRGB.
 
 import math
 import re
-import warnings
 from dataclasses import dataclass, field
 from typing import Optional, Tuple
 
 import numpy as np
 
-from ..errors import RasterError, RasterWarning
+from ..errors import RasterError
 from ..transform import Affine
 
 __all__ = ['FilterError', 'Filter', 'Primitive', 'resolve_filter_property', 'filter_box',
-           'filter_pixel_box', 'group_filters',
-           'apply_filters', 'gaussian_blur', 'box_blur', 'box_sigma', 'offset', 'composite', 'blend',
-           'color_matrix', 'component_transfer', 'morphology', 'convolve', 'lighting', 'turbulence', 'displace', 'srgb_to_linear',
+           'filter_pixel_box', 'group_filters', 'apply_filters', 'gaussian_blur', 'box_blur',
+           'box_sigma', 'offset', 'composite', 'blend', 'color_matrix', 'component_transfer',
+           'morphology', 'convolve', 'lighting', 'turbulence', 'displace', 'srgb_to_linear',
            'linear_to_srgb', 'DEFAULT_TOLERANCE']
 
 #: Default tolerance (device pixels) for explicit-accuracy blurs (see
