@@ -103,6 +103,39 @@ _UNSUPPORTED = object()   # a paint server that cannot paint (no stops, empty bo
 _ARC_SAFETY = 0.1   # arcs are made 10x finer than `tolerance` so zooming in stays smooth
 
 
+@dataclasses.dataclass(frozen=True, slots=True)
+class _Effects:
+    """What an element does to its content as a group: opacity, blend mode,
+    isolation, clip path, mask and filters; ``ok`` False: not rendered."""
+    opacity: float = 1.0
+    blend: str = 'normal'
+    isolate: bool = False
+    clip: object = None
+    mask: object = None
+    filters: tuple = ()
+    ok: bool = True
+
+    @property
+    def composited(self):
+        """Needs a layer for something other than opacity."""
+        return (self.clip is not None or self.mask is not None or self.blend != 'normal'
+                or self.isolate or bool(self.filters))
+
+    @property
+    def trivial(self):
+        """Changes nothing: no Group is needed (but for a transform or id)."""
+        return self.opacity >= 1.0 and not self.composited
+
+    def group(self, id, transform, children):
+        return Group(id=id, transform=transform, opacity=self.opacity, clip_path=self.clip,
+                     mask=self.mask, filters=list(self.filters), blend_mode=self.blend,
+                     isolate=self.isolate, children=children)
+
+
+_NO_EFFECTS = _Effects()
+_EFFECTS_NOT_DRAWN = _Effects(ok=False)
+
+
 def _local(el):
     """Local name of an SVG-namespace element, else None."""
     tag = el.tag
@@ -405,11 +438,11 @@ class _Builder:
 
     def effects(self, el, own, st, kids, t=None):
         """Group effects of an element whose content is ``kids`` (nodes in
-        its user space): ``(opacity, blend, isolate, clip_path, mask, ok)``;
-        ``ok`` False means the element is not rendered (an empty clip path,
-        an object-bounding-box clip or mask of an empty box)."""
+        its user space), as an :class:`_Effects`; its ``ok`` is False when
+        the element is not rendered (an empty clip path, an
+        object-bounding-box clip or mask of an empty box, an invalid filter)."""
         if not own:
-            return 1.0, 'normal', False, None, None, True
+            return _NO_EFFECTS
         clip = mask = None
         if t is not None and not t.is_identity and ('clip-path' in own or 'mask' in own):
             st = st.sub(t)
@@ -419,31 +452,29 @@ class _Builder:
             if clip is not None:
                 clip = self.build_clip(clip, kids, st)
                 if clip is _EMPTY:
-                    return 1.0, 'normal', False, None, None, False
+                    return _EFFECTS_NOT_DRAWN
         if st.mode == 'clip':
-            return 1.0, 'normal', False, clip, None, True
+            return _Effects(clip=clip)
         v = own.get('mask')
         if v is not None and v.strip() != 'none' and el not in self.cut_masks():
             mask = self.reference(v, 'mask', 'mask')
             if mask is not None:
                 mask = self.build_mask(mask, kids, st)
                 if mask is _EMPTY:
-                    return 1.0, 'normal', False, None, None, False
+                    return _EFFECTS_NOT_DRAWN
         v = own.get('filter')
         filters = None
         if v is not None and v.strip() != 'none':
             from .filters import resolve_filter_property
             filters = resolve_filter_property(self, el, v, kids, st)
             if filters is None:         # invalid reference, empty filter: not rendered
-                return 1.0, 'normal', False, None, None, False
-        opacity = _opacity(own.get('opacity'))
+                return _EFFECTS_NOT_DRAWN
         blend = own.get('mix-blend-mode', 'normal')
         if blend not in _BLEND:
             blend = 'normal'
-        # a filtered element is an isolated group; its filters travel to the
-        # renderer as ``isolate`` (a truthy raster.svg.filters.FilterList)
-        isolate = filters or own.get('isolation') == 'isolate'
-        return opacity, blend, isolate, clip, mask, True
+        return _Effects(opacity=_opacity(own.get('opacity')), blend=blend,
+                        isolate=own.get('isolation') == 'isolate', clip=clip, mask=mask,
+                        filters=filters or ())
 
     def cut_masks(self):
         """Elements inside ``mask`` elements whose ``mask`` property is
@@ -505,22 +536,19 @@ class _Builder:
         ``clip`` is a viewport clip (nested svg, symbol)."""
         if not kids and own.get('filter', 'none').strip() == 'none':
             return []       # (a filter can draw for an empty element: feFlood)
-        opacity, blend, isolate, cp, mask, ok = self.effects(el, own, st, kids, t)
-        if not ok or opacity <= 0.0:
+        e = self.effects(el, own, st, kids, t)
+        if not e.ok or e.opacity <= 0.0:
             return []
-        if clip is not None and cp is not None:
-            kids = [Group(clip_path=clip, children=kids)]
-            clip = None
-        clip = cp if cp is not None else clip
-        if (opacity < 1.0 and clip is None and mask is None and blend == 'normal'
-                and not isolate):
-            kids, opacity = _fold_opacity(kids, opacity)
+        if clip is not None:
+            if e.clip is not None:      # viewport clip inside the element's clip path
+                kids = [Group(clip_path=clip, children=kids)]
+            else:
+                e = dataclasses.replace(e, clip=clip)
+        kids, e = _fold_opacity(kids, e)
         i = el.get('id') or ''
-        if (not keep and not i and t.is_identity and opacity >= 1.0 and clip is None
-                and mask is None and blend == 'normal' and not isolate):
+        if not keep and not i and t.is_identity and e.trivial:
             return kids
-        g = Group(id=i, transform=t, opacity=opacity, clip_path=clip, mask=mask,
-                  blend_mode=blend, isolate=isolate, children=kids)
+        g = e.group(i, t, kids)
         self.note_id(el, g)
         return [g]
 
@@ -1253,19 +1281,15 @@ class _Builder:
         node = PathNode(id=el.get('id') or '', path=path, fill=fill, stroke=stroke,
                         paint_order=order, markers=markers,
                         antialias=sr not in ('crispEdges', 'optimizeSpeed'))
-        opacity, blend, isolate, clip, mask, ok = self.effects(el, own, st, [node], t)
-        if not ok or opacity <= 0.0:
+        e = self.effects(el, own, st, [node], t)
+        if not e.ok or e.opacity <= 0.0:
             return
-        if (opacity < 1.0 and clip is None and mask is None and blend == 'normal'
-                and not isolate):
-            (node,), opacity = _fold_opacity([node], opacity)
+        (node,), e = _fold_opacity([node], e)
         self.note_id(el, node)
-        if (t.is_identity and opacity >= 1.0 and blend == 'normal' and not isolate
-                and clip is None and mask is None):
+        if t.is_identity and e.trivial:
             out.append(node)
         else:
-            g = Group(id=node.id, transform=t, opacity=opacity, clip_path=clip, mask=mask,
-                      blend_mode=blend, isolate=isolate, children=[node])
+            g = e.group(node.id, t, [node])
             if node.id:
                 self.tree_ids[node.id] = g
             out.append(g)
@@ -1375,20 +1399,20 @@ def _rebased(p, m, box):
     return dataclasses.replace(p, units='userSpaceOnUse', transform=inv @ t)
 
 
-def _fold_opacity(kids, opacity):
+def _fold_opacity(kids, e):
     """Group opacity over a single path painted once (fill or stroke, no
     markers) equals that paint's own opacity times the group's: fold it in
-    and spare the renderer a layer.  Returns ``(kids, opacity)``."""
-    if len(kids) != 1 or not isinstance(kids[0], PathNode):
-        return kids, opacity
+    and spare the renderer a layer.  Returns ``(kids, effects)``."""
+    if e.opacity >= 1.0 or e.composited or len(kids) != 1 or not isinstance(kids[0], PathNode):
+        return kids, e
     n = kids[0]
     if n.markers is not None or (n.fill is None) == (n.stroke is None):
-        return kids, opacity
+        return kids, e
     if n.fill is not None:
-        n = dataclasses.replace(n, fill=dataclasses.replace(n.fill, opacity=n.fill.opacity * opacity))
+        n = dataclasses.replace(n, fill=dataclasses.replace(n.fill, opacity=n.fill.opacity * e.opacity))
     else:
-        n = dataclasses.replace(n, stroke=dataclasses.replace(n.stroke, opacity=n.stroke.opacity * opacity))
-    return [n], 1.0
+        n = dataclasses.replace(n, stroke=dataclasses.replace(n.stroke, opacity=n.stroke.opacity * e.opacity))
+    return [n], dataclasses.replace(e, opacity=1.0)
 
 
 def _paint_order(v):
@@ -1504,14 +1528,13 @@ def build_tree(root, *, base_dir=None, allow_files_under=None, resources_dir=Non
     st = _State(vw, vh, rt)
     if t_root is not None and b.passes_conditions(root):
         b.children(root, inh, own, st, kids)
-    opacity, blend, isolate, clip, mask, ok = b.effects(root, own, st, kids)
-    if not ok:
+    e = b.effects(root, own, st, kids)
+    if not e.ok:
         kids = []
     bg = _root_background(root, rt, w, h) if not auto else None
     if bg is not None:
         kids = [bg] + kids
-    group = Group(id=root.get('id') or '', transform=rt, opacity=opacity, clip_path=clip,
-                  mask=mask, blend_mode=blend, isolate=isolate, children=kids)
+    group = e.group(root.get('id') or '', rt, kids)
     if auto and kids:
         box = _content_box(group)
         if box is not None:

@@ -1569,10 +1569,7 @@ def _run(p, imgs, ins, sx, sy, t, tol, sub, lin, shape, draw=None):
 
 
 def group_filters(g):
-    """The filters of a tree Group (``g.filters``, or the FilterList the
-    builder passes as ``g.isolate``), or None when it has none."""
-    fl = getattr(g, 'filters', None)
-    if fl:
-        return fl
-    iso = getattr(g, 'isolate', None)
-    return iso if isinstance(iso, list) and iso else None
+    """The filters of a tree Group (its ``filters`` list), or None."""
+    return g.filters or None
+
+

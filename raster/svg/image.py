@@ -63,6 +63,7 @@ arrays are shared between uses of one image and are read-only.
 """
 
 import base64
+import dataclasses
 import contextvars
 import io
 import math
@@ -76,7 +77,7 @@ import numpy as np
 from .. import limits
 from ..errors import RasterError
 from ..svgpath import rect_path
-from .tree import Group, ImageNode, PathNode
+from .tree import ImageNode, PathNode
 from .values import parse_length, parse_preserve_aspect_ratio, viewbox_transform
 
 __all__ = ['build_image', 'load_image', 'decode_raster', 'sniff', 'parse_data_uri',
@@ -593,18 +594,16 @@ def build_image(builder, el, pinh, pown, st, out):
     # group effects; an object bounding box (clip path / mask units) is the
     # image's viewport, so effects see a rectangle standing in for the image
     proxy = [PathNode(path=rect_path(x, y, w, h))]
-    opacity, blend, isolate, cp, mask, ok = builder.effects(el, own, st.sub(t), proxy)
-    if not ok or opacity <= 0.0:
+    e = builder.effects(el, own, st.sub(t), proxy)
+    if not e.ok or e.opacity <= 0.0:
         return None
-    if cp is None and mask is None and blend == 'normal' and not isolate:
-        node.opacity = opacity          # drawn in one pass: no layer needed
-        opacity = 1.0
-    if t.is_identity and opacity >= 1.0 and cp is None and mask is None \
-            and blend == 'normal' and not isolate:
+    if not e.composited:
+        node.opacity = e.opacity        # drawn in one pass: no layer needed
+        e = dataclasses.replace(e, opacity=1.0)
+    if t.is_identity and e.trivial:
         out.append(node)
     else:
-        g = Group(id=node.id, transform=t, opacity=opacity, clip_path=cp, mask=mask,
-                  blend_mode=blend, isolate=isolate, children=[node])
+        g = e.group(node.id, t, [node])
         if node.id:
             builder.tree_ids[node.id] = g
         out.append(g)

@@ -57,7 +57,7 @@ import numpy as np
 from .. import limits
 from ..canvas import Canvas
 from ..errors import CanvasError, RasterError, SVGError
-from ..flatten import flatten
+from ..flatten import flatten, flatten_many
 from ..path import Path
 from ..scan import coverage
 from ..stroke import StrokeStyle, hairline_scale, stroke as stroke_outline
@@ -191,9 +191,11 @@ def render_tree(tree, width=None, height=None, zoom=None, background=None, node_
     base = Affine.scale(sx, sy)
     r = _Renderer(tol)
     if node_id is None:
+        r.plan([tree.root], base)
         r.node(tree.root, base, canvas)
     else:
         node, t = _find(tree, node_id)
+        r.plan([node], base @ t)
         r.node(node, base @ t, canvas)
     return canvas
 
@@ -224,6 +226,47 @@ class _Renderer:
     def __init__(self, tolerance):
         self.tol = tolerance
         self._flat_key = self._flat_path = self._flat = None
+        # batched flattening: (id(path), t) -> (path, t) waiting in document
+        # order, and -> Polylines already flattened (see plan / flat)
+        self._pending = {}
+        self._ready = {}
+
+    # -- batched geometry ------------------------------------------------------
+    def plan(self, nodes, t):
+        """Queue the paths of ``nodes`` (with CTM ``t``) drawn directly on
+        the canvas (not inside layered groups) whose fill or hairline needs
+        flattened polylines; :meth:`flat` then flattens them in batches with
+        :func:`raster.flatten.flatten_many`, in document order."""
+        stack = [(n, t) for n in reversed(nodes)]
+        pending = self._pending
+        while stack:
+            n, m = stack.pop()
+            if isinstance(n, Group):
+                if n.needs_layer:
+                    continue
+                ct = m @ n.transform
+                stack.extend((c, ct) for c in reversed(n.children))
+            elif isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
+                if _wants_flat(n, m):
+                    pending.setdefault((id(n.path), m), (n.path, m))
+
+    def _flush(self, key):
+        """Flatten pending paths in document order, up to and including
+        ``key``, at least :data:`_BATCH_VERBS` verbs' worth."""
+        pending = self._pending
+        batch, verbs, seen = [], 0, False
+        for k in pending:
+            batch.append(k)
+            verbs += len(pending[k][0].verbs)
+            seen = seen or k == key
+            if seen and verbs >= _BATCH_VERBS:
+                break
+        items = [pending.pop(k) for k in batch]
+        try:
+            pls = flatten_many([p for p, _ in items], [m for _, m in items], self.tol)
+        except RasterError:
+            return          # flattened one by one (errors where they were)
+        self._ready.update(zip(batch, pls))
 
     # -- dispatch ------------------------------------------------------------
     def node(self, node, t, canvas, clip_mode=False):
@@ -271,6 +314,8 @@ class _Renderer:
         x0, y0, x1, y1 = px
         layer = Canvas(x1 - x0, y1 - y0)
         lt = Affine.translate(-x0, -y0) @ ct
+        if not clip_mode:
+            self.plan(g.children, lt)
         for c in g.children:
             self.node(c, lt, layer, clip_mode)
         if filters is not None:
@@ -362,7 +407,11 @@ class _Renderer:
         key = (id(path), t)
         if self._flat_key == key and self._flat_path is path:
             return self._flat
-        pl = flatten(path, self.tol, transform=t)
+        if key in self._pending:
+            self._flush(key)
+        pl = self._ready.pop(key, None)
+        if pl is None:
+            pl = flatten(path, self.tol, transform=t)
         self._flat_key, self._flat_path, self._flat = key, path, pl
         return pl
 
@@ -496,6 +545,20 @@ class _Renderer:
 # ---------------------------------------------------------------------------
 # Geometry helpers
 # ---------------------------------------------------------------------------
+
+#: Verbs per batch of :meth:`_Renderer._flush` (bounds its memory).
+_BATCH_VERBS = 100_000
+
+
+def _wants_flat(n, t):
+    """Whether drawing PathNode ``n`` under ``t`` flattens its path (a
+    visible fill, or an undashed hairline stroke)."""
+    f, s = n.fill, n.stroke
+    if f is not None and f.opacity > 0:
+        return True
+    return (s is not None and s.dash is None and s.opacity > 0
+            and 0.0 < s.width * t.mean_scale() < 1.0)
+
 
 def _cover(path, t, w, h, rule, antialias, tol):
     """Coverage Mask of ``path`` filled under ``t`` on a w x h target."""
