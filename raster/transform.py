@@ -123,12 +123,11 @@ class Affine:
         return math.sqrt(max(s / 2 + disc, 0.0))
 
     def min_scale(self):
-        """Smallest singular value: the least any length can grow."""
-        a, b, c, d = self.a, self.b, self.c, self.d
-        s = a * a + b * b + c * c + d * d
-        det = a * d - b * c
-        disc = math.sqrt(max(s * s / 4 - det * det, 0.0))
-        return math.sqrt(max(s / 2 - disc, 0.0))
+        """Smallest singular value: the least any length can grow
+        (|det| / max_scale, which stays accurate for nearly singular
+        transforms)."""
+        big = self.max_scale()
+        return abs(self.determinant) / big if big > 0 else 0.0
 
     def mean_scale(self):
         """sqrt(|det|): the factor a stroke width scales by on average."""
@@ -184,7 +183,10 @@ def as_affine(t):
         return IDENTITY
     if isinstance(t, Affine):
         return t
-    arr = np.asarray(t, dtype=np.float64)
+    try:
+        arr = np.asarray(t, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise TransformError('cannot interpret %r as an affine transform' % (t,)) from None
     if arr.shape == (6,):
         return Affine(*arr)
     if arr.shape in ((2, 3), (3, 3)):
