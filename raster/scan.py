@@ -328,23 +328,24 @@ def path_coverage(path, width, height, fill_rule='nonzero', antialias=True, clip
 
 # -- exact area ---------------------------------------------------------------
 
-def _split(ua, va, ub, vb, hi):
+def _split(ua, va, ub, vb, hi, tag=None):
     """Split segments (u, v) at every integer u = k with 0 <= k <= hi that lies
-    strictly inside the segment.
+    strictly inside the segment (``hi`` a number or one per segment).
 
     Returns the pieces (ua, va, ub, vb), each lying between two consecutive
     integer u lines (or entirely below 0 / above hi), in travel order.  A
     split point is stored once, so consecutive pieces share it bitwise.
+    With ``tag`` (one value per segment) the pieces' tags come fifth.
     """
     n_in = len(ua)
     umin = np.minimum(ua, ub)
     umax = np.maximum(ua, ub)
     kmin = np.maximum(np.floor(umin) + 1.0, 0.0)
-    kmax = np.minimum(np.ceil(umax) - 1.0, float(hi))
+    kmax = np.minimum(np.ceil(umax) - 1.0, hi if tag is not None else float(hi))
     n = np.maximum(kmax - kmin + 1.0, 0.0).astype(np.int64)
     m_total = int(n.sum())
     if m_total == 0:
-        return ua, va, ub, vb
+        return (ua, va, ub, vb) if tag is None else (ua, va, ub, vb, tag)
     npc = n + 1                                  # pieces per segment
     ends = np.cumsum(npc)
     pstart = ends - npc                          # first piece of each segment
@@ -370,6 +371,8 @@ def _split(ua, va, ub, vb, hi):
     # piece j starts at point j + (segment index of piece j)
     piece_owner = np.repeat(np.arange(n_in), npc)
     idx = np.arange(n_pieces) + piece_owner
+    if tag is not None:
+        return U[idx], V[idx], U[idx + 1], V[idx + 1], tag[piece_owner]
     return U[idx], V[idx], U[idx + 1], V[idx + 1]
 
 
@@ -449,12 +452,13 @@ def _run_lengths(starts, n):
     return out
 
 
-def _flag_cells(xa, ya, xb, yb, cell):
+def _flag_cells(xa, ya, xb, yb, cell, brk=None):
     """Cells whose winding may take more than two adjacent values.
 
     Parameters are the pieces of one chunk in path order; ``cell`` is < 0
     for pieces outside the box.  Returns (cells touched, cells flagged),
-    both sorted int64 arrays of flat cell indices.
+    both sorted int64 arrays of flat cell indices.  ``brk`` (bool, optional)
+    marks pieces that never continue the previous one (a new shape).
 
     A piece *continues* the previous piece of the array when it starts
     exactly where that one ends (split points and shared polygon vertices
@@ -476,6 +480,8 @@ def _flag_cells(xa, ya, xb, yb, cell):
     n = len(cell)
     conn = np.zeros(n, bool)
     conn[1:] = (xa[1:] == xb[:-1]) & (ya[1:] == yb[:-1])
+    if brk is not None:
+        conn &= ~brk
     start = ~conn
     start[1:] |= cell[1:] != cell[:-1]
     ridx = np.flatnonzero(start)
@@ -722,7 +728,7 @@ def _collect_rows(loc, w, h, flagged):
     return [np.concatenate([p[i] for p in parts]) for i in range(6)]
 
 
-def _exact_cells(pieces, flagged, w, h, evenodd):
+def _exact_cells(pieces, flagged, w, h, evenodd, lrow=None):
     """Exact coverage of the flagged cells (sorted flat indices).
 
     In a cell, the covered length ``g(y)`` of the horizontal line at height
@@ -738,8 +744,12 @@ def _exact_cells(pieces, flagged, w, h, evenodd):
     intersections (exact only if their pieces do not cross) and, when they
     also have more than SUBSCANLINES + 2 distinct heights, use SUBSCANLINES
     evenly spaced heights instead (the midpoint rule is then approximate).
+    ``lrow`` (optional) is each piece's row in its own y coordinates when
+    ``row`` is a row of a stack of several boxes (see :func:`coverage_many`).
     """
     xa, ya, xb, yb, col, row = pieces
+    if lrow is None:
+        lrow = row
     F = len(flagged)
     frow = flagged // w
     fcol = flagged % w
@@ -765,7 +775,7 @@ def _exact_cells(pieces, flagged, w, h, evenodd):
     # pieces starting on their row's top line (not horizontal) cross it; the
     # crossing counts for cells right of the piece's column
     ymin = np.minimum(ya, yb)
-    top = (ymin == row) & (dy != 0)
+    top = (ymin == lrow) & (dy != 0)
     tkey = row[top] * (w + 1) + (col[top] + 1)
     torder = np.argsort(tkey, kind='stable')
     tkey = tkey[torder]
@@ -785,7 +795,7 @@ def _exact_cells(pieces, flagged, w, h, evenodd):
     s_on = okl & (virt | (xa == col + 1))
     e_on = okl & (virt | (xb == col + 1))
     ev_f = np.concatenate([fl[s_on], fl[e_on]])
-    ev_y = np.concatenate([ya[s_on] - row[s_on], yb[e_on] - row[e_on]])
+    ev_y = np.concatenate([ya[s_on] - lrow[s_on], yb[e_on] - lrow[e_on]])
     ev_c = np.concatenate([np.ones(int(s_on.sum())), -np.ones(int(e_on.sum()))])
     inner = ev_y > 0
     ev_f, ev_y, ev_c = ev_f[inner], ev_y[inner], ev_c[inner]
@@ -799,7 +809,7 @@ def _exact_cells(pieces, flagged, w, h, evenodd):
     sel = np.flatnonzero(oki)
     order = sel[np.argsort(fi[sel], kind='stable')]
     pf = fi[order]
-    pxa, pya, pxb, pyb = xa[order], ya[order] - row[order], xb[order], yb[order] - row[order]
+    pxa, pya, pxb, pyb = xa[order], ya[order] - lrow[order], xb[order], yb[order] - lrow[order]
     pc0 = fcol[pf].astype(np.float64)
     pxa = pxa - pc0
     pxb = pxb - pc0

@@ -443,16 +443,12 @@ class _Builder:
         object-bounding-box clip or mask of an empty box, an invalid filter)."""
         if not own:
             return _NO_EFFECTS
-        clip = mask = None
+        mask = None
         if t is not None and not t.is_identity and ('clip-path' in own or 'mask' in own):
             st = st.sub(t)
-        v = own.get('clip-path')
-        if v is not None and v.strip() != 'none':
-            clip = self.reference(v, 'clipPath', 'clip-path')
-            if clip is not None:
-                clip = self.build_clip(clip, kids, st)
-                if clip is _EMPTY:
-                    return _EFFECTS_NOT_DRAWN
+        clip = self.clip_property(own, kids, st)
+        if clip is _EMPTY:
+            return _EFFECTS_NOT_DRAWN
         if st.mode == 'clip':
             return _Effects(clip=clip)
         v = own.get('mask')
@@ -605,20 +601,25 @@ class _Builder:
                         self.node(ch, inh, own, sub, nodes, name)
                 elif name == 'text':
                     self.node(ch, inh, own, sub, nodes, name)
-            nested = None
-            v = own.get('clip-path')
-            if v is not None and v.strip() != 'none':
-                ref = self.reference(v, 'clipPath', 'clip-path')
-                if ref is not None:
-                    nested = self.build_clip(ref, kids, st)
-                    if nested is _EMPTY:
-                        return _EMPTY
+            nested = self.clip_property(own, kids, st)
+            if nested is _EMPTY:
+                return _EMPTY
             if not nodes:
                 return _EMPTY
             return ClipPath(root=Group(children=nodes), transform=t, clip_path=nested,
                             id=cp.get('id') or '')
         finally:
             self._active_refs.discard(cp)
+
+    def clip_property(self, own, kids, st):
+        """The ClipPath of a ``clip-path`` value in ``own`` for content
+        ``kids``: None (none, or a reference that is ignored) or _EMPTY
+        (nothing is visible)."""
+        v = own.get('clip-path')
+        if v is None or v.strip() == 'none':
+            return None
+        ref = self.reference(v, 'clipPath', 'clip-path')
+        return None if ref is None else self.build_clip(ref, kids, st)
 
     def build_mask(self, mk, kids, st):
         """A mask element to a Mask for content ``kids`` (None: reference
