@@ -48,7 +48,7 @@ import numpy as np
 from . import limits
 from .errors import CanvasError, LimitError, PathError
 
-__all__ = ['Mask', 'coverage', 'path_coverage', 'check_canvas_size', 'SUBSCANLINES']
+__all__ = ['Mask', 'coverage', 'coverage_many', 'path_coverage', 'check_canvas_size', 'SUBSCANLINES']
 
 #: Evenly spaced sample lines per pixel used in pixels crowded with more
 #: than ``_PAIR_LIMIT`` pieces (the only non-exact case).
@@ -983,3 +983,229 @@ def _centre_coverage(loc, w, h, evenodd):
     if evenodd:
         return (wind & 1).astype(np.float32)
     return (wind != 0).astype(np.float32)
+
+
+# ---------------------------------------------------------------------------
+# Many shapes at once
+# ---------------------------------------------------------------------------
+
+def coverage_many(edge_arrays, width, height, fill_rules='nonzero', antialias=True, clip=None):
+    """Coverage of many shapes at once, each as :func:`coverage` would give it.
+
+    Drawing thousands of small shapes one :func:`coverage` call at a time
+    costs mostly the fixed overhead of a call.  Here the split, accumulate,
+    resolve and exact-recompute stages run once for a whole batch of
+    shapes: their boxes are stacked vertically into one tall virtual canvas
+    (shape ``s`` owns rows ``roff[s] .. roff[s] + h_s``), so a cell key
+    ``row * W + col`` also names the shape, and every per-cell sum is taken
+    over the same pieces in the same order as for the shape alone.
+
+    Parameters
+    ----------
+    edge_arrays : sequence of (E_i, 2, 2) array_like of float
+        The edges of each shape, device pixels, as for :func:`coverage`.
+    width, height : int
+        Canvas size in pixels.
+    fill_rules : {'nonzero', 'evenodd'} or sequence of them
+        One rule for all shapes, or one per shape.
+    antialias : bool or sequence of bool
+        One flag for all shapes, or one per shape.
+    clip : (x0, y0, x1, y1) or None
+        Applied to every shape, as for :func:`coverage`.
+
+    Returns
+    -------
+    list of (Mask or None)
+        ``result[i]`` equals ``coverage(edge_arrays[i], width, height,
+        fill_rules[i], antialias[i], clip)``.
+
+    Raises
+    ------
+    PathError, LimitError, CanvasError
+        As :func:`coverage` (for the first bad shape), or mismatched
+        lengths of ``fill_rules`` / ``antialias``.
+
+    >>> tri = np.array([[[0, 0], [4, 0]], [[4, 0], [0, 4]], [[0, 4], [0, 0]]], float)
+    >>> a, b, c = coverage_many([tri, tri + 2, tri + 100], 8, 8)
+    >>> float(a.data.sum()), b.box, c is None
+    (8.0, (2, 2, 6, 6), True)
+    """
+    width, height = check_canvas_size(width, height)
+    edge_arrays = list(edge_arrays)
+    n = len(edge_arrays)
+    rules = [fill_rules] * n if isinstance(fill_rules, str) else list(fill_rules)
+    aas = ([antialias] * n if isinstance(antialias, (bool, np.bool_, int))
+           else list(antialias))
+    if len(rules) != n or len(aas) != n:
+        raise PathError('coverage_many needs one fill rule and one antialias flag per shape')
+    for r in set(rules):
+        if r not in ('nonzero', 'evenodd'):
+            raise PathError("fill_rule must be 'nonzero' or 'evenodd', got %r" % (r,))
+    out = [None] * n
+    items, est_sum = [], 0
+    for i in range(n):
+        e = _check_edges(edge_arrays[i])
+        if len(e) == 0:
+            continue
+        if not aas[i]:
+            out[i] = coverage(e, width, height, rules[i], False, clip)
+            continue
+        box = _box(e, width, height, clip, True)
+        if box is None:
+            continue
+        X0, Y0, X1, Y1 = box
+        loc = e - np.array([X0, Y0], np.float64)
+        est = 3 * len(loc) + float(np.abs(loc[:, 1] - loc[:, 0]).sum())
+        if est > _CHUNK_PIECES:
+            # a large shape is worth a call of its own (chunked there)
+            out[i] = coverage(e, width, height, rules[i], True, clip)
+            continue
+        if est_sum + est > _CHUNK_PIECES:
+            _many_batch(items, out)
+            items, est_sum = [], 0
+        items.append((i, loc, X0, Y0, X1 - X0, Y1 - Y0, rules[i] == 'evenodd'))
+        est_sum += est
+    if items:
+        _many_batch(items, out)
+    return out
+
+
+def _many_batch(items, out):
+    """Masks of a batch of shapes (i, local edges, X0, Y0, w, h, evenodd)
+    into ``out[i]``; see :func:`coverage_many`."""
+    k = len(items)
+    loc = np.concatenate([it[1] for it in items])
+    ne = np.array([len(it[1]) for it in items], np.int64)
+    sw = np.array([it[4] for it in items], np.int64)
+    sh = np.array([it[5] for it in items], np.int64)
+    seo = np.array([it[6] for it in items], bool)
+    roff = np.cumsum(sh) - sh
+    W = int(sw.max())
+    sid = np.repeat(np.arange(k), ne)
+    # -- pieces (as _pieces, with each shape's own box) -----------------------
+    xa, ya = loc[:, 0, 0], loc[:, 0, 1]
+    xb, yb = loc[:, 1, 0], loc[:, 1, 1]
+    ya, xa, yb, xb, sid = _split(ya, xa, yb, xb, sh[sid].astype(np.float64), tag=sid)
+    ym = 0.5 * (ya + yb)
+    keep = (ym >= 0) & (ym < sh[sid])
+    if not keep.all():
+        xa, ya, xb, yb, sid = xa[keep], ya[keep], xb[keep], yb[keep], sid[keep]
+    if len(xa) == 0:
+        return
+    xa, ya, xb, yb, sid = _split(xa, ya, xb, yb, sw[sid].astype(np.float64), tag=sid)
+    xm = 0.5 * (xa + xb)
+    keep = xm < sw[sid]
+    if not keep.all():
+        xa, ya, xb, yb, xm, sid = xa[keep], ya[keep], xb[keep], yb[keep], xm[keep], sid[keep]
+    if len(xa) == 0:
+        return
+    col = np.floor(xm).astype(np.int64)
+    col = np.minimum(np.maximum(col, -1), sw[sid] - 1)
+    left = col < 0
+    if left.any():
+        xa = np.where(left, -0.5, xa)
+        xb = np.where(left, -0.5, xb)
+    row = np.floor(0.5 * (ya + yb)).astype(np.int64)
+    row = np.minimum(np.maximum(row, 0), sh[sid] - 1)
+    # -- accumulate over the touched cells of the stacked boxes ---------------
+    real = col >= 0
+    grow = row + roff[sid]
+    cell = grow * W + np.maximum(col, 0)
+    dy = yb - ya
+    fx = np.where(real, 0.5 * (xa + xb) - col, 0.0)
+    cells, inv = np.unique(cell, return_inverse=True)
+    cv = np.bincount(inv, weights=dy, minlength=len(cells))
+    pv = np.bincount(inv, weights=dy * fx, minlength=len(cells))
+    brk = np.zeros(len(sid), bool)
+    brk[1:] = sid[1:] != sid[:-1]
+    _, flagged = _flag_cells(xa, ya, xb, yb, np.where(real, cell, -1), brk)
+    nz = (cv != 0) | (pv != 0)
+    T, cv, pv = cells[nz], cv[nz], pv[nz]
+    if len(T) == 0:
+        return
+    # -- resolve (as _resolve_cells, running sums restarted per shape) --------
+    tg = T // W
+    tcol = T % W
+    tsid = np.searchsorted(roff, tg, side='right') - 1
+    # shapes without rows (h = 0) never hold cells, so searchsorted is exact
+    lrow = tg - roff[tsid]
+    cs = _segmented_cumsum(cv, tsid, k)
+    first = np.empty(len(T), bool)
+    first[0] = True
+    first[1:] = tg[1:] != tg[:-1]
+    base = (cs - cv)[first][np.cumsum(first) - 1]
+    run = cs - base
+    cellv = run - pv
+    tw = sw[tsid]
+    li = lrow * tw + tcol                       # index in the shape's own box
+    nsz = tw * sh[tsid]
+    last = np.empty(len(T), bool)
+    last[-1] = True
+    last[:-1] = tsid[1:] != tsid[:-1]
+    shape_first = np.empty(len(T), bool)
+    shape_first[0] = True
+    shape_first[1:] = last[:-1]
+    nxt = np.where(last, nsz, np.append(li[1:], 0))
+    row_end = (lrow + 1) * tw
+    m = len(T)
+    vals = np.zeros(4 * m)
+    lens = np.zeros(4 * m, np.int64)
+    lens[0::4] = np.where(shape_first, li, 0)
+    vals[1::4] = cellv
+    lens[1::4] = 1
+    vals[2::4] = run
+    lens[2::4] = np.minimum(nxt, row_end) - li - 1
+    lens[3::4] = np.maximum(nxt - row_end, 0)
+    eo = np.repeat(seo[tsid], 4)
+    if eo.any():
+        v_eo = _rule(vals.copy(), True)
+        vals = np.where(eo, v_eo, _rule(vals, False))
+    else:
+        vals = _rule(vals, False)
+    flat = np.repeat(vals.astype(np.float32), lens)
+    has = np.zeros(k, bool)
+    has[tsid] = True
+    size = np.where(has, sw * sh, 0)
+    ooff = np.cumsum(size) - size
+    # -- exact recompute of the flagged cells ---------------------------------
+    if len(flagged):
+        fsid = np.searchsorted(roff, flagged // W, side='right') - 1
+        pieces = (xa, ya, xb, yb, col, grow)
+        H = int(sh.sum())
+        for evenodd in (False, True):
+            sel = seo[fsid] == evenodd
+            if not sel.any():
+                continue
+            fl = flagged[sel]
+            fs = fsid[sel]
+            v = _exact_cells(pieces, fl, W, H, evenodd, lrow=row)
+            np.clip(v, 0.0, 1.0, out=v)
+            v[v < _RESIDUE] = 0.0
+            fr = fl // W - roff[fs]
+            flat[ooff[fs] + fr * sw[fs] + fl % W] = v
+    for s in np.flatnonzero(has).tolist():
+        i, _, X0, Y0, w, h, _ = items[s]
+        data = flat[ooff[s]:ooff[s] + w * h].reshape(h, w)
+        if data.any():
+            out[i] = Mask(data, X0, Y0)
+
+
+def _segmented_cumsum(v, seg, k):
+    """Running sums of ``v`` restarted at every new value of ``seg`` (sorted
+    ints in 0..k-1), bitwise equal to ``np.cumsum`` of each segment alone:
+    the segments are laid out as rows of zero-padded 2-D arrays (one per
+    power-of-two length class) and summed along the rows."""
+    cnt = np.bincount(seg, minlength=k)
+    pos = np.arange(len(v)) - (np.cumsum(cnt) - cnt)[seg]
+    out = np.empty(len(v))
+    cls = np.ceil(np.log2(np.maximum(cnt, 1))).astype(np.int64)
+    for c in np.unique(cls[cnt > 0]).tolist():
+        members = np.flatnonzero((cls == c) & (cnt > 0))
+        slot = np.full(k, -1, np.int64)
+        slot[members] = np.arange(len(members))
+        pick = np.flatnonzero(slot[seg] >= 0)
+        M = np.zeros((len(members), 1 << c))
+        M[slot[seg[pick]], pos[pick]] = v[pick]
+        np.cumsum(M, axis=1, out=M)
+        out[pick] = M[slot[seg[pick]], pos[pick]]
+    return out

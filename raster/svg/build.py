@@ -1251,25 +1251,9 @@ class _Builder:
             return
         if path is None or len(path.verbs) == 0:
             return
-        fill = stroke = None
-        if hidden:
-            # an invisible shape paints nothing but still counts in its
-            # parent's object bounding box (resvg): keep it unpainted
-            pass
-        elif st.mode == 'clip':
-            rule = inh.get('clip-rule', 'nonzero')
-            fill = Fill(SolidPaint(_BLACK), 1.0, 'evenodd' if rule == 'evenodd' else 'nonzero')
-        else:
-            fp = self.paint(inh.get('fill', 'black'), inh, ctx, path, st)
-            if fp is not None:
-                rule = inh.get('fill-rule', 'nonzero')
-                fill = Fill(fp, _opacity(inh.get('fill-opacity')),
-                            'evenodd' if rule == 'evenodd' else 'nonzero')
-            sv = inh.get('stroke')
-            if sv is not None:
-                sp = self.paint(sv, inh, ctx, path, st)
-                if sp is not None:
-                    stroke = self.stroke(sp, inh, ctx)
+        # an invisible shape paints nothing but still counts in its parent's
+        # object bounding box (resvg): keep it unpainted
+        fill, stroke = (None, None) if hidden else self.fill_and_stroke(inh, ctx, path, st)
         markers = None
         if not hidden and st.mode != 'clip' and (inh['marker-start'] != 'none' or inh['marker-mid'] != 'none'
                                   or inh['marker-end'] != 'none'):
@@ -1287,13 +1271,40 @@ class _Builder:
             return
         (node,), e = _fold_opacity([node], e)
         self.note_id(el, node)
+        self.emit(node, t, e, out)
+
+    def fill_and_stroke(self, inh, ctx, path, st):
+        """The resolved ``(Fill or None, Stroke or None)`` of a shape or text
+        run with computed style ``inh`` and geometry ``path`` (for
+        object-bounding-box paints); inside a clip path, a black fill with
+        the clip-rule."""
+        if st.mode == 'clip':
+            rule = inh.get('clip-rule', 'nonzero')
+            return Fill(SolidPaint(_BLACK), 1.0, 'evenodd' if rule == 'evenodd' else 'nonzero'), None
+        fill = stroke = None
+        fp = self.paint(inh.get('fill', 'black'), inh, ctx, path, st)
+        if fp is not None:
+            rule = inh.get('fill-rule', 'nonzero')
+            fill = Fill(fp, _opacity(inh.get('fill-opacity')),
+                        'evenodd' if rule == 'evenodd' else 'nonzero')
+        sv = inh.get('stroke')
+        if sv is not None:
+            sp = self.paint(sv, inh, ctx, path, st)
+            if sp is not None:
+                stroke = self.stroke(sp, inh, ctx)
+        return fill, stroke
+
+    def emit(self, node, t, e, out):
+        """Append a leaf node to ``out``, inside a Group when its transform
+        ``t`` or its effects ``e`` need one (the Group then stands for the
+        node's id)."""
         if t.is_identity and e.trivial:
             out.append(node)
-        else:
-            g = e.group(node.id, t, [node])
-            if node.id:
-                self.tree_ids[node.id] = g
-            out.append(g)
+            return
+        g = e.group(node.id, t, [node])
+        if node.id:
+            self.tree_ids[node.id] = g
+        out.append(g)
 
     def stroke(self, paint, inh, ctx):
         key = (inh.get('stroke-width'), inh.get('stroke-linejoin'), inh.get('stroke-linecap'),

@@ -600,11 +600,5 @@ def build_image(builder, el, pinh, pown, st, out):
     if not e.composited:
         node.opacity = e.opacity        # drawn in one pass: no layer needed
         e = dataclasses.replace(e, opacity=1.0)
-    if t.is_identity and e.trivial:
-        out.append(node)
-    else:
-        g = e.group(node.id, t, [node])
-        if node.id:
-            builder.tree_ids[node.id] = g
-        out.append(g)
+    builder.emit(node, t, e, out)
     return node

@@ -47,7 +47,7 @@ from .. import limits
 from ..errors import RasterError
 from ..path import Path
 from ..transform import Affine
-from .tree import Fill, Group, PathNode, SolidPaint
+from .tree import PathNode
 from .values import parse_length, parse_length_list, parse_number_list
 
 __all__ = ['build_text', 'collapse_whitespace']
@@ -885,29 +885,10 @@ def _paint_node(b, sp, path, st):
     vis = inh.get('visibility', 'visible')
     if vis in ('hidden', 'collapse'):
         return None
-    fill = stroke = None
-    if st.mode == 'clip':
-        rule = inh.get('clip-rule', 'nonzero')
-        fill = Fill(SolidPaint((0.0, 0.0, 0.0, 1.0)), 1.0,
-                    'evenodd' if rule == 'evenodd' else 'nonzero')
-    else:
-        fp = b.paint(inh.get('fill', 'black'), inh, sp.ctx, path, st)
-        if fp is not None:
-            rule = inh.get('fill-rule', 'nonzero')
-            fill = Fill(fp, _opacity(inh.get('fill-opacity')),
-                        'evenodd' if rule == 'evenodd' else 'nonzero')
-        sv = inh.get('stroke')
-        if sv is not None:
-            spaint = b.paint(sv, inh, sp.ctx, path, st)
-            if spaint is not None:
-                stroke = b.stroke(spaint, inh, sp.ctx)
+    fill, stroke = b.fill_and_stroke(inh, sp.ctx, path, st)
     if fill is None and stroke is None:
         return None
     from .build import _paint_order
     return PathNode(id='', path=path, fill=fill, stroke=stroke,
                     paint_order=_paint_order(inh.get('paint-order')))
 
-
-def _opacity(s):
-    from .build import _opacity as op
-    return op(s)
