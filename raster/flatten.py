@@ -904,8 +904,9 @@ def flatten_many(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
             a, b, c, d, e, f = (Mi[:, k].reshape(shape) for k in range(6))
             x, y = pts[..., 0], pts[..., 1]
             out = pts.copy()
-            out[..., 0] = np.where(move.reshape(shape), a * x + c * y + e, x)
-            out[..., 1] = np.where(move.reshape(shape), b * x + d * y + f, y)
+            with np.errstate(over='ignore', invalid='ignore'):   # checked below
+                out[..., 0] = np.where(move.reshape(shape), a * x + c * y + e, x)
+                out[..., 1] = np.where(move.reshape(shape), b * x + d * y + f, y)
             return out
         ctrl = apply(ctrl, ns)
         cstart = apply(cstart, nc)

@@ -1121,7 +1121,7 @@ def _many_batch(items, out):
     _, flagged = _flag_cells(xa, ya, xb, yb, np.where(real, cell, -1), brk)
     nz = (cv != 0) | (pv != 0)
     T, cv, pv = cells[nz], cv[nz], pv[nz]
-    if len(T) == 0:
+    if len(T) == 0 and len(flagged) == 0:
         return
     # -- resolve (as _resolve_cells, running sums restarted per shape) --------
     tg = T // W
@@ -1131,7 +1131,7 @@ def _many_batch(items, out):
     lrow = tg - roff[tsid]
     cs = _segmented_cumsum(cv, tsid, k)
     first = np.empty(len(T), bool)
-    first[0] = True
+    first[:1] = True
     first[1:] = tg[1:] != tg[:-1]
     base = (cs - cv)[first][np.cumsum(first) - 1]
     run = cs - base
@@ -1140,10 +1140,10 @@ def _many_batch(items, out):
     li = lrow * tw + tcol                       # index in the shape's own box
     nsz = tw * sh[tsid]
     last = np.empty(len(T), bool)
-    last[-1] = True
+    last[-1:] = True
     last[:-1] = tsid[1:] != tsid[:-1]
     shape_first = np.empty(len(T), bool)
-    shape_first[0] = True
+    shape_first[:1] = True
     shape_first[1:] = last[:-1]
     nxt = np.where(last, nsz, np.append(li[1:], 0))
     row_end = (lrow + 1) * tw
@@ -1165,11 +1165,25 @@ def _many_batch(items, out):
     flat = np.repeat(vals.astype(np.float32), lens)
     has = np.zeros(k, bool)
     has[tsid] = True
-    size = np.where(has, sw * sh, 0)
-    ooff = np.cumsum(size) - size
+    fsid = np.searchsorted(roff, flagged // W, side='right') - 1
+    if len(fsid) and not has[fsid].all():
+        # shapes with flagged cells but no cover terms: zero images first,
+        # as _resolve_cells gives them
+        size_t = np.where(has, sw * sh, 0)
+        off_t = np.cumsum(size_t) - size_t
+        has[fsid] = True
+        size = np.where(has, sw * sh, 0)
+        ooff = np.cumsum(size) - size
+        buf = np.zeros(int(size.sum()), np.float32)
+        ts = np.flatnonzero(size_t)
+        shift = np.repeat(ooff[ts] - off_t[ts], size_t[ts])
+        buf[np.arange(len(flat)) + shift] = flat
+        flat = buf
+    else:
+        size = np.where(has, sw * sh, 0)
+        ooff = np.cumsum(size) - size
     # -- exact recompute of the flagged cells ---------------------------------
     if len(flagged):
-        fsid = np.searchsorted(roff, flagged // W, side='right') - 1
         pieces = (xa, ya, xb, yb, col, grow)
         H = int(sh.sum())
         for evenodd in (False, True):

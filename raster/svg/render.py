@@ -21,7 +21,12 @@ Per node:
   here from the fill's flattened polylines (:func:`_hairline_edges`: one
   rectangle per segment plus join triangles, one vectorized pass) instead
   of by the general stroker.  Markers are a group drawn with the node's
-  CTM.
+  CTM.  Geometry is batched across nodes: the paths drawn directly on one
+  canvas (not inside a layered group) are queued in document order
+  (``_Renderer.plan``) and flattened, outlined and scan converted a batch at
+  a time (:func:`raster.flatten.flatten_many`,
+  :func:`raster.stroke.stroke_many`, :func:`raster.scan.coverage_many`);
+  only the masks are computed ahead, compositing stays in document order.
 * :class:`~raster.svg.tree.Group`: a group that only transforms composes
   its transform with the CTM.  A group that needs a layer (opacity, clip
   path, mask, isolation, blend mode) renders its children into a transparent
@@ -59,8 +64,8 @@ from ..canvas import Canvas
 from ..errors import CanvasError, RasterError, SVGError
 from ..flatten import flatten, flatten_many
 from ..path import Path
-from ..scan import coverage
-from ..stroke import StrokeStyle, hairline_scale, stroke as stroke_outline
+from ..scan import coverage, coverage_many
+from ..stroke import StrokeStyle, hairline_scale, stroke as stroke_outline, stroke_many
 from ..transform import IDENTITY, Affine
 from .tree import (Group, ImageNode, LinearGradient, PathNode, Pattern, RadialGradient,
                    SolidPaint, Tree)
@@ -191,11 +196,11 @@ def render_tree(tree, width=None, height=None, zoom=None, background=None, node_
     base = Affine.scale(sx, sy)
     r = _Renderer(tol)
     if node_id is None:
-        r.plan([tree.root], base)
+        r.plan([tree.root], base, canvas)
         r.node(tree.root, base, canvas)
     else:
         node, t = _find(tree, node_id)
-        r.plan([node], base @ t)
+        r.plan([node], base @ t, canvas)
         r.node(node, base @ t, canvas)
     return canvas
 
@@ -230,15 +235,35 @@ class _Renderer:
         # order, and -> Polylines already flattened (see plan / flat)
         self._pending = {}
         self._ready = {}
+        # batched coverage: (id(node), t) -> (node, t, size) of fills waiting,
+        # and -> Mask (or None) of fills already scan converted
+        self._fill_pending = {}
+        self._fill_ready = {}
+        # batched strokes (not hairlines): (id(node), t) -> (node, t, size,
+        # style) waiting, and -> Mask (or None) already scan converted
+        self._stroke_pending = {}
+        self._stroke_ready = {}
+        # batched undashed hairlines: (id(node), t) -> (node, t, size) and
+        # -> Mask (or None), or absent when the general stroker is needed
+        self._hair_pending = {}
+        self._hair_ready = {}
+        self._hair_edges = {}
 
     # -- batched geometry ------------------------------------------------------
-    def plan(self, nodes, t):
+    def plan(self, nodes, t, canvas):
         """Queue the paths of ``nodes`` (with CTM ``t``) drawn directly on
-        the canvas (not inside layered groups) whose fill or hairline needs
+        ``canvas`` (not inside layered groups) whose fill or hairline needs
         flattened polylines; :meth:`flat` then flattens them in batches with
-        :func:`raster.flatten.flatten_many`, in document order."""
+        :func:`raster.flatten.flatten_many`, in document order, and
+        :meth:`fill` scan converts their fills in batches with
+        :func:`raster.scan.coverage_many` (compositing stays in document
+        order: only the masks are computed ahead)."""
         stack = [(n, t) for n in reversed(nodes)]
         pending = self._pending
+        fills = self._fill_pending
+        strokes = self._stroke_pending
+        hairs = self._hair_pending
+        size = (canvas.width, canvas.height)
         while stack:
             n, m = stack.pop()
             if isinstance(n, Group):
@@ -249,6 +274,13 @@ class _Renderer:
             elif isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
                 if _wants_flat(n, m):
                     pending.setdefault((id(n.path), m), (n.path, m))
+                    if n.fill is not None and n.fill.opacity > 0:
+                        fills.setdefault((id(n), m), (n, m, size))
+                if _wants_hair(n, m):
+                    hairs.setdefault((id(n), m), (n, m, size))
+                style = _batch_stroke_style(n, m)
+                if style is not None:
+                    strokes.setdefault((id(n), m), (n, m, size, style))
 
     def _flush(self, key):
         """Flatten pending paths in document order, up to and including
@@ -315,7 +347,7 @@ class _Renderer:
         layer = Canvas(x1 - x0, y1 - y0)
         lt = Affine.translate(-x0, -y0) @ ct
         if not clip_mode:
-            self.plan(g.children, lt)
+            self.plan(g.children, lt, layer)
         for c in g.children:
             self.node(c, lt, layer, clip_mode)
         if filters is not None:
@@ -393,12 +425,162 @@ class _Renderer:
         f = n.fill
         if f.opacity <= 0:
             return
-        edges = self.flat(n.path, t).edges(close_all=True)
-        if len(edges) == 0:
-            return
-        m = coverage(edges, canvas.width, canvas.height, f.rule, n.antialias)
+        key = (id(n), t)
+        if key in self._fill_pending:
+            self._flush_fills(key, canvas)
+        if key in self._fill_ready:
+            m = self._fill_ready.pop(key)
+        else:
+            edges = self.flat(n.path, t).edges(close_all=True)
+            if len(edges) == 0:
+                return
+            m = coverage(edges, canvas.width, canvas.height, f.rule, n.antialias)
         if m is not None:
             self.paint(canvas, m, f.paint, f.opacity, n.path, t)
+
+    def _flush_fills(self, key, canvas):
+        """Scan convert queued fills for ``canvas`` in document order, up to
+        and including ``key``, in one :func:`coverage_many` call (bounded by
+        :data:`_BATCH_EDGES` edges and :data:`_BATCH_AREA` mask pixels;
+        larger fills are left to :meth:`fill`)."""
+        pending = self._fill_pending
+        size = (canvas.width, canvas.height)
+        keys, edges, rules, aas = [], [], [], []
+        n_edges = area = 0
+        seen = False
+        for k in list(pending):
+            if seen and (n_edges >= _BATCH_EDGES or area >= _BATCH_AREA):
+                break
+            n, m, sz = pending.pop(k)
+            seen = seen or k == key
+            if sz != size:
+                continue
+            pl = self.flat(n.path, m)
+            if k in self._hair_pending:     # the stroke needs the polylines too
+                self._ready[(id(n.path), m)] = pl
+            e = pl.edges(close_all=True)
+            if len(e) == 0:
+                self._fill_ready[k] = None
+                continue
+            lo, hi = pl.points.min(0), pl.points.max(0)
+            a = float(hi[0] - lo[0] + 2) * float(hi[1] - lo[1] + 2)
+            if a > _BATCH_AREA / 16:    # big: drawn alone by fill()
+                self._ready[(id(n.path), m)] = pl
+                continue
+            keys.append(k)
+            edges.append(e)
+            rules.append(n.fill.rule)
+            aas.append(bool(n.antialias))
+            n_edges += len(e)
+            area += a
+        if not keys:
+            return
+        try:
+            masks = coverage_many(edges, canvas.width, canvas.height, rules, aas)
+        except RasterError:
+            return          # drawn one by one by fill() (errors where they were)
+        self._fill_ready.update(zip(keys, masks))
+
+    def _flush_strokes(self, key, canvas):
+        """Outline queued strokes for ``canvas`` in document order, up to
+        and including ``key``: one :func:`raster.stroke.stroke_many` call
+        per stroke style, then one :func:`flatten_many` and one
+        :func:`coverage_many` call for all outlines (bounded like
+        :meth:`_flush_fills`)."""
+        pending = self._stroke_pending
+        size = (canvas.width, canvas.height)
+        items, verbs, seen = [], 0, False
+        for k in list(pending):
+            if seen and verbs >= _BATCH_VERBS // 4:
+                break
+            n, m, sz, style = pending.pop(k)
+            seen = seen or k == key
+            if sz == size:
+                items.append((k, n, m, style))
+                verbs += len(n.path.verbs)
+        by_style = {}
+        for j, (k, n, m, style) in enumerate(items):
+            by_style.setdefault(style, []).append(j)
+        outlines = [None] * len(items)
+        try:
+            for style, js in by_style.items():
+                outs = stroke_many([items[j][1].path for j in js], style,
+                                   transforms=[items[j][2] for j in js], tolerance=self.tol)
+                for j, o in zip(js, outs):
+                    outlines[j] = o
+            keep = [j for j in range(len(items)) if len(outlines[j].verbs)]
+            pls = flatten_many([outlines[j] for j in keep], None, self.tol)
+        except RasterError:
+            return          # stroked one by one by stroke() (errors where they were)
+        for j in range(len(items)):
+            if not len(outlines[j].verbs):
+                self._stroke_ready[items[j][0]] = None
+        edges, keys, aas, area = [], [], [], 0.0
+        for j, pl in zip(keep, pls):
+            e = pl.edges(close_all=True)
+            if len(e) == 0:
+                self._stroke_ready[items[j][0]] = None
+                continue
+            lo, hi = pl.points.min(0), pl.points.max(0)
+            a = float(hi[0] - lo[0] + 2) * float(hi[1] - lo[1] + 2)
+            if a > _BATCH_AREA / 16 or area > _BATCH_AREA:
+                continue        # big, or enough masks held: stroke() alone
+            keys.append(items[j][0])
+            edges.append(e)
+            aas.append(bool(items[j][1].antialias))
+            area += a
+        if not keys:
+            return
+        try:
+            masks = coverage_many(edges, canvas.width, canvas.height, 'nonzero', aas)
+        except RasterError:
+            return
+        self._stroke_ready.update(zip(keys, masks))
+
+    def _flush_hairs(self, key, canvas):
+        """Hairline outlines (:func:`_hairline_edges`) of queued undashed
+        hairlines for ``canvas`` in document order, up to and including
+        ``key``, scan converted in one :func:`coverage_many` call."""
+        pending = self._hair_pending
+        size = (canvas.width, canvas.height)
+        keys, edges, aas = [], [], []
+        n_edges = area = 0
+        seen = False
+        for k in list(pending):
+            if seen and (n_edges >= _BATCH_EDGES or area >= _BATCH_AREA):
+                break
+            n, m, sz = pending.pop(k)
+            seen = seen or k == key
+            if sz != size:
+                continue
+            pl = self.flat(n.path, m)
+            if k in self._fill_pending:     # the fill needs the polylines too
+                self._ready[(id(n.path), m)] = pl
+            s = n.stroke
+            e = _hairline_edges(pl, s.cap, s.join, s.miterlimit)
+            if e is None:
+                continue        # general stroker, in stroke()
+            if len(e) == 0:
+                self._hair_ready[k] = None
+                continue
+            lo, hi = e.reshape(-1, 2).min(0), e.reshape(-1, 2).max(0)
+            a = float(hi[0] - lo[0] + 2) * float(hi[1] - lo[1] + 2)
+            if a > _BATCH_AREA / 16:
+                self._hair_edges[k] = e     # big: scan converted alone
+                continue
+            keys.append(k)
+            edges.append(e)
+            aas.append(bool(n.antialias))
+            n_edges += len(e)
+            area += a
+        if not keys:
+            return
+        try:
+            masks = coverage_many(edges, canvas.width, canvas.height, 'nonzero', aas)
+        except RasterError:
+            self._hair_edges.update(zip(keys, edges))
+            return
+        self._hair_ready.update(zip(keys, masks))
 
     def flat(self, path, t):
         """Polylines of ``path`` flattened under ``t`` (device pixels).  The
@@ -428,18 +610,34 @@ class _Renderer:
                                 miterlimit=s.miterlimit, dash=s.dash, dash_offset=s.dash_offset)
             opacity *= hair
             if s.dash is None:
-                edges = _hairline_edges(self.flat(n.path, t), s.cap, s.join, s.miterlimit)
+                key = (id(n), t)
+                if key in self._hair_pending:
+                    self._flush_hairs(key, canvas)
+                if key in self._hair_ready:
+                    m = self._hair_ready.pop(key)
+                    if m is not None:
+                        self.paint(canvas, m, s.paint, opacity, n.path, t)
+                    return
+                edges = self._hair_edges.pop(key, None)
+                if edges is None:
+                    edges = _hairline_edges(self.flat(n.path, t), s.cap, s.join, s.miterlimit)
                 if edges is not None:
                     m = coverage(edges, canvas.width, canvas.height, 'nonzero', n.antialias) \
                         if len(edges) else None
                     if m is not None:
                         self.paint(canvas, m, s.paint, opacity, n.path, t)
                     return
-        outline = stroke_outline(n.path, style, transform=t, tolerance=self.tol)
-        if len(outline.verbs) == 0:
-            return
-        m = _cover(outline, IDENTITY, canvas.width, canvas.height, 'nonzero', n.antialias,
-                   self.tol)
+        key = (id(n), t)
+        if hair is None and key in self._stroke_pending:
+            self._flush_strokes(key, canvas)
+        if hair is None and key in self._stroke_ready:
+            m = self._stroke_ready.pop(key)
+        else:
+            outline = stroke_outline(n.path, style, transform=t, tolerance=self.tol)
+            if len(outline.verbs) == 0:
+                return
+            m = _cover(outline, IDENTITY, canvas.width, canvas.height, 'nonzero', n.antialias,
+                       self.tol)
         if m is not None:
             self.paint(canvas, m, s.paint, opacity, n.path, t)
 
@@ -549,6 +747,35 @@ class _Renderer:
 #: Verbs per batch of :meth:`_Renderer._flush` (bounds its memory).
 _BATCH_VERBS = 100_000
 
+#: Edges and mask pixels per batch of :meth:`_Renderer._flush_fills`.
+_BATCH_EDGES = 200_000
+_BATCH_AREA = 4_000_000
+
+
+def _batch_stroke_style(n, t):
+    """The StrokeStyle of PathNode ``n``'s stroke when it can be outlined in
+    a batch (visible, not a hairline, hashable), else None."""
+    s = n.stroke
+    if s is None or s.opacity <= 0 or s.width <= 0:
+        return None
+    try:
+        style = StrokeStyle(width=s.width, join=s.join, cap=s.cap, miterlimit=s.miterlimit,
+                            dash=s.dash, dash_offset=s.dash_offset)
+        hash(style)
+    except (RasterError, TypeError):
+        return None
+    if hairline_scale(style, t) is not None:
+        return None
+    return style
+
+
+def _wants_hair(n, t):
+    """Whether PathNode ``n`` under ``t`` has an undashed hairline stroke
+    (outlined from the fill's polylines)."""
+    s = n.stroke
+    return (s is not None and s.dash is None and s.opacity > 0
+            and 0.0 < s.width * t.mean_scale() < 1.0)
+
 
 def _wants_flat(n, t):
     """Whether drawing PathNode ``n`` under ``t`` flattens its path (a
@@ -556,8 +783,7 @@ def _wants_flat(n, t):
     f, s = n.fill, n.stroke
     if f is not None and f.opacity > 0:
         return True
-    return (s is not None and s.dash is None and s.opacity > 0
-            and 0.0 < s.width * t.mean_scale() < 1.0)
+    return _wants_hair(n, t)
 
 
 def _cover(path, t, w, h, rule, antialias, tol):

@@ -1,0 +1,150 @@
+"""Tests of raster.scan.coverage_many: identical to per-shape coverage."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st, HealthCheck
+
+from raster.errors import CanvasError, LimitError, PathError
+from raster.scan import coverage, coverage_many
+
+
+def polygon_edges(pts):
+    pts = np.asarray(pts, float)
+    return np.stack([pts, np.roll(pts, -1, axis=0)], axis=1)
+
+
+def random_shapes(rng, n, size=100):
+    """Random polygons (self-intersecting ones included), some partly or
+    wholly off canvas, some tiny, some with several contours."""
+    out = []
+    for _ in range(n):
+        parts = []
+        for _ in range(rng.integers(1, 3)):
+            k = rng.integers(3, 12)
+            c = rng.uniform(-0.2 * size, 1.2 * size, 2)
+            r = rng.uniform(0.2, 0.3 * size)
+            parts.append(polygon_edges(c + rng.uniform(-r, r, (k, 2))))
+        out.append(np.concatenate(parts))
+    return out
+
+
+def same(a, b):
+    if a is None or b is None:
+        return a is None and b is None
+    return a.box == b.box and np.array_equal(a.data, b.data)
+
+
+@pytest.mark.parametrize('seed', range(6))
+def test_identical_to_coverage_on_random_polygons(seed):
+    rng = np.random.default_rng(seed)
+    shapes = random_shapes(rng, 150)
+    rules = [('nonzero', 'evenodd')[int(b)] for b in rng.random(len(shapes)) < 0.5]
+    got = coverage_many(shapes, 100, 90, rules)
+    assert len(got) == len(shapes)
+    assert all(same(g, coverage(e, 100, 90, r)) for e, r, g in zip(shapes, rules, got))
+
+
+def test_identical_on_suite_like_scene():
+    """A map-like scene: a grid of adjacent cells sharing edges (like county
+    outlines), circles (scatter marks) and a large background."""
+    shapes = []
+    for i in range(12):
+        for j in range(10):
+            x, y = 5 + 15.3 * i, 4 + 17.1 * j
+            shapes.append(polygon_edges([[x, y], [x + 15.3, y + 0.7], [x + 15.0, y + 17.1],
+                                         [x - 0.4, y + 16.8]]))
+    th = np.linspace(0, 2 * np.pi, 40, endpoint=False)
+    rng = np.random.default_rng(7)
+    for c in rng.uniform(0, 200, (60, 2)):
+        shapes.append(polygon_edges(c + 2.5 * np.stack([np.cos(th), np.sin(th)], 1)))
+    shapes.append(polygon_edges([[-10, -10], [210, -10], [210, 210], [-10, 210]]))
+    got = coverage_many(shapes, 200, 200)
+    assert all(same(g, coverage(e, 200, 200)) for e, g in zip(shapes, got))
+
+
+def test_unit_square_and_disc_areas():
+    """Analytic areas: an axis-aligned 7.5 x 3.25 rectangle, a disc of
+    radius 20 (polygon of 720 sides: area r^2 * 360 sin(pi / 360) * 2)."""
+    rect = polygon_edges([[1.25, 2.5], [8.75, 2.5], [8.75, 5.75], [1.25, 5.75]])
+    th = np.linspace(0, 2 * np.pi, 720, endpoint=False)
+    disc = polygon_edges(np.stack([50 + 20 * np.cos(th), 50 + 20 * np.sin(th)], 1))
+    a, b = coverage_many([rect, disc], 100, 100)
+    assert float(a.data.sum(dtype=np.float64)) == pytest.approx(7.5 * 3.25, abs=1e-5)
+    poly_area = 0.5 * 720 * 400 * np.sin(2 * np.pi / 720)
+    assert float(b.data.sum(dtype=np.float64)) == pytest.approx(poly_area, abs=1e-3)
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.integers(0, 2**32 - 1), st.integers(1, 20), st.booleans())
+def test_order_and_grouping_invariance(seed, n, evenodd):
+    """Shapes give the same masks alone, in a batch, or in reversed order."""
+    rng = np.random.default_rng(seed)
+    shapes = random_shapes(rng, n, 40)
+    rule = 'evenodd' if evenodd else 'nonzero'
+    got = coverage_many(shapes, 40, 40, rule)
+    rev = coverage_many(shapes[::-1], 40, 40, rule)[::-1]
+    for e, g, r in zip(shapes, got, rev):
+        assert same(g, r) and same(g, coverage(e, 40, 40, rule))
+
+
+def test_translation_invariance():
+    """Moving every shape by whole pixels moves each mask and keeps its data."""
+    rng = np.random.default_rng(3)
+    shapes = random_shapes(rng, 30, 60)
+    shapes = [np.clip(e, 1, 59) for e in shapes]
+    a = coverage_many(shapes, 100, 100)
+    b = coverage_many([e + [17, 9] for e in shapes], 100, 100)
+    for m, k in zip(a, b):
+        assert (m is None) == (k is None)
+        if m is not None:
+            assert k.box == (m.x0 + 17, m.y0 + 9, m.box[2] + 17, m.box[3] + 9)
+            assert np.allclose(m.data, k.data, atol=1e-6)
+
+
+def test_aliased_clip_and_empty_shapes():
+    rng = np.random.default_rng(11)
+    shapes = random_shapes(rng, 20, 50) + [np.zeros((0, 2, 2))]
+    aas = [bool(b) for b in rng.random(len(shapes)) < 0.7]
+    got = coverage_many(shapes, 50, 50, 'nonzero', aas, clip=(5, 5, 40, 45))
+    for e, a, g in zip(shapes, aas, got):
+        assert same(g, coverage(e, 50, 50, 'nonzero', a, clip=(5, 5, 40, 45)))
+    assert got[-1] is None and coverage_many([], 10, 10) == []
+
+
+def test_errors():
+    sq = polygon_edges([[0, 0], [1, 0], [1, 1]])
+    with pytest.raises(PathError):
+        coverage_many([sq], 10, 10, 'winding')
+    with pytest.raises(PathError):
+        coverage_many([sq, sq], 10, 10, ['nonzero'])
+    with pytest.raises(PathError):
+        coverage_many([sq, [[np.nan, 0], [1, 1]]], 10, 10)
+    with pytest.raises(LimitError):
+        coverage_many([sq * 1e12], 10, 10)
+    with pytest.raises(CanvasError):
+        coverage_many([sq], 0, 10)
+
+
+def test_small_batches_and_large_shapes(monkeypatch):
+    """With a tiny piece budget the shapes are cut into many batches and the
+    large ones drawn alone: the masks do not change."""
+    import raster.scan as scan
+    rng = np.random.default_rng(5)
+    shapes = random_shapes(rng, 40, 80)
+    ref = [coverage(e, 80, 80) for e in shapes]
+    monkeypatch.setattr(scan, '_CHUNK_PIECES', 120)
+    got = coverage_many(shapes, 80, 80)
+    assert all(same(g, r) for g, r in zip(got, ref))
+
+
+def test_zero_area_shape_with_flagged_cells():
+    """A zigzag traced there and back (zero area, its cell flagged for the
+    exact recompute but without cover terms) must not leak into the next
+    shape's mask; alone or first in a batch it draws nothing."""
+    z = np.array([[3.2, 3.2], [3.8, 3.5], [3.2, 3.8], [3.8, 3.9]])
+    zig = np.concatenate([np.stack([z[:-1], z[1:]], 1), np.stack([z[:0:-1], z[-2::-1]], 1)])
+    sq = polygon_edges([[2.5, 2.5], [6.5, 2.5], [6.5, 6.5], [2.5, 6.5]])
+    for shapes in ([zig, sq], [zig], [sq, zig, sq]):
+        got = coverage_many(shapes, 10, 10)
+        assert all(same(g, coverage(e, 10, 10)) for e, g in zip(shapes, got))
+    assert coverage_many([zig], 10, 10) == [None]
