@@ -40,7 +40,7 @@ Per node:
   (bilinear when ``smooth``, else nearest) through the inverse of the CTM
   and clipped to the image's viewport; an SVG image is rendered as a nested
   tree.
-* :class:`~raster.svg.tree.TextNode`: not rendered yet.
+* text arrives as glyph-outline PathNodes (raster.svg.text).
 
 Paints: solid colours and linear and radial gradients (pad, reflect and
 repeat spreads; ``objectBoundingBox`` units) and patterns (a tile raster
@@ -309,7 +309,6 @@ class _Renderer:
         elif isinstance(node, ImageNode):
             if not clip_mode:
                 self.image(node, t, canvas)
-        # TextNode and unknown nodes: nothing yet
 
     # -- groups ----------------------------------------------------------------
     def group(self, g, t, canvas, clip_mode=False):

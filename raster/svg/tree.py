@@ -1,8 +1,8 @@
 """The resolved render tree.
 
 An SVG document is resolved into a few node kinds, after the usvg model:
-:class:`Group`, :class:`PathNode`, :class:`ImageNode` and :class:`TextNode`
-(a placeholder until text is implemented).  Everything is resolved when the
+:class:`Group`, :class:`PathNode` and :class:`ImageNode`; text is laid out
+into glyph-outline PathNodes (raster.svg.text).  Everything is resolved when the
 tree is built: CSS and inheritance, units, ``use``/``symbol``/nested ``svg``,
 ``switch``, ``display``/``visibility``, transforms and viewBoxes, colours and
 ``currentColor``.  The renderer never parses a string.
@@ -187,13 +187,6 @@ class ImageNode(Node):
     tree: Optional['Tree'] = None
     smooth: bool = True
     opacity: float = 1.0
-
-
-@dataclass(slots=True, eq=False)
-class TextNode(Node):
-    """Placeholder for text (not rendered yet); keeps the raw text so later
-    work can lay it out."""
-    text: str = ''
 
 
 @dataclass(slots=True, eq=False)
