@@ -65,7 +65,7 @@ from ..transform import IDENTITY, Affine
 from .css import declared_styles
 from .properties import INHERITED, PROPERTIES
 from .tree import (ClipPath, Fill, GradientStop, Group, LinearGradient, Mask, PathNode,
-                   Pattern, RadialGradient, SolidPaint, Stroke, Tree)
+                   Pattern, RadialGradient, SolidPaint, Stroke, Tree, walk)
 from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length, parse_number,
                      parse_url,
                      parse_length_list, parse_paint, parse_preserve_aspect_ratio,
@@ -554,13 +554,8 @@ class _Builder:
         space, or None when there is no geometry."""
         lo = [math.inf, math.inf]
         hi = [-math.inf, -math.inf]
-        stack = [(n, IDENTITY) for n in kids]
-        while stack:
-            n, t = stack.pop()
-            if isinstance(n, Group):
-                t2 = t @ n.transform
-                stack.extend((c, t2) for c in n.children)
-            elif isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
+        for n, t in _walk_all(kids):
+            if isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
                 try:
                     x0, y0, x1, y1 = exact_bbox(n.path, t)
                 except RasterError:
@@ -874,12 +869,8 @@ class _Builder:
             if b is not None:
                 box = (b[0], b[1], b[2] - b[0], b[3] - b[1])
         cache = {}
-        stack = [(n, move) for n in kids]
-        while stack:
-            n, m = stack.pop()
+        for n, m in _walk_all(kids, move):
             if isinstance(n, Group):
-                m2 = m @ n.transform
-                stack.extend((c, m2) for c in n.children)
                 continue
             for attr in ('fill', 'stroke'):
                 f = getattr(n, attr, None)
@@ -1409,6 +1400,12 @@ def _rebased(p, m, box):
     if obb:
         t = Affine(box[2], 0, 0, box[3], box[0], box[1]) @ t
     return dataclasses.replace(p, units='userSpaceOnUse', transform=inv @ t)
+
+
+def _walk_all(nodes, transform=IDENTITY):
+    """:func:`raster.svg.tree.walk` over a list of sibling nodes."""
+    for node in nodes:
+        yield from walk(node, transform)
 
 
 def _fold_opacity(kids, e):
