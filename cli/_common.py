@@ -124,6 +124,8 @@ def write_output(path, data):
     try:
         with os.fdopen(fd, 'wb') as f:
             f.write(data)
+        # mkstemp creates 0600; give the file the mode a plain open() would
+        os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, target)
     except BaseException:
         try:
@@ -131,6 +133,12 @@ def write_output(path, data):
         except OSError:
             pass
         raise
+
+
+def _umask():
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
 
 
 def write_text(path, text):

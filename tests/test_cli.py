@@ -359,3 +359,19 @@ def test_bbox_stdin_subprocess():
     rc, so, se = cli('svg-bbox', '-', stdin=CIRCLE)
     assert rc == 0, se
     assert json.loads(so)['document'] == pytest.approx([40, 40, 60, 60])
+
+
+def test_output_file_gets_the_usual_permissions(tmp_path):
+    """The atomic write (temp file + rename) must not leave mkstemp's 0600."""
+    import os
+    import stat
+    from raster_cli import rasterize as rz
+    src = tmp_path / 'in.svg'
+    src.write_text('<svg xmlns="http://www.w3.org/2000/svg" width="4" height="4"/>')
+    out = tmp_path / 'out.png'
+    old = os.umask(0o022)
+    try:
+        assert rz.main([str(src), str(out)]) in (0, None)
+    finally:
+        os.umask(old)
+    assert stat.S_IMODE(out.stat().st_mode) == 0o644
