@@ -53,20 +53,11 @@ def one_error_line(err, prog):
 # -- builder-independent parts ------------------------------------------------------------
 
 def _circle_tree(with_fill=False, transform=None):
-    from raster.path import PathBuilder
     from raster.svg.tree import Fill, Group, PathNode, SolidPaint, Stroke, Tree
     from raster.transform import Affine
-    cx, cy, r = 50.0, 50.0, 10.0
-    k = 0.5522847498 * r
-    b = PathBuilder()
-    b.moveTo((cx + r, cy))
-    b.curveTo((cx + r, cy + k), (cx + k, cy + r), (cx, cy + r))
-    b.curveTo((cx - k, cy + r), (cx - r, cy + k), (cx - r, cy))
-    b.curveTo((cx - r, cy - k), (cx - k, cy - r), (cx, cy - r))
-    b.curveTo((cx + k, cy - r), (cx + r, cy - k), (cx + r, cy))
-    b.closePath()
+    from _geometry import kappa_circle
     black = SolidPaint((0, 0, 0, 1))
-    node = PathNode(id='c', path=b.path(), stroke=Stroke(black, width=4),
+    node = PathNode(id='c', path=kappa_circle(50.0, 50.0, 10.0), stroke=Stroke(black, width=4),
                     fill=Fill(black) if with_fill else None)
     root = Group(transform=transform or Affine(), children=[node])
     return Tree(100, 100, root, ids={'c': node})

@@ -13,6 +13,7 @@ from raster.transform import Affine
 from raster.svg.render import output_size, render_tree
 from raster.svg.tree import (ClipPath, Fill, GradientStop, Group, ImageNode, LinearGradient, Mask,
                              PathNode, Pattern, RadialGradient, SolidPaint, Stroke, Tree)
+from _geometry import kappa_circle as circle
 
 render_mod = importlib.import_module('raster.svg.render')  # the module, not raster.svg.render()
 
@@ -24,18 +25,6 @@ WHITE = SolidPaint((1.0, 1.0, 1.0, 1.0))
 def rect(x, y, w, h):
     return Path.polygon([(x, y), (x + w, y), (x + w, y + h), (x, y + h)])
 
-
-def circle(cx, cy, r):
-    """Four-cubic circle (kappa = 0.5523): the usual SVG circle."""
-    k = 0.5522847498 * r
-    b = PathBuilder()
-    b.moveTo((cx + r, cy))
-    b.curveTo((cx + r, cy + k), (cx + k, cy + r), (cx, cy + r))
-    b.curveTo((cx - k, cy + r), (cx - r, cy + k), (cx - r, cy))
-    b.curveTo((cx - r, cy - k), (cx - k, cy - r), (cx, cy - r))
-    b.curveTo((cx + k, cy - r), (cx + r, cy - k), (cx + r, cy))
-    b.closePath()
-    return b.path()
 
 
 def filled(path, paint=RED, **kw):

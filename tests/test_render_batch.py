@@ -6,22 +6,12 @@ import pytest
 
 import importlib
 render_mod = importlib.import_module("raster.svg.render")
-from raster import parse_path
 from raster.path import Path
 from raster.svg.tree import Fill, Group, PathNode, SolidPaint, Stroke, Tree
 from raster.svg.render import render_tree
 from raster.transform import Affine
+from _geometry import kappa_circle as circle
 
-
-def circle(cx, cy, r):
-    """Circle of four cubic arcs (the usual kappa = 0.5523)."""
-    k = 0.5522847498 * r
-    return parse_path('M %g %g C %g %g %g %g %g %g C %g %g %g %g %g %g '
-                      'C %g %g %g %g %g %g C %g %g %g %g %g %g Z' % (
-                          cx + r, cy, cx + r, cy + k, cx + k, cy + r, cx, cy + r,
-                          cx - k, cy + r, cx - r, cy + k, cx - r, cy,
-                          cx - r, cy - k, cx - k, cy - r, cx, cy - r,
-                          cx + k, cy - r, cx + r, cy - k, cx + r, cy))
 
 
 def scene(seed):

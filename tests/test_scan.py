@@ -6,8 +6,8 @@ from hypothesis import given, settings, strategies as st
 
 import raster.scan as scan
 from raster.errors import CanvasError, LimitError, PathError, RasterError
-from raster.path import PathBuilder
 from raster.scan import Mask, coverage, path_coverage
+from _geometry import kappa_circle as circle_path
 
 
 # -- helpers ------------------------------------------------------------------
@@ -460,18 +460,6 @@ def test_property_area_conservation_simple_polygons(seed, n, rmax, cx, cy):
 
 
 # -- paths with curves ----------------------------------------------------------
-
-def circle_path(cx, cy, r):
-    """Circle of four cubic arcs (kappa = 0.5523; radial error 2.7e-4 r)."""
-    k = 0.5522847498 * r
-    b = PathBuilder()
-    b.moveTo((cx + r, cy))
-    b.curveTo((cx + r, cy + k), (cx + k, cy + r), (cx, cy + r))
-    b.curveTo((cx - k, cy + r), (cx - r, cy + k), (cx - r, cy))
-    b.curveTo((cx - r, cy - k), (cx - k, cy - r), (cx, cy - r))
-    b.curveTo((cx + k, cy - r), (cx + r, cy - k), (cx + r, cy))
-    b.closePath()
-    return b.path()
 
 
 @pytest.mark.parametrize('tol', [1.0, 0.25, 0.02])
