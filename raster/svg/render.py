@@ -442,43 +442,19 @@ class _Renderer:
         and including ``key``, in one :func:`coverage_many` call (bounded by
         :data:`_BATCH_EDGES` edges and :data:`_BATCH_AREA` mask pixels;
         larger fills are left to :meth:`fill`)."""
-        pending = self._fill_pending
-        size = (canvas.width, canvas.height)
-        keys, edges, rules, aas = [], [], [], []
-        n_edges = area = 0
-        seen = False
-        for k in list(pending):
-            if seen and (n_edges >= _BATCH_EDGES or area >= _BATCH_AREA):
-                break
-            n, m, sz = pending.pop(k)
-            seen = seen or k == key
-            if sz != size:
-                continue
+        batch = _MaskBatch()
+        for k, n, m in batch.take(self._fill_pending, key, canvas):
             pl = self.flat(n.path, m)
             if k in self._hair_pending:     # the stroke needs the polylines too
                 self._ready[(id(n.path), m)] = pl
             e = pl.edges(close_all=True)
             if len(e) == 0:
                 self._fill_ready[k] = None
-                continue
-            lo, hi = pl.points.min(0), pl.points.max(0)
-            a = float(hi[0] - lo[0] + 2) * float(hi[1] - lo[1] + 2)
-            if a > _BATCH_AREA / 16:    # big: drawn alone by fill()
-                self._ready[(id(n.path), m)] = pl
-                continue
-            keys.append(k)
-            edges.append(e)
-            rules.append(n.fill.rule)
-            aas.append(bool(n.antialias))
-            n_edges += len(e)
-            area += a
-        if not keys:
-            return
-        try:
-            masks = coverage_many(edges, canvas.width, canvas.height, rules, aas)
-        except RasterError:
-            return          # drawn one by one by fill() (errors where they were)
-        self._fill_ready.update(zip(keys, masks))
+            elif not batch.add(k, e, pl.points, n.fill.rule, n.antialias):
+                self._ready[(id(n.path), m)] = pl   # big: drawn alone by fill()
+        masks = batch.run(canvas)
+        if masks is not None:       # else drawn one by one by fill() (errors where they were)
+            self._fill_ready.update(masks)
 
     def _flush_strokes(self, key, canvas):
         """Outline queued strokes for ``canvas`` in document order, up to
@@ -540,18 +516,8 @@ class _Renderer:
         """Hairline outlines (:func:`_hairline_edges`) of queued undashed
         hairlines for ``canvas`` in document order, up to and including
         ``key``, scan converted in one :func:`coverage_many` call."""
-        pending = self._hair_pending
-        size = (canvas.width, canvas.height)
-        keys, edges, aas = [], [], []
-        n_edges = area = 0
-        seen = False
-        for k in list(pending):
-            if seen and (n_edges >= _BATCH_EDGES or area >= _BATCH_AREA):
-                break
-            n, m, sz = pending.pop(k)
-            seen = seen or k == key
-            if sz != size:
-                continue
+        batch = _MaskBatch()
+        for k, n, m in batch.take(self._hair_pending, key, canvas):
             pl = self.flat(n.path, m)
             if k in self._fill_pending:     # the fill needs the polylines too
                 self._ready[(id(n.path), m)] = pl
@@ -561,25 +527,13 @@ class _Renderer:
                 continue        # general stroker, in stroke()
             if len(e) == 0:
                 self._hair_ready[k] = None
-                continue
-            lo, hi = e.reshape(-1, 2).min(0), e.reshape(-1, 2).max(0)
-            a = float(hi[0] - lo[0] + 2) * float(hi[1] - lo[1] + 2)
-            if a > _BATCH_AREA / 16:
+            elif not batch.add(k, e, e.reshape(-1, 2), 'nonzero', n.antialias):
                 self._hair_edges[k] = e     # big: scan converted alone
-                continue
-            keys.append(k)
-            edges.append(e)
-            aas.append(bool(n.antialias))
-            n_edges += len(e)
-            area += a
-        if not keys:
-            return
-        try:
-            masks = coverage_many(edges, canvas.width, canvas.height, 'nonzero', aas)
-        except RasterError:
-            self._hair_edges.update(zip(keys, edges))
-            return
-        self._hair_ready.update(zip(keys, masks))
+        masks = batch.run(canvas)
+        if masks is None:
+            self._hair_edges.update(zip(batch.keys, batch.edges))
+        else:
+            self._hair_ready.update(masks)
 
     def flat(self, path, t):
         """Polylines of ``path`` flattened under ``t`` (device pixels).  The
@@ -812,6 +766,56 @@ def _polygon_edges(p, oriented=False):
     e[:, :-1, 1] = p[:, 1:]
     e[:, -1, 1] = p[:, 0]
     return e.reshape(-1, 2, 2)
+
+
+class _MaskBatch:
+    """Shapes gathered for one :func:`coverage_many` call, within
+    :data:`_BATCH_EDGES` edges and :data:`_BATCH_AREA` mask pixels."""
+
+    def __init__(self):
+        self.keys, self.edges, self.rules, self.aas = [], [], [], []
+        self.n_edges = self.area = 0
+
+    def take(self, pending, key, canvas):
+        """Pop queued ``(n, m, size)`` entries of ``pending`` in document
+        order and yield ``(key, node, transform)`` for those drawn on
+        ``canvas``, up to and including ``key`` and then while the batch
+        has room."""
+        size = (canvas.width, canvas.height)
+        seen = False
+        for k in list(pending):
+            if seen and (self.n_edges >= _BATCH_EDGES or self.area >= _BATCH_AREA):
+                return
+            n, m, sz = pending.pop(k)
+            seen = seen or k == key
+            if sz == size:
+                yield k, n, m
+
+    def add(self, key, edges, points, rule, antialias):
+        """Add a shape (its edges, and points spanning its box); False when
+        its box is too big for a batch (it is then drawn alone)."""
+        lo, hi = points.min(0), points.max(0)
+        a = float(hi[0] - lo[0] + 2) * float(hi[1] - lo[1] + 2)
+        if a > _BATCH_AREA / 16:
+            return False
+        self.keys.append(key)
+        self.edges.append(edges)
+        self.rules.append(rule)
+        self.aas.append(bool(antialias))
+        self.n_edges += len(edges)
+        self.area += a
+        return True
+
+    def run(self, canvas):
+        """``{key: Mask or None}``, or None when scan conversion raised (the
+        caller then draws the shapes one by one)."""
+        if not self.keys:
+            return {}
+        try:
+            masks = coverage_many(self.edges, canvas.width, canvas.height, self.rules, self.aas)
+        except RasterError:
+            return None
+        return dict(zip(self.keys, masks))
 
 
 def _hairline_edges(pl, cap, join, miterlimit):
