@@ -18,5 +18,8 @@ MAX_FLATTEN_POINTS = 50_000_000
 #: Deepest nesting of ``use`` instantiations the SVG tree builder follows.
 MAX_USE_DEPTH = 64
 
-#: Most nodes the SVG tree builder creates for one document (``use`` bombs).
-MAX_ELEMENTS = 1_000_000
+#: Most nodes the SVG tree builder creates for one document (``use`` bombs):
+#: building costs tens of microseconds a node, so this bounds a hostile
+#: document to seconds.  The largest corpus document has about 6,600.
+#: ``build_tree(max_elements=...)`` raises it for a trusted huge document.
+MAX_ELEMENTS = 100_000
