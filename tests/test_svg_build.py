@@ -18,7 +18,7 @@ from raster.svg.document import load_document
 from raster.svg.tree import ClipPath, Group, PathNode, SolidPaint, walk
 from raster.transform import Affine
 
-SUITE = os.path.join(os.path.dirname(__file__), '..', '..', 'shared', 'resvg-suite', 'tests')
+from _shared import SUITE_TESTS as SUITE
 GREEN = (0.0, 128 / 255, 0.0, 1.0)
 
 
@@ -422,7 +422,6 @@ def _suite_files():
     return out
 
 
-@pytest.mark.skipif(not os.path.isdir(SUITE), reason='resvg suite not available')
 def test_resvg_suite_builds():
     files = _suite_files()
     assert len(files) > 500

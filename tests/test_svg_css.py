@@ -16,8 +16,7 @@ from raster.svg.properties import (PRESENTATION_ATTRIBUTES, PROPERTIES, SHORTHAN
 
 SVG = 'http://www.w3.org/2000/svg'
 HERE = os.path.dirname(__file__)
-SUITE = os.path.join(HERE, '..', '..', 'shared', 'resvg-suite', 'tests')
-CORPUS = os.path.join(HERE, '..', '..', 'shared', 'corpus')
+from _shared import CORPUS, SUITE_TESTS as SUITE
 
 
 def doc(body, ns=True):
@@ -341,7 +340,6 @@ def test_index_matches_brute_force():
             assert d.get('stroke-width') == (best[1] if best else None)
 
 
-@pytest.mark.skipif(not os.path.isdir(SUITE), reason='resvg suite not present')
 def test_resvg_style_tests_parse():
     files = sorted(glob.glob(os.path.join(SUITE, 'structure', 'style', '*.svg')))
     assert len(files) >= 14
@@ -367,9 +365,10 @@ def test_resvg_style_tests_parse():
     assert n_rules >= 11
 
 
-@pytest.mark.skipif(not os.path.isdir(CORPUS), reason='corpus not present')
 def test_corpus_documents_cascade():
-    for path in sorted(glob.glob(os.path.join(CORPUS, '*.svg')))[:6]:
+    paths = sorted(glob.glob(os.path.join(CORPUS, '*.svg')))[:6]
+    assert len(paths) == 6, 'corpus missing at %s' % CORPUS
+    for path in paths:
         root = etree.parse(path, etree.XMLParser(huge_tree=True)).getroot()
         styles = declared_styles(root)
         for d in styles.values():
@@ -389,7 +388,6 @@ def test_deep_tree_matching_is_not_exponential():
     assert len(select(root, 'svg g g g g g g g g g rect')) == 1
 
 
-@pytest.mark.skipif(not os.path.isdir(SUITE), reason='resvg suite not present')
 def test_whole_resvg_suite_cascades():
     files = sorted(glob.glob(os.path.join(SUITE, '**', '*.svg'), recursive=True))
     n = 0

@@ -13,7 +13,7 @@ from raster.errors import RasterError
 from raster.svg import filters as F
 from raster.testing import compare_images
 
-SUITE = '/work/shared/resvg-suite'
+from _shared import SUITE_ROOT as SUITE
 
 
 def _img(h, w, seed=0):
@@ -503,7 +503,6 @@ SUITE_CASES = [
 ]
 
 
-@pytest.mark.skipif(not os.path.isdir(SUITE), reason='resvg suite not available')
 @pytest.mark.parametrize('case', SUITE_CASES)
 def test_suite_case(case):
     base = os.path.join(SUITE, 'tests', case)

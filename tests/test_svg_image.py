@@ -30,8 +30,7 @@ from raster.svg.tree import Group, ImageNode, walk
 from raster.testing import compare_images
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SUITE = os.path.join(HERE, '..', '..', 'shared', 'resvg-suite')
-SUITE_TESTS = os.path.join(SUITE, 'tests')
+from _shared import SUITE_ROOT as SUITE, SUITE_TESTS
 RED, BLUE, GREEN = (255, 0, 0, 255), (0, 0, 255, 255), (0, 128, 0, 255)
 
 
@@ -638,7 +637,6 @@ SUITE_CASES = [
                                                'optimizeSpeed')]
 
 
-@pytest.mark.skipif(not os.path.isdir(SUITE_TESTS), reason='resvg suite not present')
 @pytest.mark.parametrize('case', SUITE_CASES)
 def test_resvg_suite_case(case):
     svg = os.path.join(SUITE_TESTS, case + '.svg')
@@ -648,7 +646,6 @@ def test_resvg_suite_case(case):
     assert cmp.passed, cmp.reason
 
 
-@pytest.mark.skipif(not os.path.isdir(SUITE_TESTS), reason='resvg suite not present')
 def test_suite_list_covers_the_image_directory():
     names = {n[:-4] for n in os.listdir(os.path.join(SUITE_TESTS, 'structure', 'image'))
              if n.endswith('.svg')}

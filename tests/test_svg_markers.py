@@ -23,7 +23,7 @@ from raster.svgpath import parse_path
 from raster.testing import compare_images
 from raster.transform import Affine
 
-SUITE = os.path.join(os.path.dirname(__file__), '..', '..', 'shared', 'resvg-suite', 'tests')
+from _shared import SUITE_TESTS as SUITE
 BLUE = (0.0, 0.0, 1.0, 1.0)
 GREEN = (0.0, 128 / 255, 0.0, 1.0)
 

@@ -17,8 +17,7 @@ from raster.svg.tree import PathNode, walk
 from raster.testing import compare_images
 
 HERE = os.path.dirname(__file__)
-SUITE = os.path.normpath(os.path.join(HERE, '..', '..', 'shared', 'resvg-suite'))
-FONTS = os.path.join(SUITE, 'fonts')
+from _shared import SUITE_FONTS as FONTS, SUITE_ROOT as SUITE
 NS = 'xmlns="http://www.w3.org/2000/svg"'
 
 

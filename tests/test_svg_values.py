@@ -19,7 +19,7 @@ from raster.svg.values import (
     parse_transform, parse_transform_origin, parse_url, parse_viewbox,
     viewbox_transform)
 
-SUITE = os.path.join(os.path.dirname(__file__), '..', '..', 'shared', 'resvg-suite', 'tests')
+from _shared import SUITE_TESTS as SUITE
 
 
 def close(a, b, tol=1e-12):
@@ -494,7 +494,6 @@ def _suite_files(sub):
     return sorted(glob.glob(os.path.join(SUITE, sub, '*.svg')))
 
 
-@pytest.mark.skipif(not os.path.isdir(SUITE), reason='resvg suite not present')
 def test_resvg_fill_values_parse_as_resvg_renders():
     # For each painting/fill test: a valid colour value must be one resvg
     # rendered; an invalid one gives resvg's black (the initial fill).
