@@ -126,6 +126,8 @@ class CurveMixin:
     Subclasses provide ``eval(t)``, ``to_beziers()`` and ``domain``.
     """
 
+    __slots__ = ()
+
     @property
     def dim(self):
         """Dimension D of the curve's points (2 or 3)."""

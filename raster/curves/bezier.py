@@ -26,7 +26,7 @@ import numpy as np
 
 from ..errors import LimitError
 from ..path import PathBuilder
-from ._base import CurveError, as_params, as_points, as_scalar, shape_out
+from ._base import CurveError, CurveMixin, as_params, as_points, as_scalar, shape_out
 
 # Gauss-Legendre nodes and weights on [0, 1] (16 points) for arc lengths.
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
@@ -225,7 +225,7 @@ def _real_roots_unit(coef):
     return np.concatenate(roots), np.concatenate(owner).astype(np.int64)
 
 
-class Bezier:
+class Bezier(CurveMixin):
     """A Bezier curve of degree ``n`` (``n + 1`` control points) on
     ``t in [0, 1]``.
 
@@ -407,32 +407,14 @@ class Bezier:
         """This curve as a one-segment :class:`PiecewiseBezier`."""
         return PiecewiseBezier(self.ctrl[None])
 
-    def extrema(self):
-        """Sorted parameters in (0, 1) where a coordinate has a local
-        extremum (roots of the hodograph), (K,) float64."""
-        return self.to_beziers().extrema()
-
-    def bounding_box(self):
-        """Exact bounding box ``(lo, hi)``, two (D,) float64 arrays."""
-        return self.to_beziers().bounding_box()
-
     def arc_length(self, tolerance=1e-9):
         """Arc length, estimated to an absolute ``tolerance`` (adaptive
         16-point Gauss-Legendre; the estimate compares each interval with its
         two halves)."""
         return self.to_beziers().arc_length(tolerance)
 
-    def flatten(self, tolerance=0.25):
-        return self.to_beziers().flatten(tolerance)
-
-    def to_path(self, tolerance=0.25):
-        return self.to_beziers().to_path(tolerance)
-
-    def to_svg(self, tolerance=0.25, precision=None):
-        return self.to_path(tolerance).to_svg(precision)
-
-    def draw(self, pen, tolerance=0.25):
-        self.to_beziers().draw(pen, tolerance)
+    # flatten, to_path, to_svg, draw, extrema and bounding_box come from
+    # CurveMixin, through to_beziers()
 
     def continuity(self, tolerance=1e-9):
         """A single segment has no joints: ``[]``."""

@@ -552,19 +552,8 @@ class _Builder:
     def object_box(self, kids):
         """(x, y, w, h) fill bounding box of nodes in their parent's user
         space, or None when there is no geometry."""
-        lo = [math.inf, math.inf]
-        hi = [-math.inf, -math.inf]
-        for n, t in _walk_all(kids):
-            if isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
-                try:
-                    x0, y0, x1, y1 = exact_bbox(n.path, t)
-                except RasterError:
-                    continue
-                lo = [min(lo[0], x0), min(lo[1], y0)]
-                hi = [max(hi[0], x1), max(hi[1], y1)]
-        if not math.isfinite(lo[0]):
-            return None
-        return (lo[0], lo[1], hi[0] - lo[0], hi[1] - lo[1])
+        b = _nodes_box(kids)
+        return None if b is None else (b[0], b[1], b[2] - b[0], b[3] - b[1])
 
     def build_clip(self, cp, kids, st):
         """A clipPath element to a ClipPath for content ``kids``; None when
@@ -1583,23 +1572,32 @@ def _root_background(root, rt, w, h):
                     fill=Fill(SolidPaint(tuple(float(v) for v in c))))
 
 
-def _content_box(group):
-    """Visual bounds (exact fill boxes widened by half the stroke width) of
-    a group's content in its parent's coordinates, or None."""
-    from .tree import walk
+def _nodes_box(nodes, stroke_pad=False):
+    """(x0, y0, x1, y1) exact fill box of the paths under ``nodes`` in
+    their parent's coordinates, widened by half of each stroke's width when
+    ``stroke_pad``; None when there is no geometry."""
     lo = [math.inf, math.inf]
     hi = [-math.inf, -math.inf]
-    for n, t in walk(group):
-        if isinstance(n, PathNode) and n.path is not None and len(n.path.points):
+    for n, t in _walk_all(nodes):
+        if isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
             try:
                 x0, y0, x1, y1 = exact_bbox(n.path, t)
             except RasterError:
                 continue
             pad = 0.0
-            if n.stroke is not None:
+            if stroke_pad and n.stroke is not None:
                 pad = n.stroke.width * 0.5 * t.max_scale()
             lo = [min(lo[0], x0 - pad), min(lo[1], y0 - pad)]
             hi = [max(hi[0], x1 + pad), max(hi[1], y1 + pad)]
-    if not (math.isfinite(lo[0]) and hi[0] > lo[0] and hi[1] > lo[1]):
+    if not math.isfinite(lo[0]):
         return None
     return lo[0], lo[1], hi[0], hi[1]
+
+
+def _content_box(group):
+    """Visual bounds (exact fill boxes widened by half the stroke width) of
+    a group's content in its parent's coordinates, or None when empty."""
+    b = _nodes_box([group], stroke_pad=True)
+    if b is None or not (b[2] > b[0] and b[3] > b[1]):
+        return None
+    return b
