@@ -143,8 +143,14 @@ class CurveMixin:
         return self.to_beziers().tangent(t)
 
     def slope(self, t):
-        """dy/dx at ``t`` (``inf`` where dx/dt = 0)."""
-        return self.to_beziers().slope(t)
+        """dy/dx = y'(t) / x'(t) (``+-inf`` where x' = 0, ``nan`` where both
+        vanish): float or (M,) float64.  Needs D >= 2."""
+        if self.dim < 2:
+            raise CurveError('slope needs a curve of dimension >= 2')
+        d = np.atleast_2d(self.tangent(t))
+        with np.errstate(divide='ignore', invalid='ignore'):
+            s = d[:, 1] / d[:, 0]
+        return float(s[0]) if np.ndim(t) == 0 else s
 
     def subsegment(self, t0, t1):
         """The piece between parameters ``t0`` and ``t1`` (PiecewiseBezier)."""

@@ -342,16 +342,6 @@ class Bezier(CurveMixin):
         """First derivative B'(t): (D,) or (M, D) float64."""
         return self.deriv().eval(t)
 
-    def slope(self, t):
-        """dy/dx = y'(t) / x'(t) (``+-inf`` where x' = 0, ``nan`` where both
-        vanish): float or (M,) float64.  Needs D >= 2."""
-        if self.dim < 2:
-            raise CurveError('slope needs a curve of dimension >= 2')
-        d = np.atleast_2d(self.tangent(t))
-        with np.errstate(divide='ignore', invalid='ignore'):
-            s = d[:, 1] / d[:, 0]
-        return float(s[0]) if np.ndim(t) == 0 else s
-
     # -- subdivision ---------------------------------------------------------
     def split(self, t=0.5):
         """The two halves ``[0, t]`` and ``[t, 1]`` (de Casteljau)."""
@@ -421,7 +411,7 @@ class Bezier(CurveMixin):
         return []
 
 
-class PiecewiseBezier:
+class PiecewiseBezier(CurveMixin):
     """A chain of ``S`` Bezier segments of one degree ``n``, segment ``s``
     covering the global parameter interval ``[breaks[s], breaks[s+1]]``.
 
@@ -546,15 +536,6 @@ class PiecewiseBezier:
 
     def tangent(self, t):
         return self.deriv().eval(t)
-
-    def slope(self, t):
-        """dy/dx at ``t`` (see :meth:`Bezier.slope`)."""
-        if self.dim < 2:
-            raise CurveError('slope needs a curve of dimension >= 2')
-        d = np.atleast_2d(self.tangent(t))
-        with np.errstate(divide='ignore', invalid='ignore'):
-            s = d[:, 1] / d[:, 0]
-        return float(s[0]) if np.ndim(t) == 0 else s
 
     # -- pieces --------------------------------------------------------------
     def subsegment(self, t0, t1):
@@ -740,9 +721,6 @@ class PiecewiseBezier:
         b = PathBuilder()
         self.draw(b, tolerance)
         return b.path()
-
-    def to_svg(self, tolerance=0.25, precision=None):
-        return self.to_path(tolerance).to_svg(precision)
 
     def draw(self, pen, tolerance=0.25):
         """Replay the (x, y) projection into a pen as one open contour.
