@@ -277,20 +277,11 @@ def _deviation(Q):
     uc = np.clip(u, 0.0, 1.0)
     h = rel - uc[:, None] * d
     hull = np.sqrt((h * h).sum(axis=1).max(axis=0))   # convex-hull bound
-    if D == 2 and n <= 3:
-        # signed offsets from the chord line; offset and chord parameter
-        # are Bernstein polynomials (0, .., 0) and (0, .., 1): exact extrema
-        c = np.zeros((n1, 2 * m))
-        c[1:n, :m] = (d[0] * rel[:, 1] - d[1] * rel[:, 0]) / L
-        c[1:n, m:] = u
-        c[n, m:] = 1.0
-        lo, hi = _bernstein_max(c)
-        perp = np.maximum(-lo[:m], hi[:m])
-        ulo, uhi = lo[m:], hi[m:]
-    else:
-        p = rel - u[:, None] * d
-        perp = (1.0 - 2.0 ** (1 - n)) * np.sqrt((p * p).sum(axis=1).max(axis=0))
-        ulo, uhi = u.min(axis=0), u.max(axis=0)
+    # (planar pieces went to _deviation_planar, with the exact offsets of
+    # quadratics and cubics)
+    p = rel - u[:, None] * d
+    perp = (1.0 - 2.0 ** (1 - n)) * np.sqrt((p * p).sum(axis=1).max(axis=0))
+    ulo, uhi = u.min(axis=0), u.max(axis=0)
     over = np.maximum(np.maximum(-ulo, uhi - 1.0), 0.0) * L
     e = np.minimum(np.sqrt(perp * perp + over * over), hull)
     return np.where(nz, e, hull)
