@@ -90,6 +90,18 @@ _SCAN_CACHE = {}      # (path, mtime_ns, size) -> tuple of FontFace
 _FONT_CACHE = {}      # (path, index, mtime_ns) -> Font
 
 
+def cached(cache, key, make, limit):
+    """``cache[key]``, made by ``make()`` when missing; the dict is emptied
+    once it holds more than ``limit`` entries (a bound, not an LRU)."""
+    value = cache.get(key)
+    if value is None:
+        value = make()
+        if len(cache) > limit:
+            cache.clear()
+        cache[key] = value
+    return value
+
+
 def parse_font_family(value):
     """Split a CSS ``font-family`` value into a list of names.
 
@@ -398,14 +410,7 @@ class Font:
             mt = os.stat(face.path).st_mtime_ns
         except OSError as e:
             raise FontError('cannot read font %s: %s' % (face.path, e.strerror)) from None
-        key = (face.path, face.index, mt)
-        f = _FONT_CACHE.get(key)
-        if f is None:
-            f = cls(face)
-            if len(_FONT_CACHE) > 64:
-                _FONT_CACHE.clear()
-            _FONT_CACHE[key] = f
-        return f
+        return cached(_FONT_CACHE, (face.path, face.index, mt), lambda: cls(face), 64)
 
     def has_char(self, ch):
         """True when the font maps the character to a glyph."""

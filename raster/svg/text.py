@@ -144,16 +144,11 @@ def _spacing(value, ctx):
 
 
 def _font_db(b):
-    from ..fonts import FontDB
+    from ..fonts import FontDB, cached
     db = getattr(b, '_text_fontdb', None)
     if db is None:
         dirs = tuple(str(d) for d in (getattr(b, 'font_dirs', ()) or ()))
-        db = _DB_CACHE.get(dirs)
-        if db is None:
-            db = FontDB(dirs)
-            if len(_DB_CACHE) > 16:
-                _DB_CACHE.clear()
-            _DB_CACHE[dirs] = db
+        db = cached(_DB_CACHE, dirs, lambda: FontDB(dirs), 16)
         b._text_fontdb = db
     return db
 
