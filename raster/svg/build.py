@@ -52,6 +52,7 @@ other documents.
 (20.0, 10.0, (1.0, 0.0, 0.0, 1.0))
 """
 
+import contextlib
 import dataclasses
 import math
 import warnings
@@ -555,14 +556,23 @@ class _Builder:
         b = _nodes_box(kids)
         return None if b is None else (b[0], b[1], b[2] - b[0], b[3] - b[1])
 
+    @contextlib.contextmanager
+    def referencing(self, el):
+        """While building ``el``'s content: references back to ``el``
+        (clip paths, masks, patterns, markers, filters) are recursion."""
+        self._active_refs.add(el)
+        try:
+            yield
+        finally:
+            self._active_refs.discard(el)
+
     def build_clip(self, cp, kids, st):
         """A clipPath element to a ClipPath for content ``kids``; None when
         the reference is ignored (recursion), _EMPTY when nothing is left."""
         if cp in self._active_refs:
             self.warn('clip-recursive', 'recursive clip-path reference ignored')
             return None
-        self._active_refs.add(cp)
-        try:
+        with self.referencing(cp):
             inh, own = self.doc_style(cp)
             ctx = self.ctx(inh, st)
             t = self.transform_of(cp, own, ctx)
@@ -592,8 +602,6 @@ class _Builder:
                 return _EMPTY
             return ClipPath(root=Group(children=nodes), transform=t, clip_path=nested,
                             id=cp.get('id') or '')
-        finally:
-            self._active_refs.discard(cp)
 
     def clip_property(self, own, kids, st):
         """The ClipPath of a ``clip-path`` value in ``own`` for content
@@ -611,8 +619,7 @@ class _Builder:
         if mk in self._active_refs:
             self.warn('mask-recursive', 'recursive mask reference ignored')
             return None
-        self._active_refs.add(mk)
-        try:
+        with self.referencing(mk):
             inh, own = self.doc_style(mk)
             box = None
             obb = mk.get('maskUnits') != 'userSpaceOnUse'
@@ -670,8 +677,6 @@ class _Builder:
             kind = 'alpha' if own.get('mask-type') == 'alpha' else 'luminance'
             return Mask(rect=(x, y, w, h), root=Group(children=nodes), kind=kind, mask=nested,
                         id=mk.get('id') or '')
-        finally:
-            self._active_refs.discard(mk)
 
     def clip_rect(self, x, y, w, h):
         rect = PathNode(path=rect_path(x, y, w, h), fill=Fill(SolidPaint(_BLACK)))
@@ -1111,16 +1116,13 @@ class _Builder:
             par = parse_preserve_aspect_ratio(attr('preserveAspectRatio') or '')
             if units == 'userSpaceOnUse':
                 content_t = viewbox_transform(vb, par, w, h)
-        self._active_refs.add(el)
-        try:
+        with self.referencing(el):
             inh, own = self.doc_style(content_el)
             scale = 1000.0 if (cunits == 'objectBoundingBox' or units == 'objectBoundingBox') \
                 else 1.0
             st = _State(ctx.width, ctx.height, tf @ Affine.scale(scale))
             nodes = []
             self.children(content_el, inh, own, st, nodes)
-        finally:
-            self._active_refs.discard(el)
         if not nodes:
             return None
         return Pattern(rect=(x, y, w, h), root=Group(children=nodes), units=units,

@@ -403,8 +403,7 @@ def _resolve_filter(b, fel, kids, st):
         return None
     src = next((e for e in chain if any(_local(c) for c in e)), fel)
     prims = []
-    b._active_refs.add(fel)
-    try:
+    with b.referencing(fel):
         for c in src:
             name = _local(c)
             if name is None or not name.startswith('fe'):
@@ -413,8 +412,6 @@ def _resolve_filter(b, fel, kids, st):
                                    unit_ctx if pobb else user_ctx, st)
             if p is not None:
                 prims.append(p)
-    finally:
-        b._active_refs.discard(fel)
     if not prims:
         return None
     return Filter(region=tuple(float(v) for v in region), primitives=prims,
@@ -565,11 +562,8 @@ def _image_nodes(b, el, st, rect):
     parent = tgt.getparent()
     pinh, pown = b.doc_style(parent) if parent is not None else (b._inh0, {})
     nodes = []
-    b._active_refs.add(tgt)
-    try:
+    with b.referencing(tgt):
         b.node(tgt, pinh, pown, st.sub(use_depth=st.use_depth + 1), nodes)
-    finally:
-        b._active_refs.discard(tgt)
     return nodes, True
 
 

@@ -608,11 +608,8 @@ def _content(builder, m, st, T, context):
     sub = st.sub(T, m.vw, m.vh, context=context)
     ids = set(builder.tree_ids)
     nodes = []
-    builder._active_refs.add(m.el)
-    try:
+    with builder.referencing(m.el):
         builder.children(m.el, m.inh, m.own, sub, nodes)
-    finally:
-        builder._active_refs.discard(m.el)
     # marker content is not a document node: keep `ids` for real elements
     for k in [k for k in builder.tree_ids if k not in ids]:
         del builder.tree_ids[k]
