@@ -774,6 +774,21 @@ def _etree_element():
     return etree.Element
 
 
+def _sort_declarations(decls, props, normal, important):
+    """Put the declarations of known ``props`` into ``normal`` or, when
+    ``!important``, into ``important`` (made when first needed); return
+    ``important``."""
+    for decl in decls:
+        if decl.name in props:
+            if decl.important:
+                if important is None:
+                    important = {}
+                important[decl.name] = decl.value
+            else:
+                normal[decl.name] = decl.value
+    return important
+
+
 def declared_styles(root, extra_css=''):
     """The cascaded (declared) style of every element of a document.
 
@@ -835,31 +850,13 @@ def declared_styles(root, extra_css=''):
                 if len(matched) > 1:
                     matched.sort(key=lambda r: (r.selector.specificity, r.order))
                 for r in matched:
-                    for decl in r.declarations:
-                        if decl.name in props:
-                            if decl.important:
-                                if important is None:
-                                    important = {}
-                                important[decl.name] = decl.value
-                            else:
-                                d[decl.name] = decl.value
+                    important = _sort_declarations(r.declarations, props, d, important)
         style = attrib.get('style')
-        if style:
-            sdecl = _parse_declarations(style)
-            simp = None
-            for decl in sdecl:
-                if decl.name in props:
-                    if decl.important:
-                        if simp is None:
-                            simp = {}
-                        simp[decl.name] = decl.value
-                    else:
-                        d[decl.name] = decl.value
-            if important:
-                d.update(important)
-            if simp:
-                d.update(simp)
-        elif important:
+        # precedence: sheet < style attribute < sheet !important < style !important
+        simp = _sort_declarations(_parse_declarations(style), props, d, None) if style else None
+        if important:
             d.update(important)
+        if simp:
+            d.update(simp)
         out[el] = d
     return out
