@@ -11,6 +11,7 @@ from raster.errors import CanvasError, SVGError
 from raster.path import Path, PathBuilder
 from raster.transform import Affine
 from raster.svg.render import output_size, render_tree
+from raster.svg import paint as paint_mod
 from raster.svg.tree import (ClipPath, Fill, GradientStop, Group, ImageNode, LinearGradient, Mask,
                              PathNode, Pattern, RadialGradient, SolidPaint, Stroke, Tree)
 from _geometry import kappa_circle as circle
@@ -537,7 +538,7 @@ def test_image_window_sampling_matches_full_image(smooth):
     pm = np.concatenate([p[..., :3] * p[..., 3:], p[..., 3:]], -1)
     jj, ii = np.meshgrid(np.arange(40) + 0.5, np.arange(30) + 0.5)
     uv = tf.inverse().apply(np.stack([jj, ii], -1))
-    want = render_mod._sample(pm, uv[..., 0], uv[..., 1], smooth=smooth)
+    want = paint_mod.sample(pm, uv[..., 0], uv[..., 1], smooth=smooth)
     assert np.allclose(c, want, atol=1e-5)
 
 
