@@ -38,6 +38,9 @@ _Z_RLE = 3
 _SPARSE_MAX = 1 << 24
 _SPARSE_SHARE = 8
 
+# Masks of at most this many pixels are filled in one pass over the window.
+_SMALL = 1024
+
 # Pixels per block of rows in fill / composite (bounds temporaries).
 _BLOCK = 1 << 14
 
@@ -186,6 +189,15 @@ class Canvas:
         k = cov[src_sl]
         alpha = np.float32(a)
         vec = np.array([r, g, b, 1.0], np.float32)
+        if k.size <= _SMALL:
+            # small masks: a few whole-window operations cost less than
+            # finding the covered pixels
+            reg = self.data[dst_sl]
+            kk = k[..., None] * alpha if alpha != 1.0 else k[..., None]
+            t = vec - reg
+            t *= kk
+            reg += t
+            return
         if k.size <= _SPARSE_MAX and self.data.flags.c_contiguous:
             nnz = np.count_nonzero(k)
             if nnz == 0:

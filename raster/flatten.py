@@ -75,7 +75,8 @@ from . import limits
 from .transform import as_affine
 from .bbox import quadratic_roots
 
-__all__ = ['flatten', 'flatten_many', 'flatten_beziers', 'Polylines', 'DEFAULT_TOLERANCE']
+__all__ = ['flatten', 'flatten_many', 'flatten_joined', 'flatten_beziers', 'Polylines',
+           'DEFAULT_TOLERANCE']
 
 #: Default flattening tolerance in device pixels.
 DEFAULT_TOLERANCE = 0.25
@@ -655,6 +656,21 @@ class Polylines:
     def __repr__(self):
         return 'Polylines(%d polylines, %d points)' % (len(self), len(self.points))
 
+    def take(self, idx):
+        """The polylines ``idx`` ((M,) int array, in the order given) as a
+        new :class:`Polylines`.
+
+        >>> pl = Polylines([[0, 0], [1, 0], [5, 5], [6, 5], [7, 7]], [0, 2, 4], [True, False, True])
+        >>> sub = pl.take([2, 0])
+        >>> sub.points.tolist(), sub.starts.tolist(), sub.closed.tolist()
+        ([[7.0, 7.0], [0.0, 0.0], [1.0, 0.0]], [0, 1], [True, True])
+        """
+        idx = np.asarray(idx, np.int64).reshape(-1)
+        sizes = self.sizes[idx]
+        starts = np.cumsum(sizes) - sizes
+        src = np.repeat(self.starts[idx] - starts, sizes) + np.arange(int(sizes.sum()))
+        return Polylines(self.points[src], starts, self.closed[idx])
+
     def to_path(self):
         """The polylines as a :class:`~raster.path.Path` of line segments
         (``M L .. L`` plus ``Z`` for the closed ones).
@@ -673,7 +689,7 @@ class Polylines:
         verbs[(self.ends + ncl)[self.closed]] = CLOSE
         return Path(verbs, self.points.copy(), _checked=True)
 
-    def edges(self, close_all=True):
+    def edges(self, close_all=True, owners=False):
         """Line segments of all polylines.
 
         Parameters
@@ -681,18 +697,22 @@ class Polylines:
         close_all : bool, optional
             Add the closing edge (last vertex to first) of every polyline, as
             a fill needs (default); with False only of the closed ones.
+        owners : bool, optional
+            Also return the index of the polyline of every edge.
 
         Returns
         -------
-        (E, 2, 2) float64 ndarray
+        edges : (E, 2, 2) float64 ndarray
             ``edges[e] = [[x0, y0], [x1, y1]]``, in polyline order, each
             polyline's edges in order followed by its closing edge.  Closing
             edges of zero length (the polyline already ends at its start,
             or has a single vertex) are left out.
+        owner : (E,) int64 ndarray
+            Only with ``owners``: the polyline of each edge (increasing).
         """
         P = self.points
         if len(P) == 0:
-            return np.zeros((0, 2, 2))
+            return (np.zeros((0, 2, 2)), np.zeros(0, np.int64)) if owners else np.zeros((0, 2, 2))
         starts, ends = self.starts, self.ends
         sizes = ends - starts
         want = np.ones(len(starts), bool) if close_all else self.closed.copy()
@@ -710,6 +730,8 @@ class Polylines:
         w = np.flatnonzero(want)
         out[off[w] + sizes[w] - 1, 0] = P[ends[w] - 1]
         out[off[w] + sizes[w] - 1, 1] = P[starts[w]]
+        if owners:
+            return out, np.repeat(np.arange(len(starts)), ne)
         return out
 
 
@@ -817,6 +839,94 @@ def _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol):
     return out, starts, keep_c, item_n
 
 
+def flatten_joined(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
+    """Flatten many paths at once into one :class:`Polylines`.
+
+    The verbs and points of all paths are read as one array (every path
+    starts with a move, so no contour spans two paths), transformed with
+    each path's transform and flattened with one :func:`flatten_beziers`
+    call per degree: no per-path work beyond gathering the arrays.
+
+    Parameters
+    ----------
+    paths : sequence of raster.path.Path
+    transforms : sequence of Affine (or None entries), or None, optional
+        One transform per path (user to device space); None: identity.
+    tolerance : float, optional
+        As for :func:`flatten` (device pixels, default 0.25).
+
+    Returns
+    -------
+    polylines : Polylines
+        The polylines of all paths, path after path.
+    first : (n + 1,) int64 ndarray
+        Path ``i`` owns polylines ``first[i]:first[i + 1]``, identical to
+        ``flatten(paths[i], tolerance, transforms[i])``.
+
+    Raises
+    ------
+    As :func:`flatten_many`.
+
+    >>> from raster.path import Path
+    >>> sq = Path.polygon([[0, 0], [1, 0], [1, 1], [0, 1]])
+    >>> pl, first = flatten_joined([sq, Path.empty(), sq], [None, None, (2, 0, 0, 2, 5, 0)])
+    >>> first.tolist(), pl.starts.tolist(), pl.points[4:].tolist()
+    ([0, 1, 1, 2], [0, 4], [[5.0, 0.0], [7.0, 0.0], [7.0, 2.0], [5.0, 2.0]])
+    """
+    from .path import MOVE, _segments
+    tol = _check_tolerance(tolerance)
+    paths = list(paths)
+    n = len(paths)
+    if transforms is None:
+        transforms = [None] * n
+    transforms = list(transforms)
+    if len(transforms) != n:
+        raise PathError('flatten_many needs one transform per path (%d paths, %d transforms)'
+                        % (n, len(transforms)))
+    for p in paths:
+        if not (hasattr(p, 'verbs') and callable(getattr(p, 'segments', None))):
+            raise PathError('flatten_many needs raster.path.Path objects, got %s'
+                            % type(p).__name__)
+    if n == 0:
+        return Polylines(np.zeros((0, 2)), [], []), np.zeros(1, np.int64)
+    nverb = np.array([len(p.verbs) for p in paths], np.int64)
+    if nverb.sum() == 0:
+        return Polylines(np.zeros((0, 2)), [], []), np.zeros(n + 1, np.int64)
+    verbs = np.concatenate([p.verbs for p in paths])
+    points = np.concatenate([p.points for p in paths])
+    seg = _segments(verbs, points)
+    ctrl, cstart = seg.ctrl, seg.contour_start
+    nc = np.bincount(np.repeat(np.arange(n), nverb)[verbs == MOVE], minlength=n)
+    aff = [as_affine(t) for t in transforms]
+    ident = np.array([a.is_identity for a in aff], bool)
+    if not ident.all():
+        # the same arithmetic as Affine.apply, per path (identities untouched)
+        M = np.array([tuple(a) for a in aff], np.float64)          # (n, 6)
+        c_path = np.repeat(np.arange(n), nc)                       # path of each contour
+
+        def apply(pts, owner):
+            Mi = M[owner]
+            move = ~ident[owner]
+            shape = (-1,) + (1,) * (pts.ndim - 2)
+            a, b, c, d, e, f = (Mi[:, k].reshape(shape) for k in range(6))
+            x, y = pts[..., 0], pts[..., 1]
+            out = pts.copy()
+            with np.errstate(over='ignore', invalid='ignore'):   # checked below
+                out[..., 0] = np.where(move.reshape(shape), a * x + c * y + e, x)
+                out[..., 1] = np.where(move.reshape(shape), b * x + d * y + f, y)
+            return out
+        ctrl = apply(ctrl, c_path[seg.contour])
+        cstart = apply(cstart, c_path)
+        if not (np.all(np.isfinite(ctrl)) and np.all(np.isfinite(cstart))):
+            raise PathError('transformed path has non-finite coordinates')
+    out, starts, keep_c, _ = _assemble(ctrl, cstart, seg.degree, seg.contour,
+                                       seg.contour_nseg, seg.contour_closed, tol)
+    per_path = np.bincount(np.repeat(np.arange(n), nc), weights=keep_c,
+                           minlength=n).astype(np.int64)
+    first = np.concatenate([[0], np.cumsum(per_path)])
+    return Polylines(out, starts, seg.contour_closed[keep_c]), first
+
+
 def flatten_many(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
     """Flatten many paths at once: one :func:`flatten_beziers` call per
     degree for all their curves, so a document of thousands of small paths
@@ -855,64 +965,12 @@ def flatten_many(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
     >>> b.points.tolist()
     [[5.0, 0.0], [7.0, 0.0], [7.0, 2.0], [5.0, 2.0]]
     """
-    tol = _check_tolerance(tolerance)
-    paths = list(paths)
-    n = len(paths)
-    if transforms is None:
-        transforms = [None] * n
-    transforms = list(transforms)
-    if len(transforms) != n:
-        raise PathError('flatten_many needs one transform per path (%d paths, %d transforms)'
-                        % (n, len(transforms)))
-    if n == 0:
-        return []
-    segs = []
-    for p in paths:
-        if not callable(getattr(p, 'segments', None)):
-            raise PathError('flatten_many needs raster.path.Path objects, got %s'
-                            % type(p).__name__)
-        segs.append(p.segments())
-    aff = [as_affine(t) for t in transforms]
-    ns = np.array([len(s.degree) for s in segs], np.int64)
-    nc = np.array([len(s.contour_start) for s in segs], np.int64)
-    ctrl = np.concatenate([s.ctrl for s in segs]) if ns.sum() else np.zeros((0, 4, 2))
-    cstart = np.concatenate([s.contour_start for s in segs]) if nc.sum() else np.zeros((0, 2))
-    degree = np.concatenate([s.degree for s in segs]).astype(np.int8)
-    coff = np.cumsum(nc) - nc
-    contour = (np.concatenate([s.contour for s in segs]).astype(np.int64)
-               + np.repeat(coff, ns))
-    nseg = np.concatenate([s.contour_nseg for s in segs]).astype(np.int64)
-    closed = np.concatenate([s.contour_closed for s in segs]).astype(bool)
-    ident = np.array([a.is_identity for a in aff], bool)
-    if not ident.all():
-        # the same arithmetic as Affine.apply, per path (identities untouched)
-        M = np.array([tuple(a) for a in aff], np.float64)          # (n, 6)
-
-        def apply(pts, per):
-            Mi = np.repeat(M, per, axis=0)
-            move = np.repeat(~ident, per)
-            shape = (-1,) + (1,) * (pts.ndim - 2)
-            a, b, c, d, e, f = (Mi[:, k].reshape(shape) for k in range(6))
-            x, y = pts[..., 0], pts[..., 1]
-            out = pts.copy()
-            with np.errstate(over='ignore', invalid='ignore'):   # checked below
-                out[..., 0] = np.where(move.reshape(shape), a * x + c * y + e, x)
-                out[..., 1] = np.where(move.reshape(shape), b * x + d * y + f, y)
-            return out
-        ctrl = apply(ctrl, ns)
-        cstart = apply(cstart, nc)
-        if not (np.all(np.isfinite(ctrl)) and np.all(np.isfinite(cstart))):
-            raise PathError('transformed path has non-finite coordinates')
-    out, starts, keep_c, _ = _assemble(ctrl, cstart, degree, contour, nseg, closed, tol)
-    # kept contours of each path, then each path's range of polylines
-    per_path = np.bincount(np.repeat(np.arange(n), nc), weights=keep_c,
-                           minlength=n).astype(np.int64)
-    kept = np.concatenate([[0], np.cumsum(per_path)])
-    bounds = np.append(starts, len(out))[kept]        # point range of each path
-    closed_k = closed[keep_c]
+    pl, first = flatten_joined(paths, transforms, tolerance)
+    out, starts, closed_k = pl.points, pl.starts, pl.closed
+    bounds = np.append(starts, len(out))[first]        # point range of each path
     res = []
-    kl, bl = kept.tolist(), bounds.tolist()
-    for i in range(n):
+    kl, bl = first.tolist(), bounds.tolist()
+    for i in range(len(kl) - 1):
         k0, k1, a0, a1 = kl[i], kl[i + 1], bl[i], bl[i + 1]
         res.append(Polylines(out[a0:a1], starts[k0:k1] - a0, closed_k[k0:k1]))
     return res

@@ -99,7 +99,7 @@ class Path:
     :meth:`Path.from_arrays` to make one; the constructor trusts its input.
     """
 
-    __slots__ = ('verbs', 'points', '_segments')
+    __slots__ = ('verbs', 'points', '_segments', '_cbox')
 
     def __init__(self, verbs, points, _checked=False):
         if not _checked:
@@ -109,6 +109,7 @@ class Path:
         object.__setattr__(self, 'verbs', verbs)
         object.__setattr__(self, 'points', points)
         object.__setattr__(self, '_segments', None)
+        object.__setattr__(self, '_cbox', None)
 
     def __setattr__(self, name, value):
         raise AttributeError('Path is immutable')
@@ -169,10 +170,13 @@ class Path:
 
     def control_box(self):
         """(xmin, ymin, xmax, ymax) of all points (a bound, not exact)."""
-        if len(self.points) == 0:
-            raise PathError('empty path has no bounds')
-        lo, hi = self.points.min(0), self.points.max(0)
-        return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+        if self._cbox is None:
+            if len(self.points) == 0:
+                raise PathError('empty path has no bounds')
+            lo, hi = self.points.min(0), self.points.max(0)
+            object.__setattr__(self, '_cbox', (float(lo[0]), float(lo[1]),
+                                               float(hi[0]), float(hi[1])))
+        return self._cbox
 
     # -- transformations -----------------------------------------------------
     def transform(self, t):

@@ -43,12 +43,14 @@ array([[0.25, 0.5 , 0.25],
        [0.25, 0.5 , 0.25]], dtype=float32)
 """
 
+import math
+
 import numpy as np
 
 from . import limits
 from .errors import CanvasError, LimitError, PathError
 
-__all__ = ['Mask', 'coverage', 'coverage_many', 'path_coverage', 'check_canvas_size', 'SUBSCANLINES']
+__all__ = ['Mask', 'coverage', 'coverage_many', 'coverage_batch', 'path_coverage', 'check_canvas_size', 'SUBSCANLINES']
 
 #: Evenly spaced sample lines per pixel used in pixels crowded with more
 #: than ``_PAIR_LIMIT`` pieces (the only non-exact case).
@@ -76,6 +78,8 @@ _CHUNK_WORK = 1 << 21
 # Cells with more pieces than this are sampled on a fixed grid of
 # SUBSCANLINES heights instead of at all end points and intersections.
 _PAIR_LIMIT = 32
+# Most cells (sum of the shapes' box areas) per batch of coverage_batch.
+_BATCH_CELLS = 1 << 24
 
 
 class Mask:
@@ -201,7 +205,7 @@ def _box(e, width, height, clip, antialias):
     return X0, Y0, X1, Y1
 
 
-def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=None):
+def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=None, exact=True):
     """Coverage of the region enclosed by ``edges`` on a width x height canvas.
 
     Parameters
@@ -221,6 +225,16 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
     clip : (x0, y0, x1, y1) or None
         Restrict work and output to this pixel rectangle (rounded outward
         to whole pixels).
+    exact : bool
+        True (default): exact area coverage, see Notes.  False: every
+        pixel gets ``f(integral of the winding number over the pixel)``
+        (``f`` the fill rule) without the exact recompute of pixels where
+        separate chains of edges meet.  That is exact wherever the winding
+        takes at most two adjacent values in a pixel; elsewhere, for the
+        nonzero rule and pieces of one orientation (a union of overlapping
+        polygons, as a hairline outline is), it is the sum of the pieces'
+        areas in the pixel clipped to 1: never less than the true coverage,
+        more by at most the overlapping area.
 
     Returns
     -------
@@ -286,7 +300,7 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
     w, h = X1 - X0, Y1 - Y0
     local = e - np.array([X0, Y0], np.float64)
     if antialias:
-        data = _area_coverage(local, w, h, evenodd)
+        data = _area_coverage(local, w, h, evenodd, exact)
     else:
         data = _centre_coverage(local, w, h, evenodd)
     if data is None or not data.any():
@@ -583,7 +597,7 @@ def _flag_cells(xa, ya, xb, yb, cell, brk=None):
     return cells, cells[~ok]
 
 
-def _area_coverage(loc, w, h, evenodd):
+def _area_coverage(loc, w, h, evenodd, exact=True):
     ncell = w * h
     cover = None
     partial = None
@@ -616,6 +630,8 @@ def _area_coverage(loc, w, h, evenodd):
             else:
                 cover += c1
                 partial += p1
+        if not exact:
+            continue
         # virtual pieces get cell ids < 0 (never flagged)
         touched, bad = _flag_cells(xa, ya, xb, yb, np.where(real, cell, -1))
         touched_cells.append(touched)
@@ -634,6 +650,8 @@ def _area_coverage(loc, w, h, evenodd):
 
     # flagged cells, and cells touched by pieces of several chunks (a chain
     # cut at a chunk boundary is not followed across it)
+    if not exact or not touched_cells:
+        return data
     if len(touched_cells) == 1:
         flagged = bad_cells[0]
     else:
@@ -989,7 +1007,27 @@ def _centre_coverage(loc, w, h, evenodd):
 # Many shapes at once
 # ---------------------------------------------------------------------------
 
-def coverage_many(edge_arrays, width, height, fill_rules='nonzero', antialias=True, clip=None):
+def _per_shape(value, n, name, kinds):
+    """One value per shape: ``value`` itself when it is a single value of
+    ``kinds``, else a sequence of n values."""
+    if isinstance(value, kinds):
+        return [value] * n
+    vals = list(value)
+    if len(vals) != n:
+        raise PathError('coverage_many needs one %s per shape (%d shapes, %d given)'
+                        % (name, n, len(vals)))
+    return vals
+
+
+def _rules_evenodd(rules):
+    for r in set(rules):
+        if r not in ('nonzero', 'evenodd'):
+            raise PathError("fill_rule must be 'nonzero' or 'evenodd', got %r" % (r,))
+    return np.array([r == 'evenodd' for r in rules], bool)
+
+
+def coverage_many(edge_arrays, width, height, fill_rules='nonzero', antialias=True, clip=None,
+                  exact=True):
     """Coverage of many shapes at once, each as :func:`coverage` would give it.
 
     Drawing thousands of small shapes one :func:`coverage` call at a time
@@ -1012,18 +1050,24 @@ def coverage_many(edge_arrays, width, height, fill_rules='nonzero', antialias=Tr
         One flag for all shapes, or one per shape.
     clip : (x0, y0, x1, y1) or None
         Applied to every shape, as for :func:`coverage`.
+    exact : bool or sequence of bool
+        One flag for all shapes, or one per shape, as for :func:`coverage`.
 
     Returns
     -------
     list of (Mask or None)
         ``result[i]`` equals ``coverage(edge_arrays[i], width, height,
-        fill_rules[i], antialias[i], clip)``.
+        fill_rules[i], antialias[i], clip, exact[i])``.
 
     Raises
     ------
     PathError, LimitError, CanvasError
         As :func:`coverage` (for the first bad shape), or mismatched
-        lengths of ``fill_rules`` / ``antialias``.
+        lengths of ``fill_rules`` / ``antialias`` / ``exact``.
+
+    See Also
+    --------
+    coverage_batch : the same with all edges in one array.
 
     >>> tri = np.array([[[0, 0], [4, 0]], [[4, 0], [0, 4]], [[0, 4], [0, 0]]], float)
     >>> a, b, c = coverage_many([tri, tri + 2, tri + 100], 8, 8)
@@ -1031,54 +1075,125 @@ def coverage_many(edge_arrays, width, height, fill_rules='nonzero', antialias=Tr
     (8.0, (2, 2, 6, 6), True)
     """
     width, height = check_canvas_size(width, height)
-    edge_arrays = list(edge_arrays)
-    n = len(edge_arrays)
-    rules = [fill_rules] * n if isinstance(fill_rules, str) else list(fill_rules)
-    aas = ([antialias] * n if isinstance(antialias, (bool, np.bool_, int))
-           else list(antialias))
-    if len(rules) != n or len(aas) != n:
-        raise PathError('coverage_many needs one fill rule and one antialias flag per shape')
-    for r in set(rules):
-        if r not in ('nonzero', 'evenodd'):
-            raise PathError("fill_rule must be 'nonzero' or 'evenodd', got %r" % (r,))
+    arrays = [_check_edges(e) for e in edge_arrays]
+    counts = np.array([len(e) for e in arrays], np.int64)
+    edges = np.concatenate(arrays) if len(arrays) and counts.sum() else np.zeros((0, 2, 2))
+    return coverage_batch(edges, counts, width, height, fill_rules, antialias, clip, exact)
+
+
+def coverage_batch(edges, counts, width, height, fill_rules='nonzero', antialias=True,
+                   clip=None, exact=True):
+    """:func:`coverage_many` with the shapes' edges in one array.
+
+    Parameters
+    ----------
+    edges : (E, 2, 2) array_like of float
+        The edges of all shapes, shape after shape (device pixels).
+    counts : (n,) array_like of int
+        Number of edges of each shape (``sum(counts) == E``; 0 allowed).
+    width, height, fill_rules, antialias, clip, exact
+        As for :func:`coverage_many`.
+
+    Returns
+    -------
+    list of (Mask or None)
+        One entry per shape, as :func:`coverage_many`.
+
+    Raises
+    ------
+    PathError, LimitError, CanvasError
+        As :func:`coverage_many`; also counts that do not add up to E.
+
+    >>> sq = np.array([[[0, 0], [2, 0]], [[2, 0], [2, 2]], [[2, 2], [0, 2]], [[0, 2], [0, 0]]], float)
+    >>> a, b, c = coverage_batch(np.concatenate([sq, sq + 3]), [4, 0, 4], 8, 8)
+    >>> a.box, b, c.box
+    ((0, 0, 2, 2), None, (3, 3, 5, 5))
+    """
+    width, height = check_canvas_size(width, height)
+    e = _check_edges(edges)
+    try:
+        counts = np.asarray(counts, np.int64).reshape(-1)
+    except (TypeError, ValueError):
+        raise PathError('counts must be integers') from None
+    n = len(counts)
+    if (counts < 0).any() or int(counts.sum()) != len(e):
+        raise PathError('counts must be >= 0 and add up to the number of edges (%d)' % len(e))
+    eo = _rules_evenodd(_per_shape(fill_rules, n, 'fill rule', str))
+    aa = np.array(_per_shape(antialias, n, 'antialias flag', (bool, np.bool_, int)), bool)
+    ex = np.array(_per_shape(exact, n, 'exact flag', (bool, np.bool_, int)), bool)
+    if clip is not None:
+        _box(np.zeros((1, 2, 2)), width, height, clip, True)      # validates clip
     out = [None] * n
-    items, est_sum = [], 0
-    for i in range(n):
-        e = _check_edges(edge_arrays[i])
-        if len(e) == 0:
-            continue
-        if not aas[i]:
-            out[i] = coverage(e, width, height, rules[i], False, clip)
-            continue
-        box = _box(e, width, height, clip, True)
-        if box is None:
-            continue
-        X0, Y0, X1, Y1 = box
-        loc = e - np.array([X0, Y0], np.float64)
-        est = 3 * len(loc) + float(np.abs(loc[:, 1] - loc[:, 0]).sum())
-        if est > _CHUNK_PIECES:
-            # a large shape is worth a call of its own (chunked there)
-            out[i] = coverage(e, width, height, rules[i], True, clip)
-            continue
-        if est_sum + est > _CHUNK_PIECES:
-            _many_batch(items, out)
-            items, est_sum = [], 0
-        items.append((i, loc, X0, Y0, X1 - X0, Y1 - Y0, rules[i] == 'evenodd'))
-        est_sum += est
-    if items:
-        _many_batch(items, out)
+    if n == 0 or len(e) == 0:
+        return out
+    first = np.cumsum(counts) - counts
+    rules = ['evenodd' if v else 'nonzero' for v in eo.tolist()]
+    # aliased shapes: one call each (rare)
+    for i in np.flatnonzero(~aa & (counts > 0)).tolist():
+        out[i] = coverage(e[first[i]:first[i] + counts[i]], width, height, rules[i], False, clip)
+    idx = np.flatnonzero(aa & (counts > 0))
+    if len(idx) == 0:
+        return out
+    # per-shape reductions over the shapes with edges (contiguous runs),
+    # then those of the antialiased ones
+    full = np.flatnonzero(counts > 0)
+    f = first[full]
+    pick = np.searchsorted(full, idx)
+    xs, ys = e[:, :, 0], e[:, :, 1]
+    x0 = np.floor(np.minimum.reduceat(xs.min(1), f)[pick])
+    x1 = np.ceil(np.maximum.reduceat(xs.max(1), f)[pick])
+    y0 = np.floor(np.minimum.reduceat(ys.min(1), f)[pick])
+    y1 = np.ceil(np.maximum.reduceat(ys.max(1), f)[pick])
+    cx0, cy0, cx1, cy1 = 0.0, 0.0, float(width), float(height)
+    if clip is not None:
+        c = [float(v) for v in clip]
+        cx0, cy0 = max(cx0, math.floor(c[0])), max(cy0, math.floor(c[1]))
+        cx1, cy1 = min(cx1, math.ceil(c[2])), min(cy1, math.ceil(c[3]))
+    X0 = np.maximum(x0, cx0).astype(np.int64)
+    Y0 = np.maximum(y0, cy0).astype(np.int64)
+    X1 = np.minimum(x1, cx1).astype(np.int64)
+    Y1 = np.minimum(y1, cy1).astype(np.int64)
+    est = 3 * counts[idx] + np.add.reduceat(np.abs(e[:, 1] - e[:, 0]).sum(1), f)[pick]
+    live = (X1 > X0) & (Y1 > Y0)
+    alone = live & (est > _CHUNK_PIECES)
+    for j in np.flatnonzero(alone).tolist():
+        i = int(idx[j])
+        out[i] = coverage(e[first[i]:first[i] + counts[i]], width, height, rules[i], True, clip,
+                          bool(ex[i]))
+    sel = np.flatnonzero(live & ~alone)
+    if len(sel) == 0:
+        return out
+    idx, X0, Y0, sw, sh, est = idx[sel], X0[sel], Y0[sel], (X1 - X0)[sel], (Y1 - Y0)[sel], est[sel]
+    ne = counts[idx]
+    take = np.zeros(n, bool)
+    take[idx] = True
+    loc = e[np.repeat(take, counts)]
+    loc = loc - np.stack([np.repeat(X0, ne), np.repeat(Y0, ne)], 1)[:, None, :].astype(np.float64)
+    # sub-batches bounded in pieces and in cells
+    cest = np.cumsum(est)
+    carea = np.cumsum(sw * sh)
+    eoff = np.concatenate([[0], np.cumsum(ne)])
+    m = len(idx)
+    lo = 0
+    while lo < m:
+        b_est = cest[lo - 1] if lo else 0
+        b_area = carea[lo - 1] if lo else 0
+        hi = min(int(np.searchsorted(cest, b_est + _CHUNK_PIECES, side='right')),
+                 int(np.searchsorted(carea, b_area + _BATCH_CELLS, side='right')))
+        hi = min(max(hi, lo + 1), m)
+        s = slice(lo, hi)
+        _many_batch(loc[eoff[lo]:eoff[hi]], ne[s], X0[s], Y0[s], sw[s], sh[s], eo[idx[s]],
+                    ex[idx[s]], idx[s], out)
+        lo = hi
     return out
 
 
-def _many_batch(items, out):
-    """Masks of a batch of shapes (i, local edges, X0, Y0, w, h, evenodd)
-    into ``out[i]``; see :func:`coverage_many`."""
-    k = len(items)
-    loc = np.concatenate([it[1] for it in items])
-    ne = np.array([len(it[1]) for it in items], np.int64)
-    sw = np.array([it[4] for it in items], np.int64)
-    sh = np.array([it[5] for it in items], np.int64)
-    seo = np.array([it[6] for it in items], bool)
+def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out):
+    """Masks of a batch of k shapes into ``out[ids[s]]``; see
+    :func:`coverage_many`.  ``loc`` (E, 2, 2): the shapes' edges, shape
+    after shape (``ne`` edges each), relative to each shape's box origin
+    (X0, Y0); (sw, sh) box sizes; seo: evenodd; sex: exact."""
+    k = len(ne)
     roff = np.cumsum(sh) - sh
     W = int(sw.max())
     sid = np.repeat(np.arange(k), ne)
@@ -1116,9 +1231,18 @@ def _many_batch(items, out):
     cells, inv = np.unique(cell, return_inverse=True)
     cv = np.bincount(inv, weights=dy, minlength=len(cells))
     pv = np.bincount(inv, weights=dy * fx, minlength=len(cells))
-    brk = np.zeros(len(sid), bool)
-    brk[1:] = sid[1:] != sid[:-1]
-    _, flagged = _flag_cells(xa, ya, xb, yb, np.where(real, cell, -1), brk)
+    # cells to recompute exactly, among the pieces of exact shapes only
+    if sex.any():
+        fcell = np.where(real, cell, -1)
+        brk = np.zeros(len(sid), bool)
+        brk[1:] = sid[1:] != sid[:-1]
+        if sex.all():
+            _, flagged = _flag_cells(xa, ya, xb, yb, fcell, brk)
+        else:
+            ps = sex[sid]
+            _, flagged = _flag_cells(xa[ps], ya[ps], xb[ps], yb[ps], fcell[ps], brk[ps])
+    else:
+        flagged = np.zeros(0, np.int64)
     nz = (cv != 0) | (pv != 0)
     T, cv, pv = cells[nz], cv[nz], pv[nz]
     if len(T) == 0 and len(flagged) == 0:
@@ -1197,11 +1321,13 @@ def _many_batch(items, out):
             v[v < _RESIDUE] = 0.0
             fr = fl // W - roff[fs]
             flat[ooff[fs] + fr * sw[fs] + fl % W] = v
+    X0l, Y0l, swl, shl, offl, idl = (X0.tolist(), Y0.tolist(), sw.tolist(), sh.tolist(),
+                                      ooff.tolist(), ids.tolist())
     for s in np.flatnonzero(has).tolist():
-        i, _, X0, Y0, w, h, _ = items[s]
-        data = flat[ooff[s]:ooff[s] + w * h].reshape(h, w)
+        w, h = swl[s], shl[s]
+        data = flat[offl[s]:offl[s] + w * h].reshape(h, w)
         if data.any():
-            out[i] = Mask(data, X0, Y0)
+            out[idl[s]] = Mask(data, X0l[s], Y0l[s])
 
 
 def _segmented_cumsum(v, seg, k):

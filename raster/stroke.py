@@ -94,7 +94,7 @@ from typing import NamedTuple, Optional, Tuple
 import numpy as np
 
 from .errors import LimitError, RasterError
-from .limits import MAX_FLATTEN_POINTS
+from .limits import MAX_COORD, MAX_FLATTEN_POINTS
 from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
 from .transform import Affine, as_affine
 
@@ -1237,8 +1237,7 @@ def stroke(path, style=None, *, transform=None, tolerance=0.25, **style_kwargs):
     pts, counts, _ = _geometry(path, style, tol / scale)
     if not t.is_identity:
         pts = t.apply(pts)
-    if not np.all(np.isfinite(pts)):
-        raise LimitError('stroke outline overflows (non-finite coordinates)')
+    _check_device(pts)
     return _emit(pts, counts)
 
 
@@ -1302,6 +1301,14 @@ def _eps_per_path(lines, cp, npaths):
     if len(amax):
         m[has] = np.maximum.reduceat(amax, _starts(pcount)[has])
     return _EPS_REL * np.maximum(m, 1e-300)[cp]
+
+
+def _check_device(pts):
+    """Outline points after the transform: finite and within
+    :data:`raster.limits.MAX_COORD` (as scan conversion requires), else
+    :class:`~raster.errors.LimitError`."""
+    if len(pts) and not (np.all(np.isfinite(pts)) and np.abs(pts).max() <= MAX_COORD):
+        raise LimitError('stroke outline coordinates exceed MAX_COORD %g' % MAX_COORD)
 
 
 def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
@@ -1401,8 +1408,7 @@ def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
         a, b, c, d, e, f = m[ppath].T
         x, y = pts[:, 0], pts[:, 1]
         pts = np.stack([a * x + c * y + e, b * x + d * y + f], axis=1)
-    if not np.all(np.isfinite(pts)):
-        raise LimitError('stroke outline overflows (non-finite coordinates)')
+    _check_device(pts)
     full = _emit(pts, counts)
     npoly = np.bincount(owner, minlength=len(use))
     npts = np.bincount(ppath, minlength=len(use))

@@ -117,10 +117,10 @@ class Affine:
     def max_scale(self):
         """Largest singular value: the most any length can grow."""
         a, b, c, d = self.a, self.b, self.c, self.d
-        s = a * a + b * b + c * c + d * d
-        det = a * d - b * c
-        disc = math.sqrt(max(s * s / 4 - det * det, 0.0))
-        return math.sqrt(max(s / 2 + disc, 0.0))
+        # (|q| + |r|) / 2 with q, r the conformal and anti-conformal parts:
+        # no cancellation (s^2 / 4 - det^2 loses all digits when the
+        # singular values are close)
+        return 0.5 * (math.hypot(a + d, c - b) + math.hypot(a - d, b + c))
 
     def min_scale(self):
         """Smallest singular value: the least any length can grow

@@ -99,3 +99,23 @@ def test_errors():
         flatten_many([sq], tolerance=0)
     with pytest.raises(TransformError):
         flatten_many([sq], [(1, 2, 3)])
+
+
+@pytest.mark.parametrize('seed', range(4))
+def test_joined_ranges_hold_each_paths_polylines(seed):
+    from raster.flatten import flatten_joined
+    rng = np.random.default_rng(50 + seed)
+    paths = [random_path(rng) for _ in range(30)]
+    ts = [random_affine(rng) for _ in paths]
+    pl, first = flatten_joined(paths, ts, 0.25)
+    assert first[0] == 0 and first[-1] == len(pl) and np.all(np.diff(first) >= 0)
+    ends = pl.ends
+    for i, (p, t) in enumerate(zip(paths, ts)):
+        want = flatten(p, 0.25, transform=t)
+        k0, k1 = first[i], first[i + 1]
+        assert k1 - k0 == len(want)
+        if k1 > k0:
+            pts = pl.points[pl.starts[k0]:ends[k1 - 1]]
+            assert np.allclose(pts, want.points, rtol=0, atol=1e-9)
+            assert np.array_equal(pl.closed[k0:k1], want.closed)
+            assert np.array_equal(pl.starts[k0:k1] - pl.starts[k0], want.starts)

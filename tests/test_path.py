@@ -193,3 +193,11 @@ def test_as_affine_accepts_common_spellings_and_refuses_others():
         Affine(math.nan)
     with pytest.raises(TransformError):
         Affine.scale(0).inverse()
+
+
+def test_max_scale_has_no_cancellation_near_equal_singular_values():
+    """(0 12; 12 eps): singular values 12 +- eps/2; the old s^2/4 - det^2
+    formula lost every digit of the difference."""
+    t = Affine(0.0, 12.0, 12.0, 1.192092896e-07, 0, 0)
+    v = np.array([[math.sqrt(0.5), math.sqrt(0.5)]])
+    assert np.hypot(*t.apply_vector(v).T)[0] <= t.max_scale() * (1 + 1e-12)

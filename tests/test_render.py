@@ -188,10 +188,13 @@ def _l_path():
 
 
 @pytest.mark.parametrize('join,cap,area', [
-    # 1 px wide L: 13 + 10 - 0.25 overlap, + 0.25 outer miter square (miter)
-    # or + 0.125 bevel triangle; square caps add 2 x 0.5 x 1
-    ('miter', 'butt', 23.0), ('bevel', 'butt', 22.875),
-    ('miter', 'square', 24.0), ('bevel', 'square', 23.875)])
+    # 1 px wide L: rectangles of 13 and 10 px^2, + 0.25 outer miter square
+    # (miter) or + 0.125 bevel triangle; square caps add 2 x 0.5 x 1.  The
+    # 0.25 px^2 where the rectangles overlap inside the turn counts twice:
+    # hairline coverage is the sum of the pieces' areas per pixel, clipped
+    # to 1 (as a renderer drawing one segment at a time blends it twice)
+    ('miter', 'butt', 23.25), ('bevel', 'butt', 23.125),
+    ('miter', 'square', 24.25), ('bevel', 'square', 24.125)])
 def test_hairline_l_shape_area(join, cap, area):
     n = PathNode(path=_l_path(), stroke=Stroke(RED, width=0.5, join=join, cap=cap))
     a = alpha(render_tree(tree(n)))
@@ -202,7 +205,7 @@ def test_hairline_l_shape_area(join, cap, area):
 def test_hairline_miter_limit_falls_back_to_bevel():
     """The L turns by 90 degrees: miter ratio sqrt(2) > limit 1.2: bevel."""
     n = PathNode(path=_l_path(), stroke=Stroke(RED, width=0.5, miterlimit=1.2))
-    assert alpha(render_tree(tree(n))).sum() == pytest.approx(0.5 * 22.875, abs=1e-6)
+    assert alpha(render_tree(tree(n))).sum() == pytest.approx(0.5 * 23.125, abs=1e-6)
 
 
 @pytest.mark.parametrize('seed', range(6))
@@ -251,10 +254,10 @@ def test_filled_hairline_path_is_flattened_once(monkeypatch):
     orig = render_mod.flatten
     monkeypatch.setattr(render_mod, 'flatten', lambda *a, **k: calls.append(1) or orig(*a, **k))
     # the renderer may flatten in batches: a batch call counts once per path
-    orig_many = render_mod.flatten_many
-    monkeypatch.setattr(render_mod, 'flatten_many',
+    orig_joined = render_mod.flatten_joined
+    monkeypatch.setattr(render_mod, 'flatten_joined',
                         lambda paths, *a, **k: calls.extend([1] * len(paths))
-                        or orig_many(paths, *a, **k))
+                        or orig_joined(paths, *a, **k))
     n = PathNode(path=circle(10, 10, 8), fill=Fill(BLUE), stroke=Stroke(RED, width=0.5))
     c = render_tree(tree(n)).data
     assert len(calls) == 1 and c[10, 10, 2] == pytest.approx(1.0)
@@ -613,3 +616,64 @@ def test_render_errors(kw, err):
     import raster
     with pytest.raises(err):
         raster.render(DOC, **kw)
+
+
+# -- groups clipped by one axis-aligned rectangle: drawn without a layer ----------
+
+def _clip_group(children, x, y, w, h, clip_transform=None, **kw):
+    clip = ClipPath(root=Group(children=[filled(rect(x, y, w, h))]),
+                    transform=clip_transform or Affine())
+    return Group(children=children, clip_path=clip, **kw)
+
+
+@pytest.mark.parametrize('seed', range(4))
+def test_rectangle_clip_without_layer_matches_layer(monkeypatch, seed):
+    """Disjoint children under a fractional, scaled, translated clip
+    rectangle: the same pixels with and without a layer, and no layer is
+    allocated."""
+    rng = np.random.default_rng(seed)
+    kids = [filled(circle(cx, cy, 2.5), paint)
+            for (cx, cy), paint in zip([(4, 4), (10, 5), (5, 12), (13, 13)], [RED, BLUE] * 2)]
+    x, y = rng.uniform(1, 6, 2)
+    w, h = rng.uniform(5, 12, 2)
+    g = _clip_group(kids, x, y, w, h, clip_transform=Affine(1.1, 0, 0, 0.9, 0.3, -0.2),
+                    transform=Affine.translate(*rng.uniform(-1, 1, 2)))
+    t = tree(g)
+    sizes = []
+    orig = render_mod.Canvas
+    monkeypatch.setattr(render_mod, 'Canvas', lambda w_, h_, *a, **k: sizes.append((w_, h_))
+                        or orig(w_, h_, *a, **k))
+    fast = render_tree(t, width=37).data
+    assert len(sizes) == 1                      # the output canvas only
+    monkeypatch.setattr(render_mod, '_clip_rect', lambda g, m: None)
+    slow = render_tree(t, width=37).data
+    assert np.abs(fast - slow).max() < 1e-6
+    assert fast[..., 3].sum() > 1.0
+
+
+def test_rectangle_clip_is_not_taken_for_rotations_and_other_shapes():
+    sq = _clip_group([filled(rect(0, 0, 20, 20))], 2, 2, 8, 8)
+    assert render_mod._clip_rect(sq, Affine()) == (2.0, 2.0, 10.0, 10.0)
+    assert render_mod._clip_rect(sq, Affine.rotate(10)) is None
+    disc = Group(children=[filled(rect(0, 0, 20, 20))],
+                 clip_path=ClipPath(root=Group(children=[filled(circle(5, 5, 3))])))
+    assert render_mod._clip_rect(disc, Affine()) is None
+    half = _clip_group([filled(rect(0, 0, 20, 20))], 2, 2, 8, 8, opacity=0.5)
+    assert render_mod._clip_rect(half, Affine()) is None
+    # the clipped result: exact area of the rectangle, fractional edges included
+    g = _clip_group([filled(rect(0, 0, 20, 20))], 2.25, 3.5, 8.5, 6.25)
+    a = alpha(render_tree(tree(g)))
+    assert a.sum() == pytest.approx(8.5 * 6.25, abs=1e-5)
+    assert a[3, 5] == pytest.approx(0.5) and a[5, 2] == pytest.approx(0.75)
+
+
+def test_rectangle_clip_of_a_blended_group_lerps_with_coverage():
+    """A multiply-blended child group inside a rectangle-clipped group:
+    blended pixels are mixed with the backdrop by the clip coverage."""
+    inner = Group(children=[filled(rect(0, 0, 20, 20), BLUE)], blend_mode='multiply')
+    g = _clip_group([inner], 2.5, 2.5, 10, 10)
+    back = filled(rect(0, 0, 20, 20), SolidPaint((1.0, 1.0, 1.0, 1.0)))
+    c = render_tree(tree(back, g)).data
+    assert np.allclose(c[5, 5], [0, 0, 1, 1], atol=1e-6)      # inside: blue
+    assert np.allclose(c[2, 5], [0.5, 0.5, 1, 1], atol=1e-6)   # half covered row
+    assert np.allclose(c[0, 0], [1, 1, 1, 1], atol=1e-6)       # outside: white

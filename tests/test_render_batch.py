@@ -50,7 +50,6 @@ def test_batched_render_equals_unbatched(seed, monkeypatch):
 def test_small_batches_change_nothing(monkeypatch):
     ref = render_tree(scene(9)).data.copy()
     monkeypatch.setattr(render_mod, '_BATCH_VERBS', 7)
-    monkeypatch.setattr(render_mod, '_BATCH_EDGES', 30)
     monkeypatch.setattr(render_mod, '_BATCH_AREA', 400)
     assert np.array_equal(render_tree(scene(9)).data, ref)
 

@@ -148,3 +148,66 @@ def test_zero_area_shape_with_flagged_cells():
         got = coverage_many(shapes, 10, 10)
         assert all(same(g, coverage(e, 10, 10)) for e, g in zip(shapes, got))
     assert coverage_many([zig], 10, 10) == [None]
+
+
+# -- coverage_batch and exact=False ------------------------------------------
+
+from raster.errors import PathError as _PathError  # noqa: E402
+from raster.scan import coverage_batch  # noqa: E402
+
+
+@pytest.mark.parametrize('seed', range(4))
+def test_batch_equals_many_with_mixed_flags(seed):
+    rng = np.random.default_rng(100 + seed)
+    shapes = random_shapes(rng, 30, 60) + [np.zeros((0, 2, 2))]
+    rng.shuffle(shapes)
+    n = len(shapes)
+    rules = [('evenodd' if b else 'nonzero') for b in rng.random(n) < 0.4]
+    aas = [bool(b) for b in rng.random(n) < 0.8]
+    ex = [bool(b) for b in rng.random(n) < 0.5]
+    counts = [len(s) for s in shapes]
+    got = coverage_batch(np.concatenate(shapes), counts, 60, 50, rules, aas, exact=ex)
+    many = coverage_many(shapes, 60, 50, rules, aas, exact=ex)
+    for s, r, a, x, g, m in zip(shapes, rules, aas, ex, got, many):
+        want = coverage(s, 60, 50, r, a, exact=x)
+        assert same(g, want) and same(m, want)
+
+
+def clockwise_square(x0, y0, size):
+    pts = np.array([[x0, y0], [x0, y0 + size], [x0 + size, y0 + size], [x0 + size, y0]])
+    return polygon_edges(pts)
+
+
+def test_inexact_coverage_is_the_clipped_sum_of_piece_areas():
+    # two squares of one orientation inside pixel (1, 1), overlapping in
+    # [1.5, 1.75]^2: union 0.25 + 0.16 - 0.0625, sum 0.41
+    e = np.concatenate([clockwise_square(1.25, 1.25, 0.5), clockwise_square(1.5, 1.5, 0.4)])
+    exact = coverage(e, 4, 4).full(4, 4)
+    rough = coverage(e, 4, 4, exact=False).full(4, 4)
+    assert np.isclose(exact[1, 1], 0.3475) and np.isclose(rough[1, 1], 0.41)
+    # a pixel covered twice over is clipped to 1
+    big = np.concatenate([clockwise_square(0, 0, 3), clockwise_square(0.5, 0.5, 2)])
+    r = coverage(big, 4, 4, exact=False).full(4, 4)
+    assert np.allclose(r, coverage(big, 4, 4).full(4, 4))
+    assert np.allclose(r[:3, :3], 1.0)
+
+
+def test_inexact_equals_exact_without_meeting_chains():
+    rng = np.random.default_rng(5)
+    for _ in range(5):
+        c = rng.uniform(5, 35, 2)
+        ang = np.sort(rng.uniform(0, 2 * np.pi, 12))
+        pts = c + np.stack([np.cos(ang), np.sin(ang)], 1) * rng.uniform(3, 10)
+        e = polygon_edges(pts)              # a convex polygon: one chain per pixel
+        a, b = coverage(e, 40, 40), coverage(e, 40, 40, exact=False)
+        assert a.box == b.box and np.allclose(a.data, b.data, atol=1e-6)
+
+
+def test_batch_count_errors():
+    sq = polygon_edges(np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0]]))
+    with pytest.raises(_PathError):
+        coverage_batch(sq, [2], 10, 10)
+    with pytest.raises(_PathError):
+        coverage_batch(sq, [4, -1], 10, 10)
+    with pytest.raises(_PathError):
+        coverage_batch(sq, [3], 10, 10, exact=[True, False])

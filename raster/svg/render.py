@@ -62,9 +62,9 @@ import numpy as np
 from .. import limits
 from ..canvas import Canvas
 from ..errors import CanvasError, RasterError, SVGError
-from ..flatten import flatten, flatten_many
-from ..path import Path
-from ..scan import coverage, coverage_many
+from ..flatten import flatten, flatten_joined
+from ..path import CLOSE, LINE, MOVE, Path
+from ..scan import Mask, coverage, coverage_batch
 from ..stroke import StrokeStyle, hairline_scale, stroke as stroke_outline, stroke_many
 from ..transform import IDENTITY, Affine
 from .paint import draw_pixels, gradient_colors, sample, user_bbox
@@ -232,74 +232,172 @@ class _Renderer:
     def __init__(self, tolerance):
         self.tol = tolerance
         self._flat_key = self._flat_path = self._flat = None
-        # batched flattening: (id(path), t) -> (path, t) waiting in document
-        # order, and -> Polylines already flattened (see plan / flat)
-        self._pending = {}
-        self._ready = {}
-        # batched coverage: (id(node), t) -> (node, t, size) of fills waiting,
-        # and -> Mask (or None) of fills already scan converted
-        self._fill_pending = {}
+        # batched fills and undashed hairlines: (id(node), t) -> (node, t,
+        # size, area, fill?, hair?) waiting in document order (see plan)
+        self._geo_pending = {}
+        # -> Mask (or None) of fills / hairlines already scan converted; a
+        # hairline is absent when the general stroker is needed
         self._fill_ready = {}
+        self._hair_ready = {}
         # batched strokes (not hairlines): (id(node), t) -> (node, t, size,
-        # style) waiting, and -> Mask (or None) already scan converted
+        # area, style) waiting, and -> Mask (or None) already scan converted
         self._stroke_pending = {}
         self._stroke_ready = {}
-        # batched undashed hairlines: (id(node), t) -> (node, t, size) and
-        # -> Mask (or None), or absent when the general stroker is needed
-        self._hair_pending = {}
-        self._hair_ready = {}
-        self._hair_edges = {}
 
     # -- batched geometry ------------------------------------------------------
     def plan(self, nodes, t, canvas):
         """Queue the paths of ``nodes`` (with CTM ``t``) drawn directly on
-        ``canvas`` (not inside layered groups) whose fill or hairline needs
-        flattened polylines; :meth:`flat` then flattens them in batches with
-        :func:`raster.flatten.flatten_many`, in document order, and
-        :meth:`fill` scan converts their fills in batches with
-        :func:`raster.scan.coverage_many` (compositing stays in document
+        ``canvas`` (not inside layered groups): fills and undashed
+        hairlines for :meth:`_flush_geometry`, other strokes for
+        :meth:`_flush_strokes`.  Those compute the masks of a batch of
+        nodes in document order at once (compositing stays in document
         order: only the masks are computed ahead)."""
         stack = [(n, t) for n in reversed(nodes)]
-        pending = self._pending
-        fills = self._fill_pending
+        geo = self._geo_pending
         strokes = self._stroke_pending
-        hairs = self._hair_pending
         size = (canvas.width, canvas.height)
         while stack:
             n, m = stack.pop()
             if isinstance(n, Group):
-                if n.needs_layer:
+                if n.needs_layer and _clip_rect(n, m) is None:
                     continue
                 ct = m @ n.transform
                 stack.extend((c, ct) for c in reversed(n.children))
             elif isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
-                if _wants_flat(n, m):
-                    pending.setdefault((id(n.path), m), (n.path, m))
-                    if n.fill is not None and n.fill.opacity > 0:
-                        fills.setdefault((id(n), m), (n, m, size))
-                if _wants_hair(n, m):
-                    hairs.setdefault((id(n), m), (n, m, size))
+                f = n.fill
+                wf = f is not None and f.opacity > 0
+                wh = _wants_hair(n, m)
                 style = _batch_stroke_style(n, m)
+                if not (wf or wh or style is not None):
+                    continue
+                area = _device_area(n.path, m, size)
+                if wf or wh:
+                    geo.setdefault((id(n), m), (n, m, size, area, wf, wh))
                 if style is not None:
-                    strokes.setdefault((id(n), m), (n, m, size, style))
+                    reach = _stroke_reach(n.stroke) * m.max_scale() + 1.0
+                    sarea = _device_area(n.path, m, size, reach)
+                    strokes.setdefault((id(n), m), (n, m, size, sarea, style))
 
-    def _flush(self, key):
-        """Flatten pending paths in document order, up to and including
-        ``key``, at least :data:`_BATCH_VERBS` verbs' worth."""
-        pending = self._pending
-        batch, verbs, seen = [], 0, False
+    def _take(self, pending, key, canvas, verbs_max):
+        """Pop queued entries of ``pending`` in document order, up to and
+        including ``key`` and then while the batch holds fewer than
+        ``verbs_max`` verbs and :data:`_BATCH_AREA` pixels of masks; return
+        those drawn on ``canvas`` (others are drawn one by one)."""
+        size = (canvas.width, canvas.height)
+        keys, verbs, area, seen = [], 0, 0.0, False
         for k in pending:
-            batch.append(k)
-            verbs += len(pending[k][0].verbs)
-            seen = seen or k == key
-            if seen and verbs >= _BATCH_VERBS:
+            v = pending[k]
+            if seen and (verbs >= verbs_max or area + v[3] > _BATCH_AREA):
                 break
-        items = [pending.pop(k) for k in batch]
+            keys.append(k)
+            seen = seen or k == key
+            if v[2] == size:
+                verbs += len(v[0].path.verbs)
+                area += v[3]
+        out = []
+        for k in keys:
+            v = pending.pop(k)
+            if v[2] == size:
+                out.append((k,) + v)
+        return out
+
+    def _flush_geometry(self, key, canvas):
+        """Masks of queued fills and undashed hairlines for ``canvas``, in
+        document order up to and including ``key`` and then while the batch
+        has room: the paths are flattened together
+        (:func:`raster.flatten.flatten_joined`), the hairlines outlined in
+        one pass (:func:`_hairline_outline`) and all masks scan converted
+        in one :func:`raster.scan.coverage_batch` call (hairlines with
+        ``exact=False``)."""
+        items = self._take(self._geo_pending, key, canvas, _BATCH_VERBS)
+        if not items:
+            return
         try:
-            pls = flatten_many([p for p, _ in items], [m for _, m in items], self.tol)
+            pl, first = flatten_joined([it[1].path for it in items], [it[2] for it in items],
+                                       self.tol)
         except RasterError:
-            return          # flattened one by one (errors where they were)
-        self._ready.update(zip(batch, pls))
+            return          # drawn one by one (errors where they were)
+        k = len(items)
+        npl = np.diff(first)
+        poly_item = np.repeat(np.arange(k), npl)
+        wf = np.array([it[5] for it in items], bool)
+        wh = np.array([it[6] for it in items], bool)
+        parts, counts, rules, aas, exact, keys = [], [], [], [], [], []
+        fi = np.flatnonzero(wf)
+        if len(fi):
+            sub = pl if wf.all() else pl.take(np.flatnonzero(wf[poly_item]))
+            e, own = sub.edges(close_all=True, owners=True)
+            parts.append(e)
+            counts.append(np.bincount(np.repeat(np.arange(len(fi)), npl[fi])[own]
+                                      if len(own) else own, minlength=len(fi)))
+            for i in fi.tolist():
+                n = items[i][1]
+                rules.append(n.fill.rule)
+                aas.append(bool(n.antialias))
+                exact.append(True)
+                keys.append((self._fill_ready, items[i][0]))
+        hi = np.flatnonzero(wh)
+        if len(hi):
+            sub = pl if wh.all() else pl.take(np.flatnonzero(wh[poly_item]))
+            strokes = [items[i][1].stroke for i in hi.tolist()]
+            per = npl[hi]
+            capped = np.repeat([s.cap != 'butt' for s in strokes], per).astype(bool)
+            mitered = np.repeat([s.join in ('miter', 'miter-clip', 'arcs') for s in strokes],
+                                per).astype(bool)
+            limit = np.repeat([float(s.miterlimit) for s in strokes], per).astype(np.float64)
+            e, own, dots = _hairline_outline(sub, capped, mitered, limit)
+            hair_of = np.repeat(np.arange(len(hi)), per)
+            dotted = np.zeros(len(hi), bool)
+            dotted[hair_of[dots]] = True
+            keep = ~dotted[hair_of[own]]
+            parts.append(e[keep])
+            cnt = np.bincount(hair_of[own[keep]], minlength=len(hi))
+            cnt[dotted] = 0
+            counts.append(cnt)
+            for j, i in enumerate(hi.tolist()):
+                n = items[i][1]
+                rules.append('nonzero')
+                aas.append(bool(n.antialias))
+                exact.append(False)
+                # a dotted hairline is left to the general stroker
+                keys.append(None if dotted[j] else (self._hair_ready, items[i][0]))
+        try:
+            masks = coverage_batch(np.concatenate(parts), np.concatenate(counts),
+                                   canvas.width, canvas.height, rules, aas, exact=exact)
+        except RasterError:
+            return          # drawn one by one (errors where they were)
+        for where, m in zip(keys, masks):
+            if where is not None:
+                where[0][where[1]] = m
+
+    def _flush_strokes(self, key, canvas):
+        """Outline queued strokes for ``canvas`` in document order, up to
+        and including ``key`` and then while the batch has room: one
+        :func:`raster.stroke.stroke_many` call per stroke style, then one
+        :func:`raster.flatten.flatten_joined` and one
+        :func:`raster.scan.coverage_batch` call for all outlines."""
+        items = self._take(self._stroke_pending, key, canvas, _BATCH_VERBS // 4)
+        if not items:
+            return
+        by_style = {}
+        for j, it in enumerate(items):
+            by_style.setdefault(it[5], []).append(j)
+        outlines = [None] * len(items)
+        try:
+            for style, js in by_style.items():
+                outs = stroke_many([items[j][1].path for j in js], style,
+                                   transforms=[items[j][2] for j in js], tolerance=self.tol)
+                for j, o in zip(js, outs):
+                    outlines[j] = o
+            pl, first = flatten_joined(outlines, None, self.tol)
+            e, own = pl.edges(close_all=True, owners=True)
+            counts = np.bincount(np.repeat(np.arange(len(items)), np.diff(first))[own]
+                                 if len(own) else own, minlength=len(items))
+            masks = coverage_batch(e, counts, canvas.width, canvas.height, 'nonzero',
+                                   [bool(it[1].antialias) for it in items])
+        except RasterError:
+            return          # stroked one by one by stroke() (errors where they were)
+        self._stroke_ready.update(zip([it[0] for it in items], masks))
 
     # -- dispatch ------------------------------------------------------------
     def node(self, node, t, canvas, clip_mode=False):
@@ -328,6 +426,16 @@ class _Renderer:
                 self.node(c, ct, canvas)
             return
         if g.opacity <= 0:
+            return
+        box = _clip_rect(g, t)
+        if box is not None:
+            # clipped by an axis-aligned rectangle only: no layer, the
+            # children are drawn through the rectangle's coverage
+            view = _ClipRect(canvas, box)
+            if view.empty:
+                return
+            for c in g.children:
+                self.node(c, ct, view)
             return
         self.layered(g, t, canvas)
 
@@ -426,8 +534,8 @@ class _Renderer:
         if f.opacity <= 0:
             return
         key = (id(n), t)
-        if key in self._fill_pending:
-            self._flush_fills(key, canvas)
+        if key in self._geo_pending:
+            self._flush_geometry(key, canvas)
         if key in self._fill_ready:
             m = self._fill_ready.pop(key)
         else:
@@ -438,116 +546,14 @@ class _Renderer:
         if m is not None:
             self.paint(canvas, m, f.paint, f.opacity, n.path, t)
 
-    def _flush_fills(self, key, canvas):
-        """Scan convert queued fills for ``canvas`` in document order, up to
-        and including ``key``, in one :func:`coverage_many` call (bounded by
-        :data:`_BATCH_EDGES` edges and :data:`_BATCH_AREA` mask pixels;
-        larger fills are left to :meth:`fill`)."""
-        batch = _MaskBatch()
-        for k, n, m in batch.take(self._fill_pending, key, canvas):
-            pl = self.flat(n.path, m)
-            if k in self._hair_pending:     # the stroke needs the polylines too
-                self._ready[(id(n.path), m)] = pl
-            e = pl.edges(close_all=True)
-            if len(e) == 0:
-                self._fill_ready[k] = None
-            elif not batch.add(k, e, pl.points, n.fill.rule, n.antialias):
-                self._ready[(id(n.path), m)] = pl   # big: drawn alone by fill()
-        masks = batch.run(canvas)
-        if masks is not None:       # else drawn one by one by fill() (errors where they were)
-            self._fill_ready.update(masks)
-
-    def _flush_strokes(self, key, canvas):
-        """Outline queued strokes for ``canvas`` in document order, up to
-        and including ``key``: one :func:`raster.stroke.stroke_many` call
-        per stroke style, then one :func:`flatten_many` and one
-        :func:`coverage_many` call for all outlines (bounded like
-        :meth:`_flush_fills`)."""
-        pending = self._stroke_pending
-        size = (canvas.width, canvas.height)
-        items, verbs, seen = [], 0, False
-        for k in list(pending):
-            if seen and verbs >= _BATCH_VERBS // 4:
-                break
-            n, m, sz, style = pending.pop(k)
-            seen = seen or k == key
-            if sz == size:
-                items.append((k, n, m, style))
-                verbs += len(n.path.verbs)
-        by_style = {}
-        for j, (k, n, m, style) in enumerate(items):
-            by_style.setdefault(style, []).append(j)
-        outlines = [None] * len(items)
-        try:
-            for style, js in by_style.items():
-                outs = stroke_many([items[j][1].path for j in js], style,
-                                   transforms=[items[j][2] for j in js], tolerance=self.tol)
-                for j, o in zip(js, outs):
-                    outlines[j] = o
-            keep = [j for j in range(len(items)) if len(outlines[j].verbs)]
-            pls = flatten_many([outlines[j] for j in keep], None, self.tol)
-        except RasterError:
-            return          # stroked one by one by stroke() (errors where they were)
-        for j in range(len(items)):
-            if not len(outlines[j].verbs):
-                self._stroke_ready[items[j][0]] = None
-        edges, keys, aas, area = [], [], [], 0.0
-        for j, pl in zip(keep, pls):
-            e = pl.edges(close_all=True)
-            if len(e) == 0:
-                self._stroke_ready[items[j][0]] = None
-                continue
-            lo, hi = pl.points.min(0), pl.points.max(0)
-            a = float(hi[0] - lo[0] + 2) * float(hi[1] - lo[1] + 2)
-            if a > _BATCH_AREA / 16 or area > _BATCH_AREA:
-                continue        # big, or enough masks held: stroke() alone
-            keys.append(items[j][0])
-            edges.append(e)
-            aas.append(bool(items[j][1].antialias))
-            area += a
-        if not keys:
-            return
-        try:
-            masks = coverage_many(edges, canvas.width, canvas.height, 'nonzero', aas)
-        except RasterError:
-            return
-        self._stroke_ready.update(zip(keys, masks))
-
-    def _flush_hairs(self, key, canvas):
-        """Hairline outlines (:func:`_hairline_edges`) of queued undashed
-        hairlines for ``canvas`` in document order, up to and including
-        ``key``, scan converted in one :func:`coverage_many` call."""
-        batch = _MaskBatch()
-        for k, n, m in batch.take(self._hair_pending, key, canvas):
-            pl = self.flat(n.path, m)
-            if k in self._fill_pending:     # the fill needs the polylines too
-                self._ready[(id(n.path), m)] = pl
-            s = n.stroke
-            e = _hairline_edges(pl, s.cap, s.join, s.miterlimit)
-            if e is None:
-                continue        # general stroker, in stroke()
-            if len(e) == 0:
-                self._hair_ready[k] = None
-            elif not batch.add(k, e, e.reshape(-1, 2), 'nonzero', n.antialias):
-                self._hair_edges[k] = e     # big: scan converted alone
-        masks = batch.run(canvas)
-        if masks is None:
-            self._hair_edges.update(zip(batch.keys, batch.edges))
-        else:
-            self._hair_ready.update(masks)
-
     def flat(self, path, t):
         """Polylines of ``path`` flattened under ``t`` (device pixels).  The
-        last result is kept: a filled and stroked hairline path is
-        flattened once."""
+        last result is kept: a filled and stroked hairline path drawn one
+        by one is flattened once."""
         key = (id(path), t)
         if self._flat_key == key and self._flat_path is path:
             return self._flat
-        if key in self._pending:
-            self._flush(key)
-        pl = self._ready.pop(key, None)
-        if pl is None:
-            pl = flatten(path, self.tol, transform=t)
+        pl = flatten(path, self.tol, transform=t)
         self._flat_key, self._flat_path, self._flat = key, path, pl
         return pl
 
@@ -559,29 +565,26 @@ class _Renderer:
                             dash=s.dash, dash_offset=s.dash_offset)
         opacity = s.opacity
         hair = hairline_scale(style, t)
+        key = (id(n), t)
         if hair is not None:
             style = StrokeStyle(width=1.0 / t.mean_scale(), join=s.join, cap=s.cap,
                                 miterlimit=s.miterlimit, dash=s.dash, dash_offset=s.dash_offset)
             opacity *= hair
             if s.dash is None:
-                key = (id(n), t)
-                if key in self._hair_pending:
-                    self._flush_hairs(key, canvas)
+                if key in self._geo_pending:
+                    self._flush_geometry(key, canvas)
                 if key in self._hair_ready:
                     m = self._hair_ready.pop(key)
                     if m is not None:
                         self.paint(canvas, m, s.paint, opacity, n.path, t)
                     return
-                edges = self._hair_edges.pop(key, None)
-                if edges is None:
-                    edges = _hairline_edges(self.flat(n.path, t), s.cap, s.join, s.miterlimit)
+                edges = _hairline_edges(self.flat(n.path, t), s.cap, s.join, s.miterlimit)
                 if edges is not None:
-                    m = coverage(edges, canvas.width, canvas.height, 'nonzero', n.antialias) \
-                        if len(edges) else None
+                    m = coverage(edges, canvas.width, canvas.height, 'nonzero', n.antialias,
+                                 exact=False) if len(edges) else None
                     if m is not None:
                         self.paint(canvas, m, s.paint, opacity, n.path, t)
                     return
-        key = (id(n), t)
         if hair is None and key in self._stroke_pending:
             self._flush_strokes(key, canvas)
         if hair is None and key in self._stroke_ready:
@@ -698,12 +701,25 @@ class _Renderer:
 # Geometry helpers
 # ---------------------------------------------------------------------------
 
-#: Verbs per batch of :meth:`_Renderer._flush` (bounds its memory).
+#: Verbs per batch of :meth:`_Renderer._flush_geometry` (a quarter of it
+#: for :meth:`_Renderer._flush_strokes`): bounds the batch's geometry.
 _BATCH_VERBS = 100_000
 
-#: Edges and mask pixels per batch of :meth:`_Renderer._flush_fills`.
-_BATCH_EDGES = 200_000
+#: Mask pixels per batch (the masks of a batch are held until drawn).
 _BATCH_AREA = 4_000_000
+
+
+def _device_area(path, t, size, reach=1.0):
+    """Pixels of the device box of ``path``'s control points under ``t``,
+    grown by ``reach`` and clipped to the canvas ``size`` (w, h): a bound
+    of the mask area, for batch budgets."""
+    x0, y0, x1, y1 = path.control_box()
+    a, b, c, d, e, f = t.a, t.b, t.c, t.d, t.e, t.f
+    xs = (a * x0 + c * y0, a * x1 + c * y0, a * x0 + c * y1, a * x1 + c * y1)
+    ys = (b * x0 + d * y0, b * x1 + d * y0, b * x0 + d * y1, b * x1 + d * y1)
+    w = min(max(xs) + e + reach, size[0]) - max(min(xs) + e - reach, 0.0)
+    h = min(max(ys) + f + reach, size[1]) - max(min(ys) + f - reach, 0.0)
+    return max(w, 0.0) * max(h, 0.0)
 
 
 def _batch_stroke_style(n, t):
@@ -731,15 +747,6 @@ def _wants_hair(n, t):
             and 0.0 < s.width * t.mean_scale() < 1.0)
 
 
-def _wants_flat(n, t):
-    """Whether drawing PathNode ``n`` under ``t`` flattens its path (a
-    visible fill, or an undashed hairline stroke)."""
-    f, s = n.fill, n.stroke
-    if f is not None and f.opacity > 0:
-        return True
-    return _wants_hair(n, t)
-
-
 def _cover(path, t, w, h, rule, antialias, tol):
     """Coverage Mask of ``path`` filled under ``t`` on a w x h target."""
     pl = flatten(path, tol, transform=t)
@@ -749,101 +756,66 @@ def _cover(path, t, w, h, rule, antialias, tol):
     return coverage(edges, w, h, rule, antialias)
 
 
-def _polygon_edges(p, oriented=False):
-    """Closed polygons (M, K, 2) as (M K, 2, 2) edges, every polygon turned
-    to negative signed area (clockwise on screen, y down) unless
-    ``oriented`` says it already is: under the nonzero rule their union is
-    filled and overlaps never cancel."""
-    m, k = p.shape[:2]
-    if not oriented and m:
-        x, y = p[..., 0], p[..., 1]
-        nx, ny = np.roll(x, -1, axis=1), np.roll(y, -1, axis=1)
-        flip = (x * ny - nx * y).sum(1) > 0
-        if flip.any():
-            p = p.copy()
-            p[flip] = p[flip][:, ::-1]
-    e = np.empty((m, k, 2, 2))
-    e[:, :, 0] = p
-    e[:, :-1, 1] = p[:, 1:]
-    e[:, -1, 1] = p[:, 0]
-    return e.reshape(-1, 2, 2)
-
-
-class _MaskBatch:
-    """Shapes gathered for one :func:`coverage_many` call, within
-    :data:`_BATCH_EDGES` edges and :data:`_BATCH_AREA` mask pixels."""
-
-    def __init__(self):
-        self.keys, self.edges, self.rules, self.aas = [], [], [], []
-        self.n_edges = self.area = 0
-
-    def take(self, pending, key, canvas):
-        """Pop queued ``(n, m, size)`` entries of ``pending`` in document
-        order and yield ``(key, node, transform)`` for those drawn on
-        ``canvas``, up to and including ``key`` and then while the batch
-        has room."""
-        size = (canvas.width, canvas.height)
-        seen = False
-        for k in list(pending):
-            if seen and (self.n_edges >= _BATCH_EDGES or self.area >= _BATCH_AREA):
-                return
-            n, m, sz = pending.pop(k)
-            seen = seen or k == key
-            if sz == size:
-                yield k, n, m
-
-    def add(self, key, edges, points, rule, antialias):
-        """Add a shape (its edges, and points spanning its box); False when
-        its box is too big for a batch (it is then drawn alone)."""
-        lo, hi = points.min(0), points.max(0)
-        a = float(hi[0] - lo[0] + 2) * float(hi[1] - lo[1] + 2)
-        if a > _BATCH_AREA / 16:
-            return False
-        self.keys.append(key)
-        self.edges.append(edges)
-        self.rules.append(rule)
-        self.aas.append(bool(antialias))
-        self.n_edges += len(edges)
-        self.area += a
-        return True
-
-    def run(self, canvas):
-        """``{key: Mask or None}``, or None when scan conversion raised (the
-        caller then draws the shapes one by one)."""
-        if not self.keys:
-            return {}
-        try:
-            masks = coverage_many(self.edges, canvas.width, canvas.height, self.rules, self.aas)
-        except RasterError:
-            return None
-        return dict(zip(self.keys, masks))
-
-
 def _hairline_edges(pl, cap, join, miterlimit):
     """Outline edges of a 1 device pixel wide stroke along device-space
-    polylines ``pl`` (:class:`raster.flatten.Polylines`), for hairlines.
-
-    The stroke of a polyline is the union of a 1 px wide rectangle per
-    segment, a bevel triangle at each vertex between two segments (plus the
-    miter triangle when ``join`` is a miter join within ``miterlimit``) and,
-    for square and round caps, a half-pixel extension at the ends of open
-    polylines (a round cap is drawn square: at most 0.054 px^2 more per
-    end).  Round joins are drawn bevelled (at most 0.04 px^2 less per
-    join).  The pieces are emitted as separate polygons of one orientation,
-    filled with the nonzero rule, all in one vectorized pass: no offset
-    curves and no per-vertex Python work.  The polylines are within the
-    flattening tolerance of the curves, and so is this outline.
+    polylines ``pl`` (:class:`raster.flatten.Polylines`), for hairlines:
+    :func:`_hairline_outline` with one cap, join and miter limit.
 
     Returns
     -------
     (E, 2, 2) float64 ndarray, or None when the general stroker must be used
     (a polyline of one distinct point with a non-butt cap: a dot).
     """
+    k = len(pl)
+    edges, _, dots = _hairline_outline(pl, np.full(k, cap != 'butt'),
+                                       np.full(k, join in ('miter', 'miter-clip', 'arcs')),
+                                       np.full(k, float(miterlimit)))
+    return None if dots.any() else edges
+
+
+def _hairline_outline(pl, capped, mitered, miterlimit):
+    """Outline edges of 1 device pixel wide strokes along device-space
+    polylines ``pl`` (:class:`raster.flatten.Polylines`), for hairlines.
+
+    The stroke of a polyline is the union of a 1 px wide rectangle per
+    segment, a bevel triangle at each vertex between two segments (plus the
+    miter triangle where the polyline is ``mitered`` and the join within
+    its ``miterlimit``) and, for ``capped`` polylines (square and round
+    caps), a half-pixel extension at the ends of open polylines (a round
+    cap is drawn square: at most 0.054 px^2 more per end).  Round joins are
+    drawn bevelled (at most 0.04 px^2 less per join).  The pieces are
+    separate polygons of one orientation (negative signed area), meant for
+    the nonzero rule; :func:`raster.scan.coverage` with ``exact=False``
+    sums their areas per pixel (clipped to 1), which counts the small
+    overlaps of consecutive rectangles inside a turn twice, as a hairline
+    renderer drawing one segment at a time does.  One vectorized pass for
+    all polylines: no offset curves and no per-vertex Python work.
+
+    Parameters
+    ----------
+    pl : raster.flatten.Polylines
+        K polylines, device pixels.
+    capped, mitered : (K,) bool ndarray
+    miterlimit : (K,) float64 ndarray
+
+    Returns
+    -------
+    edges : (E, 2, 2) float64 ndarray
+        Polyline after polyline; each segment's rectangle, then the join
+        after it.
+    owner : (E,) int64 ndarray
+        The polyline of each edge (non-decreasing).
+    dots : (K,) bool ndarray
+        Capped polylines of one distinct point: they draw a dot, which
+        this outline leaves out (the general stroker draws it).
+    """
     r = 0.5
     P = pl.points
     n = len(P)
+    K = len(pl)
+    none = (np.zeros((0, 2, 2)), np.zeros(0, np.int64), np.zeros(K, bool))
     if n == 0:
-        return np.zeros((0, 2, 2))
+        return none
     starts, ends, closed = pl.starts, pl.ends, pl.closed
     nxt = np.arange(1, n + 1)
     nxt[ends - 1] = np.where(closed, starts, -1)
@@ -854,49 +826,190 @@ def _hairline_edges(pl, cap, join, miterlimit):
     keep = length > 1e-9
     a_idx, a, b, d, length = a_idx[keep], a[keep], b[keep], d[keep], length[keep]
     poly = np.searchsorted(starts, a_idx, side='right') - 1
-    counts = np.bincount(poly, minlength=len(starts))
-    if cap != 'butt' and (counts == 0).any():
-        return None
-    if len(a) == 0:
-        return np.zeros((0, 2, 2))
+    counts = np.bincount(poly, minlength=K)
+    dots = capped & (counts == 0)
+    S = len(a)
+    if S == 0:
+        return none[0], none[1], dots
     u = d / length[:, None]
     nv = np.stack([-u[:, 1], u[:, 0]], 1) * r
-    S = len(a)
     j = np.arange(S)
     first = np.ones(S, bool)
     first[1:] = poly[1:] != poly[:-1]
     last = np.ones(S, bool)
     last[:-1] = poly[1:] != poly[:-1]
-    if cap != 'butt':
+    op = capped[poly] & ~closed[poly]
+    if op.any():
         # square (and round, drawn square) caps on open polylines
-        op = ~closed[poly]
         a = a - (u * r) * (first & op)[:, None]
         b = b + (u * r) * (last & op)[:, None]
-    # a + n, b + n, b - n, a - n with n = r (-uy, ux): negative signed area
-    pieces = [_polygon_edges(np.stack([a + nv, b + nv, b - nv, a - nv], 1), oriented=True)]
     # joins: each segment with the next one of its polyline (closed: wrap)
     head = np.maximum.accumulate(np.where(first, j, 0))
     nseg = np.where(~last, j + 1, np.where(closed[poly], head, -1))
-    ok = nseg >= 0
-    i1, i2 = j[ok], nseg[ok]
+    has_join = nseg >= 0
+    i1 = np.flatnonzero(has_join)
+    i2 = nseg[i1]
+    v = P[nxt[a_idx[i1]]]
+    cr = u[i1, 0] * u[i2, 1] - u[i1, 1] * u[i2, 0]
+    side = np.where(cr > 0, -1.0, 1.0)[:, None]          # the outer side
+    p1, p2 = v + side * nv[i1], v + side * nv[i2]
+    within = np.zeros(S, bool)
     if len(i1):
-        v = P[nxt[a_idx[i1]]]
-        cr = u[i1, 0] * u[i2, 1] - u[i1, 1] * u[i2, 0]
-        side = np.where(cr > 0, -1.0, 1.0)[:, None]          # the outer side
-        p1, p2 = v + side * nv[i1], v + side * nv[i2]
-        pieces.append(_polygon_edges(np.stack([v, p1, p2], 1)))
-        if join in ('miter', 'miter-clip', 'arcs'):
-            cos_t = np.clip((u[i1] * u[i2]).sum(1), -1.0, 1.0)   # turning angle
-            # miter length / stroke width = 1 / sin(phi / 2), phi the angle
-            # between the segments = pi - turning angle: 1 / cos(turn / 2)
-            half = np.sqrt(np.maximum((1.0 + cos_t) / 2.0, 0.0))
-            within = (half > 1e-12) & (1.0 <= miterlimit * half) & (cos_t < 1.0 - 1e-12)
-            if within.any():
-                bis = side[within] * (nv[i1][within] + nv[i2][within])
-                bl = np.hypot(bis[:, 0], bis[:, 1])[:, None]
-                tip = v[within] + bis / np.maximum(bl, 1e-300) * (r / half[within][:, None])
-                pieces.append(_polygon_edges(np.stack([p1[within], tip, p2[within]], 1)))
-    return np.concatenate(pieces)
+        cos_t = np.clip((u[i1] * u[i2]).sum(1), -1.0, 1.0)   # turning angle
+        # miter length / stroke width = 1 / sin(phi / 2), phi the angle
+        # between the segments = pi - turning angle: 1 / cos(turn / 2)
+        half = np.sqrt(np.maximum((1.0 + cos_t) / 2.0, 0.0))
+        w_j = (mitered[poly[i1]] & (half > 1e-12) & (1.0 <= miterlimit[poly[i1]] * half)
+               & (cos_t < 1.0 - 1e-12))
+        within[i1] = w_j
+    # edge slots: 4 per rectangle, 3 per bevel, 3 per miter triangle
+    cnt = 4 + 3 * has_join + 3 * within
+    off = np.cumsum(cnt) - cnt
+    out = np.empty((int(cnt.sum()), 2, 2))
+    # a + n, b + n, b - n, a - n with n = r (-uy, ux): negative signed area
+    quad = np.stack([a + nv, b + nv, b - nv, a - nv], 1)
+    for k in range(4):
+        out[off + k, 0] = quad[:, k]
+        out[off + k, 1] = quad[:, (k + 1) % 4]
+    if len(i1):
+        _put_triangles(out, off[i1] + 4, v, p1, p2)
+        if w_j.any():
+            bis = side[w_j] * (nv[i1][w_j] + nv[i2][w_j])
+            bl = np.hypot(bis[:, 0], bis[:, 1])[:, None]
+            tip = v[w_j] + bis / np.maximum(bl, 1e-300) * (r / half[w_j][:, None])
+            _put_triangles(out, off[i1[w_j]] + 7, p1[w_j], tip, p2[w_j])
+    return out, np.repeat(poly, cnt), dots
+
+
+def _put_triangles(out, at, p, q, s):
+    """Write the triangles (p, q, s) ((M, 2) each) as 3 edges each at
+    ``out[at .. at + 2]``, turned to negative signed area."""
+    flip = ((q[:, 0] - p[:, 0]) * (s[:, 1] - p[:, 1])
+            - (q[:, 1] - p[:, 1]) * (s[:, 0] - p[:, 0])) > 0
+    if flip.any():
+        q, s = np.where(flip[:, None], s, q), np.where(flip[:, None], q, s)
+    for k, (x, y) in enumerate(((p, q), (q, s), (s, p))):
+        out[at + k, 0] = x
+        out[at + k, 1] = y
+
+
+def _clip_rect(g, t):
+    """The device box (x0, y0, x1, y1) of group ``g``'s clip path (CTM of
+    the parent ``t``) when the clip path is all that needs a layer and it
+    is one antialiased axis-aligned rectangle in device space; else None.
+
+    Drawing the children through the rectangle's coverage instead of into
+    a clipped layer gives the same pixels except where children overlap
+    each other in a pixel the rectangle's edge crosses (there a layer
+    clips the composite of the children, this clips each child)."""
+    cp = g.clip_path
+    if (cp is None or cp.clip_path is not None or g.mask is not None or g.filters
+            or g.opacity < 1.0 or g.blend_mode != 'normal' or g.isolate):
+        return None
+    root = cp.root
+    if (not isinstance(root, Group) or len(root.children) != 1 or root.needs_layer):
+        return None
+    n = root.children[0]
+    if not isinstance(n, PathNode) or n.path is None or not n.antialias:
+        return None
+    p = n.path
+    if len(p.points) not in (4, 5) or len(p.verbs) != len(p.points) + 1:
+        return None
+    m = t @ g.transform @ cp.transform @ root.transform
+    if m.b != 0.0 or m.c != 0.0:
+        return None
+    v = p.verbs
+    if v[0] != MOVE or v[-1] != CLOSE or not np.all(v[1:-1] == LINE):     # M L.. Z
+        return None
+    q = p.points
+    if len(q) == 5 and not np.array_equal(q[4], q[0]):
+        return None
+    q = q[:4]
+    d = np.diff(np.vstack([q, q[:1]]), axis=0)
+    # consecutive corners differ in exactly one coordinate, alternately
+    if not (np.all((d[:, 0] == 0) ^ (d[:, 1] == 0))
+            and np.all((d[:-1, 0] == 0) != (d[1:, 0] == 0))):
+        return None
+    xs = m.a * q[:, 0] + m.e
+    ys = m.d * q[:, 1] + m.f
+    box = (float(xs.min()), float(ys.min()), float(xs.max()), float(ys.max()))
+    if not all(math.isfinite(v) for v in box):
+        return None
+    return box
+
+
+class _ClipRect:
+    """A canvas seen through an axis-aligned device rectangle ``box``
+    (x0, y0, x1, y1): :meth:`fill`, :meth:`composite` and :meth:`store`
+    act on the canvas with the source multiplied by the rectangle's exact
+    area coverage of each pixel (the product of its x and y overlaps).
+    ``width``, ``height`` and ``data`` are the canvas's."""
+
+    def __init__(self, canvas, box):
+        self.canvas = canvas
+        self.width, self.height = canvas.width, canvas.height
+        x0, y0, x1, y1 = box
+        self.X0 = max(0, int(math.floor(x0)))
+        self.Y0 = max(0, int(math.floor(y0)))
+        self.X1 = min(self.width, int(math.ceil(x1)))
+        self.Y1 = min(self.height, int(math.ceil(y1)))
+        self.empty = self.X1 <= self.X0 or self.Y1 <= self.Y0 or x1 <= x0 or y1 <= y0
+        if not self.empty:
+            j = np.arange(self.X0, self.X1, dtype=np.float64)
+            i = np.arange(self.Y0, self.Y1, dtype=np.float64)
+            self.cx = np.clip(np.minimum(x1, j + 1) - np.maximum(x0, j), 0, 1).astype(np.float32)
+            self.cy = np.clip(np.minimum(y1, i + 1) - np.maximum(y0, i), 0, 1).astype(np.float32)
+
+    @property
+    def data(self):
+        return self.canvas.data
+
+    def _window(self, x0, y0, h, w):
+        """(a0, b0, a1, b1, cov): the window's part inside the rectangle in
+        canvas pixels and the coverage there, or None."""
+        if self.empty:
+            return None
+        a0, b0 = max(x0, self.X0), max(y0, self.Y0)
+        a1, b1 = min(x0 + w, self.X1), min(y0 + h, self.Y1)
+        if a1 <= a0 or b1 <= b0:
+            return None
+        cov = self.cy[b0 - self.Y0:b1 - self.Y0, None] * self.cx[None, a0 - self.X0:a1 - self.X0]
+        return a0, b0, a1, b1, cov
+
+    def fill(self, mask, color, opacity=1.0):
+        if mask is None:
+            return
+        h, w = mask.data.shape
+        win = self._window(int(mask.x0), int(mask.y0), h, w)
+        if win is None:
+            return
+        a0, b0, a1, b1, cov = win
+        k = mask.data[b0 - mask.y0:b1 - mask.y0, a0 - mask.x0:a1 - mask.x0] * cov
+        self.canvas.fill(Mask(k, a0, b0), color, opacity)
+
+    def composite(self, src, x0=0, y0=0, opacity=1.0):
+        src = np.asarray(src, np.float32)
+        win = self._window(int(x0), int(y0), src.shape[0], src.shape[1])
+        if win is None:
+            return
+        a0, b0, a1, b1, cov = win
+        s = src[b0 - y0:b1 - y0, a0 - x0:a1 - x0] * cov[..., None]
+        self.canvas.composite(s, a0, b0, opacity)
+
+    def store(self, y0, y1, x0, x1, out):
+        """Replace canvas pixels [y0:y1, x0:x1] by ``out`` (h, w, 4) as
+        seen through the rectangle: ``old + coverage (out - old)``."""
+        win = self._window(x0, y0, y1 - y0, x1 - x0)
+        if win is None:
+            return
+        a0, b0, a1, b1, cov = win
+        new = out[b0 - y0:b1 - y0, a0 - x0:a1 - x0]
+        if isinstance(self.canvas, _ClipRect):
+            old = self.canvas.data[b0:b1, a0:a1]
+            self.canvas.store(b0, b1, a0, a1, old + (new - old) * cov[..., None])
+        else:
+            old = self.canvas.data[b0:b1, a0:a1]
+            old += (new - old) * cov[..., None]
 
 
 def _pixel_box(box, w, h, margin=1):
@@ -1108,4 +1221,8 @@ def _blend(canvas, src, x0, y0, opacity, mode):
     out = np.empty_like(d)
     out[..., :3] = s[..., :3] * (1 - da) + d[..., :3] * (1 - sa) + sa * da * np.clip(b, 0, 1)
     out[..., 3:4] = sa + da - sa * da
-    canvas.data[cy0:cy1, cx0:cx1] = np.clip(out, 0, 1).astype(np.float32)
+    out = np.clip(out, 0, 1).astype(np.float32)
+    if isinstance(canvas, _ClipRect):
+        canvas.store(cy0, cy1, cx0, cx1, out)
+    else:
+        canvas.data[cy0:cy1, cx0:cx1] = out
