@@ -11,6 +11,7 @@ from PIL import Image
 import raster
 from raster.errors import RasterError
 from raster.svg import filters as F
+from raster.transform import Affine
 from raster.testing import compare_images
 
 from _shared import SUITE_ROOT as SUITE
@@ -90,6 +91,164 @@ def test_box_sums_match_direct_window_sums(n, d, data):
     ref = np.array([a[max(i - left, 0):max(min(i - left + d, n), 0)].sum(0)
                     for i in range(n)]) / d
     assert np.allclose(out, ref, atol=1e-6)
+
+
+def _direct_box(x, d, left):
+    """Reference box sum along axis 0 by explicit windows (test oracle)."""
+    n = x.shape[0]
+    return np.array([x[min(max(i - left, 0), n):min(max(i - left + d, 0), n)].sum(0)
+                     for i in range(n)]).reshape(x.shape)
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.integers(1, 30), st.integers(1, 4), st.lists(
+    st.tuples(st.integers(1, 70), st.integers(-80, 80)), min_size=1, max_size=3),
+    st.integers(0, 10_000))
+def test_box_passes_match_successive_direct_sums(n, m, boxes, seed):
+    # any window position, including windows wider than the array and
+    # windows entirely before or after the pixel
+    x = np.random.default_rng(seed).random((n, m, 2)).astype(np.float32)
+    ref = x.astype(np.float64)
+    for d, left in boxes:
+        ref = _direct_box(ref, d, left) / d
+    out = F._box_passes(x, boxes)
+    assert out.shape == x.shape and out.dtype == np.float32
+    assert np.allclose(out, ref, rtol=1e-5, atol=1e-6)
+
+
+def test_box_passes_blocks_and_strides_do_not_change_the_result(monkeypatch):
+    x = _img(37, 53, seed=3)
+    boxes = ((9, 4), (9, 4), (10, 5))
+    whole = F._box_passes(np.moveaxis(x, 1, 0), boxes)
+    monkeypatch.setattr(F, '_BLOCK_BYTES', 64)          # one column per block
+    assert np.array_equal(F._box_passes(np.moveaxis(x, 1, 0), boxes), whole)
+    assert np.array_equal(F._box_passes(np.ascontiguousarray(np.moveaxis(x, 1, 0)), boxes),
+                          whole)
+
+
+def _uncropped_blur(img, plan_x, plan_y):
+    """The blur of every pixel (no bounding box), float64 oracle."""
+    out = img.astype(np.float64)
+    for axis, plan in ((1, plan_x), (0, plan_y)):
+        if plan is None:
+            continue
+        a = np.moveaxis(out, axis, 0)
+        if plan[0] == 'box':
+            for d, left in plan[1]:
+                a = _direct_box(a, d, left) / d
+        else:
+            a = F._gauss_axis(a.astype(np.float32), plan[1], 0).astype(np.float64)
+        out = np.moveaxis(a, 0, axis)
+    return out
+
+
+@pytest.mark.parametrize('sx, sy', [(3.0, 3.0), (6.5, 0.0), (0.0, 2.2), (1.2, 4.0), (0.6, 0.9)])
+@pytest.mark.parametrize('where', ['middle', 'corner', 'edge'])
+def test_blur_restricted_to_the_content_box_equals_the_whole_blur(sx, sy, where):
+    img = np.zeros((60, 70, 4), np.float32)
+    patch = _img(6, 9, seed=5)
+    y, x = {'middle': (27, 30), 'corner': (0, 61), 'edge': (54, 20)}[where]
+    img[y:y + 6, x:x + 9] = patch
+    plans = F._blur_plans(sx, sy, None)
+    ref = _uncropped_blur(img, *plans)
+    out = F.gaussian_blur(img, sx, sy)
+    assert np.abs(out - ref).max() <= 1e-6
+    # beyond the blur's reach the result is exactly transparent
+    (bx, ax), (by, ay) = F._reach(plans[0]), F._reach(plans[1])
+    keep = np.zeros((60, 70), bool)
+    keep[max(y - by, 0):y + 6 + ay, max(x - bx, 0):x + 9 + ax] = True
+    assert not out[~keep].any()
+
+
+def test_blur_of_a_transparent_image_is_transparent():
+    img = np.zeros((12, 9, 4), np.float32)
+    out = F.gaussian_blur(img, 3.0)
+    assert out.shape == img.shape and not out.any()
+
+
+def test_nonzero_box_hand_computed():
+    img = np.zeros((10, 12, 4), np.float32)
+    assert F._nonzero_box(img) is None
+    img[2, 7, 1] = 0.5                   # a colour channel alone counts
+    img[6, 3, 3] = 0.25
+    assert F._nonzero_box(img) == (2, 7, 3, 8)
+    assert F._nonzero_box(img[..., 3]) == (6, 7, 3, 4)
+
+
+def test_solid_colour_is_recognised_and_rejected():
+    rng = np.random.default_rng(7)
+    a = rng.random((40, 50), dtype=np.float32)
+    c = np.array([0.2, 0.7, 1.0], np.float32)
+    img = F._solid_image(a, c)
+    assert np.allclose(F._solid_colour(img), c, atol=1e-6)
+    assert F._solid_colour(np.zeros((5, 5, 4), np.float32)).tolist() == [0.0, 0.0, 0.0]
+    off = img.copy()
+    off[3, 5, 1] += 1e-3                 # off the sampling grid
+    assert F._solid_colour(off) is None
+    near = img.copy()
+    near[3, 5, 1] += 1e-6                # float32 rounding of compositing
+    assert F._solid_colour(near) is not None
+    assert F._solid_colour(_img(40, 50, seed=2)) is None
+
+
+@pytest.mark.parametrize('c', [(0.0, 0.0, 0.0), (1.0, 1.0, 1.0), (0.3, 0.05, 0.9)])
+def test_solid_blur_equals_four_channel_blur(c):
+    a = np.zeros((50, 60), np.float32)
+    a[10:30, 15:50] = np.random.default_rng(1).random((20, 35), dtype=np.float32)
+    img = F._solid_image(a, np.array(c, np.float32))
+    plans = F._blur_plans(4.0, 1.5, None)
+    solid = F._Image.of(img)
+    assert solid.solid
+    fast = F._blur(solid, *plans).data
+    general = F._blur(F._Image(img), *plans).data
+    assert np.abs(fast - general).max() <= 1e-6
+
+
+def _chain_filter():
+    prim = F.Primitive
+    return F.Filter(region=(2.0, 3.0, 56.0, 40.0), primitives=[
+        prim('feGaussianBlur', (None,), 'b', (None,) * 4, True, {'std': (2.5, 1.5)}),
+        prim('feOffset', ('b',), 'o', (None,) * 4, True, {'dx': 3.0, 'dy': -2.0}),
+        prim('feFlood', (), 'fl', (10.0, 8.0, 20.0, 15.0), True,
+             {'color': (0.2, 0.4, 0.9, 0.5)}),
+        prim('feGaussianBlur', ('SourceAlpha',), 'sa', (None,) * 4, False, {'std': (1.0, 1.0)}),
+        prim('feMerge', ('fl', 'o', 'sa', 'SourceGraphic'), '', (None,) * 4, True, {}),
+    ])
+
+
+@pytest.mark.parametrize('solid', [True, False])
+def test_apply_filters_solid_fast_path_matches_the_general_path(monkeypatch, solid):
+    a = np.zeros((50, 64), np.float32)
+    a[12:35, 10:40] = np.random.default_rng(4).random((23, 30), dtype=np.float32)
+    data = F._solid_image(a, np.array([0.9, 0.3, 0.1], np.float32)) if solid \
+        else _img(50, 64, seed=8)
+    t = Affine.identity()
+    fast = F.apply_filters([_chain_filter()], data, t)
+    monkeypatch.setattr(F, '_solid_colour', lambda img, tol=None: None)
+    general = F.apply_filters([_chain_filter()], data, t)
+    assert np.abs(fast - general).max() <= 2e-6
+    assert not fast[:3].any() and not fast[43:].any()      # outside the region
+
+
+def test_apply_filters_returns_a_new_array():
+    data = _img(20, 20, seed=1)
+    # a disabled blur passes its input on (resvg): the layer must be copied
+    f = F.Filter(region=(-5.0, -5.0, 30.0, 30.0), primitives=[
+        F.Primitive('feGaussianBlur', (None,), '', (None,) * 4, False, {'std': (0.0, 0.0)})])
+    out = F.apply_filters([f], data, Affine.identity())
+    assert np.array_equal(out, data) and not np.shares_memory(out, data)
+
+
+def test_row_blocks_do_not_change_pixel_maps(monkeypatch):
+    img = _img(23, 31, seed=6)
+    m = F._saturate_matrix(0.3)
+    funcs = {0: ('gamma', (1.0, 2.0, 0.0)), 3: ('table', (0.0, 0.5, 1.0))}
+    whole = (F.color_matrix(img, m), F.component_transfer(img, funcs),
+             F._convert_pixels(img, F.srgb_to_linear))
+    monkeypatch.setattr(F, '_BLOCK_BYTES', 1)            # one row per block
+    for a, b in zip(whole, (F.color_matrix(img, m), F.component_transfer(img, funcs),
+                            F._convert_pixels(img, F.srgb_to_linear))):
+        assert np.array_equal(a, b)
 
 
 def test_zero_sigma_is_identity():
@@ -220,6 +379,28 @@ def test_linear_rgb_round_trip(r, g, b):
     c = np.array([r, g, b], np.float32)
     back = F.linear_to_srgb(F.srgb_to_linear(c))
     assert np.allclose(back, c, atol=2e-5)
+
+
+def test_colour_conversions_match_the_float64_formulas():
+    x = np.linspace(0.0, 1.0, 200_001)
+    lin = np.where(x <= 0.04045, x / 12.92, ((x + 0.055) / 1.055) ** 2.4)
+    srgb = np.where(x <= 0.0031308, x * 12.92, 1.055 * x ** (1 / 2.4) - 0.055)
+    assert np.abs(F.srgb_to_linear(x) - lin).max() <= 1e-6
+    assert np.abs(F.linear_to_srgb(x) - srgb).max() <= 1e-6
+    assert F.srgb_to_linear(np.zeros((2, 3, 3))).shape == (2, 3, 3)
+    assert F.linear_to_srgb(0.25).shape == ()
+
+
+def test_convert_pixels_of_a_sparse_image_matches_every_pixel_conversion():
+    img = np.zeros((30, 40, 4), np.float32)
+    img[5:12, 20:33] = _img(7, 13, seed=9)
+    img[25, 2, :3] = 0.5                 # colour without alpha: transparent
+    out = F._convert_pixels(img, F.srgb_to_linear)
+    a = img[..., 3:4].astype(np.float64)
+    c = np.where(a > 0, img[..., :3] / np.where(a > 0, a, 1.0), 0.0)
+    lin = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+    assert np.abs(out[..., :3] - lin * a).max() <= 2e-6
+    assert np.array_equal(out[..., 3], img[..., 3]) and not out[25, 2].any()
 
 
 def test_srgb_to_linear_known_values():

@@ -954,43 +954,253 @@ def _transfer_of(el):
 # ---------------------------------------------------------------------------
 
 def srgb_to_linear(c):
-    """sRGB-encoded values in [0, 1] to linear light (any shape, float)."""
+    """sRGB-encoded values in [0, 1] to linear light (any shape; float32
+    arithmetic, returns float32).
+
+    >>> round(float(srgb_to_linear(0.5)), 5)
+    0.21404
+    """
     c = np.asarray(c, np.float32)
-    return np.where(c <= 0.04045, c / 12.92,
-                    ((np.maximum(c, 0.04045) + 0.055) / 1.055) ** 2.4).astype(np.float32)
+    out = np.array(c * np.float32(1 / 1.055), ndmin=1)
+    out += np.float32(0.055 / 1.055)
+    np.maximum(out, np.float32(0.0), out=out)        # keeps power() real below -0.055
+    np.power(out, np.float32(2.4), out=out)
+    np.copyto(out, c * np.float32(1 / 12.92), where=c <= np.float32(0.04045))
+    return out.reshape(c.shape)
 
 
 def linear_to_srgb(c):
-    """Linear-light values in [0, 1] to sRGB encoding (any shape, float).
+    """Linear-light values in [0, 1] to sRGB encoding (any shape; float32
+    arithmetic, returns float32).
 
     >>> float(linear_to_srgb(srgb_to_linear(0.5)))  # doctest: +ELLIPSIS
     0.5...
     """
     c = np.asarray(c, np.float32)
-    return np.where(c <= 0.0031308, c * 12.92,
-                    1.055 * np.maximum(c, 0.0031308) ** (1 / 2.4) - 0.055).astype(np.float32)
+    out = np.array(np.maximum(c, np.float32(0.0)), ndmin=1)
+    np.power(out, np.float32(1 / 2.4), out=out)
+    out *= np.float32(1.055)
+    out -= np.float32(0.055)
+    np.copyto(out, c * np.float32(12.92), where=c <= np.float32(0.0031308))
+    return out.reshape(c.shape)
 
 
 def _unpremul(img):
+    """Unpremultiply.
+
+    Parameters
+    ----------
+    img : (H, W, 4) float32 ndarray, premultiplied RGBA
+
+    Returns
+    -------
+    c : (H, W, 3) float32 ndarray
+        Straight colour clipped to [0, 1]; 0 where alpha is not positive.
+    a : (H, W, 1) float32 ndarray
+        The alpha channel (a view of ``img``).
+    """
     a = img[..., 3:4]
-    with np.errstate(divide='ignore', invalid='ignore'):
-        c = np.where(a > 0, img[..., :3] / np.maximum(a, 1e-12), 0.0)
-    return np.clip(c, 0.0, 1.0).astype(np.float32), a
+    inv = np.zeros(a.shape, np.float32)
+    np.divide(np.float32(1.0), a, out=inv, where=a > 0)
+    c = np.multiply(img[..., :3], inv)
+    np.clip(c, 0.0, 1.0, out=c)
+    return c, a
 
 
 def _premul(c, a):
+    """(H, W, 4) float32 premultiplied RGBA from straight colour ``c``
+    (H, W, 3) and alpha ``a`` (H, W, 1)."""
     out = np.empty(c.shape[:-1] + (4,), np.float32)
-    out[..., :3] = c * a
+    np.multiply(c, a, out=out[..., :3])
     out[..., 3:4] = a
     return out
 
 
+#: Largest deviation (premultiplied units) from ``colour x alpha`` for an
+#: image to count as one solid colour (:func:`_solid_colour`); float32
+#: rounding of composited layers stays near 1e-7.
+_SOLID_TOL = 1e-5
+
+
+def _solid_colour(img, tol=_SOLID_TOL):
+    """The straight colour of an image painted in one colour, or None.
+
+    Parameters
+    ----------
+    img : (H, W, 4) float32 ndarray, premultiplied RGBA
+    tol : float
+        Largest allowed ``|img[..., k] - c[k] img[..., 3]|``.
+
+    Returns
+    -------
+    (3,) float32 ndarray or None
+        ``c`` in [0, 1] with every pixel within ``tol`` of
+        ``c x alpha`` (0 for a transparent image), or None.  Operations that
+        are linear in the premultiplied values (blurs) then only need the
+        alpha channel.
+    """
+    if img.size == 0:
+        return np.zeros(3, np.float32)
+    a = img[..., 3]
+    i, j = np.unravel_index(int(np.argmax(a)), a.shape)
+    am = float(a[i, j])
+    c = np.zeros(3, np.float32)
+    if am > 0:
+        c = np.clip(img[i, j, :3] / np.float32(am), 0.0, 1.0).astype(np.float32)
+    # a sparse sample rejects most non-solid images at a small cost
+    for view in (img[::7, ::7], img):
+        va = view[..., 3]
+        for k in range(3):
+            if c[k] == 0 and not view[..., k].any():
+                continue                 # exactly 0: one cheap pass
+            r = view[..., k] - va * c[k]
+            if r.max() > tol or r.min() < -tol:
+                return None
+    return c
+
+
+def _solid_image(alpha, c):
+    """(H, W, 4) float32 premultiplied image of straight colour ``c`` (3,)
+    with ``alpha`` (H, W)."""
+    out = np.empty(alpha.shape + (4,), np.float32)
+    for k, v in enumerate(c):            # loop over 3 channels
+        if v == 0:
+            out[..., k] = 0.0
+        else:
+            np.multiply(alpha, np.float32(v), out=out[..., k])
+    out[..., 3] = alpha
+    return out
+
+
+def _nonzero_box(x):
+    """Bounding rows and columns of the non-zero pixels of ``x``.
+
+    Parameters
+    ----------
+    x : (H, W) or (H, W, C) ndarray
+        A pixel is non-zero when any of its channels is.
+
+    Returns
+    -------
+    (y0, y1, x0, x1) ints (half-open) or None when every pixel is zero
+    """
+    rows = np.flatnonzero(x.any(axis=tuple(range(1, x.ndim))))
+    if rows.size == 0:
+        return None
+    cols = x[rows[0]:rows[-1] + 1].any(axis=0)
+    if cols.ndim > 1:
+        cols = cols.any(axis=1)
+    cols = np.flatnonzero(cols)
+    return int(rows[0]), int(rows[-1]) + 1, int(cols[0]), int(cols[-1]) + 1
+
+
+class _Image:
+    """An intermediate result of a filter chain.
+
+    Either premultiplied pixels or, for content painted in one colour, a
+    straight colour and an alpha channel: colour conversions then change
+    three numbers, and blurs and offsets move one channel instead of four.
+
+    Parameters
+    ----------
+    data : (H, W, 4) float32 ndarray or None
+        Premultiplied RGBA (made from ``alpha`` and ``colour`` on first
+        use when None).
+    alpha : (H, W) float32 ndarray or None
+        With ``colour``: the image is ``colour x alpha``.
+    colour : (3,) float32 ndarray or None
+        Straight colour in [0, 1]; None for a general image.
+    """
+    __slots__ = ('_data', 'alpha', 'colour')
+
+    def __init__(self, data=None, alpha=None, colour=None):
+        self._data, self.alpha, self.colour = data, alpha, colour
+
+    @classmethod
+    def of(cls, data):
+        """Wrap pixels, recognising a solid colour (see :func:`_solid_colour`)."""
+        box = _nonzero_box(data)
+        if box is None:
+            return cls(data, data[..., 3], np.zeros(3, np.float32))
+        y0, y1, x0, x1 = box
+        c = _solid_colour(data[y0:y1, x0:x1])
+        return cls(data, None if c is None else data[..., 3], c)
+
+    @property
+    def solid(self):
+        return self.colour is not None
+
+    @property
+    def alpha_channel(self):
+        """(H, W) float32 alpha (a view)."""
+        return self.alpha if self.solid else self._data[..., 3]
+
+    @property
+    def data(self):
+        """(H, W, 4) float32 premultiplied pixels."""
+        if self._data is None:
+            self._data = _solid_image(self.alpha, self.colour)
+        return self._data
+
+    def clip(self, rect):
+        """The image with everything outside ``rect`` (x0, y0, x1, y1)
+        transparent."""
+        x0, y0, x1, y1 = rect
+        src = self.alpha if self.solid else self._data
+        if (x0, y0, x1, y1) == (0, 0, src.shape[1], src.shape[0]):
+            return self
+        out = np.zeros(src.shape, np.float32)
+        out[y0:y1, x0:x1] = src[y0:y1, x0:x1]
+        return _Image(alpha=out, colour=self.colour) if self.solid else _Image(out)
+
+
+#: Bytes of one work block of :func:`_by_rows` and :func:`_box_passes`:
+#: blocks this small keep their temporaries in the processor's cache.
+_BLOCK_BYTES = 1 << 19
+
+
+def _by_rows(fn, img):
+    """``fn`` (a per-pixel map of (h, W, 4) float32 blocks to (h, W, 4)
+    float32) applied to cache-sized blocks of rows of ``img`` (H, W, 4):
+    its temporaries stay small."""
+    h, w = img.shape[:2]
+    out = np.empty((h, w, 4), np.float32)
+    step = max(1, _BLOCK_BYTES // (16 * max(w, 1)))
+    for y in range(0, h, step):          # loop over blocks of rows
+        out[y:y + step] = fn(img[y:y + step])
+    return out
+
+
+def _convert_pixels(img, fn):
+    """Apply the transfer ``fn`` to the straight colour of the
+    premultiplied ``img`` (H, W, 4); only the bounding box of the visible
+    pixels is worked on (transparent pixels stay transparent)."""
+    box = _nonzero_box(img)
+    if box is None:
+        return np.zeros_like(img)
+    y0, y1, x0, x1 = box
+
+    def block(b):
+        c, a = _unpremul(b)
+        return _premul(fn(c), a)
+
+    res = _by_rows(block, img[y0:y1, x0:x1])
+    if res.shape == img.shape:
+        return res
+    out = np.zeros_like(img)
+    out[y0:y1, x0:x1] = res
+    return out
+
+
 def _convert(img, linear_from, linear_to):
+    """An :class:`_Image` converted from linearRGB (``linear_from`` True)
+    or sRGB to the other space (``img`` itself when they agree)."""
     if linear_from == linear_to:
         return img
-    c, a = _unpremul(img)
-    c = srgb_to_linear(c) if linear_to else linear_to_srgb(c)
-    return _premul(c, a)
+    fn = srgb_to_linear if linear_to else linear_to_srgb
+    if img.solid:
+        return _Image(alpha=img.alpha, colour=fn(img.colour))
+    return _Image(_convert_pixels(img.data, fn))
 
 
 # ---------------------------------------------------------------------------
@@ -1010,27 +1220,115 @@ def _finite(*vals):
             raise FilterError('filter parameter must be finite, got %r' % (v,))
 
 
+def _box_passes(x, boxes):
+    """Successive box sums along axis 0.
+
+    Pass ``(d, left)`` maps ``x`` to ``y[i] = sum(x[i - left : i - left +
+    d])`` with zeros outside the array.  Each window sum is built from
+    sums of power-of-two windows (``W_2k[i] = W_k[i] + W_k[i + k]``), so a
+    pass costs about ``log2(d) + popcount(d)`` vectorised additions, all in
+    float32 without the cancellation of a running sum.  A window reaching
+    past the array on both sides is clipped first, so a huge box costs no
+    more than one of about ``2 N``.  The columns (axis 1) are processed in
+    blocks that fit in the cache.
+
+    Parameters
+    ----------
+    x : (N, ...) float32 ndarray
+        Any strides.
+    boxes : sequence of (int d >= 1, int left)
+
+    Returns
+    -------
+    (N, ...) float32 ndarray, C-contiguous
+        The sums divided by the product of the ``d``.
+    """
+    if x.ndim == 1:
+        return _box_passes(x[:, None], boxes)[:, 0]
+    n, m, inner = x.shape[0], x.shape[1], int(np.prod(x.shape[2:], dtype=np.int64))
+    # window of output i: x[i + s : i + e], clipped so that |s|, |e| <= n
+    spans = [(max(-left, -n), min(d - left, n)) for d, left in boxes]
+    width = max(e - s for s, e in spans)
+    out = np.zeros(x.shape, np.float32)
+    if width <= 0 or x.size == 0 or any(e <= s for s, e in spans):
+        return out
+    length = n + width - 1
+    cm = max(1, min(m, _BLOCK_BYTES // (4 * length * inner)))
+    flat = [np.empty(length * cm * inner, np.float32) for _ in range(2)]
+    flat_out = np.empty(n * cm * inner, np.float32)
+    scale = 1.0
+    for d, _ in boxes:
+        scale /= d
+    for c0 in range(0, m, cm):           # loop over cache-sized blocks of columns
+        xb = x[:, c0:c0 + cm]
+        shape = xb.shape[1:]
+        size = int(np.prod(shape, dtype=np.int64))
+        bufs = [f[:length * size].reshape((length,) + shape) for f in flat]
+        ob = flat_out[:n * size].reshape((n,) + shape)
+        _box_block(xb, spans, bufs, ob)
+        if scale != 1.0:
+            ob *= np.float32(scale)
+        out[:, c0:c0 + cm] = ob
+    return out
+
+
+def _box_block(x, spans, bufs, out):
+    """The window sums of :func:`_box_passes` (unscaled) of one block
+    ``x`` (N, ...) into ``out`` (N, ...), with two work buffers ``bufs`` of
+    at least ``N + max width - 1`` rows; ``spans`` are the clipped windows
+    ``(s, e)``: ``y[i] = sum(x[i + s : i + e])``."""
+    n = x.shape[0]
+    src = x
+    for s, e in spans:
+        w = e - s
+        # p[m] = src[m + s] inside the array, 0 outside
+        p = bufs[0][:n + w - 1]
+        j0, j1 = max(s, 0), min(n, n + e - 1)
+        p[:j0 - s] = 0.0
+        p[j0 - s:j1 - s] = src[j0:j1]
+        p[j1 - s:] = 0.0
+        # cur[m] = sum(p[m : m + size]) lives in bufs[which]
+        cur, which, size, off, first, k = p, 0, 1, 0, True, w
+        while True:                      # loop over the bits of w
+            if k & 1:
+                if first:
+                    np.copyto(out, cur[off:off + n])
+                    first = False
+                else:
+                    np.add(out, cur[off:off + n], out=out)
+                off += size
+            k >>= 1
+            if not k:
+                break
+            m = cur.shape[0] - size
+            nxt = bufs[1 - which][:m]
+            np.add(cur[:m], cur[size:size + m], out=nxt)
+            cur, which, size = nxt, 1 - which, size * 2
+        src = out                        # copied into p before out is rewritten
+
+
 def _box_axis(a, d, left, axis):
-    """Box sums of width ``d`` along ``axis``: ``out[i] = sum(a[i-left :
-    i-left+d]) / d`` with zeros outside the array."""
-    a = np.moveaxis(a, axis, 0)
-    n = a.shape[0]
-    # window [i - left, i - left + d) clipped to [0, n]: offsets beyond n
-    # clip the same way, so a huge box costs no more than n
-    lo_off = -min(left, n + 1)
-    hi_off = min(d - left, n + 1)
-    pl, pr = -lo_off, max(hi_off, 0)
-    cs = np.empty((pl + n + 1 + pr,) + a.shape[1:], np.float64)
-    cs[:pl + 1] = 0.0
-    np.cumsum(a, axis=0, out=cs[pl + 1:pl + n + 1])
-    cs[pl + n + 1:] = cs[pl + n]
-    out = cs[pl + hi_off:pl + hi_off + n] - cs[pl + lo_off:pl + lo_off + n]
-    out *= 1.0 / d
-    return np.moveaxis(out.astype(np.float32), 0, axis)
+    """One box mean of width ``d`` along ``axis``: ``out[i] = sum(a[i-left :
+    i-left+d]) / d`` with zeros outside the array (float32, the shape of
+    ``a``)."""
+    out = _box_passes(np.moveaxis(np.asarray(a, np.float32), axis, 0), ((d, left),))
+    return np.moveaxis(out, 0, axis)
 
 
 def _box_size(s):
     return int(math.floor(s * 3.0 * math.sqrt(2.0 * math.pi) / 4.0 + 0.5))
+
+
+def _box_list(d):
+    """The three ``(width, left)`` box passes of the specification for a
+    box size ``d`` (none when ``d <= 1``): three centred boxes of an odd
+    ``d``; for an even ``d`` two of ``d`` (centred on the pixel's right and
+    left edge) and one of ``d + 1``."""
+    if d <= 1:
+        return ()
+    if d % 2:
+        return ((d, (d - 1) // 2),) * 3
+    return ((d, d // 2), (d, d // 2 - 1), (d + 1, d // 2))
 
 
 def box_sigma(sigma):
@@ -1046,6 +1344,98 @@ def box_sigma(sigma):
     if d % 2:
         return math.sqrt(3 * (d * d - 1) / 12.0)
     return math.sqrt((2 * (d * d - 1) + (d + 1) ** 2 - 1) / 12.0)
+
+
+def _gauss_axis(a, s, axis):
+    """Blur along ``axis`` with a Gaussian kernel of deviation ``s`` px
+    truncated at ``ceil(4 s)`` and renormalised (zeros outside)."""
+    r = max(1, int(math.ceil(4.0 * s)))
+    x = np.arange(-r, r + 1, dtype=np.float64)
+    k = np.exp(-0.5 * (x / s) ** 2)
+    k /= k.sum()
+    a = np.moveaxis(a, axis, 0)
+    n = a.shape[0]
+    pad = np.zeros((n + 2 * r,) + a.shape[1:], np.float32)
+    pad[r:r + n] = a
+    out = np.zeros(pad[:n].shape, np.float32)
+    tmp = np.empty_like(out)
+    for j, w in enumerate(k):            # loop over kernel taps, not pixels
+        np.multiply(pad[j:j + n], np.float32(w), out=tmp)
+        out += tmp
+    return np.moveaxis(out, 0, axis)
+
+
+def _reach(plan):
+    """``(before, after)``: how far (px) a blur plan of one axis spreads a
+    pixel towards lower and higher indices."""
+    if plan is None:
+        return 0, 0
+    kind, arg = plan
+    if kind == 'gauss':
+        r = max(1, int(math.ceil(4.0 * arg)))
+        return r, r
+    # output i reads inputs i - left .. i - left + d - 1
+    return sum(d - 1 - left for d, left in arg), sum(left for d, left in arg)
+
+
+def _blur_array(x, plan_x, plan_y):
+    """Separable blur of ``x`` (H, W) or (H, W, C) float32, zero outside,
+    one plan per axis.
+
+    A plan is None (axis untouched), ``('box', boxes)`` (successive box
+    means, see :func:`_box_passes`) or ``('gauss', sigma)``.  The work is
+    restricted to the bounding box of the non-zero pixels grown by the
+    blur's reach: outside it the result is exactly 0.
+
+    Returns
+    -------
+    float32 ndarray, the shape of ``x``
+    """
+    if plan_x is None and plan_y is None:
+        return x
+    h, w = x.shape[:2]
+    box = _nonzero_box(x)
+    if box is None:
+        return np.zeros(x.shape, np.float32)
+    (bx, ax), (by, ay) = _reach(plan_x), _reach(plan_y)
+    y0, y1 = max(box[0] - by, 0), min(box[1] + ay, h)
+    x0, x1 = max(box[2] - bx, 0), min(box[3] + ax, w)
+    work = x[y0:y1, x0:x1]
+    for axis, plan in ((1, plan_x), (0, plan_y)):
+        if plan is None:
+            continue
+        if plan[0] == 'gauss':
+            work = _gauss_axis(work, plan[1], axis)
+        else:
+            work = np.moveaxis(_box_passes(np.moveaxis(work, axis, 0), plan[1]), 0, axis)
+    if (y0, y1, x0, x1) == (0, h, 0, w):
+        return np.ascontiguousarray(work)
+    out = np.zeros(x.shape, np.float32)
+    out[y0:y1, x0:x1] = work
+    return out
+
+
+def _blur(img, plan_x, plan_y):
+    """:func:`_blur_array` of an :class:`_Image` (a solid-colour image
+    blurs its alpha channel only: blurs are linear)."""
+    if img.solid:
+        return _Image(alpha=_blur_array(img.alpha, plan_x, plan_y), colour=img.colour)
+    return _Image(_blur_array(img.data, plan_x, plan_y))
+
+
+def _blur_plans(sigma_x, sigma_y, tolerance):
+    """Per-axis plans (see :func:`_blur_array`) of :func:`gaussian_blur`."""
+    plans = []
+    for s in (sigma_x, sigma_y):
+        plan = None
+        if s > 0:
+            boxes = _box_list(_box_size(s))
+            if s >= 2.0 and (tolerance is None or abs(box_sigma(s) - s) <= tolerance):
+                plan = ('box', boxes) if boxes else None
+            else:
+                plan = ('gauss', float(s))
+        plans.append(plan)
+    return plans
 
 
 def box_blur(img, sigma_x, sigma_y):
@@ -1065,33 +1455,20 @@ def box_blur(img, sigma_x, sigma_y):
     """
     out = _check(img)
     _finite(sigma_x, sigma_y)
-    for axis, s in ((1, sigma_x), (0, sigma_y)):
-        d = _box_size(s)
-        if d <= 1:
-            continue
-        if d % 2:
-            for _ in range(3):
-                out = _box_axis(out, d, (d - 1) // 2, axis)
-        else:
-            out = _box_axis(out, d, d // 2, axis)
-            out = _box_axis(out, d, d // 2 - 1, axis)
-            out = _box_axis(out, d + 1, d // 2, axis)
-    return out
+    boxes = [_box_list(_box_size(s)) for s in (sigma_x, sigma_y)]
+    plans = [('box', b) if b else None for b in boxes]
+    if plans == [None, None]:
+        return out
+    return _blur(_Image.of(out), *plans).data
 
 
-def _gauss_axis(a, s, axis):
-    r = max(1, int(math.ceil(4.0 * s)))
-    x = np.arange(-r, r + 1, dtype=np.float64)
-    k = np.exp(-0.5 * (x / s) ** 2)
-    k /= k.sum()
-    a = np.moveaxis(a, axis, 0)
-    n = a.shape[0]
-    pad = np.zeros((n + 2 * r,) + a.shape[1:], np.float32)
-    pad[r:r + n] = a
-    out = np.zeros(a.shape, np.float32)
-    for j, w in enumerate(k):            # loop over kernel taps, not pixels
-        out += np.float32(w) * pad[j:j + n]
-    return np.moveaxis(out, 0, axis)
+def _tolerance(tolerance):
+    """Validate a blur tolerance (None or a positive finite number)."""
+    if tolerance is not None:
+        _finite(tolerance)
+        if not tolerance > 0:
+            raise FilterError('tolerance must be positive, got %r' % (tolerance,))
+    return tolerance
 
 
 def gaussian_blur(img, sigma_x, sigma_y=None, tolerance=None):
@@ -1101,7 +1478,9 @@ def gaussian_blur(img, sigma_x, sigma_y=None, tolerance=None):
     blurs (what resvg does); their effective standard deviation
     (:func:`box_sigma`) is about 6 % below ``sigma``.  Otherwise a separable
     kernel truncated at 4 sigma (renormalised) is used.  Zero or negative
-    deviations leave that axis unblurred.
+    deviations leave that axis unblurred.  Only the bounding box of the
+    non-transparent pixels (grown by the blur's reach) is worked on, and an
+    image of one colour blurs its alpha channel only.
 
     Parameters
     ----------
@@ -1124,16 +1503,22 @@ def gaussian_blur(img, sigma_x, sigma_y=None, tolerance=None):
     """
     out = _check(img)
     sigma_y = sigma_x if sigma_y is None else sigma_y
-    _finite(sigma_x, sigma_y, 1.0 if tolerance is None else tolerance)
-    if tolerance is not None and not tolerance > 0:
-        raise FilterError('tolerance must be positive, got %r' % (tolerance,))
-    for axis, s in ((1, sigma_x), (0, sigma_y)):
-        if s <= 0:
-            continue
-        if s >= 2.0 and (tolerance is None or abs(box_sigma(s) - s) <= tolerance):
-            out = box_blur(out, s if axis == 1 else 0.0, s if axis == 0 else 0.0)
-        else:
-            out = _gauss_axis(out, s, axis)
+    _finite(sigma_x, sigma_y)
+    plans = _blur_plans(sigma_x, sigma_y, _tolerance(tolerance))
+    if plans == [None, None]:
+        return out
+    return _blur(_Image.of(out), *plans).data
+
+
+def _shift(x, dx, dy):
+    """``x`` (H, W, ...) moved by whole pixels ``dx`` (columns), ``dy``
+    (rows); what moves in is 0."""
+    h, w = x.shape[:2]
+    out = np.zeros(x.shape, np.float32)
+    if abs(dx) >= w or abs(dy) >= h:
+        return out
+    out[max(dy, 0):h + min(dy, 0), max(dx, 0):w + min(dx, 0)] = \
+        x[max(-dy, 0):h + min(-dy, 0), max(-dx, 0):w + min(-dx, 0)]
     return out
 
 
@@ -1147,14 +1532,7 @@ def offset(img, dx, dy):
     """
     src = _check(img)
     _finite(dx, dy)
-    h, w = src.shape[:2]
-    dx, dy = int(round(dx)), int(round(dy))
-    out = np.zeros_like(src)
-    if abs(dx) >= w or abs(dy) >= h:
-        return out
-    out[max(dy, 0):h + min(dy, 0), max(dx, 0):w + min(dx, 0)] = \
-        src[max(-dy, 0):h + min(-dy, 0), max(-dx, 0):w + min(-dx, 0)]
-    return out
+    return _shift(src, int(round(dx)), int(round(dy)))
 
 
 def composite(a, b, operator='over', k=(0.0, 0.0, 0.0, 0.0)):
@@ -1230,10 +1608,14 @@ def color_matrix(img, matrix):
     m = np.asarray(matrix, np.float64)
     if m.shape != (4, 5) or not np.isfinite(m).all():
         raise FilterError('colour matrix must be a finite (4, 5) array')
-    c, a = _unpremul(src)
-    x = np.concatenate([c, a], -1).astype(np.float64)
-    y = np.clip(x @ m[:, :4].T + m[:, 4], 0.0, 1.0).astype(np.float32)
-    return _premul(y[..., :3], y[..., 3:4])
+
+    def block(b):
+        c, a = _unpremul(b)
+        x = np.concatenate([c, a], -1).astype(np.float64)
+        y = np.clip(x @ m[:, :4].T + m[:, 4], 0.0, 1.0).astype(np.float32)
+        return _premul(y[..., :3], y[..., 3:4])
+
+    return _by_rows(block, src)
 
 
 def _transfer(v, fn):
@@ -1271,12 +1653,16 @@ def component_transfer(img, funcs):
         ``('gamma', (amplitude, exponent, offset))``; missing: identity.
     """
     src = _check(img)
-    c, a = _unpremul(src)
-    x = np.concatenate([c, a], -1).astype(np.float64)
-    for ch, fn in funcs.items():
-        x[..., ch] = _transfer(x[..., ch], fn)
-    x = np.clip(x, 0.0, 1.0).astype(np.float32)
-    return _premul(x[..., :3], x[..., 3:4])
+
+    def block(b):
+        c, a = _unpremul(b)
+        x = np.concatenate([c, a], -1).astype(np.float64)
+        for ch, fn in funcs.items():
+            x[..., ch] = _transfer(x[..., ch], fn)
+        x = np.clip(x, 0.0, 1.0).astype(np.float32)
+        return _premul(x[..., :3], x[..., 3:4])
+
+    return _by_rows(block, src)
 
 
 def _minmax_axis(a, r, axis, fn):
@@ -1415,31 +1801,35 @@ def apply_filters(filters, data, t, tolerance=None, draw=None):
 def _apply_one(f, data, t, tol, draw=None):
     h, w = data.shape[:2]
     rx0, ry0, rx1, ry1 = _pixel_rect(_device_box(f.region, t), w, h)
-    result = np.zeros_like(data)
     if rx1 <= rx0 or ry1 <= ry0:
-        return result
+        return np.zeros_like(data)
     rt = Affine.translate(-rx0, -ry0) @ t
     rw, rh = rx1 - rx0, ry1 - ry0
     src = np.ascontiguousarray(data[ry0:ry1, rx0:rx1])
     full = (0, 0, rw, rh)
-    alpha = np.zeros_like(src)
-    alpha[..., 3] = src[..., 3]
     # resvg's scale of a transform: the lengths of the matrix rows
     sx = math.hypot(t.a, t.c)
     sy = math.hypot(t.b, t.d)
+    sources = {}                      # SourceGraphic / SourceAlpha, made on first use
+
+    def source(name):
+        if name not in sources:
+            img = _Image.of(src) if name == 'SourceGraphic' else \
+                _Image(alpha=src[..., 3], colour=np.zeros(3, np.float32))
+            sources[name] = (img, False, full)
+        return sources[name]
+
     named = {}
-    prev = None                       # (img, linear, rect)
+    prev = None                       # (_Image, linear, rect)
     for p in f.primitives:
         def get(name):
-            if name == 'SourceGraphic':
-                return src, False, full
-            if name == 'SourceAlpha':
-                return alpha, False, full
+            if name in ('SourceGraphic', 'SourceAlpha'):
+                return source(name)
             if name in named:
                 return named[name]
             if prev is not None:
                 return prev
-            return src, False, full
+            return source('SourceGraphic')
 
         ins = [get(n) for n in p.inputs]
         if f.region is None:
@@ -1450,48 +1840,55 @@ def _apply_one(f, data, t, tol, draw=None):
         lin = p.linear
         imgs = [_convert(i[0], i[1], lin) for i in ins]
         img = _run(p, imgs, ins, sx, sy, rt, tol, sub, lin, src.shape, draw)
+        out_lin = lin
         if img is None:
-            img = np.zeros_like(src)
-            out_lin = lin
+            img = _Image(alpha=np.zeros((rh, rw), np.float32), colour=np.zeros(3, np.float32))
         elif isinstance(img, tuple):
             img, out_lin = img
-        else:
-            out_lin = lin
-        x0, y0, x1, y1 = sub
-        clipped = np.zeros_like(img)
-        clipped[y0:y1, x0:x1] = img[y0:y1, x0:x1]
+        if isinstance(img, np.ndarray):
+            img = _Image(img)
         # an feOffset result keeps its input's area for feTile (resvg)
-        area = ins[0][2] if p.kind == 'feOffset' and ins and ins[0][0] is not src \
-            and ins[0][0] is not alpha else sub
-        prev = (clipped, out_lin, area)
+        area = ins[0][2] if p.kind == 'feOffset' and ins and all(
+            ins[0][0] is not v[0] for v in sources.values()) else sub
+        prev = (img.clip(sub), out_lin, area)
         if p.result:
             named[p.result] = prev
-    img = _convert(prev[0], prev[1], False)
+    img = _convert(prev[0], prev[1], False).data
+    if (rx0, ry0, rx1, ry1) == (0, 0, w, h):
+        return img.copy() if np.may_share_memory(img, data) else img
+    result = np.zeros_like(data)
     result[ry0:ry1, rx0:rx1] = img
     return result
 
 
 def _run(p, imgs, ins, sx, sy, t, tol, sub, lin, shape, draw=None):
-    """The result of one primitive: an image in the primitive's colour
-    space, ``(image, linear)`` for another space, or None (transparent)."""
+    """The result of one primitive on :class:`_Image` inputs ``imgs`` (in
+    the primitive's colour space): an image (array or :class:`_Image`) in
+    that space, ``(image, linear)`` for another space, or None
+    (transparent)."""
     k, pr = p.kind, p.params
     if k == 'feGaussianBlur':
         s_x, s_y = pr['std'][0] * sx, pr['std'][1] * sy
         if s_x < 0 or s_y < 0 or (s_x == 0 and s_y == 0):
             return imgs[0]                      # disabled: the input (resvg)
-        return gaussian_blur(imgs[0], s_x, s_y, tol)
+        return _blur(imgs[0], *_blur_plans(s_x, s_y, _tolerance(tol)))
     if k == 'feOffset':
-        return offset(imgs[0], pr['dx'] * sx, pr['dy'] * sy)
+        dx, dy = pr['dx'] * sx, pr['dy'] * sy
+        _finite(dx, dy)
+        dx, dy = int(round(dx)), int(round(dy))
+        if imgs[0].solid:
+            return _Image(alpha=_shift(imgs[0].alpha, dx, dy), colour=imgs[0].colour)
+        return _shift(imgs[0].data, dx, dy)
     if k in ('feDiffuseLighting', 'feSpecularLighting'):
         if pr['light'] is None or (k == 'feSpecularLighting' and not 1 <= pr['exp'] <= 128):
             return None
         col = np.asarray(pr['color'], np.float32)
         if lin:
             col = srgb_to_linear(col)
-        return lighting(imgs[0][..., 3], pr['light'], col, pr['surface'], pr['k'], pr['exp'],
+        return lighting(imgs[0].alpha_channel, pr['light'], col, pr['surface'], pr['k'], pr['exp'],
                         k == 'feSpecularLighting', t)
     if k == 'feDisplacementMap':
-        return displace(imgs[0], imgs[1], pr['scale'] * (sx + sy) / 2.0, *pr['channels'])
+        return displace(imgs[0].data, imgs[1].data, pr['scale'] * (sx + sy) / 2.0, *pr['channels'])
     if k == 'feTurbulence':
         if pr['turb'] is None:
             return None
@@ -1509,7 +1906,7 @@ def _run(p, imgs, ins, sx, sy, t, tol, sub, lin, shape, draw=None):
         if pr['conv'] is None:
             return None
         kern, div, bias, target, edge, keep = pr['conv']
-        return convolve(imgs[0], kern, div, bias, target, edge, keep)
+        return convolve(imgs[0].data, kern, div, bias, target, edge, keep)
     if k == 'feImage':
         if not pr.get('nodes') or draw is None:
             return None
@@ -1517,47 +1914,44 @@ def _run(p, imgs, ins, sx, sy, t, tol, sub, lin, shape, draw=None):
         return _check(img, 'feImage content'), False
     if k == 'feFlood':
         c = pr['color']
-        out = np.empty(shape, np.float32)
-        out[..., :3] = np.asarray(c[:3], np.float32) * np.float32(c[3])
-        out[..., 3] = c[3]
-        return out, False
+        return _Image(alpha=np.full(shape[:2], c[3], np.float32),
+                      colour=np.asarray(c[:3], np.float32)), False
     if k == 'feMerge':
         if not imgs:
             return None
-        out = np.zeros_like(imgs[0])
+        out = np.zeros_like(imgs[0].data)
         for im in imgs:
-            out = im + out * (1 - im[..., 3:4])
+            out = im.data + out * (1 - im.data[..., 3:4])
         return out
     if k == 'feComposite':
-        return composite(imgs[0], imgs[1], pr['operator'], pr['k'])
+        return composite(imgs[0].data, imgs[1].data, pr['operator'], pr['k'])
     if k == 'feBlend':
-        return blend(imgs[0], imgs[1], pr['mode'])
+        return blend(imgs[0].data, imgs[1].data, pr['mode'])
     if k == 'feColorMatrix':
-        return color_matrix(imgs[0], pr['matrix'])
+        return color_matrix(imgs[0].data, pr['matrix'])
     if k == 'feComponentTransfer':
-        return component_transfer(imgs[0], pr['funcs'])
+        return component_transfer(imgs[0].data, pr['funcs'])
     if k == 'feMorphology':
         r_x, r_y = pr['radius'][0] * sx, pr['radius'][1] * sy
         if r_x < 0 or r_y < 0 or (r_x == 0 and r_y == 0):
             return imgs[0]                      # disabled: the input (resvg)
-        return morphology(imgs[0], r_x, r_y, pr['operator'])
+        return morphology(imgs[0].data, r_x, r_y, pr['operator'])
     if k == 'feTile':
-        return _tile(imgs[0], ins[0][2], sub)
+        return _tile(imgs[0].data, ins[0][2], sub)
     if k == 'feDropShadow':
-        src = imgs[0]
+        src = imgs[0].data
         s_x, s_y = pr['std'][0] * sx, pr['std'][1] * sy
-        a = np.zeros_like(src)
-        a[..., 3] = src[..., 3]
+        a = src[..., 3]
         if s_x > 0 or s_y > 0:
-            a = gaussian_blur(a, max(s_x, 0.0), max(s_y, 0.0), tol)
-        a = offset(a, pr['dx'] * sx, pr['dy'] * sy)
+            a = _blur_array(a, *_blur_plans(max(s_x, 0.0), max(s_y, 0.0), _tolerance(tol)))
+        dx, dy = pr['dx'] * sx, pr['dy'] * sy
+        _finite(dx, dy)
+        a = _shift(a, int(round(dx)), int(round(dy)))
         c = pr['color']
         col = np.array(c[:3], np.float32)
         if lin:
             col = srgb_to_linear(col)
-        shadow = np.empty_like(a)
-        shadow[..., 3] = a[..., 3] * c[3]
-        shadow[..., :3] = col * shadow[..., 3:4]
+        shadow = _solid_image(a * np.float32(c[3]), col)
         return composite(src, shadow, 'over')
     return None
 
