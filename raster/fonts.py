@@ -29,6 +29,9 @@ import os
 import re
 import warnings
 from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
 
 from .errors import RasterError, RasterWarning
 
@@ -88,6 +91,17 @@ class FontFace:
 
 _SCAN_CACHE = {}      # (path, mtime_ns, size) -> tuple of FontFace
 _FONT_CACHE = {}      # (path, index, mtime_ns) -> Font
+
+#: Bounds of the caches: font descriptions matched per :class:`FontDB`,
+#: shaped strings per :class:`Font`, and outline points packed per
+#: :class:`Font` (the packed outlines start over beyond it).
+_MATCH_LIMIT = 4096
+_SHAPE_LIMIT = 4096
+_ATLAS_MAX_POINTS = 1 << 22
+#: Glyph sequences of up to ``_RUN_GLYPHS`` glyphs have their gathered
+#: outlines remembered, ``_RUN_LIMIT`` sequences per :class:`Font`.
+_RUN_GLYPHS = 32
+_RUN_LIMIT = 1024
 
 
 def cached(cache, key, make, limit):
@@ -223,6 +237,7 @@ class FontDB:
                     seen.add(p)
                     self.faces.extend(_scan_file(p))
         self._by_family = {}
+        self._matches = {}      # (families, weight, style, stretch) -> FontFace
         for f in self.faces:
             for fam in f.families:
                 lst = self._by_family.setdefault(fam.lower(), [])
@@ -252,11 +267,15 @@ class FontDB:
             return None
         if isinstance(stretch, str):
             stretch = _STRETCH.get(stretch, 5)
+        key = (tuple(families), int(weight), style, int(stretch))
+        return cached(self._matches, key, lambda: self._match(*key), _MATCH_LIMIT)
+
+    def _match(self, families, weight, style, stretch):
         for fam in list(families) + [DEFAULT_FAMILY, 'serif']:
             cands = self.family_faces(fam)
             if cands:
-                return _best(cands, int(weight), style, int(stretch))
-        return _best(self.faces, int(weight), style, int(stretch))
+                return _best(cands, weight, style, stretch)
+        return _best(self.faces, weight, style, stretch)
 
     def fallback_faces(self, face):
         """Other faces to try for characters ``face`` has no glyph for, in
@@ -346,17 +365,25 @@ class Font:
         self.strikeout_size = float(os2.yStrikeoutSize) if os2 else self.underline_thickness
         self.subscript_y = float(os2.ySubscriptYOffset) if os2 else 0.15 * self.upem
         self.superscript_y = float(os2.ySuperscriptYOffset) if os2 else 0.45 * self.upem
-        self._outlines = {}
         self._cmap = tt.getBestCmap() or {}
+        self._axes = None
+        self._reset_caches()
+
+    def _reset_caches(self):
+        """Empty the per-font caches: shaped strings (see
+        :meth:`shape_arrays`) and packed outlines (see :meth:`outlines`)."""
+        self._shaped = {}
+        self._atlas = _GlyphAtlas(self._draw_glyph, len(self.glyph_order))
 
     @property
     def axes(self):
         """Variation axes: dict tag -> (min, default, max); empty for a
         static font."""
-        if 'fvar' not in self.tt:
-            return {}
-        return {a.axisTag: (float(a.minValue), float(a.defaultValue), float(a.maxValue))
+        if self._axes is None:
+            self._axes = {} if 'fvar' not in self.tt else {
+                a.axisTag: (float(a.minValue), float(a.defaultValue), float(a.maxValue))
                 for a in self.tt['fvar'].axes}
+        return self._axes
 
     def variant(self, coords):
         """This font at a variation-space location.
@@ -392,11 +419,11 @@ class Font:
             import uharfbuzz as hb
             f = copy.copy(self)
             f._variants = {}
-            f._outlines = {}
             f.hb_font = hb.Font(self.hb_face)
             f.hb_font.set_variations(loc)
             f.glyph_set = self.tt.getGlyphSet(location=loc)
             f.location = loc
+            f._reset_caches()
             if len(cache) > 64:
                 cache.clear()
             cache[key] = f
@@ -425,37 +452,190 @@ class Font:
             ``cluster`` is the index of the first character of the glyph's
             cluster in ``text``; advances and offsets in font units, y up.
         """
+        r = self.shape_arrays(text, features)
+        return list(zip(r.gid.tolist(), r.cluster.tolist(), *(r.pos.astype(np.int64).T.tolist())))
+
+    def shape_arrays(self, text, features=None):
+        """Shape ``text`` like :meth:`shape`, as arrays; cached per font by
+        ``(text, features)`` (at most ``_SHAPE_LIMIT`` strings).
+
+        Returns
+        -------
+        Shaped
+            ``gid`` (G,) int64 glyph ids, ``cluster`` (G,) int64 first
+            character of each glyph's cluster (at most ``len(text) - 1``),
+            ``pos`` (G, 4) float64 x_advance, y_advance, x_offset, y_offset
+            in font units (y up), glyphs in visual order; ``ordered`` is
+            True when there is one glyph per character in logical order.
+            The arrays are read-only.
+        """
+        key = (text, tuple(sorted(features.items())) if features else ())
+        return cached(self._shaped, key, lambda: self._shape(text, features), _SHAPE_LIMIT)
+
+    def _shape(self, text, features):
         import uharfbuzz as hb
         buf = hb.Buffer()
         buf.add_codepoints([ord(c) for c in text])
         buf.guess_segment_properties()
         hb.shape(self.hb_font, buf, features or {})
-        return [(i.codepoint, i.cluster, p.x_advance, p.y_advance, p.x_offset, p.y_offset)
-                for i, p in zip(buf.glyph_infos, buf.glyph_positions)]
+        infos = buf.glyph_infos
+        gid = np.array([i.codepoint for i in infos], np.int64)
+        cluster = np.minimum(np.array([i.cluster for i in infos], np.int64), max(len(text) - 1, 0))
+        # GlyphPosition.position is (x_offset, y_offset, x_advance, y_advance)
+        raw = np.array([p.position for p in buf.glyph_positions], np.float64).reshape(-1, 4)
+        pos = raw[:, [2, 3, 0, 1]]
+        for a in (gid, cluster, pos):
+            a.flags.writeable = False
+        ordered = len(gid) == len(text) and bool((cluster == np.arange(len(gid))).all())
+        return Shaped(gid, cluster, pos, ordered)
 
     def outline(self, gid):
         """The outline of glyph ``gid`` as a :class:`~raster.path.Path` in
-        font units (y up), cached."""
-        p = self._outlines.get(gid)
-        if p is None:
-            from .path import Path, PathBuilder
-            from fontTools.pens.recordingPen import DecomposingRecordingPen
-            try:
-                name = self.glyph_order[gid]
-                rec = DecomposingRecordingPen(self.glyph_set)
-                self.glyph_set[name].draw(rec)
-                b = PathBuilder()
-                for op, args in rec.value:
-                    if op == 'qCurveTo' and args and args[-1] is None:
-                        # closed contour of only off-curve points
-                        offs = list(args[:-1])
-                        mid = ((offs[-1][0] + offs[0][0]) * 0.5, (offs[-1][1] + offs[0][1]) * 0.5)
-                        b.moveTo(mid)
-                        b.qCurveTo(*offs, mid)
-                        continue
-                    getattr(b, op)(*args)
-                p = b.path()
-            except (KeyError, IndexError, RasterError):
-                p = Path.empty()
-            self._outlines[gid] = p
-        return p
+        font units (y up)."""
+        from .path import Path
+        verbs, points, _ = self._atlas.gather(np.array([gid], np.int64))
+        return Path(verbs, points, _checked=True)
+
+    def outlines(self, gids):
+        """The outlines of many glyphs, concatenated in order.
+
+        Parameters
+        ----------
+        gids : (G,) int ndarray
+            Glyph ids (ids the font does not have give empty outlines).
+
+        Returns
+        -------
+        verbs : (V,) uint8 ndarray
+        points : (P, 2) float64 ndarray
+            Font units, y up: a valid path (every outline starts with a
+            move).
+        npoints : (G,) int64 ndarray
+            Number of points of each glyph (``npoints.sum() == P``).
+        """
+        return self._atlas.gather(np.asarray(gids, np.int64).reshape(-1))
+
+    def _draw_glyph(self, gid):
+        """(verbs, points) of one glyph drawn through fontTools (empty
+        arrays for a glyph that cannot be drawn)."""
+        from .path import Path, PathBuilder
+        from fontTools.pens.recordingPen import DecomposingRecordingPen
+        try:
+            name = self.glyph_order[gid]
+            rec = DecomposingRecordingPen(self.glyph_set)
+            self.glyph_set[name].draw(rec)
+            b = PathBuilder()
+            for op, args in rec.value:
+                if op == 'qCurveTo' and args and args[-1] is None:
+                    # closed contour of only off-curve points
+                    offs = list(args[:-1])
+                    mid = ((offs[-1][0] + offs[0][0]) * 0.5, (offs[-1][1] + offs[0][1]) * 0.5)
+                    b.moveTo(mid)
+                    b.qCurveTo(*offs, mid)
+                    continue
+                getattr(b, op)(*args)
+            p = b.path()
+        except (KeyError, IndexError, RasterError):
+            p = Path.empty()
+        return p.verbs, p.points
+
+
+class Shaped(NamedTuple):
+    """Arrays of one shaped string (see :meth:`Font.shape_arrays`);
+    ``ordered``: one glyph per character, in logical order."""
+    gid: np.ndarray
+    cluster: np.ndarray
+    pos: np.ndarray
+    ordered: bool
+
+
+def _ranges(starts, counts):
+    """Concatenated ``arange(start, start + count)`` of each pair.
+
+    ``starts``, ``counts`` : (G,) int64 ndarrays; returns (counts.sum(),)
+    int64.
+
+    >>> _ranges(np.array([5, 0, 2]), np.array([2, 0, 3])).tolist()
+    [5, 6, 2, 3, 4]
+    """
+    ends = np.cumsum(counts)
+    total = int(ends[-1]) if len(ends) else 0
+    return np.arange(total) + np.repeat(starts - (ends - counts), counts)
+
+
+class _GlyphAtlas:
+    """The outlines of the glyphs of one font drawn so far, packed into
+    growing verb and point arrays, with each glyph's start and length
+    indexed by glyph id, so that many glyphs are gathered with a few array
+    operations.
+
+    ``draw(gid) -> (verbs, points)`` draws a missing glyph.  Once more than
+    ``_ATLAS_MAX_POINTS`` points are stored the atlas starts over (before a
+    gather), which bounds its memory.  Glyph ids outside ``0..nglyphs-1``
+    have empty outlines.
+    """
+
+    def __init__(self, draw, nglyphs):
+        self.draw = draw
+        self.nglyphs = int(nglyphs)
+        self._clear()
+
+    def _clear(self):
+        n = self.nglyphs + 1            # the last slot: the empty outline
+        self.vstart = np.full(n, -1, np.int64)     # -1: not drawn yet
+        self.vstart[-1] = 0
+        self.vcount = np.zeros(n, np.int64)
+        self.pstart = np.zeros(n, np.int64)
+        self.pcount = np.zeros(n, np.int64)
+        self.verbs = np.zeros(256, np.uint8)
+        self.points = np.zeros((1024, 2))
+        self.nv = self.np = 0
+        self.runs = {}          # gids.tobytes() -> gathered arrays (short runs)
+
+    def gather(self, gids):
+        """(verbs (V,) uint8, points (P, 2) float64, npoints (G,) int64)
+        of the glyphs ``gids`` ((G,) int64), concatenated in order.  The
+        result of a short run (``_RUN_GLYPHS`` glyphs at most) is
+        remembered (``_RUN_LIMIT`` runs) and its arrays are read-only."""
+        if self.np > _ATLAS_MAX_POINTS:
+            self._clear()
+        if len(gids) > _RUN_GLYPHS:
+            return self._gather(gids)
+        key = gids.tobytes()
+        r = self.runs.get(key)
+        if r is None:
+            r = self._gather(gids)
+            for a in r:
+                a.flags.writeable = False
+            if len(self.runs) >= _RUN_LIMIT:
+                self.runs.clear()
+            self.runs[key] = r
+        return r
+
+    def _gather(self, gids):
+        gids = np.where((gids >= 0) & (gids < self.nglyphs), gids, self.nglyphs)
+        missing = gids[self.vstart[gids] < 0]
+        if len(missing):
+            for g in np.unique(missing).tolist():
+                self._add(g)
+        vs, vn = self.vstart[gids], self.vcount[gids]
+        ps, pn = self.pstart[gids], self.pcount[gids]
+        return self.verbs[_ranges(vs, vn)], self.points[_ranges(ps, pn)], pn
+
+    def _add(self, gid):
+        verbs, points = self.draw(gid)
+        nv, npt = len(verbs), len(points)
+        if self.nv + nv > len(self.verbs):      # grow by doubling
+            grown = np.zeros(max(2 * len(self.verbs), self.nv + nv), np.uint8)
+            grown[:self.nv] = self.verbs[:self.nv]
+            self.verbs = grown
+        if self.np + npt > len(self.points):
+            grown = np.zeros((max(2 * len(self.points), self.np + npt), 2))
+            grown[:self.np] = self.points[:self.np]
+            self.points = grown
+        self.verbs[self.nv:self.nv + nv] = verbs
+        self.points[self.np:self.np + npt] = points
+        self.vstart[gid], self.vcount[gid] = self.nv, nv
+        self.pstart[gid], self.pcount[gid] = self.np, npt
+        self.nv += nv
+        self.np += npt

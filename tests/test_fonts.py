@@ -155,3 +155,88 @@ def test_variable_font_variant(db):
     assert w_bold > w_reg
     static = Font.load(db.match(['Noto Sans']))
     assert static.axes == {} and static.variant({'wght': 700}) is static
+
+
+# -- caches: shaping, packed outlines, matching ---------------------------------
+
+def test_shape_arrays_match_shape_and_are_cached(db):
+    font = Font.load(db.match(['Noto Sans']))
+    r = font.shape_arrays('Wave office')
+    assert font.shape_arrays('Wave office') is r                   # cached
+    assert font.shape_arrays('Wave office', {'kern': False}) is not r
+    rows = list(zip(r.gid.tolist(), r.cluster.tolist(), *r.pos.astype(int).T.tolist()))
+    assert rows == font.shape('Wave office')
+    assert not r.gid.flags.writeable and not r.pos.flags.writeable
+    assert r.ordered == (len(r.gid) == len('Wave office'))
+    # kerning off changes the advance of 'Wa' (a kerned pair in Noto Sans)
+    assert r.pos[0, 0] != font.shape_arrays('Wave office', {'kern': False}).pos[0, 0]
+
+
+def test_shape_cache_is_bounded(db, monkeypatch):
+    import raster.fonts as F
+    monkeypatch.setattr(F, '_SHAPE_LIMIT', 8)
+    font = Font.load(db.match(['Noto Serif']))
+    font._shaped.clear()
+    words = ['w%d' % i for i in range(50)]
+    for w in words:
+        font.shape_arrays(w)
+        assert len(font._shaped) <= 9
+    for w in words[::7]:    # evicted entries come back equal
+        a, b = font.shape_arrays(w), font._shape(w, None)
+        for x, y in zip(a, b):
+            np.testing.assert_array_equal(x, y)
+
+
+def _outline_by_pen(font, gid):
+    """One glyph drawn on its own (fontTools pen into a PathBuilder), not
+    through the packed outline arrays: (verbs, points)."""
+    return font._draw_glyph(gid)
+
+
+@pytest.mark.parametrize('family', ['Noto Sans', 'Noto Serif', 'CFF Outlines and SBIX', 'Amiri'])
+def test_outlines_gather_equals_per_glyph_outlines(db, family):
+    font = Font.load(db.match([family]))
+    rng = np.random.default_rng(5)
+    n = len(font.glyph_order)
+    for size in (1, 3, 40):         # short runs are cached, long ones are not
+        gids = rng.integers(0, n, size)
+        verbs, points, npts = font.outlines(gids)
+        ref = [_outline_by_pen(font, int(g)) for g in gids]
+        assert npts.tolist() == [len(p) for _, p in ref]
+        np.testing.assert_array_equal(verbs, np.concatenate([v for v, _ in ref]))
+        np.testing.assert_array_equal(points, np.concatenate([p for _, p in ref]).reshape(-1, 2))
+        again = font.outlines(gids)
+        np.testing.assert_array_equal(again[1], points)
+    # a glyph id the font does not have: an empty outline
+    verbs, points, npts = font.outlines([n + 5, -1])
+    assert len(verbs) == 0 and npts.tolist() == [0, 0]
+    assert len(font.outline(n + 5).verbs) == 0
+
+
+def test_outline_atlas_and_run_cache_are_bounded(db, monkeypatch):
+    import raster.fonts as F
+    monkeypatch.setattr(F, '_ATLAS_MAX_POINTS', 500)
+    monkeypatch.setattr(F, '_RUN_LIMIT', 4)
+    font = Font(db.match(['Noto Sans']))        # a fresh font: empty caches
+    rng = np.random.default_rng(11)
+    atlas = font._atlas
+    for _ in range(60):
+        gids = rng.integers(0, len(font.glyph_order), 3)
+        verbs, points, npts = font.outlines(gids)
+        ref = [_outline_by_pen(font, int(g)) for g in gids]
+        np.testing.assert_array_equal(points, np.concatenate([p for _, p in ref]).reshape(-1, 2))
+        assert len(atlas.runs) <= 4
+        # the atlas starts over beyond the bound: at most one gather more
+        assert atlas.np <= 500 + sum(len(p) for _, p in ref)
+
+
+def test_match_cache_is_bounded_and_agrees(db, monkeypatch):
+    import raster.fonts as F
+    monkeypatch.setattr(F, '_MATCH_LIMIT', 5)
+    fresh = FontDB([FONTS])
+    for w in range(100, 1000, 50):
+        for style in ('normal', 'italic'):
+            face = fresh.match(['Noto Sans'], w, style)
+            assert face == fresh._match(('Noto Sans',), w, style, 5)
+            assert fresh.match(['Noto Sans'], w, style) == face
+            assert len(fresh._matches) <= 6

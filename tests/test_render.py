@@ -531,7 +531,8 @@ def test_image_window_sampling_matches_full_image(smooth):
     """A 64 x 64 random image scaled by 3 and shifted so that the 40 x 30
     canvas sees an interior window: the renderer samples only the source
     pixels it needs, and must give what sampling the whole (premultiplied)
-    image at the pixel centres gives."""
+    image at the pixel centres gives: exactly for nearest sampling, within
+    2/255 for smooth sampling (resampled in 8 bits by Pillow)."""
     rng = np.random.default_rng(7)
     pix = rng.integers(0, 256, (64, 64, 4), dtype=np.uint8)
     tf = Affine.translate(-50, -60) @ Affine.scale(3)
@@ -542,7 +543,7 @@ def test_image_window_sampling_matches_full_image(smooth):
     jj, ii = np.meshgrid(np.arange(40) + 0.5, np.arange(30) + 0.5)
     uv = tf.inverse().apply(np.stack([jj, ii], -1))
     want = paint_mod.sample(pm, uv[..., 0], uv[..., 1], smooth=smooth)
-    assert np.allclose(c, want, atol=1e-5)
+    assert np.allclose(c, want, atol=2 / 255 if smooth else 1e-5)
 
 
 def test_svg_image_renders_nested_tree():

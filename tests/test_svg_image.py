@@ -241,6 +241,35 @@ def test_scaled_nearest_neighbour_is_blocky():
     assert 0 < mid[1] < 255 and mid[0] > mid[3]      # bilinear ramp across the seam
 
 
+@pytest.mark.parametrize('rendering', ['auto', 'pixelated'])
+def test_mirrored_image_is_the_mirror_of_the_image(rendering):
+    """scale(-1, 1) and scale(1, -1) about the image centre: the render is
+    the plain render mirrored (magnified 2.5 times, both filters)."""
+    rng = np.random.default_rng(12)
+    uri = data_uri(encode(random_rgba(rng, 6, 8, alpha=False)))
+    attrs = 'width="20" height="15" preserveAspectRatio="none" image-rendering="%s"' % rendering
+    plain, _ = render_quiet(image_doc(uri, 20, 15, attrs))
+    fx, _ = render_quiet(image_doc(uri, 20, 15, attrs + ' transform="matrix(-1 0 0 1 20 0)"'))
+    fy, _ = render_quiet(image_doc(uri, 20, 15, attrs + ' transform="matrix(1 0 0 -1 0 15)"'))
+    np.testing.assert_array_equal(fx, plain[:, ::-1])
+    np.testing.assert_array_equal(fy, plain[::-1])
+
+
+@pytest.mark.parametrize('transform', ['rotate(17 20 20)', 'translate(3.3 4.6) scale(3.7 2.1)',
+                                       'translate(30 5) scale(-0.35 0.3)'])
+def test_transformed_uniform_image_keeps_its_colour_to_the_edges(transform):
+    """Edge pixels of a resampled image extend outwards: the anti-aliased
+    border of a uniform image only fades, it never darkens."""
+    a = np.zeros((9, 12, 4), np.uint8)
+    a[:] = (40, 200, 120, 255)
+    uri = data_uri(encode(a))
+    out, _ = render_quiet(doc('<image x="5" y="6" transform="%s" href="%s"/>'
+                              % (transform, uri), 40, 40))
+    on = out[..., 3] > 0
+    assert on.sum() > 5
+    assert (np.abs(out[on][:, :3].astype(int) - (40, 200, 120)) <= 2).all()
+
+
 def test_image_rendering_flags():
     uri = data_uri(encode(np.zeros((1, 1, 3), np.uint8)))
     body = ''.join('<image image-rendering="%s" href="%s"/>' % (v, uri)

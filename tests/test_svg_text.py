@@ -349,3 +349,167 @@ def test_letter_spacing_skips_cursive_arabic_letters():
     b = ink('<text x="20" y="60" font-family="Amiri" font-size="20" '
             'letter-spacing="10">%s</text>' % words)
     assert (b[2] - b[0]) - (a[2] - a[0]) == pytest.approx(10)
+
+
+# -- the vectorized glyph paths against a per-glyph construction -------------------
+
+def per_glyph_reference(spans, x, y, ls=0.0, ws=0.0, dx=(), rotate=()):
+    """Glyph outlines of one chunk built glyph by glyph, as a reference.
+
+    ``spans``: (text, family, font size) of the text element and its
+    tspans, in order; runs of one font are shaped together, every glyph is
+    scaled by the size of its own span, ``dx``/``rotate`` apply per
+    character (the last angle repeating), letter/word spacing after every
+    character/space.  Returns one (verbs, points) per run of consecutive
+    glyphs of one span.  Left-to-right text without spaces at the ends of
+    font runs and without fallback fonts only.
+    """
+    import math
+    db = FontDB([FONTS])
+    chars, owner, fonts = [], [], []
+    for si, (text, family, _) in enumerate(spans):
+        f = Font.load(db.match([family]))
+        for ch in text:
+            chars.append(ch)
+            owner.append(si)
+            fonts.append(f)
+    n = len(chars)
+    dxs = list(dx) + [0.0] * n
+    rots = (list(rotate) + [rotate[-1]] * n) if rotate else [0.0] * n
+    before, sum_dx, sum_extra = [], 0.0, 0.0
+    for k, ch in enumerate(chars):
+        sum_dx += dxs[k]
+        before.append(sum_dx + sum_extra)
+        sum_extra += ls + (ws if ch == ' ' else 0.0)
+    pieces = []         # (span, verbs, points) per glyph
+    pen, k = 0.0, 0
+    while k < n:
+        e = k + 1
+        while e < n and fonts[e] is fonts[k]:
+            e += 1
+        f = fonts[k]
+        for gid, cluster, xa, _, xo, yo in f.shape(''.join(chars[k:e])):
+            j = k + cluster
+            s = spans[owner[j]][2] / f.upem
+            outline = f.outline(gid)
+            th = math.radians(rots[j])
+            X, Y = outline.points[:, 0] * s, -outline.points[:, 1] * s
+            X, Y = math.cos(th) * X - math.sin(th) * Y, math.sin(th) * X + math.cos(th) * Y
+            origin = (x + pen + before[j] + xo * s, y - yo * s)
+            pieces.append((owner[j], outline.verbs, np.c_[X + origin[0], Y + origin[1]]))
+            pen += xa * s
+        k = e
+    out = []
+    for si, verbs, pts in pieces:
+        if out and out[-1][0] == si:
+            out[-1][1].append(verbs)
+            out[-1][2].append(pts)
+        else:
+            out.append((si, [verbs], [pts]))
+    return [(np.concatenate(v), np.concatenate(p)) for _, v, p in out]
+
+
+@pytest.mark.parametrize('spans, attrs', [
+    ([('Hello, World', 'Noto Sans', 40)], {}),
+    ([('AVAWAY office', 'Noto Serif', 23.5)], {'letter-spacing': 2.5, 'word-spacing': 4}),
+    ([('AB', 'CFF Outlines and SBIX', 50), ('BA', 'CFF Outlines and SBIX', 25)], {}),
+    ([('Ab', 'Noto Sans', 30), ('cd', 'Noto Sans', 15), ('ef', 'Noto Serif', 20)],
+     {'dx': [1, 2, 3], 'rotate': [15, -30, 45]}),
+    ([('The quick brown fox jumps over the lazy dog 0123456789', 'Source Sans Pro', 12)],
+     {'rotate': [5], 'letter-spacing': -0.5}),
+])
+def test_glyph_paths_equal_per_glyph_construction(spans, attrs):
+    """The glyph outlines of a text (shaping and outlines cached, positions
+    and outline transforms computed on whole arrays) equal those built
+    glyph by glyph, to 1e-9."""
+    x, y = 13.25, 71.5
+    extra = ''.join(' %s="%s"' % (k, ' '.join(map(str, v)) if isinstance(v, list) else v)
+                    for k, v in attrs.items())
+    (t0, f0, s0), rest = spans[0], spans[1:]
+    body = ('<text x="%r" y="%r" font-family="%s" font-size="%r"%s>%s%s</text>'
+            % (x, y, f0, s0, extra, t0, ''.join(
+                '<tspan font-family="%s" font-size="%r">%s</tspan>' % (f, s, t)
+                for t, f, s in rest)))
+    for _ in range(2):          # built twice: the second time from the caches
+        got = text_paths(body)
+        ref = per_glyph_reference(spans, x, y, attrs.get('letter-spacing', 0.0),
+                                  attrs.get('word-spacing', 0.0), attrs.get('dx', ()),
+                                  attrs.get('rotate', ()))
+        assert len(got) == len(ref)
+        for (p, _), (verbs, pts) in zip(got, ref):
+            np.testing.assert_array_equal(p.verbs, verbs)
+            np.testing.assert_allclose(p.points, pts, rtol=0, atol=1e-9)
+
+
+def test_glyph_path_of_mixed_fonts_scales_and_turns_equals_per_glyph():
+    """_glyph_path on glyphs of two fonts (as with fallback fonts), with
+    per-glyph or shared scales and with or without rotations, equals the
+    outlines transformed one by one."""
+    import math
+    from raster.svg.text import _Glyphs, _glyph_path
+    db = FontDB([FONTS])
+    fonts = [Font.load(db.match(['Noto Sans'])), Font.load(db.match(['Amiri']))]
+    rng = np.random.default_rng(8)
+    G = 40
+    fi = np.repeat([0, 1, 0, 1], [10, 5, 20, 5])
+    gid = np.array([rng.integers(1, len(fonts[f].glyph_order)) for f in fi])
+    x, y = rng.uniform(-300, 300, (2, G))
+    scales = rng.uniform(0.005, 0.05, G)
+    angles = rng.uniform(-180, 180, G)
+    for s in (scales, 0.02):
+        for rot in (None, angles):
+            g = _Glyphs(fonts, np.zeros(G, np.int64), fi, gid, x, y, s, rot, np.zeros(G))
+            p = _glyph_path(g, 3.5, -7.25)
+            verbs, pts = [], []
+            for k in range(G):
+                o = fonts[fi[k]].outline(int(gid[k]))
+                sk = s if np.ndim(s) == 0 else s[k]
+                th = 0.0 if rot is None else math.radians(rot[k])
+                X, Y = o.points[:, 0] * sk, -o.points[:, 1] * sk
+                X, Y = math.cos(th) * X - math.sin(th) * Y, math.sin(th) * X + math.cos(th) * Y
+                verbs.append(o.verbs)
+                pts.append(np.c_[X + x[k] + 3.5, Y + y[k] - 7.25])
+            np.testing.assert_array_equal(p.verbs, np.concatenate(verbs))
+            np.testing.assert_allclose(p.points, np.concatenate(pts), rtol=0, atol=1e-9)
+
+
+def test_per_build_shaping_memo_is_bounded(monkeypatch, noto):
+    """Shaped chunks are remembered per build, at most _SHAPED_LIMIT (+1)
+    of them; evicted ones shape again the same."""
+    import types
+    import raster.svg.text as T
+    monkeypatch.setattr(T, '_SHAPED_LIMIT', 3)
+    b = types.SimpleNamespace()
+    db = FontDB([FONTS])
+    span = types.SimpleNamespace(font=noto, features=None)
+    words = ['w%d' % i for i in range(20)] + ['w1', 'w2']
+    for w in words:
+        sh = T._shape_single(b, db, w, span)
+        assert len(b._text_shaped) <= 4
+        assert sh.gid.tolist() == [g[0] for g in noto.shape(w)]
+        assert T._shape_single(b, db, w, span) is sh
+    # the same text in another font or without kerning is another chunk
+    serif = Font.load(db.match(['Noto Serif']))
+    other = T._shape_single(b, db, 'w1', types.SimpleNamespace(font=serif, features=None))
+    assert other.fonts == [serif]
+    assert other.gid.tolist() == [g[0] for g in serif.shape('w1')]
+    nokern = T._shape_single(b, db, 'AV',
+                             types.SimpleNamespace(font=noto, features={'kern': False}))
+    assert nokern.xa.tolist() == [g[2] for g in noto.shape('AV', {'kern': False})]
+    assert nokern.xa.tolist() != T._shape_single(b, db, 'AV', span).xa.tolist()
+
+
+def test_same_string_in_other_fonts_of_one_document():
+    """Repeated strings of one document share shaping only within one
+    font: each text equals the same text built alone."""
+    texts = ['<text x="10" y="%d" font-family="%s"%s>AVA</text>' % (30 + 20 * i, fam, kern)
+             for i, (fam, kern) in enumerate([('Noto Sans', ''), ('Noto Serif', ''),
+                                              ('Noto Sans', ' font-kerning="none"'),
+                                              ('Noto Sans', '')])]
+    together = text_paths(''.join(texts))
+    alone = [text_paths(t)[0] for t in texts]
+    assert len(together) == 4
+    for (p, _), (q, _) in zip(together, alone):
+        assert p == q
+    np.testing.assert_allclose(together[3][0].points, together[0][0].points + [0, 60], atol=1e-9)
+    assert together[0][0] != together[2][0]

@@ -30,6 +30,13 @@ What is laid out:
 * variable fonts: ``font-variation-settings`` over automatic ``wght``,
   ``wdth``, ``slnt``/``ital`` and ``opsz`` (= font size) coordinates.
 
+Speed: a document's text elements share work through caches, all bounded:
+font matching and loading per build, shaped chunks per build, shaped
+strings and glyph outlines per font (:meth:`raster.fonts.Font.shape_arrays`,
+:meth:`raster.fonts.Font.outlines`).  A chunk is laid out on arrays (one
+entry per glyph) and its outlines are scaled, turned and moved in one
+array operation per run of glyphs of one span.
+
 Not supported, ignored or approximated: vertical writing modes (laid out
 horizontally, with a :class:`~raster.errors.RasterWarning`), ``lengthAdjust="spacingAndGlyphs"`` (spacing only), the
 Unicode bidi algorithm (each run gets HarfBuzz's guessed direction), colour
@@ -45,6 +52,7 @@ import numpy as np
 
 from .. import limits
 from ..errors import RasterError
+from ..fonts import Font, FontDB, FontError, cached, parse_font_family
 from ..path import Path
 from ..transform import Affine
 from .tree import PathNode
@@ -56,6 +64,9 @@ _XML_SPACE = '{http://www.w3.org/XML/1998/namespace}space'
 _SPAN_NAMES = frozenset(['tspan', 'a'])
 _WEIGHTS = {'normal': 400, 'bold': 700}
 _DB_CACHE = {}
+_SHAPED_LIMIT = 4096    # shaped chunks remembered per build
+_paint_order = None     # raster.svg.build._paint_order, imported on first use
+_SPACES = re.compile(' {2,}')
 
 
 def _local(el):
@@ -91,23 +102,16 @@ def collapse_whitespace(text, preserve=False, prev_space=True):
     if preserve:
         s = text.replace('\r\n', ' ').replace('\n', ' ').replace('\r', ' ').replace('\t', ' ')
         return s, s.endswith(' ') if s else prev_space
-    s = text.replace('\n', '').replace('\r', '').replace('\t', ' ')
-    out = []
-    for ch in s:
-        if ch == ' ':
-            if prev_space:
-                continue
-            prev_space = True
-        else:
-            prev_space = False
-        out.append(ch)
-    return ''.join(out), prev_space
+    s = _SPACES.sub(' ', text.replace('\n', '').replace('\r', '').replace('\t', ' '))
+    if prev_space and s.startswith(' '):
+        s = s[1:]
+    return s, s.endswith(' ') if s else prev_space
 
 
 class _Span:
     """Style of one element contributing characters."""
     __slots__ = ('el', 'inh', 'own', 'ctx', 'face', 'font', 'fs', 'shift', 'ls', 'ws', 'tl',
-                 'weight', 'parent', 'decor', 'vertical')
+                 'weight', 'parent', 'decor', 'vertical', 'features')
 
     def __init__(self, el, inh, own, ctx, parent, weight):
         self.el, self.inh, self.own, self.ctx, self.parent = el, inh, own, ctx, parent
@@ -144,7 +148,6 @@ def _spacing(value, ctx):
 
 
 def _font_db(b):
-    from ..fonts import FontDB, cached
     db = getattr(b, '_text_fontdb', None)
     if db is None:
         dirs = tuple(str(d) for d in (getattr(b, 'font_dirs', ()) or ()))
@@ -277,17 +280,20 @@ def _build(b, el, pinh, pown, st, out):
     n = len(chars)
     if n == 0:
         return
-    owner = np.asarray(owner, np.int64)
+    owner_l = owner
+    owner = np.asarray(owner_l, np.int64)
     ax = np.full(n, np.nan)
     ay = np.full(n, np.nan)
-    dx = np.zeros(n)
-    dy = np.zeros(n)
-    arrs = {'x': ax, 'y': ay, 'dx': dx, 'dy': dy}
+    arrs = {'x': ax, 'y': ay}       # dx, dy, angle: None while all zero
     for start, name, vals, e in lists:
         k = min(len(vals), min(ends.get(e, n), n) - start)   # own characters only
         if k > 0:
-            arrs[name][start:start + k] = vals[:k]
-    angle = np.zeros(n)
+            a = arrs.get(name)
+            if a is None:
+                a = arrs[name] = np.zeros(n)
+            a[start:start + k] = vals[:k]
+    dx, dy = arrs.get('dx'), arrs.get('dy')
+    angle = np.zeros(n) if rot else None
     for start, vals, e in rot:
         end = min(ends.get(e, n), n)
         if start >= end:
@@ -300,14 +306,12 @@ def _build(b, el, pinh, pown, st, out):
     if math.isnan(ay[0]):
         ay[0] = 0.0
     # -- fonts and per-span metrics --------------------------------------------
-    from ..fonts import Font, parse_font_family
+    fonts_of = _span_fonts(b, db)
     for sp in spans:
         i = sp.inh
-        fam = parse_font_family(i.get('font-family', ''))
         style = (i.get('font-style') or 'normal').strip()
         stretch = (i.get('font-stretch') or 'normal').strip()
-        sp.face = db.match(fam, sp.weight, style, stretch)
-        sp.font = _load_font(b, db, sp.face)
+        sp.face, sp.font = fonts_of(i.get('font-family', ''), sp.weight, style, stretch)
         if sp.font is not None and sp.font.axes:
             sp.font = sp.font.variant(_variations(sp, style, stretch))
         sp.ls = _spacing(i.get('letter-spacing'), sp.ctx)
@@ -324,11 +328,14 @@ def _build(b, el, pinh, pown, st, out):
         if sp is spans[0]:
             decos += _ancestor_decorations(b, el)
         sp.decor = tuple(w for d in decos for w in _decoration(d))
-    for sp in spans:
+        kern = (i.get('font-kerning') or 'auto').strip()
+        no_kern = kern == 'none' or (i.get('kerning') or 'auto').strip() == '0'
+        sp.features = {'kern': False} if no_kern else None
         sp.vertical = vertical
+    sm = _SpanMetrics(spans, owner, chars)
     # -- layout ------------------------------------------------------------------
-    brk = ~np.isnan(ax) | ~np.isnan(ay)
-    onpath = np.full(n, -1, np.int64)
+    brk = ~np.isnan(np.fmin(ax, ay))     # an absolute x or y
+    onpath = np.full(n, -1, np.int64) if path_ranges else None
     for pi, (p0, p1, tp) in enumerate(path_ranges):
         p1 = min(p1, n)
         if p0 >= p1:
@@ -340,26 +347,26 @@ def _build(b, el, pinh, pown, st, out):
         if p1 < n:
             brk[p1] = True
         onpath[p0:p1] = pi
-    starts = np.flatnonzero(brk)
-    bounds = list(starts) + [n]
+    bounds = np.flatnonzero(brk).tolist() + [n]
     glyph_runs = []     # (span index, Path in user space)
     under, over = [], []
     cur_x = cur_y = 0.0
-    for ci in range(len(bounds) - 1):
-        c0, c1 = int(bounds[ci]), int(bounds[ci + 1])
+    # vertical text advances along y: dy moves along the line, dx across
+    # it (a positive dx to the right is a negative glyph-frame y)
+    along, across = (dy, None if dx is None else -dx) if vertical else (dx, dy)
+    for c0, c1 in zip(bounds[:-1], bounds[1:]):
         x0 = ax[c0] if not math.isnan(ax[c0]) else cur_x
         y0 = ay[c0] if not math.isnan(ay[c0]) else cur_y
-        # vertical text advances along y: dy moves along the line, dx across
-        # it (a positive dx to the right is a negative glyph-frame y)
-        along, across = (dy, -dx) if vertical else (dx, dy)
-        res = _layout_chunk(db, chars, owner, spans, c0, c1, along, across, angle)
-        adj = _text_length_spacing(spans, owner[c0:c1], res[1], res[2])
+        if len(spans) == 1:     # shaped like any chunk of the same text and style
+            shaped = _shape_single(b, db, ''.join(chars[c0:c1]), spans[0])
+        else:
+            shaped = _shape_chunk(db, chars, owner_l, spans, c0, c1)
+        res = _place_chunk(shaped, sm, c0, c1, along, across, angle)
+        adj = _text_length_spacing(spans, sm, owner[c0:c1], res[1], res[2])
         if adj is not None:
-            res = _layout_chunk(db, chars, owner, spans, c0, c1, along, across, angle, adj)
-        if res is None:
-            continue
+            res = _place_chunk(shaped, sm, c0, c1, along, across, angle, adj)
         gl, char_l, char_r, width, end_dy, cdy = res
-        anchor = (spans[owner[c0]].inh.get('text-anchor') or 'start').strip()
+        anchor = (spans[owner_l[c0]].inh.get('text-anchor') or 'start').strip()
         shift = 0.0
         if anchor == 'middle':
             shift = -width * 0.5
@@ -367,7 +374,7 @@ def _build(b, el, pinh, pown, st, out):
             shift = -width
         ox, oy = x0 + shift, y0
         cur_x, cur_y = ox + width, y0 + end_dy
-        if onpath[c0] >= 0:
+        if onpath is not None and onpath[c0] >= 0:
             tp = path_ranges[int(onpath[c0])][2]
             gl, end = _on_path(gl, tp, tp[2] + shift)
             ox = oy = 0.0
@@ -383,18 +390,19 @@ def _build(b, el, pinh, pown, st, out):
             cur_x, cur_y = end
             char_l = char_r = None
         # glyph outlines, grouped by consecutive owner span
-        if gl:
-            g_span = np.array([g[0] for g in gl], np.int64)
-            cuts = np.flatnonzero(np.diff(g_span)) + 1
-            for a, z in zip(np.r_[0, cuts], np.r_[cuts, len(gl)]):
-                p = _glyph_path(gl[a:z], ox, oy)
+        if len(gl):
+            g_span = gl.span
+            cuts = [] if len(spans) == 1 else \
+                (np.flatnonzero(g_span[1:] != g_span[:-1]) + 1).tolist()
+            for a, z in zip([0] + cuts, cuts + [len(gl)]):
+                p = _glyph_path(gl.take(slice(a, z)) if cuts else gl, ox, oy)
                 if len(p.verbs):
                     glyph_runs.append((int(g_span[a]), p))
         # decorations of every span carrying text-decoration, over its chars
         for si, sp in enumerate(spans):
             if not sp.decor or char_l is None:
                 continue
-            mask = _descends(spans, owner[c0:c1], si)
+            mask = sm.descends[si][owner[c0:c1]]
             if not mask.any():
                 continue
             idx = np.flatnonzero(mask)
@@ -425,7 +433,10 @@ def _build(b, el, pinh, pown, st, out):
                         over.append((si, _rect(left, yc, right, yc + th)))
     kids = []
     for si, p in under + glyph_runs + over:
-        if len(p.points) and np.abs(p.points).max() > limits.MAX_COORD:
+        big = np.abs(p.points).max() if len(p.points) else 0.0
+        if not big <= limits.MAX_COORD:
+            if not np.isfinite(big):    # (glyph paths are not validated)
+                Path.from_arrays(p.verbs, p.points)     # raises PathError
             b.warn('text-coord', 'text beyond the coordinate limit is not rendered')
             continue
         node = _paint_node(b, spans[si], p, st)
@@ -437,17 +448,33 @@ def _build(b, el, pinh, pown, st, out):
 def _parent_weight(b, el):
     """Computed font-weight of the document parent of ``el`` (relative
     keywords resolved along the ancestor chain)."""
+    parent = el.getparent()
+    return 400 if parent is None else _ancestry(b, parent)[0]
+
+
+def _ancestry(b, el):
+    """``(font-weight, text-decoration values)`` that ``el`` passes on:
+    its computed weight (relative keywords resolved along the ancestor
+    chain) and the decorations declared on it and its ancestors, nearest
+    first.  Remembered per element for the whole build (on ``b``)."""
+    memo = getattr(b, '_text_ancestry', None)
+    if memo is None:
+        memo = b._text_ancestry = {}
     chain = []
-    e = el.getparent()
-    while e is not None:
+    e = el
+    while e is not None and e not in memo:
         chain.append(e)
         e = e.getparent()
-    w = 400
+    w, decos = (400, ()) if e is None else memo[e]
     for e in reversed(chain):
         d = b.styles.get(e)
-        if d and 'font-weight' in d and d['font-weight'] != 'inherit':
-            w = _weight(d['font-weight'], w)
-    return w
+        if d:
+            if 'font-weight' in d and d['font-weight'] != 'inherit':
+                w = _weight(d['font-weight'], w)
+            if d.get('text-decoration'):
+                decos = (d['text-decoration'],) + decos
+        memo[e] = (w, decos)
+    return w, decos
 
 
 _STRETCH_PCT = {'ultra-condensed': 50, 'extra-condensed': 62.5, 'condensed': 75,
@@ -488,7 +515,9 @@ def _variations(sp, style, stretch):
 def _decoration(value):
     """Decoration kinds of one ``text-decoration`` value (space-separated
     keywords; anything else makes the whole value invalid: none)."""
-    words = (value or '').split()
+    if not value:
+        return ()
+    words = value.split()
     if not all(w in ('underline', 'overline', 'line-through', 'none') for w in words):
         return ()
     return tuple(w for w in words if w != 'none')
@@ -496,15 +525,9 @@ def _decoration(value):
 
 def _ancestor_decorations(b, el):
     """text-decoration values declared on document ancestors of ``el``
-    (they decorate the text too)."""
-    out = []
-    e = el.getparent()
-    while e is not None:
-        d = b.styles.get(e)
-        if d and d.get('text-decoration'):
-            out.append(d['text-decoration'])
-        e = e.getparent()
-    return out
+    (they decorate the text too), nearest first."""
+    parent = el.getparent()
+    return [] if parent is None else list(_ancestry(b, parent)[1])
 
 
 def _preserved(e):
@@ -514,20 +537,6 @@ def _preserved(e):
             return v == 'preserve'
         e = e.getparent()
     return False
-
-
-def _descends(spans, own_idx, si):
-    """Boolean mask: which characters (span indices ``own_idx``) belong to
-    span ``si`` or a span nested in it."""
-    anc = np.zeros(len(spans), bool)
-    for j, sp in enumerate(spans):
-        p = sp
-        while p is not None:
-            if p is spans[si]:
-                anc[j] = True
-                break
-            p = p.parent
-    return anc[np.asarray(own_idx)]
 
 
 def _rect(x0, y0, x1, y1):
@@ -587,7 +596,6 @@ def _load_font(b, db, face):
     """The Font of a matched face; a face that cannot be used (no outlines,
     a broken file) warns and is replaced by the default family's face, else
     by the first usable face."""
-    from ..fonts import Font, FontError
     if face is None:
         return None
     try:
@@ -605,7 +613,6 @@ def _load_font(b, db, face):
 
 
 def _fallback_font(db, ch, font, cache={}):
-    from ..fonts import Font
     key = (id(db), ch)
     if key in cache:
         return cache[key]
@@ -674,11 +681,9 @@ def _on_path(glyphs, tp, offset):
     ends are dropped.  Returns ``(glyphs, end point)``."""
     edges, cum, _ = tp
     total = cum[-1]
-    if not glyphs:
-        return [], tuple(edges[-1, 1])
-    gx = np.array([g[3] for g in glyphs])
-    gy = np.array([g[4] for g in glyphs])
-    adv = np.array([g[7] for g in glyphs])
+    if not len(glyphs):
+        return glyphs, tuple(edges[-1, 1])
+    gx, gy, adv = glyphs.x, glyphs.y, glyphs.adv
     mid = offset + gx + adv * 0.5
     keep = (mid >= 0) & (mid <= total)
     i = np.clip(np.searchsorted(cum, mid, 'right') - 1, 0, len(edges) - 1)
@@ -692,31 +697,112 @@ def _on_path(glyphs, tp, offset):
     ox = P[:, 0] + c * lx - s * ly
     oy = P[:, 1] + s * lx + c * ly
     deg = np.degrees(th)
-    out = [(g[0], g[1], g[2], float(ox[k]), float(oy[k]), g[5], float(deg[k] + g[6]), g[7])
-           for k, g in enumerate(glyphs) if keep[k]]
+    rot = deg if glyphs.rot is None else deg + glyphs.rot
+    out = glyphs.replace(x=ox, y=oy, rot=rot).take(keep)
     # the text after the path continues where the last glyph ends (also
     # when it fell off the path's end: extrapolated along the last edge)
     end = (float(P[-1, 0] + c[-1] * adv[-1] * 0.5), float(P[-1, 1] + s[-1] * adv[-1] * 0.5))
     return out, end
 
 
-def _text_length_spacing(spans, own_idx, char_l, char_r):
+def _span_fonts(b, db):
+    """A function ``(font-family value, weight, style, stretch) -> (face,
+    Font or None)`` with its answers remembered for the whole build (on the
+    builder ``b``): a document's text elements share a few font
+    descriptions."""
+    memo = getattr(b, '_text_fonts', None)
+    if memo is None or memo[0] is not db:
+        memo = b._text_fonts = (db, {})
+    memo = memo[1]
+
+    def fonts_of(family, weight, style, stretch):
+        key = (family, weight, style, stretch)
+        r = memo.get(key)
+        if r is None:
+            face = db.match(parse_font_family(family), weight, style, stretch)
+            r = memo[key] = (face, _load_font(b, db, face))
+        return r
+    return fonts_of
+
+
+class _SpanMetrics:
+    """Arrays of one text element used by the layout of all its chunks.
+
+    Attributes
+    ----------
+    owner : (n,) int64 ndarray
+        Span index of every character.
+    single : bool
+        The element has one span only.
+    fs, ys, ls : (S,) float64 ndarray, or float when ``single``
+        Per span: font size, downward shift of the baseline (baseline-shift
+        and dominant baseline), letter spacing.
+    extra : (n,) float64 ndarray
+        Spacing after every character: letter spacing (not for cursive
+        scripts, whose joins it would break, as resvg does) plus word
+        spacing after spaces.
+    no_extra : bool
+        ``extra`` is all zero.
+    descends : (S, S) bool ndarray
+        ``descends[i, j]``: span ``j`` is span ``i`` or nested in it.
+    """
+
+    def __init__(self, spans, owner, chars):
+        self.owner = owner
+        n = len(chars)
+        self.single = len(spans) == 1
+        if self.single:         # numbers broadcast like the arrays
+            sp = spans[0]
+            self.fs, self.ys, self.ls = sp.fs, sp.shift + _dominant(sp), sp.ls
+        else:
+            self.fs = np.array([sp.fs for sp in spans])
+            self.ys = np.array([sp.shift + _dominant(sp) for sp in spans])
+            self.ls = np.array([sp.ls for sp in spans])
+        self.no_extra = not any(sp.ls or sp.ws for sp in spans)
+        if self.no_extra:
+            self.extra = np.zeros(n)
+        else:
+            ws = np.array([sp.ws for sp in spans])
+            cps = np.fromiter(map(ord, chars), np.int64, n)
+            ls = np.array([sp.ls for sp in spans])[owner]
+            if cps.max() >= _CURSIVE[0][0]:
+                cursive = np.zeros(n, bool)
+                for lo, hi in _CURSIVE:
+                    cursive |= (cps >= lo) & (cps <= hi)
+                ls = np.where(cursive, 0.0, ls)
+            self.extra = ls + np.where((cps == 0x20) | (cps == 0xA0), ws[owner], 0.0)
+        if len(spans) == 1:
+            self.descends = np.ones((1, 1), bool)
+            return
+        index = {id(sp): k for k, sp in enumerate(spans)}
+        self.descends = np.zeros((len(spans), len(spans)), bool)
+        for j, sp in enumerate(spans):
+            while sp is not None:
+                self.descends[index[id(sp)], j] = True
+                sp = sp.parent
+
+
+def _text_length_spacing(spans, sm, own_idx, char_l, char_r):
     """Extra spacing after each character of a chunk that stretches the
     elements with ``textLength`` to that length (``lengthAdjust`` spacing),
-    or None when no element asks for it."""
+    or None when no element asks for it.
+
+    ``sm`` is the element's :class:`_SpanMetrics`, ``own_idx`` ((m,) int64)
+    the span of each character of the chunk, ``char_l``/``char_r`` ((m,)
+    float64) their horizontal extents."""
+    if len(own_idx) < 2 or all(sp.tl is None for sp in spans):
+        return None
+    if sm.single:
+        natural = float(char_r.max() - char_l.min())
+        return np.full(len(own_idx), (spans[0].tl - natural) / (len(own_idx) - 1))
     adj = None
-    present = set()
-    for i in set(int(i) for i in own_idx):      # the owners and their ancestors
-        sp = spans[i]
-        while sp is not None:
-            present.add(sp)
-            sp = sp.parent
-    for si, sp in enumerate(spans):
-        tl = sp.tl if sp in present else None
+    # the owners and their ancestors
+    present = np.flatnonzero(sm.descends[:, own_idx].any(axis=1)).tolist()
+    for si in present:
+        tl = spans[si].tl
         if tl is None:
             continue
-        mask = _descends(spans, own_idx, si)
-        idx = np.flatnonzero(mask)
+        idx = np.flatnonzero(sm.descends[si][own_idx])
         if len(idx) < 2:
             continue
         natural = float(char_r[idx].max() - char_l[idx].min())
@@ -731,151 +817,283 @@ _CURSIVE = ((0x0600, 0x08FF), (0xFB50, 0xFDFF), (0xFE70, 0xFEFF), (0x0700, 0x074
             (0x07C0, 0x07FF), (0x1800, 0x18AF))
 
 
-def _cursive(ch):
-    o = ord(ch)
-    return any(lo <= o <= hi for lo, hi in _CURSIVE)
+class _Shaped:
+    """The glyphs of one chunk as shaped, before spacing and positions.
 
-
-def _layout_chunk(db, chars, owner, spans, c0, c1, dx, dy, angle, adjust=None):
-    """Shape characters ``c0:c1`` of one chunk at origin (0, 0).
-
-    Returns ``(glyphs, char_left, char_right, width, total_dy)``: glyphs as
-    ``(span, font, gid, x, y)`` tuples in chunk coordinates (x right, y
-    down, baseline at y = 0 plus dy/baseline shifts), the horizontal extent
-    of every character and the chunk advance.
+    Attributes
+    ----------
+    fonts : list of Font
+        Fonts used; ``fi`` indexes it.
+    fi, gid, j : (G,) int64 ndarray
+        Font, glyph id and (chunk-local) character of every glyph, in
+        visual order run by run.
+    xa, xo, yo : (G,) float64 ndarray
+        Advance and offsets in font units (y up).
+    upem : float or (G,) float64 ndarray
+        Units per em of each glyph's font (one number for one font).
+    rtl : list of (g0, g1, k)
+        Glyph ranges of right-to-left runs and the run's first character.
+    gaps : list of (k, e, g)
+        Character ranges without any font, and the number of glyphs before.
+    simple : bool
+        One glyph per character in logical order (``j == arange(m)``).
     """
+    __slots__ = ('fonts', 'fi', 'gid', 'j', 'xa', 'xo', 'yo', 'upem', 'rtl', 'gaps', 'simple')
+
+
+def _shape_chunk(db, chars, owner, spans, c0, c1):
+    """Shape characters ``c0:c1`` of one chunk (``chars``: sequence of all
+    characters, ``owner``: list of their span indices); returns a
+    :class:`_Shaped` (shared: not to be modified)."""
     m = c1 - c0
     # font of each character (fallback for missing glyphs)
-    fonts = []
-    for i in range(c0, c1):
-        sp = spans[owner[i]]
-        f = sp.font
-        ch = chars[i]
+    fonts = [spans[o].font for o in owner[c0:c1]]
+    text = chars[c0:c1]
+    for k, ch in enumerate(text):
+        f = fonts[k]
         if f is not None and not f.has_char(ch) and ch not in ' \u00a0' and ord(ch) >= 32:
-            f = _fallback_font(db, ch, f)
-        fonts.append(f)
-    # runs of equal (span, font)
-    extra = np.zeros(m)       # spacing added after each character
-    for k in range(m):
-        sp = spans[owner[c0 + k]]
-        ch = chars[c0 + k]
-        # letter-spacing would break the joins of cursive scripts (Arabic,
-        # Syriac, N'Ko...): it is not applied to them (as resvg does)
-        ls = 0.0 if _cursive(ch) else sp.ls
-        extra[k] = ls + (sp.ws if ch in ' \u00a0' else 0.0)
-    if adjust is not None:
-        extra = extra + adjust
-    dxcum = np.cumsum(dx[c0:c1])
-    ex_before = np.r_[0.0, np.cumsum(extra)[:-1]]     # spacing of earlier characters
-    before = dxcum + ex_before
-    cdy = np.cumsum(dy[c0:c1])
-    char_l = np.full(m, np.nan)
-    char_r = np.full(m, np.nan)
-    glyphs = []
-    pen = 0.0
+            fonts[k] = _fallback_font(db, ch, f)
+    sh = _Shaped()
+    sh.fonts, sh.rtl, sh.gaps = [], [], []
+    parts = []          # (font index, Shaped arrays, characters)
+    index = {}
+    ng = 0
     k = 0
     # runs of one font are shaped together even across spans (kerning and
-    # ligatures across tspan boundaries, as usvg does); each glyph is then
+    # ligatures across tspan boundaries, as usvg does); each glyph is later
     # scaled by the font size of its own span
-    yshift = {}
     while k < m:
         f = fonts[k]
         e = k + 1
-        if chars[c0 + k] == ' ':
+        if text[k] == ' ':
             # leading/trailing spaces are shaped on their own: between
             # right-to-left text and the end of an LTR chunk they stay at
             # the visual end (a minimal stand-in for the bidi algorithm)
-            while e < m and fonts[e] is f and chars[c0 + e] == ' ':
+            while e < m and fonts[e] is f and text[e] == ' ':
                 e += 1
         else:
             while e < m and fonts[e] is f:
                 e += 1
-            while e - 1 > k and chars[c0 + e - 1] == ' ':
+            while e - 1 > k and text[e - 1] == ' ':
                 e -= 1
         if f is None:
-            char_l[k:e] = char_r[k:e] = pen + before[k:e]
+            sh.gaps.append((k, e, ng))
             k = e
             continue
-        sp0 = spans[owner[c0 + k]]
-        kern = (sp0.inh.get('font-kerning') or 'auto').strip()
-        no_kern = kern == 'none' or (sp0.inh.get('kerning') or 'auto').strip() == '0'
-        shaped = f.shape(''.join(chars[c0 + k:c0 + e]), {'kern': False} if no_kern else None)
+        r = f.shape_arrays(''.join(text[k:e]), spans[owner[c0 + k]].features)
+        cl = r.cluster
+        fidx = index.get(id(f))
+        if fidx is None:
+            fidx = index[id(f)] = len(sh.fonts)
+            sh.fonts.append(f)
+        parts.append((fidx, r, cl + k if k else cl))
         # a right-to-left run comes back in visual order: its spacing adds
         # up from the left, i.e. from its logically last character
-        rtl = len(shaped) > 1 and shaped[0][1] > shaped[-1][1]
-        vis, prev = ex_before[k], None
-        for gid, cl, xa, ya, xo, yo in shaped:
-            j = k + min(int(cl), e - k - 1)
-            if rtl:
-                if prev is not None and j != prev:
-                    vis += extra[prev]
-                before_j = dxcum[j] + vis
-                prev = j
-            else:
-                before_j = before[j]
-            sp_i = int(owner[c0 + j])
-            sp = spans[sp_i]
-            s = sp.fs / f.upem
-            ys = yshift.get(sp_i)
-            if ys is None:
-                ys = yshift[sp_i] = sp.shift + _dominant(sp)
-            lo = pen + before_j
-            hi = lo + xa * s
-            if s > 0:
-                glyphs.append((sp_i, f, gid, lo + xo * s, cdy[j] + ys - yo * s, s,
-                               angle[c0 + j], xa * s))
-            char_l[j] = lo if math.isnan(char_l[j]) else min(char_l[j], lo)
-            char_r[j] = hi if math.isnan(char_r[j]) else max(char_r[j], hi)
-            pen += xa * s
+        if len(cl) > 1 and cl[0] > cl[-1]:
+            sh.rtl.append((ng, ng + len(cl), k))
+        ng += len(cl)
         k = e
-    # characters merged into a cluster take their neighbours' extent
-    for arr in (char_l, char_r):
-        good = ~np.isnan(arr)
-        if not good.any():
-            arr[:] = 0.0
-        elif not good.all():
-            idx = np.where(good, np.arange(m), -1)
-            np.maximum.accumulate(idx, out=idx)
-            idx[idx < 0] = np.flatnonzero(good)[0]
-            arr[:] = arr[idx]
+    sh.simple = not sh.gaps and all(r.ordered for _, r, _ in parts)
+    if len(parts) == 1:
+        fidx, r, sh.j = parts[0]
+        sh.gid, pos = r.gid, r.pos
+        sh.fi = np.zeros(ng, np.int64)
+    elif parts:
+        sh.gid = np.concatenate([r.gid for _, r, _ in parts])
+        pos = np.concatenate([r.pos for _, r, _ in parts])
+        sh.j = np.concatenate([j for _, _, j in parts])
+        sh.fi = np.repeat([fi for fi, _, _ in parts], [len(r.gid) for _, r, _ in parts])
+    else:
+        sh.gid = sh.j = sh.fi = np.zeros(0, np.int64)
+        pos = np.zeros((0, 4))
+    sh.xa, sh.xo, sh.yo = pos[:, 0], pos[:, 2], pos[:, 3]
+    if len(sh.fonts) == 1:
+        sh.upem = sh.fonts[0].upem
+    else:
+        sh.upem = np.array([f.upem for f in sh.fonts])[sh.fi] if sh.fonts else np.zeros(0)
+    return sh
+
+
+def _shape_single(b, db, text, span):
+    """The :class:`_Shaped` glyphs of a chunk ``text`` owned by the one
+    span ``span``, remembered for the whole build (on ``b``; at most
+    ``_SHAPED_LIMIT`` chunks): documents repeat short strings."""
+    memo = getattr(b, '_text_shaped', None)
+    if memo is None:
+        memo = b._text_shaped = {}
+    key = (text, span.font, span.features is None)
+    return cached(memo, key, lambda: _shape_chunk(db, text, [0] * len(text), [span], 0, len(text)),
+                  _SHAPED_LIMIT)
+
+
+class _Glyphs:
+    """Positioned glyphs of a chunk, as (G,) arrays: ``span`` (int64, span
+    index), ``font`` (int64, index into ``fonts``), ``gid`` (int64), ``x``,
+    ``y`` (float64, glyph origin), ``s`` (float64, font units to user
+    units; a float when all glyphs share it), ``rot`` (float64, degrees
+    about the origin; None: all zero), ``adv`` (float64, advance)."""
+    FIELDS = ('span', 'font', 'gid', 'x', 'y', 's', 'rot', 'adv')
+    __slots__ = FIELDS + ('fonts',)
+
+    def __init__(self, fonts, span, font, gid, x, y, s, rot, adv):
+        self.fonts = fonts
+        self.span, self.font, self.gid, self.x, self.y = span, font, gid, x, y
+        self.s, self.rot, self.adv = s, rot, adv
+
+    def __len__(self):
+        return len(self.gid)
+
+    def take(self, idx):
+        """The glyphs selected by a slice, mask or index array."""
+        return _Glyphs(self.fonts, *(a if a is None or np.ndim(a) == 0 else a[idx] for a in
+                                     (getattr(self, name) for name in self.FIELDS)))
+
+    def replace(self, **arrays):
+        """A copy with some arrays replaced."""
+        return _Glyphs(self.fonts, *(arrays.get(name, getattr(self, name))
+                                     for name in self.FIELDS))
+
+
+def _place_chunk(sh, sm, c0, c1, dx, dy, angle, adjust=None):
+    """Position the shaped glyphs ``sh`` of characters ``c0:c1`` of one
+    chunk at origin (0, 0).
+
+    ``sm`` is the element's :class:`_SpanMetrics`; ``dx``/``dy``/``angle``
+    ((n,) float64, or None for all zero) the per-character shifts along
+    and across the line and rotations of the element; ``adjust``
+    ((c1 - c0,) float64 or None) extra spacing after each character
+    (``textLength``).
+
+    Returns ``(glyphs, char_left, char_right, width, total_dy, cum_dy)``:
+    :class:`_Glyphs` in chunk coordinates (x right, y down, baseline at
+    y = 0 plus dy/baseline shifts; only glyphs of a positive size), the
+    horizontal extent of every character ((m,) float64), the chunk
+    advance, and the accumulated dy ((m,) float64).
+    """
+    m = c1 - c0
+    no_extra = sm.no_extra and adjust is None
+    extra = sm.extra[c0:c1]          # spacing added after each character
+    if adjust is not None:
+        extra = extra + adjust
+    ex_before = np.zeros(m)          # spacing of earlier characters
+    if not no_extra:
+        np.cumsum(extra[:-1], out=ex_before[1:])
+    dxcum = None if dx is None else np.cumsum(dx[c0:c1])
+    before = ex_before if dx is None else dxcum + ex_before
+    cdy = np.zeros(m) if dy is None else np.cumsum(dy[c0:c1])
+    own = sm.owner[c0:c1]
+    j = sh.j
+    simple = sh.simple and not sh.rtl
+    if simple:                       # glyph g is character g
+        g_span, before_j, cdy_j = own, before, cdy
+        angle_j = None if angle is None else angle[c0:c1]
+    else:
+        g_span, before_j, cdy_j = own[j], before[j], cdy[j]
+        angle_j = None if angle is None else angle[c0:c1][j]
+    if sm.single:
+        s, ys = sm.fs / sh.upem, sm.ys
+    else:
+        s, ys = sm.fs[g_span] / sh.upem, sm.ys[g_span]
+    adv = sh.xa * s
+    pen = np.zeros(len(j) + 1)       # pen before each glyph, then the end
+    np.cumsum(adv, out=pen[1:])
+    for g0, g1, k in sh.rtl:
+        # right to left: the spacing of a character is added when the
+        # (visually preceding) glyphs of the next character begin
+        jj = j[g0:g1]
+        inc = np.zeros(g1 - g0)
+        inc[0] = ex_before[k]
+        inc[1:] = np.where(jj[1:] != jj[:-1], extra[jj[:-1]], 0.0)
+        vis = np.cumsum(inc)
+        before_j[g0:g1] = vis if dx is None else dxcum[jj] + vis
+    # (with no spacing and no dx, before_j is zero: adding it changes nothing)
+    lo = pen[:-1] if no_extra and dx is None and simple else pen[:-1] + before_j
+    if dy is not None:
+        ys = cdy_j + ys
+    glyphs = _Glyphs(sh.fonts, g_span, sh.fi, sh.gid, lo + sh.xo * s, ys - sh.yo * s,
+                     s, angle_j, adv)
+    keep = s > 0
+    if np.ndim(keep) == 0:
+        if not keep:
+            glyphs = glyphs.take(slice(0, 0))
+    elif not keep.all():
+        glyphs = glyphs.take(keep)
+    if simple:
+        char_l, char_r = lo, lo + adv
+    else:
+        char_l = np.full(m, np.nan)
+        char_r = np.full(m, np.nan)
+        np.fmin.at(char_l, j, lo)
+        np.fmax.at(char_r, j, lo + adv)
+        for k, e, g in sh.gaps:
+            char_l[k:e] = char_r[k:e] = pen[g] + before[k:e]
+        # characters merged into a cluster take their neighbours' extent
+        for arr in (char_l, char_r):
+            good = ~np.isnan(arr)
+            if not good.any():
+                arr[:] = 0.0
+            elif not good.all():
+                idx = np.where(good, np.arange(m), -1)
+                np.maximum.accumulate(idx, out=idx)
+                idx[idx < 0] = np.flatnonzero(good)[0]
+                arr[:] = arr[idx]
     # the letter spacing after the last character is not part of the advance
-    last = spans[owner[c1 - 1]]
-    width = pen + float(extra.sum()) - last.ls + float(dx[c0:c1].sum())
+    ls_last = sm.ls if sm.single else float(sm.ls[own[-1]])
+    width = float(pen[-1]) + (0.0 if no_extra else float(extra.sum())) - ls_last
+    if dx is not None:
+        width += float(dx[c0:c1].sum())
     return glyphs, char_l, char_r, width, float(cdy[-1]), cdy
 
 
 def _glyph_path(glyphs, ox, oy):
     """One Path of glyph outlines: each outline (font units, y up) scaled by
-    its ``s`` with y flipped and moved to its pen position."""
-    verbs, pts, scales, offs, rots = [], [], [], [], []
-    for _, f, gid, gx, gy, s, rot, _adv in glyphs:
-        p = f.outline(gid)
-        if not len(p.verbs):
-            continue
-        verbs.append(p.verbs)
-        pts.append(p.points)
-        npt = len(p.points)
-        scales.append(np.full(npt, s))
-        offs.append(np.repeat([[gx + ox, gy + oy]], npt, axis=0))
-        rots.append(np.full(npt, rot))
-    if not verbs:
+    its ``s`` with y flipped, turned by its ``rot`` and moved to its origin
+    plus ``(ox, oy)``.  The outlines come from each font's packed outline
+    arrays (:meth:`raster.fonts.Font.outlines`) in one gather per run of
+    glyphs of one font.  The points are not checked for being finite."""
+    fi = glyphs.font
+    if not len(fi):
         return Path.empty()
-    P = np.concatenate(pts)
-    S = np.concatenate(scales)
-    O = np.concatenate(offs)
-    X = P[:, 0] * S
-    Y = -P[:, 1] * S
-    R = np.radians(np.concatenate(rots))
-    if R.any():
+    if len(glyphs.fonts) == 1:
+        verbs, P, npts = glyphs.fonts[0].outlines(glyphs.gid)
+    else:
+        cuts = (np.flatnonzero(fi[1:] != fi[:-1]) + 1).tolist()
+        parts = [glyphs.fonts[int(fi[a])].outlines(glyphs.gid[a:z])
+                 for a, z in zip([0] + cuts, cuts + [len(fi)])]
+        verbs = np.concatenate([v for v, _, _ in parts])
+        P = np.concatenate([p for _, p, _ in parts])
+        npts = np.concatenate([c for _, _, c in parts])
+    if not len(verbs):
+        return Path.empty()
+    s = glyphs.s
+    if glyphs.rot is not None and glyphs.rot.any():
+        S = s if isinstance(s, float) else np.repeat(s, npts)
+        X = P[:, 0] * S
+        Y = -P[:, 1] * S
+        R = np.radians(np.repeat(glyphs.rot, npts))
         c, s_ = np.cos(R), np.sin(R)
-        X, Y = c * X - s_ * Y, s_ * X + c * Y
-    out = np.empty_like(P)
-    out[:, 0] = X + O[:, 0]
-    out[:, 1] = Y + O[:, 1]
-    return Path.from_arrays(np.concatenate(verbs), out)
+        out = np.empty_like(P)
+        out[:, 0] = c * X - s_ * Y
+        out[:, 1] = s_ * X + c * Y
+    elif isinstance(s, float):
+        out = P * np.array([s, -s])     # (x s, -y s): y flipped
+    else:
+        S = np.repeat(s, npts)
+        out = np.empty_like(P)
+        out[:, 0] = P[:, 0] * S
+        out[:, 1] = P[:, 1] * -S
+    off = np.empty((len(npts), 2))
+    off[:, 0] = glyphs.x + ox
+    off[:, 1] = glyphs.y + oy
+    out += np.repeat(off, npts, axis=0)
+    # every outline is a valid path starting with a move: so is the whole
+    return Path(verbs, out, _checked=True)
 
 
 def _paint_node(b, sp, path, st):
+    global _paint_order
+    if _paint_order is None:
+        from .build import _paint_order
     inh = sp.inh
     vis = inh.get('visibility', 'visible')
     if vis in ('hidden', 'collapse'):
@@ -883,7 +1101,6 @@ def _paint_node(b, sp, path, st):
     fill, stroke = b.fill_and_stroke(inh, sp.ctx, path, st)
     if fill is None and stroke is None:
         return None
-    from .build import _paint_order
     return PathNode(id='', path=path, fill=fill, stroke=stroke,
                     paint_order=_paint_order(inh.get('paint-order')))
 
