@@ -59,7 +59,7 @@ import math
 
 import numpy as np
 
-from .. import limits
+from .. import _malloc, limits
 from ..canvas import Canvas
 from ..errors import CanvasError, RasterError, SVGError
 from ..flatten import flatten, flatten_joined
@@ -191,6 +191,7 @@ def render_tree(tree, width=None, height=None, zoom=None, background=None, node_
     """
     if not isinstance(tree, Tree):
         raise SVGError('render_tree needs a raster.svg.tree.Tree, got %s' % type(tree).__name__)
+    _malloc.tune()
     tol = _positive('tolerance', tolerance)
     w, h, sx, sy = output_size(tree.width, tree.height, width, height, zoom)
     canvas = Canvas(w, h, background)
