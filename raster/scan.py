@@ -1139,11 +1139,12 @@ def coverage_batch(edges, counts, width, height, fill_rules='nonzero', antialias
     full = np.flatnonzero(counts > 0)
     f = first[full]
     pick = np.searchsorted(full, idx)
-    xs, ys = e[:, :, 0], e[:, :, 1]
-    x0 = np.floor(np.minimum.reduceat(xs.min(1), f)[pick])
-    x1 = np.ceil(np.maximum.reduceat(xs.max(1), f)[pick])
-    y0 = np.floor(np.minimum.reduceat(ys.min(1), f)[pick])
-    y1 = np.ceil(np.maximum.reduceat(ys.max(1), f)[pick])
+    xa, ya, xb, yb = e[:, 0, 0], e[:, 0, 1], e[:, 1, 0], e[:, 1, 1]
+    # (two-way np.minimum: a reduction along a length-2 axis is slow)
+    x0 = np.floor(np.minimum.reduceat(np.minimum(xa, xb), f)[pick])
+    x1 = np.ceil(np.maximum.reduceat(np.maximum(xa, xb), f)[pick])
+    y0 = np.floor(np.minimum.reduceat(np.minimum(ya, yb), f)[pick])
+    y1 = np.ceil(np.maximum.reduceat(np.maximum(ya, yb), f)[pick])
     cx0, cy0, cx1, cy1 = 0.0, 0.0, float(width), float(height)
     if clip is not None:
         c = [float(v) for v in clip]
@@ -1153,7 +1154,7 @@ def coverage_batch(edges, counts, width, height, fill_rules='nonzero', antialias
     Y0 = np.maximum(y0, cy0).astype(np.int64)
     X1 = np.minimum(x1, cx1).astype(np.int64)
     Y1 = np.minimum(y1, cy1).astype(np.int64)
-    est = 3 * counts[idx] + np.add.reduceat(np.abs(e[:, 1] - e[:, 0]).sum(1), f)[pick]
+    est = 3 * counts[idx] + np.add.reduceat(np.abs(xb - xa) + np.abs(yb - ya), f)[pick]
     live = (X1 > X0) & (Y1 > Y0)
     alone = live & (est > _CHUNK_PIECES)
     for j in np.flatnonzero(alone).tolist():

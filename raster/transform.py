@@ -23,7 +23,7 @@ from .errors import TransformError
 class Affine:
     """Immutable 2x3 affine transform ``(a, b, c, d, e, f)`` as in SVG."""
 
-    __slots__ = ('a', 'b', 'c', 'd', 'e', 'f')
+    __slots__ = ('a', 'b', 'c', 'd', 'e', 'f', '_hash')
 
     def __init__(self, a=1.0, b=0.0, c=0.0, d=1.0, e=0.0, f=0.0):
         vals = tuple(float(v) for v in (a, b, c, d, e, f))
@@ -35,6 +35,7 @@ class Affine:
         object.__setattr__(self, 'd', vals[3])
         object.__setattr__(self, 'e', vals[4])
         object.__setattr__(self, 'f', vals[5])
+        object.__setattr__(self, '_hash', hash(vals))
 
     def __setattr__(self, name, value):
         raise AttributeError('Affine is immutable')
@@ -165,10 +166,17 @@ class Affine:
         return iter((self.a, self.b, self.c, self.d, self.e, self.f))
 
     def __eq__(self, other):
-        return isinstance(other, Affine) and tuple(self) == tuple(other)
+        if self is other:
+            return True
+        return (isinstance(other, Affine) and self._hash == other._hash
+                and self.a == other.a and self.b == other.b and self.c == other.c
+                and self.d == other.d and self.e == other.e and self.f == other.f)
 
     def __hash__(self):
-        return hash(tuple(self))
+        return self._hash
+
+    def __reduce__(self):
+        return (Affine, tuple(self))
 
     def __repr__(self):
         return 'Affine(%g, %g, %g, %g, %g, %g)' % tuple(self)

@@ -201,3 +201,12 @@ def test_max_scale_has_no_cancellation_near_equal_singular_values():
     t = Affine(0.0, 12.0, 12.0, 1.192092896e-07, 0, 0)
     v = np.array([[math.sqrt(0.5), math.sqrt(0.5)]])
     assert np.hypot(*t.apply_vector(v).T)[0] <= t.max_scale() * (1 + 1e-12)
+
+
+def test_affine_pickles_and_hashes_by_value():
+    import pickle
+    t = Affine(1.5, 0.25, -2.0, 3.0, 4.0, -5.0)
+    u = pickle.loads(pickle.dumps(t))
+    assert u == t and hash(u) == hash(t) and u is not t
+    assert Affine(0.0, 0, 0, 1, 0, 0) == Affine(-0.0, 0, 0, 1, 0, 0)
+    assert len({t, u, Affine(1.5, 0.25, -2.0, 3.0, 4.0, -5.5)}) == 2
