@@ -11,8 +11,9 @@ repository root, ``--corpus`` to change) is rendered by every renderer, at its
 natural size and at 2000 px width, to PNG bytes, so every renderer pays its
 own PNG encode:
 
-* raster: ``raster.render(path, width)`` then Pillow's PNG encode at
-  ``raster.canvas.DEFAULT_COMPRESS_LEVEL`` (what ``Canvas.save_png`` does);
+* raster: ``raster.render(path, width)`` then raster's PNG encode
+  (:func:`raster.png.encode_png` at ``raster.canvas.DEFAULT_COMPRESS_LEVEL``,
+  what ``Canvas.save_png`` and the ``rasterize`` command do);
   the time without the encode is reported as well ("render-only");
 * resvg-py: ``resvg_py.svg_to_bytes`` with the options of
   ``shared/conformance/score.py``'s ResvgRenderer (dpi=96, font_size=12,
@@ -91,8 +92,8 @@ def _make_renderer(name):
 
         import raster
         import raster.svg  # noqa: F401
-        from PIL import Image
         from raster.canvas import DEFAULT_COMPRESS_LEVEL
+        from raster.png import encode_png
 
         def fn(path, width):
             c0 = time.process_time()
@@ -101,8 +102,7 @@ def _make_renderer(name):
             t1 = time.perf_counter()
             c1 = time.process_time()
             buf = io.BytesIO()
-            Image.fromarray(arr, 'RGBA').save(buf, format='PNG',
-                                              compress_level=DEFAULT_COMPRESS_LEVEL)
+            buf.write(encode_png(arr, DEFAULT_COMPRESS_LEVEL))
             return buf.getvalue(), (t1 - t0, c1 - c0)
         return fn
     if name == 'resvg':

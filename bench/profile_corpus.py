@@ -13,7 +13,7 @@ FILES are corpus file names or substrings (default: every file of
    (``raster.svg.document.load_document``), tree build incl. CSS cascade
    (``raster.svg.build.build_tree``), rendering (``render_tree``: path
    parse, flatten, stroke, scan conversion, compositing), conversion to
-   8-bit (``Canvas.to_rgba8``) and PNG encode (Pillow, at
+   8-bit (``Canvas.to_rgba8``) and PNG encode (:func:`raster.png.encode_png`, at
    ``raster.canvas.DEFAULT_COMPRESS_LEVEL``).
 2. *cProfile attribution*: one run under cProfile.  Every function's own
    time is assigned to a stage by the module it lives in (``raster/scan.py``
@@ -21,7 +21,7 @@ FILES are corpus file names or substrings (default: every file of
    builtins, ``re``) is handed up to its callers in proportion to the time
    each caller spent in it, until it reaches raster code, so
    ``np.add.at`` called from ``scan.py`` counts as scan conversion.  lxml
-   counts as XML parse and Pillow as PNG encode.  The profiler inflates
+   counts as XML parse and zlib (called from raster/png.py) as PNG encode.  The profiler inflates
    Python-heavy stages relative to numpy-heavy ones; read the percentages
    with the stage wall times of (1) beside them.
 
@@ -62,6 +62,7 @@ STAGES = [
     ('stroke.py', 'stroke'),
     ('scan.py', 'scan conversion'),
     ('canvas.py', 'compositing'),
+    ('png.py', 'PNG encode'),
     ('svg/text', 'text'),
     ('svg/filters', 'filters'),
     ('svg/paint', 'paint servers'),
@@ -83,8 +84,6 @@ def stage_of(func):
         return 'raster other (%s)' % rel
     if '/lxml/' in fn or 'lxml.etree' in func[2]:
         return 'XML parse'
-    if '/PIL/' in fn or 'ImagingEncoder' in func[2] or "'encode' of" in func[2]:
-        return 'PNG encode'
     if fn.endswith('bench/profile_corpus.py'):
         return 'driver'
     return None
@@ -122,9 +121,9 @@ def attribute(stats):
 def stage_times(path, width, repeat, cpu=False):
     """Median wall (or, with ``cpu``, process CPU) time of each public stage,
     without profiler."""
-    from PIL import Image
 
     from raster.canvas import DEFAULT_COMPRESS_LEVEL
+    from raster.png import encode_png
     from raster.svg import _source_and_base, load_svg  # noqa: F401
     from raster.svg.build import build_tree
     from raster.svg.document import load_document
@@ -142,7 +141,7 @@ def stage_times(path, width, repeat, cpu=False):
         arr = canvas.to_rgba8()
         t4 = clock()
         buf = io.BytesIO()
-        Image.fromarray(arr, 'RGBA').save(buf, format='PNG', compress_level=DEFAULT_COMPRESS_LEVEL)
+        buf.write(encode_png(arr, DEFAULT_COMPRESS_LEVEL))
         t5 = clock()
         for k, v in (('XML parse', t1 - t0), ('tree build + CSS', t2 - t1),
                      ('render_tree', t3 - t2), ('to_rgba8', t4 - t3), ('PNG encode', t5 - t4)):
@@ -151,13 +150,13 @@ def stage_times(path, width, repeat, cpu=False):
 
 
 def render_png(path, width):
-    from PIL import Image
 
     import raster
     from raster.canvas import DEFAULT_COMPRESS_LEVEL
+    from raster.png import encode_png
     arr = raster.render(path, width)
     buf = io.BytesIO()
-    Image.fromarray(arr, 'RGBA').save(buf, format='PNG', compress_level=DEFAULT_COMPRESS_LEVEL)
+    buf.write(encode_png(arr, DEFAULT_COMPRESS_LEVEL))
     return buf.getvalue()
 
 

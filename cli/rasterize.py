@@ -11,7 +11,6 @@ leaves no file at the output path.
 """
 
 import argparse
-import io
 import sys
 
 from ._common import Parser, UsageError, base_dir_of, read_source, run, write_output
@@ -53,9 +52,8 @@ def _body(args):
                     resources_dir=args.allow_dir, base_dir=base_dir_of(args.input))
     canvas = render_tree(tree, width=args.width, height=args.height, zoom=args.zoom,
                          background=bg, node_id=args.id, tolerance=args.tolerance)
-    buf = io.BytesIO()
-    canvas.to_image().save(buf, format='PNG')
-    write_output(args.output, buf.getvalue())
+    from raster.png import encode_png
+    write_output(args.output, encode_png(canvas.to_rgba8()))
     return 0
 
 

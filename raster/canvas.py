@@ -13,25 +13,19 @@ in are *straight* (not premultiplied) RGB or RGBA in [0, 1].
 [[[0, 0, 255, 255], [128, 128, 255, 255]]]
 """
 
+import math
+
 import numpy as np
 
 from .errors import CanvasError
+from .png import DEFAULT_LEVEL, write_png
 from .scan import check_canvas_size
 
 __all__ = ['Canvas', 'DEFAULT_COMPRESS_LEVEL']
 
-#: zlib level used by :meth:`Canvas.save_png`.  Levels up to 3 are written
-#: with zlib's run-length strategy (``Z_RLE``), higher ones with the default
-#: strategy.  Measured with Pillow on 2000x2000 renders (shared 2-core
-#: machine, CPU time): tiger.svg level 3 default strategy 102 ms / 833 kB,
-#: level 6 167 ms / 812 kB, Z_RLE 92 ms / 838 kB; a smooth gradient picture
-#: level 3 62 ms / 88 kB, level 6 100 ms / 28 kB, Z_RLE 62 ms / 26 kB.
-#: Level 0 (no compression) still costs 50-70 ms: Pillow's per-row PNG
-#: filtering dominates the encoding time.
-DEFAULT_COMPRESS_LEVEL = 3
-
-# zlib's Z_RLE strategy (Pillow's compress_type).
-_Z_RLE = 3
+#: zlib level used by :meth:`Canvas.save_png` (:func:`raster.png.encode_png`:
+#: levels 1-3 use zlib's run-length strategy, 4-9 the default strategy).
+DEFAULT_COMPRESS_LEVEL = DEFAULT_LEVEL
 
 # Masks of at most _SPARSE_MAX pixels with at most 1 / _SPARSE_SHARE of them
 # covered are filled pixel by pixel (gather, update, scatter).
@@ -57,7 +51,7 @@ def _color(color, opacity):
         op = float(opacity)
     except (TypeError, ValueError):
         raise CanvasError('opacity must be a number, got %r' % (opacity,)) from None
-    if not all(np.isfinite(c)) or not np.isfinite(op):
+    if not (all(math.isfinite(v) for v in c) and math.isfinite(op)):
         raise CanvasError('colour and opacity must be finite')
     c = [min(max(v, 0.0), 1.0) for v in c]
     a = (c[3] if len(c) == 4 else 1.0) * min(max(op, 0.0), 1.0)
@@ -354,22 +348,13 @@ class Canvas:
         return Image.fromarray(self.to_rgba8(), 'RGBA')
 
     def save_png(self, path_or_file, compress_level=DEFAULT_COMPRESS_LEVEL):
-        """Write the canvas as an RGBA PNG (straight alpha) with Pillow.
+        """Write the canvas as an RGBA PNG (straight alpha) with
+        :func:`raster.png.write_png`.
 
         Parameters
         ----------
         path_or_file : str, os.PathLike or binary file object
         compress_level : int
-            zlib level 0-9 (see :data:`DEFAULT_COMPRESS_LEVEL`); levels 1-3
-            use zlib's run-length strategy (fast, and as small as level 3
-            or smaller on rendered pictures), 4-9 the default strategy.
+            zlib level 0-9 (see :data:`DEFAULT_COMPRESS_LEVEL`).
         """
-        try:
-            level = int(compress_level)
-        except (TypeError, ValueError):
-            raise CanvasError('compress_level must be an integer 0-9') from None
-        if not 0 <= level <= 9:
-            raise CanvasError('compress_level must be 0-9, got %d' % level)
-        strategy = _Z_RLE if 1 <= level <= 3 else -1
-        self.to_image().save(path_or_file, format='PNG', compress_level=level,
-                             compress_type=strategy)
+        write_png(path_or_file, self.to_rgba8(), compress_level)
