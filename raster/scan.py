@@ -1128,32 +1128,16 @@ def coverage_batch(edges, counts, width, height, fill_rules='nonzero', antialias
         return out
     first = np.cumsum(counts) - counts
     rules = ['evenodd' if v else 'nonzero' for v in eo.tolist()]
-    # aliased shapes: one call each (rare)
-    for i in np.flatnonzero(~aa & (counts > 0)).tolist():
-        out[i] = coverage(e[first[i]:first[i] + counts[i]], width, height, rules[i], False, clip)
+    if (~aa & (counts > 0)).any():
+        _aliased_batch(e, counts, first, ~aa & (counts > 0), eo, width, height, clip, out)
     idx = np.flatnonzero(aa & (counts > 0))
     if len(idx) == 0:
         return out
-    # per-shape reductions over the shapes with edges (contiguous runs),
-    # then those of the antialiased ones
+    X0, Y0, X1, Y1 = _shape_boxes(e, counts, first, idx, width, height, clip, True)
     full = np.flatnonzero(counts > 0)
     f = first[full]
     pick = np.searchsorted(full, idx)
     xa, ya, xb, yb = e[:, 0, 0], e[:, 0, 1], e[:, 1, 0], e[:, 1, 1]
-    # (two-way np.minimum: a reduction along a length-2 axis is slow)
-    x0 = np.floor(np.minimum.reduceat(np.minimum(xa, xb), f)[pick])
-    x1 = np.ceil(np.maximum.reduceat(np.maximum(xa, xb), f)[pick])
-    y0 = np.floor(np.minimum.reduceat(np.minimum(ya, yb), f)[pick])
-    y1 = np.ceil(np.maximum.reduceat(np.maximum(ya, yb), f)[pick])
-    cx0, cy0, cx1, cy1 = 0.0, 0.0, float(width), float(height)
-    if clip is not None:
-        c = [float(v) for v in clip]
-        cx0, cy0 = max(cx0, math.floor(c[0])), max(cy0, math.floor(c[1]))
-        cx1, cy1 = min(cx1, math.ceil(c[2])), min(cy1, math.ceil(c[3]))
-    X0 = np.maximum(x0, cx0).astype(np.int64)
-    Y0 = np.maximum(y0, cy0).astype(np.int64)
-    X1 = np.minimum(x1, cx1).astype(np.int64)
-    Y1 = np.minimum(y1, cy1).astype(np.int64)
     est = 3 * counts[idx] + np.add.reduceat(np.abs(xb - xa) + np.abs(yb - ya), f)[pick]
     live = (X1 > X0) & (Y1 > Y0)
     alone = live & (est > _CHUNK_PIECES)
@@ -1187,6 +1171,106 @@ def coverage_batch(edges, counts, width, height, fill_rules='nonzero', antialias
                     ex[idx[s]], idx[s], out)
         lo = hi
     return out
+
+
+def _shape_boxes(e, counts, first, idx, width, height, clip, antialias):
+    """Integer pixel boxes (X0, Y0, X1, Y1), int64 arrays, of the shapes
+    ``idx`` (with edges; boxes as :func:`_box` makes them)."""
+    full = np.flatnonzero(counts > 0)
+    f = first[full]
+    pick = np.searchsorted(full, idx)
+    xa, ya, xb, yb = e[:, 0, 0], e[:, 0, 1], e[:, 1, 0], e[:, 1, 1]
+    # (two-way np.minimum: a reduction along a length-2 axis is slow)
+    lo_x = np.minimum.reduceat(np.minimum(xa, xb), f)[pick]
+    hi_x = np.maximum.reduceat(np.maximum(xa, xb), f)[pick]
+    lo_y = np.minimum.reduceat(np.minimum(ya, yb), f)[pick]
+    hi_y = np.maximum.reduceat(np.maximum(ya, yb), f)[pick]
+    if antialias:
+        x0, x1, y0, y1 = np.floor(lo_x), np.ceil(hi_x), np.floor(lo_y), np.ceil(hi_y)
+    else:       # pixels whose centre may be inside
+        x0, x1 = np.floor(lo_x + 0.5), np.ceil(hi_x - 0.5)
+        y0, y1 = np.floor(lo_y + 0.5), np.ceil(hi_y - 0.5)
+    cx0, cy0, cx1, cy1 = 0.0, 0.0, float(width), float(height)
+    if clip is not None:
+        c = [float(v) for v in clip]
+        cx0, cy0 = max(cx0, math.floor(c[0])), max(cy0, math.floor(c[1]))
+        cx1, cy1 = min(cx1, math.ceil(c[2])), min(cy1, math.ceil(c[3]))
+    return (np.maximum(x0, cx0).astype(np.int64), np.maximum(y0, cy0).astype(np.int64),
+            np.minimum(x1, cx1).astype(np.int64), np.minimum(y1, cy1).astype(np.int64))
+
+
+def _aliased_batch(e, counts, first, sel, eo, width, height, clip, out):
+    """Aliased masks (as :func:`_centre_coverage`) of the shapes ``sel``
+    (bool per shape) into ``out``: the crossings of all shapes' scanlines
+    are summed into one flat array of the shapes' boxes (one extra column
+    each), and the windings are running sums along its rows."""
+    idx = np.flatnonzero(sel)
+    X0, Y0, X1, Y1 = _shape_boxes(e, counts, first, idx, width, height, clip, False)
+    live = (X1 > X0) & (Y1 > Y0)
+    idx, X0, Y0, sw, sh = idx[live], X0[live], Y0[live], (X1 - X0)[live], (Y1 - Y0)[live]
+    if len(idx) == 0:
+        return
+    size = sh * (sw + 1)
+    csize = np.cumsum(size)
+    lo = 0
+    while lo < len(idx):
+        base = csize[lo - 1] if lo else 0
+        hi = int(np.searchsorted(csize, base + _BATCH_CELLS, side='right'))
+        hi = min(max(hi, lo + 1), len(idx))
+        _aliased_run(e, counts, first, idx[lo:hi], X0[lo:hi], Y0[lo:hi], sw[lo:hi], sh[lo:hi],
+                     eo, out)
+        lo = hi
+
+
+def _aliased_run(e, counts, first, idx, X0, Y0, sw, sh, eo, out):
+    ne = counts[idx]
+    mark = np.zeros(len(counts), bool)
+    mark[idx] = True                     # idx increasing: edges stay in shape order
+    take = np.repeat(mark, counts)
+    sid = np.repeat(np.arange(len(idx)), ne)
+    loc = e[take]
+    xa = loc[:, 0, 0] - X0[sid]
+    ya = loc[:, 0, 1] - Y0[sid]
+    xb = loc[:, 1, 0] - X0[sid]
+    yb = loc[:, 1, 1] - Y0[sid]
+    h_e = sh[sid].astype(np.float64)
+    i_lo = np.clip(np.ceil(np.minimum(ya, yb) - 0.5), 0, h_e)
+    i_hi = np.clip(np.ceil(np.maximum(ya, yb) - 0.5), 0, h_e)
+    n = (i_hi - i_lo).astype(np.int64)
+    total = int(n.sum())
+    if total == 0:
+        return
+    if total > limits.MAX_FLATTEN_POINTS:
+        raise LimitError('too many scanline crossings (%d)' % total)
+    owner = np.repeat(np.arange(len(xa)), n)
+    m = np.arange(total) - np.repeat(np.cumsum(n) - n, n)
+    i = i_lo[owner].astype(np.int64) + m
+    a_y, a_x = ya[owner], xa[owner]
+    dyo = yb[owner] - a_y
+    xc = a_x + (i + 0.5 - a_y) * ((xb[owner] - a_x) / dyo)
+    so = sid[owner]
+    wrow = sw[so] + 1
+    # the crossing changes the winding of centres j + 0.5 > xc
+    j = np.floor(np.clip(xc - 0.5, -1.0, (sw[so] - 1).astype(np.float64))).astype(np.int64) + 1
+    size = sh * (sw + 1)
+    off = np.cumsum(size) - size
+    cell = off[so] + i * wrow + j
+    acc = np.bincount(cell, weights=np.where(dyo > 0, 1.0, -1.0), minlength=int(size.sum()))
+    # running sums along each row: a global running sum minus its value
+    # before the row's first cell
+    cs = np.cumsum(acc)
+    row_len = np.repeat(sw + 1, sh)
+    row_start = np.cumsum(row_len) - row_len
+    before = np.where(row_start > 0, cs[np.maximum(row_start - 1, 0)], 0.0)
+    wind = np.rint(cs - np.repeat(before, row_len)).astype(np.int64)
+    shape_eo = np.repeat(eo[idx], size)
+    val = np.where(shape_eo, (wind & 1) != 0, wind != 0).astype(np.float32)
+    offl, swl, shl = off.tolist(), sw.tolist(), sh.tolist()
+    for s_, i_ in enumerate(idx.tolist()):
+        w, h = swl[s_], shl[s_]
+        data = val[offl[s_]:offl[s_] + h * (w + 1)].reshape(h, w + 1)[:, :w]
+        if data.any():
+            out[i_] = Mask(np.ascontiguousarray(data), int(X0[s_]), int(Y0[s_]))
 
 
 def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out):

@@ -211,3 +211,14 @@ def test_batch_count_errors():
         coverage_batch(sq, [4, -1], 10, 10)
     with pytest.raises(_PathError):
         coverage_batch(sq, [3], 10, 10, exact=[True, False])
+
+
+@pytest.mark.parametrize('seed', range(3))
+def test_aliased_shapes_in_one_batch_equal_one_by_one(seed):
+    rng = np.random.default_rng(300 + seed)
+    shapes = random_shapes(rng, 40, 70)
+    rules = [('evenodd' if b else 'nonzero') for b in rng.random(len(shapes)) < 0.5]
+    clip = (3.5, 2, 60, 66.5) if seed == 2 else None
+    got = coverage_many(shapes, 70, 68, rules, False, clip=clip)
+    for e, r, g in zip(shapes, rules, got):
+        assert same(g, coverage(e, 70, 68, r, False, clip=clip))

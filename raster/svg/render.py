@@ -907,36 +907,62 @@ def _clip_rect(g, t):
     if (cp is None or cp.clip_path is not None or g.mask is not None or g.filters
             or g.opacity < 1.0 or g.blend_mode != 'normal' or g.isolate):
         return None
+    rect = _RECT_CLIPS.get(id(cp), _UNSEEN)
+    if rect is _UNSEEN or rect[0] is not cp:
+        rect = (cp, _clip_rectangle(cp))
+        _RECT_CLIPS[id(cp)] = rect
+        if len(_RECT_CLIPS) > 4096:
+            _RECT_CLIPS.clear()
+    r = rect[1]
+    if r is None:
+        return None
+    m = t @ g.transform @ cp.transform @ cp.root.transform
+    if m.b != 0.0 or m.c != 0.0:
+        return None
+    x0, y0, x1, y1 = r
+    xa, xb = m.a * x0 + m.e, m.a * x1 + m.e
+    ya, yb = m.d * y0 + m.f, m.d * y1 + m.f
+    box = (min(xa, xb), min(ya, yb), max(xa, xb), max(ya, yb))
+    if not all(math.isfinite(v) for v in box):
+        return None
+    return box
+
+
+_UNSEEN = object()
+# id(ClipPath) -> (ClipPath, (x0, y0, x1, y1) in the root's units or None)
+_RECT_CLIPS = {}
+
+
+def _clip_rectangle(cp):
+    """(x0, y0, x1, y1) when clip path ``cp`` is one antialiased polygon
+    ``M L L L Z`` (or with a fifth point back at the start) whose sides
+    are axis-aligned, in its root group's coordinates; else None."""
     root = cp.root
-    if (not isinstance(root, Group) or len(root.children) != 1 or root.needs_layer):
+    if not isinstance(root, Group) or len(root.children) != 1 or root.needs_layer:
         return None
     n = root.children[0]
     if not isinstance(n, PathNode) or n.path is None or not n.antialias:
         return None
     p = n.path
-    if len(p.points) not in (4, 5) or len(p.verbs) != len(p.points) + 1:
+    v = p.verbs.tolist()
+    q = p.points.tolist()
+    if len(q) not in (4, 5) or len(v) != len(q) + 1:
         return None
-    m = t @ g.transform @ cp.transform @ root.transform
-    if m.b != 0.0 or m.c != 0.0:
+    if v[0] != MOVE or v[-1] != CLOSE or any(x != LINE for x in v[1:-1]):
         return None
-    v = p.verbs
-    if v[0] != MOVE or v[-1] != CLOSE or not np.all(v[1:-1] == LINE):     # M L.. Z
-        return None
-    q = p.points
-    if len(q) == 5 and not np.array_equal(q[4], q[0]):
-        return None
-    q = q[:4]
-    d = np.diff(np.vstack([q, q[:1]]), axis=0)
+    if len(q) == 5:
+        if q[4] != q[0]:
+            return None
+        q = q[:4]
+    xs = [x for x, _ in q]
+    ys = [y for _, y in q]
     # consecutive corners differ in exactly one coordinate, alternately
-    if not (np.all((d[:, 0] == 0) ^ (d[:, 1] == 0))
-            and np.all((d[:-1, 0] == 0) != (d[1:, 0] == 0))):
+    steps = [(xs[(k + 1) % 4] != xs[k], ys[(k + 1) % 4] != ys[k]) for k in range(4)]
+    if not all(dx != dy for dx, dy in steps):
         return None
-    xs = m.a * q[:, 0] + m.e
-    ys = m.d * q[:, 1] + m.f
-    box = (float(xs.min()), float(ys.min()), float(xs.max()), float(ys.max()))
-    if not all(math.isfinite(v) for v in box):
+    if not all(steps[k][0] != steps[k + 1][0] for k in range(3)):
         return None
-    return box
+    return (min(xs), min(ys), max(xs), max(ys))
 
 
 class _ClipRect:
