@@ -85,9 +85,19 @@ class Affine:
             return NotImplemented
         a, b, c, d, e, f = self.a, self.b, self.c, self.d, self.e, self.f
         A, B, C, D, E, F = other.a, other.b, other.c, other.d, other.e, other.f
-        return Affine(a * A + c * B, b * A + d * B,
-                      a * C + c * D, b * C + d * D,
-                      a * E + c * F + e, b * E + d * F + f)
+        if other.is_identity:
+            return self
+        if self.is_identity:
+            return other
+        vals = (a * A + c * B, b * A + d * B, a * C + c * D, b * C + d * D,
+                a * E + c * F + e, b * E + d * F + f)
+        if not all(map(math.isfinite, vals)):
+            raise TransformError('transform has non-finite values: %r' % (vals,))
+        t = object.__new__(Affine)
+        for name, v in zip(Affine.__slots__, vals):
+            object.__setattr__(t, name, v)
+        object.__setattr__(t, '_hash', hash(vals))
+        return t
 
     def inverse(self):
         det = self.determinant
