@@ -327,19 +327,36 @@ class Canvas:
         buf = np.empty((min(step, H), W, 4), np.float32)
         zero, one = np.float32(0.0), np.float32(1.0)
         s255, half = np.float32(255.0), np.float32(0.5)
+        flat = data.reshape(-1, 4)
+        part = None
+        if not premultiplied:
+            a = flat[:, 3]
+            part = np.flatnonzero((a > zero) & (a < one))
+            if 4 * len(part) > len(a):
+                part = None         # mostly translucent: demultiply every block
         for i0 in range(0, H, step):
             b = buf[:min(step, H - i0)]
             np.clip(data[i0:i0 + step], zero, one, out=b)
-            if not premultiplied:
+            if not premultiplied and part is None:
                 _demultiply(b.reshape(-1, 4))
             b *= s255
-            if not premultiplied:
+            if not premultiplied and part is None:
                 np.minimum(b, s255, out=b)   # demultiplied colour may exceed 1
             b += half
             o = out[i0:i0 + len(b)]
             np.copyto(o, b, casting='unsafe')   # truncation = floor (b >= 0.5)
             if not premultiplied:
                 o[b[..., 3] < one, :3] = 0
+        if part is not None and len(part):
+            # the few translucent pixels: demultiplied from the float data
+            sub = np.clip(flat[part], zero, one)
+            _demultiply(sub)
+            sub *= s255
+            np.minimum(sub, s255, out=sub)
+            sub += half
+            px = sub.astype(np.uint8)
+            px[sub[:, 3] < one, :3] = 0
+            out.reshape(-1, 4)[part] = px
         return out
 
     def to_image(self):
