@@ -12,12 +12,16 @@ transform's scale); quadratic segments (``Q``/``T``) stay quadratic.
 How it works: one regular-expression pass splits the data into numbers and
 everything else (arc flags are marked first, since ``"00"`` in flag position
 is two flags); the rest becomes one byte per token (``'#'`` a number), and a
-second regular expression checks the whole command grammar at once.  Only
-invalid data takes the slower path that locates the first error.  The
-geometry (relative coordinates, ``S``/``T`` reflections, arcs) is then
-computed by numpy over all commands at once for long paths, or by a plain
-loop over commands for short ones, where numpy's per-call overhead would
-dominate (:data:`SMALL_PATH_TOKENS`); the two agree (tested).
+second regular expression checks the whole command grammar at once.  Long
+data without exponents is tokenized by numpy instead, numbers and values
+included, with the same result bit for bit (:func:`_lex_fast`): a map's
+megabytes of path data would spend most of their time in the regular
+expression.  Only invalid data takes the slower path that locates the
+first error.  The geometry (relative coordinates, ``S``/``T`` reflections,
+arcs) is then computed by numpy over all commands at once for long paths,
+or by a plain loop over commands for short ones, where numpy's per-call
+overhead would dominate (:data:`SMALL_PATH_TOKENS`); the two agree
+(tested).
 
 Basic shapes (:func:`rect_path`, :func:`circle_path`, :func:`ellipse_path`,
 :func:`line_path`, :func:`polyline_path`) follow the equivalent paths of
@@ -93,6 +97,8 @@ _VALID = re.compile(rb'(?:[Mm](?:##)+' + _P + _CMD + rb'*' + _P + rb')?')
 _CMD_SPAN = re.compile(rb'([MmZzLlHhVvCcSsQqTtAa])([^MmZzLlHhVvCcSsQqTtAa]*)')
 _COMMA_AFTER_BAD = re.compile(rb'(?<![#\x00\x01]),')
 _COMMA_BEFORE_BAD = re.compile(rb',(?![#\x00\x01])')
+# token string -> 'N' (number or flag), ',' (comma) or 'x' (anything else)
+_COMMA_VIEW = bytes(78 if i in (0, 1, 35) else 44 if i == 44 else 120 for i in range(256))
 
 # per command letter (byte value): tokens per group, and the offsets of the
 # end point's x and y among them
@@ -175,8 +181,13 @@ def parse_path(d, tolerance=0.01, strict=True):
     tol = _check_tolerance(tolerance)
     if not isinstance(d, str):
         raise PathError('path data must be a string, got %s' % type(d).__name__)
-    d2, nums, kb = _lex(d)
-    vals = list(map(float, nums))
+    d2 = _mark(d)
+    fast = _lex_fast(d2) if len(d2) >= FAST_LEX_CHARS else None
+    if fast is not None:
+        kb, vals = fast[0], fast[1].tolist()
+    else:
+        nums, kb = _split(d2)
+        vals = list(map(float, nums))
     kinds = kb.replace(b',', b'') if b',' in kb else kb
     if _is_valid(kb, kinds, vals):
         return _build(kinds, vals, tol)
@@ -234,8 +245,7 @@ def parse_paths(ds, tolerance=0.01):
     batch = [i for i, d in enumerate(ds) if '|' not in d]    # '|' separates pieces
     pieces = []
     if len(batch) > 1:
-        d2, nums, kb = _lex('|'.join([ds[i] for i in batch]))
-        vals = np.array(nums, dtype=np.float64) if nums else np.zeros(0)
+        kb, vals = _lex_values('|'.join([ds[i] for i in batch]))
         if np.isfinite(vals).all():
             pieces = kb.split(b'|')
     if len(pieces) == len(batch) and pieces:
@@ -246,14 +256,12 @@ def parse_paths(ds, tolerance=0.01):
         whole = b''.join(kinds)
         if (all(k[:1] in (b'M', b'm') for k in kinds)
                 and not (len(whole) != len(kb) - len(pieces) + 1
-                         and (_COMMA_AFTER_BAD.search(kb.replace(b'|', b' '))
-                              or _COMMA_BEFORE_BAD.search(kb.replace(b'|', b' '))))
+                         and _bad_commas(kb))
                 and _VALID.fullmatch(whole) is not None):
             good = list(range(len(batch)))
         else:
             good = [j for j, (p, k) in enumerate(zip(pieces, kinds))
-                    if k and (len(k) == len(p) or not (_COMMA_AFTER_BAD.search(p)
-                                                       or _COMMA_BEFORE_BAD.search(p)))
+                    if k and (len(k) == len(p) or not _bad_commas(p))
                     and _VALID.fullmatch(k) is not None]
             if len(good) > 1:
                 off = np.cumsum(counts) - counts
@@ -275,11 +283,21 @@ def parse_paths(ds, tolerance=0.01):
     return out
 
 
+def _bad_commas(kb):
+    """Whether token string ``kb`` has a comma that does not sit between
+    two numbers or flags (what ``_COMMA_AFTER_BAD`` and
+    ``_COMMA_BEFORE_BAD`` find, by byte translation and substring
+    search instead of a regular expression scan)."""
+    t = kb.translate(_COMMA_VIEW)
+    return (t[:1] == b',' or t[-1:] == b',' or b',,' in t or b'x,' in t
+            or b',x' in t)
+
+
 def _is_valid(kb, kinds, vals):
     """Fast check of the whole token string (commas, command grammar,
     finite numbers); the slow search for the first error runs only when this
     fails."""
-    if len(kinds) != len(kb) and (_COMMA_AFTER_BAD.search(kb) or _COMMA_BEFORE_BAD.search(kb)):
+    if len(kinds) != len(kb) and _bad_commas(kb):
         return False
     if _VALID.fullmatch(kinds) is None:
         return False
@@ -291,15 +309,166 @@ def _lex(d):
     replaced by the marker characters ``\\x00``/``\\x01`` (same length),
     ``numbers`` the number strings in order and ``kinds`` one byte per token
     (whitespace dropped)."""
+    d = _mark(d)
+    nums, kinds = _split(d)
+    return d, nums, kinds
+
+
+def _split(d):
+    """Regular-expression lexer of marked data: ``(numbers, kinds)``."""
+    parts = _NUM_SPLIT.split(d)
+    kinds = '#'.join(parts[0::2]).encode('ascii', 'replace').translate(None, _WS.encode())
+    return parts[1::2], kinds
+
+
+def _lex_values(d):
+    """``(kinds, values)``: :func:`_lex`'s kinds and its numbers as a
+    float64 array (by :func:`_lex_fast` when it applies).
+
+    Long data is lexed in chunks of about :data:`_LEX_CHUNK` characters cut
+    at ``'|'`` (a one-character junk token, so no token spans a cut): the
+    memory stays bounded and the result is the same."""
+    d = _mark(d)
+    kinds, vals = [], []
+    pos, n = 0, len(d)
+    while pos <= n:
+        end = d.find('|', pos + _LEX_CHUNK) if n - pos > _LEX_CHUNK else -1
+        end = n if end < 0 else end
+        part = d[pos:end] if pos or end < n else d
+        r = _lex_fast(part) if len(part) >= FAST_LEX_CHARS else None
+        if r is None:
+            nums, k = _split(part)
+            r = k, (np.array(nums, dtype=np.float64) if nums else np.zeros(0))
+        kinds.append(r[0])
+        vals.append(r[1])
+        pos = end + 1
+    if len(kinds) == 1:
+        return kinds[0], vals[0]
+    return b'|'.join(kinds), np.concatenate(vals)
+
+
+#: Characters per chunk of :func:`_lex_values` (a chunk ends at the next
+#: ``'|'`` after that many).
+_LEX_CHUNK = 1 << 18
+
+
+def _mark(d):
+    """``d`` with the token marker characters made junk and arc flags
+    marked (see :func:`_lex`)."""
     if '#' in d or '\x00' in d or '\x01' in d:
         # characters used internally as token markers are junk in the input
         d = d.replace('#', '\ufffd').replace('\x00', '\ufffd').replace('\x01', '\ufffd')
     if 'A' in d or 'a' in d:
         d = _ARC_CMD_RE.sub(_mark_flags, d)
-    parts = _NUM_SPLIT.split(d)
-    shape = '#'.join(parts[0::2])
-    kinds = shape.encode('ascii', 'replace').translate(None, _WS.encode())
-    return d, parts[1::2], kinds
+    return d
+
+
+#: Data at least this long is tokenized by the vectorized lexer
+#: (:func:`_lex_fast`) when it applies; shorter data by the regular
+#: expression, whose cost grows with the length but starts lower.
+FAST_LEX_CHARS = 2048
+
+# character classes of the vectorized lexer
+_CL_DIGIT, _CL_DOT, _CL_SIGN, _CL_OTHER, _CL_SPACE = range(5)
+_CLASS = np.full(256, _CL_OTHER, np.uint8)
+_CLASS[np.frombuffer(b'0123456789', np.uint8)] = _CL_DIGIT
+_CLASS[ord('.')] = _CL_DOT
+_CLASS[np.frombuffer(b'+-', np.uint8)] = _CL_SIGN
+_CLASS[np.frombuffer(_WS.encode(), np.uint8)] = _CL_SPACE
+_POW10 = 10.0 ** np.arange(23)        # exact in float64
+
+
+def _lex_fast(d):
+    """Vectorized :func:`_lex` for data without exponents.
+
+    Returns ``(kinds, values)`` equal to ``_lex(d)``'s kinds and
+    ``np.array(numbers, float)``, or ``None`` when ``d`` needs the regular
+    expression lexer: non-ASCII text, an ``e``/``E``, a ``.`` not followed
+    by a digit or a sign followed by neither digit nor ``.`` (junk,
+    ambiguous or unusual number spellings).
+
+    Without those, SVG's greedy number grammar ``sign? (digits ('.'
+    digits?)? | '.' digits)`` splits a run of digits, dots and signs at
+    every sign, at a run's start, and at every dot after the first of a
+    number ("1.5.5" is "1.5", ".5").  Values are ``mantissa / 10**k`` with
+    an integer mantissa of at most 15 digits and ``k <= 22``: both exact
+    in float64, so the division is correctly rounded and equals
+    ``float(text)`` bit for bit; longer numbers go through ``float``.
+
+    Parameters
+    ----------
+    d : str
+        Path data already passed through :func:`_mark`.
+
+    Returns
+    -------
+    kinds : bytes
+        One byte per token, ``'#'`` for a number (whitespace dropped).
+    values : (N,) float64 ndarray
+        The N numbers in order.
+    """
+    if not d or not d.isascii():
+        return None
+    b = d.encode('ascii')
+    if b'e' in b or b'E' in b:
+        return None
+    # (np.take and index arrays: several times faster than fancy or
+    # boolean indexing on megabytes of data)
+    a = np.frombuffer(b, np.uint8)
+    n = len(a)
+    c = np.take(_CLASS, a)
+    isD = c == _CL_DIGIT
+    isP = c == _CL_DOT
+    isS = c == _CL_SIGN
+    if (isP[-1] or isS[-1] or (isP[:-1] & ~isD[1:]).any()
+            or (isS[:-1] & (c[1:] > _CL_DOT)).any()):
+        return None
+    # number starts: every sign; a digit after other text or space; a dot
+    # after other text or space, or after digits that follow another dot
+    st = isS.copy()
+    st[0] |= isD[0]
+    st[1:] |= isD[1:] & (c[:-1] >= _CL_OTHER)
+    q = np.flatnonzero(~isD)                    # non-digits in order
+    cq = np.take(c, q)
+    pq = np.flatnonzero(cq == _CL_DOT)          # the dots among them
+    qp = np.take(q, pq)                         # positions of the dots
+    if len(pq):
+        prev_q = np.take(q, pq - 1)             # the non-digit before each dot
+        prev_c = np.take(cq, pq - 1)
+        if pq[0] == 0:                          # none: as if other text at -1
+            prev_q[0], prev_c[0] = -1, _CL_OTHER
+        np.put(st, qp, np.where(qp - prev_q > 1, prev_c == _CL_DOT, prev_c >= _CL_OTHER))
+    # a number ends where the next starts or at the first character that is
+    # neither digit nor dot
+    dp = isD | isP
+    endm = np.empty(n + 1, bool)
+    endm[0] = False
+    endm[1:n] = (dp[:-1] | isS[:-1]) & (st[1:] | ~dp[1:])
+    endm[n] = dp[-1]
+    sp = np.flatnonzero(st)
+    end = np.flatnonzero(endm)
+    keep = np.flatnonzero(st | (c == _CL_OTHER))
+    kinds = np.take(np.where(st, np.uint8(35), a), keep).tobytes()
+    if not len(sp):
+        return kinds, np.zeros(0)
+    sign = np.take(isS, sp)
+    hasp = np.zeros(len(sp), bool)
+    nfrac = np.zeros(len(sp), np.int64)
+    if len(pq):
+        tp = np.take(np.cumsum(st, dtype=np.int32), qp) - 1
+        hasp[tp] = True
+        nfrac[tp] = end[tp] - qp - 1
+    ndig = end - sp - sign - hasp
+    last = np.cumsum(ndig)                      # digits up to each number's end
+    digits = np.take(a, np.flatnonzero(isD)) - 48
+    # power of ten of every digit within its number's integer mantissa
+    k = np.repeat(last, ndig) - np.arange(1, len(digits) + 1)
+    mant = np.add.reduceat(digits * np.take(_POW10, k, mode='clip'), last - ndig)
+    vals = mant / np.take(_POW10, nfrac, mode='clip')
+    np.negative(vals, out=vals, where=np.take(a, sp) == 45)
+    for t in np.flatnonzero((ndig > 15) | (nfrac > 22)).tolist():
+        vals[t] = float(b[sp[t]:end[t]])
+    return kinds, vals
 
 
 def _mark_flags(m):
@@ -603,10 +772,12 @@ def _build_vector(kinds, vals, tol, starts=None):
     prevkind[0] = 0
     prevkind[1:] = kind[:-1]
 
-    def arg2(k, idx):                              # absolute point from 2 args
-        p = np.stack([tokval[tok[idx] + k], tokval[tok[idx] + k + 1]], 1)
-        r = rel[idx]
-        p[r] += prev[idx][r]
+    def args(idx, npts):
+        """(len(idx), npts, 2) absolute points from the first 2 * npts
+        arguments of commands ``idx`` (relative ones offset by the
+        current point; absolute ones untouched, so -0.0 stays)."""
+        p = tokval[tok[idx][:, None] + np.arange(2 * npts)].reshape(-1, npts, 2)
+        np.add(p, prev[idx][:, None, :], out=p, where=rel[idx][:, None, None])
         return p
 
     # Z after Z closes nothing; drawing after Z starts with a move
@@ -653,12 +824,13 @@ def _build_vector(kinds, vals, tol, starts=None):
         k = at[ci]
         iverb[k] = CUBIC
         inpt[k] = 3
-        ipts[k, 0] = arg2(0, ci)
-        ipts[k, 1] = c2[ci] = arg2(2, ci)
+        a = args(ci, 2)
+        ipts[k, :2] = a
+        c2[ci] = a[:, 1]
         ipts[k, 2] = pos[ci]
         si = np.flatnonzero(isS)
         if len(si):
-            c2[si] = arg2(0, si)
+            c2[si] = args(si, 1)[:, 0]
             pk = prevkind[si]
             smooth = (pk == _C) | (pk == _S)
             c1 = prev[si].copy()
@@ -674,7 +846,7 @@ def _build_vector(kinds, vals, tol, starts=None):
     if isQ.any() or isT.any():
         qc = np.zeros_like(pos)                     # quadratic control points
         qi = np.flatnonzero(isQ)
-        qc[qi] = arg2(0, qi)
+        qc[qi] = args(qi, 1)[:, 0]
         ti = np.flatnonzero(isT)
         if len(ti):
             qc[ti] = _t_controls(ti, prev, prevkind, qc)

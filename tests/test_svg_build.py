@@ -789,3 +789,74 @@ def test_group_opacity_over_one_paint_is_folded_into_the_paint():
     img = raster.render(svg.encode(), premultiplied=True)
     # red at 25 % over transparent, in the circle's interior
     assert abs(int(img[10, 10, 0]) - 64) <= 1 and abs(int(img[10, 10, 3]) - 64) <= 1
+
+
+# -- what the builder shares and memoizes ---------------------------------------
+
+def test_folded_opacity_stays_with_its_own_shape():
+    # siblings with one computed style share the style work, not the paints:
+    # folding one shape's opacity into its fill leaves the others alone
+    t = tree_of('<g fill="red" stroke="none">'
+                '<rect width="1" height="1"/><rect width="1" height="1" opacity="0.5"/>'
+                '<rect width="1" height="1"/><path d="M0 0h1v1z" opacity="0.25"/>'
+                '<path d="M0 0h1v1z"/></g>')
+    fills = [n.fill for n, _ in paths(t)]
+    assert [f.opacity for f in fills] == [1.0, 0.5, 1.0, 0.25, 1.0]
+    assert len({id(f) for f in fills}) == 5
+    assert all(f.paint.color == (1.0, 0.0, 0.0, 1.0) for f in fills)
+
+
+def test_identical_shapes_share_one_path_and_lengths_follow_their_viewport():
+    t = tree_of('<rect x="10%" width="5" height="5"/><rect x="10%" width="5" height="5"/>'
+                '<svg x="0" width="100" height="100"><rect x="10%" width="5" height="5"/></svg>'
+                '<circle r="3"/><circle r="3" transform="scale(100)"/>')
+    (a, _), (b, _), (c, _), (d, _), (e, _) = paths(t)
+    assert a.path is b.path and box(a) == (20.0, 0.0, 25.0, 5.0)
+    assert box(c) == (10.0, 0.0, 15.0, 5.0)          # 10 % of the nested viewport
+    # the scaled circle is flattened finer: not the same path
+    assert d.path is not e.path and len(e.path.verbs) > len(d.path.verbs)
+
+
+def test_identity_transforms_add_no_group():
+    t = tree_of('<rect transform="translate(0,0)" width="1" height="1"/>'
+                '<rect transform="scale(1) rotate(0)" width="1" height="1"/>'
+                '<rect transform="translate(-0)" width="1" height="1" id="r"/>')
+    assert all(isinstance(n, PathNode) for n in t.root.children)
+    assert len(t.root.children) == 3 and t.ids['r'] is t.root.children[2]
+
+
+def test_garbage_collector_is_paused_only_during_the_build():
+    import gc
+    assert gc.isenabled() and gc.get_freeze_count() == 0
+    t = tree_of('<rect width="1" height="1"/>')
+    assert gc.isenabled() and gc.get_freeze_count() == 0
+    # the new tree went to the oldest generation, unscanned
+    assert any(o is t.root for o in gc.get_objects(generation=2))
+    with pytest.raises(SVGError):
+        tree_of('', 'width="0" height="10"')
+    assert gc.isenabled()
+    gc.disable()
+    try:
+        tree_of('<rect width="1" height="1"/>')
+        assert not gc.isenabled()         # left as the caller had it
+    finally:
+        gc.enable()
+    # objects the application froze stay frozen
+    keep = [[i] for i in range(10)]
+    gc.freeze()
+    try:
+        n = gc.get_freeze_count()
+        tree_of('<rect width="1" height="1"/>')
+        assert gc.get_freeze_count() == n and gc.isenabled()
+    finally:
+        gc.unfreeze()
+    del keep
+
+
+def test_conditional_attributes_found_in_one_pass():
+    t = tree_of('<g systemLanguage="fr"><rect width="1" height="1"/></g>'
+                '<rect id="x" requiredExtensions="" width="2" height="2"/>'
+                '<rect id="en" systemLanguage="en-US" width="3" height="3"/>'
+                '<switch><rect systemLanguage="de" width="4" height="4"/>'
+                '<rect id="y" width="5" height="5"/></switch>')
+    assert [box(n) for n, _ in paths(t)] == [(0.0, 0.0, 3.0, 3.0), (0.0, 0.0, 5.0, 5.0)]

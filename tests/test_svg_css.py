@@ -406,3 +406,18 @@ def test_whole_resvg_suite_cascades():
                     assert k in d, (path, k)
         n += 1
     assert n > 1000
+
+
+def test_declared_styles_reports_requested_attributes():
+    root = etree.fromstring(
+        '<svg xmlns="http://www.w3.org/2000/svg" id="s"><style>#a { fill: red }</style>'
+        '<rect id="a" fill="blue" style="stroke: green"/><g systemLanguage="en">'
+        '<circle id="b" class="c" requiredExtensions=""/></g></svg>')
+    found = {'id': [], 'systemLanguage': [], 'requiredExtensions': [], 'fill': []}
+    styles = declared_styles(root, '', found)
+    assert styles == declared_styles(root)
+    assert [e.get('id') for e in found['id']] == ['s', 'a', 'b']      # document order
+    assert [e.tag.split('}')[1] for e in found['systemLanguage']] == ['g']
+    assert [e.get('id') for e in found['requiredExtensions']] == ['b']
+    assert found['fill'] == []          # presentation attributes are styles, not reported
+    assert styles[root[1]] == {'fill': 'red', 'stroke': 'green'}

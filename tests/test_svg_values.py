@@ -385,6 +385,32 @@ def test_rotate_about_centre_fixes_centre():
     assert np.allclose(t.apply([[100.0, 50.0]]), [[100.0, 50.0]])
 
 
+@st.composite
+def translate_strings(draw):
+    """translate(...) with every kind of argument text and separator."""
+    ws = st.sampled_from(['', ' ', '\t', '\n', '\f', '\r', '  '])
+    num = st.one_of(st.floats(-1e6, 1e6, allow_nan=False).map(repr),
+                    st.sampled_from(['-0', '+1', '.5', '1.', '1e3', '1e999', '-.5e-2', '1.5.5',
+                                     '1-2', 'x', '', '1,', ',1', '1,,2', '1 2 3']))
+    sep = st.sampled_from([' ', ',', ' , ', ', ', ' ,', '', '\f', ',,'])
+    args = draw(num) + (draw(sep) + draw(num) if draw(st.booleans()) else '')
+    return draw(ws) + 'translate' + draw(ws) + '(' + draw(ws) + args + draw(ws) + ')' + draw(ws)
+
+
+@settings(max_examples=300, deadline=None)
+@given(translate_strings())
+def test_translate_fast_path_equals_the_general_parser(s):
+    fast = V._TF_TRANSLATE_RE.fullmatch(s)
+    got = V._parse_transform.__wrapped__(s, False)
+    want = V._transform_list(s, False)
+    if want is None:
+        assert got is None
+        return
+    assert got is not None and tuple(got) == tuple(want), s
+    if fast is not None:
+        assert got.is_translation
+
+
 def test_transform_origin():
     c = LengthContext(width=200, height=100)
     cases = {

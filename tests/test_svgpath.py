@@ -758,3 +758,79 @@ def test_translation_invariance(cmds, tx, ty):
     q = parse_path(_spell(moved(cmds), False))
     assert p.verbs.tolist() == q.verbs.tolist()
     assert np.allclose(p.points, q.points, rtol=0, atol=1e-9)
+
+
+# -- the vectorized lexer ----------------------------------------------------------
+
+@st.composite
+def number_runs(draw):
+    """Path-like text made of numbers in many spellings (signs, bare and
+    trailing dots, leading zeros, '1.5.5' runs, long mantissas), command
+    letters, arc flags and separators."""
+    pieces = st.one_of(
+        st.integers(-10 ** 17, 10 ** 17).map(str),
+        st.floats(-1e6, 1e6, allow_nan=False).map(lambda v: '%.*f' % (abs(hash(v)) % 9, v)),
+        st.sampled_from(['0', '-0', '+0', '00', '007', '.5', '-.5', '+.5', '1.5.5', '-1-2',
+                         '3.', '1..5', '0.' + '0' * 20 + '1', '9' * 16, '.25.125.5']),
+        st.sampled_from(list('MmLlHhVvCcSsQqTtAaZz,') + [' ', '  ', '\n', '\t', '-', '+',
+                                                         '.', 'x', '\u00e9', '#']))
+    return ''.join(draw(st.lists(pieces, max_size=40)))
+
+
+@SETTINGS
+@given(number_runs())
+def test_fast_lexer_equals_regex_lexer(d):
+    d = svgpath._mark(d)
+    fast = svgpath._lex_fast(d)
+    nums, kinds = svgpath._split(d)
+    if fast is None:            # (only for data the fast lexer leaves alone)
+        assert (not d or not d.isascii() or 'e' in d or 'E' in d
+                or any(c == '.' and not d[i + 1:i + 2].isdigit() for i, c in enumerate(d))
+                or any(c in '+-' and d[i + 1:i + 2] not in tuple('0123456789.')
+                       for i, c in enumerate(d)))
+        return
+    assert fast[0] == kinds
+    want = np.array(nums, dtype=np.float64)
+    # bit for bit, signed zeros included
+    assert fast[1].dtype == np.float64 and fast[1].tobytes() == want.tobytes()
+
+
+def test_fast_lexer_reads_long_and_tiny_numbers_exactly():
+    nums = ['123456789012345678', '0.' + '0' * 25 + '7', '-9007199254740993',
+            '0.1', '-0', '.1.2.3', '4503599627370497.5']
+    d = 'M ' + ' '.join(nums) * 200
+    k, v = svgpath._lex_fast(d)
+    assert v.tobytes() == np.array(svgpath._split(d)[0], np.float64).tobytes()
+    assert np.signbit(v[4]) and v[4] == 0
+
+
+def test_fast_lexer_is_used_for_long_data_and_agrees(monkeypatch):
+    rng = np.random.default_rng(11)
+    d = 'M0 0' + ''.join('c%s' % ','.join('%.3f' % x for x in rng.normal(0, 5, 6))
+                         for _ in range(2000))
+    assert len(d) >= svgpath.FAST_LEX_CHARS and svgpath._lex_fast(svgpath._mark(d)) is not None
+    _, nums, kb = _lex(d)
+    a = _build_loop(kb.replace(b',', b''), [float(x) for x in nums], 0.01)
+    b = parse_path(d)
+    assert a.verbs.tolist() == b.verbs.tolist()
+    assert np.allclose(a.points, b.points, rtol=1e-12, atol=1e-9)
+    # long paths with errors: the messages do not depend on the lexer
+    bad = [d + ' L1', d[:5000] + ' x ' + d[5000:], d + ' 1e999 0']
+    msgs = []
+    for b in bad:
+        with pytest.raises(PathError) as e:
+            parse_path(b)
+        msgs.append(str(e.value))
+    monkeypatch.setattr(svgpath, 'FAST_LEX_CHARS', 10 ** 9)
+    for b, m in zip(bad, msgs):
+        with pytest.raises(PathError) as e:
+            parse_path(b)
+        assert str(e.value) == m
+    assert msgs[0] == 'path data error at %d: expected number' % len(bad[0])
+
+
+@SETTINGS
+@given(st.binary(max_size=12).map(lambda b: bytes(b'#,\x00\x01M |x'[c % 8] for c in b)))
+def test_bad_commas_equals_the_regular_expressions(kb):
+    want = bool(svgpath._COMMA_AFTER_BAD.search(kb) or svgpath._COMMA_BEFORE_BAD.search(kb))
+    assert svgpath._bad_commas(kb) == want

@@ -109,3 +109,32 @@ def test_bad_input_raises_path_error():
     with pytest.raises(PathError):
         parse_paths(['M0 0'], 0.0)
     assert parse_paths([]) == []
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(data_strings(), min_size=1, max_size=8))
+def test_batch_of_long_data_equals_one_by_one(ds):
+    # enough data for the vectorized lexer (when no string needs the
+    # regular expression one): same paths either way
+    from raster import svgpath
+    k = svgpath.FAST_LEX_CHARS // max(1, sum(map(len, ds))) + 1
+    ds = (ds * k)[:200]
+    got = parse_paths(ds, 0.1)
+    for d, p in zip(ds, got):
+        assert _same(p, parse_path(d, 0.1, strict=False)), d
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.lists(data_strings(), max_size=12), st.integers(1, 60), st.integers(1, 80))
+def test_lexing_in_chunks_changes_nothing(ds, chunk, fast_from):
+    from raster import svgpath
+    d = '|'.join(ds)
+    nums, kinds = svgpath._split(svgpath._mark(d))
+    want = np.array(nums, np.float64) if nums else np.zeros(0)
+    saved = svgpath._LEX_CHUNK, svgpath.FAST_LEX_CHARS
+    try:
+        svgpath._LEX_CHUNK, svgpath.FAST_LEX_CHARS = chunk, fast_from
+        k, v = svgpath._lex_values(d)
+    finally:
+        svgpath._LEX_CHUNK, svgpath.FAST_LEX_CHARS = saved
+    assert k == kinds and v.tobytes() == want.tobytes()

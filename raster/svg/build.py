@@ -35,9 +35,13 @@ called from here.
 Speed: path data of ``path`` elements without arcs is parsed for the
 whole document in one vectorized pass (:func:`raster.svgpath.parse_paths`),
 and parsed paths are shared by every element with the same ``d`` (paths are
-immutable); transform lists, colours, paints and opacities are parsed once
-per distinct string; the CTM's scale, needed only for arc tolerances, is
-memoized per subtree.
+immutable), as are basic shapes with the same attributes; transform lists,
+colours, paints and opacities are parsed once per distinct string; computed
+styles are shared by siblings with the same declarations, and what a style
+says about painting (paints, stroke parameters, paint order) is worked out
+once per computed style; the CTM's scale and arc tolerance, needed only for
+arcs, are memoized per subtree; the cyclic garbage collector is paused
+while the tree is built.
 
 Not supported yet, each reported once per build with a
 :class:`raster.errors.RasterWarning` (through :func:`warnings.warn`) and then
@@ -54,7 +58,9 @@ other documents.
 
 import contextlib
 import dataclasses
+import gc
 import math
+import types
 import warnings
 
 from .. import limits
@@ -90,6 +96,10 @@ _NOT_RENDERED = frozenset(['defs', 'symbol', 'title', 'desc', 'metadata', 'style
                            'missing-glyph', 'cursor', 'view', 'animate', 'set',
                            'animateMotion', 'animateTransform', 'animateColor'])
 _PAINT_SERVERS = frozenset(['linearGradient', 'radialGradient', 'pattern'])
+# the attributes that define each basic shape
+_GEOMETRY_ATTRS = {'rect': ('x', 'y', 'width', 'height', 'rx', 'ry'), 'circle': ('cx', 'cy', 'r'),
+                   'ellipse': ('cx', 'cy', 'rx', 'ry'), 'line': ('x1', 'y1', 'x2', 'y2'),
+                   'polyline': ('points',), 'polygon': ('points',)}
 
 _FONT_KEYWORDS = {'xx-small': 3 / 5, 'x-small': 3 / 4, 'small': 8 / 9, 'medium': 1.0,
                   'large': 6 / 5, 'x-large': 3 / 2, 'xx-large': 2.0, 'xxx-large': 3.0}
@@ -115,12 +125,13 @@ class _Effects:
     mask: object = None
     filters: tuple = ()
     ok: bool = True
+    #: Needs a layer for something other than opacity (derived).
+    composited: bool = dataclasses.field(init=False, repr=False, compare=False)
 
-    @property
-    def composited(self):
-        """Needs a layer for something other than opacity."""
-        return (self.clip is not None or self.mask is not None or self.blend != 'normal'
-                or self.isolate or bool(self.filters))
+    def __post_init__(self):
+        object.__setattr__(self, 'composited', (
+            self.clip is not None or self.mask is not None or self.blend != 'normal'
+            or self.isolate or bool(self.filters)))
 
     @property
     def trivial(self):
@@ -134,6 +145,9 @@ class _Effects:
 
 
 _NO_EFFECTS = _Effects()
+# properties that make _Effects more than an opacity
+_EFFECT_PROPS = frozenset(['clip-path', 'mask', 'filter', 'mix-blend-mode', 'isolation'])
+_NO_OWN = types.MappingProxyType({})    # the own style of an element without declarations
 _EFFECTS_NOT_DRAWN = _Effects(ok=False)
 
 
@@ -173,11 +187,12 @@ class _State:
     """Per-subtree context: viewport size for percentages, the CTM at the
     document's natural size (for arc tolerances and overflow checks), the
     active ``use`` depth.  The CTM's scale is memoized."""
-    __slots__ = ('vw', 'vh', 'ctm', '_scale', 'use_depth', 'mode', 'context')
+    __slots__ = ('vw', 'vh', 'ctm', '_scale', '_arc_tol', 'use_depth', 'mode', 'context')
 
     def __init__(self, vw, vh, ctm, use_depth=0, mode=None, context=None):
         self.vw, self.vh, self.ctm, self.use_depth = vw, vh, ctm, use_depth
         self._scale = None
+        self._arc_tol = None    # the builder's arc tolerance at this CTM (memo)
         self.mode = mode        # None, or 'clip' inside a clipPath
         self.context = context  # (fill paint, stroke paint) for context-fill/-stroke
 
@@ -208,6 +223,7 @@ class _State:
                     self.context if context is False else context)
         if same or transform.is_translation:
             st._scale = self._scale
+            st._arc_tol = self._arc_tol
         return st
 
 
@@ -222,13 +238,15 @@ class _Builder:
         self.tolerance = float(tolerance)
         self.max_elements = int(max_elements)
         self.max_use_depth = int(max_use_depth)
-        self.styles = declared_styles(root, extra_css) if extra_css else declared_styles(root)
+        found = {'id': [], 'requiredExtensions': [], 'systemLanguage': []}
+        self.styles = declared_styles(root, extra_css, found)
         self.by_id = {}
-        for el in root.iter():
-            if isinstance(el.tag, str):
-                i = el.get('id')
-                if i is not None and i not in self.by_id:
-                    self.by_id[i] = el
+        for el in found['id']:
+            i = el.get('id')
+            if i not in self.by_id:
+                self.by_id[i] = el
+        # elements with conditional processing attributes (most have none)
+        self._conditional = set(found['requiredExtensions']) | set(found['systemLanguage'])
         self.count = 0
         self.stopped = False
         self.warned = set()
@@ -242,7 +260,13 @@ class _Builder:
         self._ctx_cache = {}
         self._path_cache = {}
         self._path_batch = None
+        self._el_paths = {}     # path element -> Path, for arc-free data (see _batch_paths)
         self._cut_masks = None
+        self._style_memo = {}
+        self._opacity_effects = {}
+        self._solid = {}
+        self._shape_cache = {}
+        self._shape_styles = {}
 
     # -- helpers ---------------------------------------------------------------
     def warn(self, kind, msg):
@@ -286,10 +310,26 @@ class _Builder:
     # -- style -------------------------------------------------------------------
     def style(self, el, pinh, pown):
         """(inherited dict, own non-inherited dict) of ``el`` given its
-        rendering parent's."""
-        decl = self.styles.get(el)
+        rendering parent's.
+
+        Both dicts may be shared with other elements (siblings with the same
+        declarations get the same pair): callers must not modify them."""
+        return self._style_of(self.styles.get(el), pinh, pown)
+
+    def _style_of(self, decl, pinh, pown):
+        """:meth:`style` of an element with declarations ``decl``."""
         if not decl:
-            return pinh, {}
+            return pinh, _NO_OWN
+        key = (id(pinh), id(pown), tuple(decl.items()))
+        hit = self._style_memo.get(key)
+        if hit is not None:
+            return hit[2], hit[3]
+        inh, own = self._style(decl, pinh, pown)
+        # the parents are kept alive with the result, so their ids stay unique
+        self._style_memo[key] = (pinh, pown, inh, own)
+        return inh, own
+
+    def _style(self, decl, pinh, pown):
         inh = None
         own = {}
         for k, v in decl.items():
@@ -337,6 +377,8 @@ class _Builder:
 
     # -- conditions ----------------------------------------------------------------
     def passes_conditions(self, el):
+        if el not in self._conditional:
+            return True
         attrib = el.attrib
         if 'requiredExtensions' in attrib:
             return False
@@ -354,7 +396,8 @@ class _Builder:
 
     # -- transforms ------------------------------------------------------------------
     def transform_of(self, el, own, ctx):
-        """The element's transform (with transform-origin); None if singular."""
+        """The element's transform (with transform-origin); None if
+        singular.  An identity is always the object ``IDENTITY``."""
         s = own.get('transform')
         if s is None:
             s = el.get('transform')
@@ -365,19 +408,25 @@ class _Builder:
             return IDENTITY
         if t.determinant == 0:
             return None
-        if not t.is_identity:
-            o = own.get('transform-origin')
-            if o is not None:
-                p = parse_transform_origin(o, ctx)
-                if p is not None and (p[0] or p[1]):
-                    t = Affine.translate(p[0], p[1]) @ t @ Affine.translate(-p[0], -p[1])
+        if t.is_identity:
+            return IDENTITY
+        o = own.get('transform-origin')
+        if o is not None:
+            p = parse_transform_origin(o, ctx)
+            if p is not None and (p[0] or p[1]):
+                t = Affine.translate(p[0], p[1]) @ t @ Affine.translate(-p[0], -p[1])
+                if t.is_identity:
+                    return IDENTITY
         return t
 
     # -- nodes -----------------------------------------------------------------------
     def children(self, el, inh, own, st, out):
+        node = self.node
         for ch in el:
-            if isinstance(ch.tag, str):
-                self.node(ch, inh, own, st, out)
+            tag = ch.tag
+            # SVG elements only (node() would skip the others)
+            if isinstance(tag, str) and tag.startswith(_P):
+                node(ch, inh, own, st, out, tag[_PLEN:])
 
     def node(self, el, pinh, pown, st, out, name=None):
         """Build ``el`` (rendered in the context of a parent with computed
@@ -397,23 +446,25 @@ class _Builder:
                 build_image(self, el, pinh, pown, st, out)
             return
         decl = self.styles.get(el)
-        if decl and decl.get('display', '').strip() == 'none':
-            return
-        if not self.passes_conditions(el):
+        if decl:
+            v = decl.get('display')
+            if v is not None and v.strip() == 'none':
+                return
+        if el in self._conditional and not self.passes_conditions(el):
             return
         if not self.tick():
             return
         mark = len(out)
         try:
-            self._element(el, name, pinh, pown, st, out)
+            self._element(el, name, decl, pinh, pown, st, out)
         except RasterError as e:
             # numbers that overflow when combined (1e308 scales, ...): the
             # element is left out, the rest of the document still renders
             del out[mark:]
             self.warn('element-error', 'element <%s> not rendered: %s' % (name, e))
 
-    def _element(self, el, name, pinh, pown, st, out):
-        inh, own = self.style(el, pinh, pown)
+    def _element(self, el, name, decl, pinh, pown, st, out):
+        inh, own = self._style_of(decl, pinh, pown)
         ctx = self.ctx(inh, st)
         t = self.transform_of(el, own, ctx)
         if t is None:
@@ -444,6 +495,17 @@ class _Builder:
         object-bounding-box clip or mask of an empty box, an invalid filter)."""
         if not own:
             return _NO_EFFECTS
+        for k in own:
+            if k in _EFFECT_PROPS:
+                break
+        else:       # at most an opacity (ignored inside a clip path)
+            o = own.get('opacity')
+            if o is None or st.mode == 'clip':
+                return _NO_EFFECTS
+            e = self._opacity_effects.get(o)
+            if e is None:
+                e = self._opacity_effects[o] = _Effects(opacity=_opacity(o))
+            return e
         mask = None
         if t is not None and not t.is_identity and ('clip-path' in own or 'mask' in own):
             st = st.sub(t)
@@ -877,10 +939,16 @@ class _Builder:
 
     # -- shapes -----------------------------------------------------------------------
     def arc_tolerance(self, st, t):
+        """Tolerance for arcs of an element with transform ``t`` in state
+        ``st`` (memoized in ``st`` for translations)."""
         if t.is_translation:
-            s = st.scale()
-        else:
-            s = (st.ctm @ t).max_scale()
+            tol = st._arc_tol
+            if tol is None:
+                tol = st._arc_tol = self._arc_tolerance(st.scale())
+            return tol
+        return self._arc_tolerance((st.ctm @ t).max_scale())
+
+    def _arc_tolerance(self, s):
         tol = self.tolerance * _ARC_SAFETY
         if s > 0 and math.isfinite(s):
             tol = tol / s
@@ -907,31 +975,52 @@ class _Builder:
         """Parse the document's arc-free path data in one vectorized pass
         (:func:`raster.svgpath.parse_paths`) into the path cache: a map
         with thousands of ``path`` elements would otherwise pay the
-        per-string overhead thousands of times."""
+        per-string overhead thousands of times.  The paths are also
+        recorded per element (``_el_paths``), so that building a path
+        element reads its data only once."""
         ds = {}
+        els = []
         for el in self.root.iter(_P + 'path'):
             d = el.get('d')
-            if d and 'a' not in d and 'A' not in d and d not in self._path_cache:
-                ds[d] = None
-                if len(ds) >= 65536:
-                    break
+            if d and 'a' not in d and 'A' not in d:
+                els.append((el, d))
+                if d not in self._path_cache:
+                    ds[d] = None
+                    if len(ds) >= 65536:
+                        break
         self._path_batch = len(ds)
-        if len(ds) < 32:
-            return
-        ds = list(ds)
-        try:
-            paths = parse_paths(ds, self.tolerance)
-        except RasterError:
-            return                  # one of them overflows: parsed one by one later
-        self._path_cache.update(zip(ds, paths))
+        if len(ds) >= 32:
+            ds = list(ds)
+            try:
+                paths = parse_paths(ds, self.tolerance)
+            except RasterError:
+                paths = None            # one of them overflows: parsed one by one later
+            if paths is not None:
+                self._path_cache.update(zip(ds, paths))
+        cache = self._path_cache
+        self._el_paths = {el: cache[d] for el, d in els if d in cache}
 
     def geometry(self, el, name, ctx, tol):
-        L = self.length
+        """The Path of a basic shape or ``path`` element (None when it has
+        no valid geometry); lengths resolve against ``ctx``, curves are
+        flattened within ``tol``.  Basic shapes are memoized on their
+        attribute strings (charts repeat the same symbol many times)."""
         if name == 'path':
             d = el.get('d')
             if not d:
                 return None
             return self.path_data(d, tol)
+        key = (name, ctx, tol) + tuple(map(el.get, _GEOMETRY_ATTRS.get(name, ('points',))))
+        cache = self._shape_cache
+        p = cache.get(key, cache)
+        if p is cache:
+            p = self._shape_geometry(el, name, ctx, tol)
+            if len(cache) < 65536:
+                cache[key] = p
+        return p
+
+    def _shape_geometry(self, el, name, ctx, tol):
+        L = self.length
         if name == 'rect':
             w = L(el, 'width', 'x', ctx, None)
             h = L(el, 'height', 'y', ctx, None)
@@ -972,7 +1061,10 @@ class _Builder:
             return None
         kind = p.kind
         if kind == 'color':
-            return SolidPaint(p.color)
+            c = self._solid.get(p.color)        # shared: paints are never modified
+            if c is None:
+                c = self._solid[p.color] = SolidPaint(p.color)
+            return c
         if kind == 'current':
             return SolidPaint(inh['_color'])
         if kind == 'url':
@@ -1210,50 +1302,110 @@ class _Builder:
         return RadialGradient(cx, cy, r, fx, fy, stops, fr=fr, units=units, transform=tf,
                               spread=spread, id=gid)
 
+    def _shape_style(self, inh, ctx):
+        """What a shape's computed style ``inh`` (lengths against ``ctx``)
+        says about its painting, worked out once per style (``inh`` dicts
+        are shared, see :meth:`style`): ``(inh, hidden, has markers, paint
+        order, antialias, static paints, ctx)``; see :meth:`_static_paints`."""
+        key = (id(inh), id(ctx))
+        r = self._shape_styles.get(key)
+        if r is None or r[0] is not inh or r[6] is not ctx:
+            vis = inh.get('visibility', 'visible')
+            sr = inh.get('shape-rendering', 'auto')
+            r = (inh, vis == 'hidden' or vis == 'collapse',
+                 inh.get('marker-start', 'none') != 'none'
+                 or inh.get('marker-mid', 'none') != 'none'
+                 or inh.get('marker-end', 'none') != 'none',
+                 _paint_order(inh.get('paint-order')),
+                 sr != 'crispEdges' and sr != 'optimizeSpeed',
+                 self._static_paints(inh, ctx), ctx)
+            if len(self._shape_styles) < 65536:
+                self._shape_styles[key] = r     # (keeps inh, ctx alive: their ids stay unique)
+        return r
+
     def shape(self, el, name, inh, own, ctx, t, st, out):
-        vis = inh.get('visibility', 'visible')
-        hidden = vis == 'hidden' or vis == 'collapse'
-        if hidden and st.mode == 'clip':
+        _, hidden, has_markers, order, antialias, paints, _ = self._shape_style(inh, ctx)
+        clip_mode = st.mode == 'clip'
+        if hidden and clip_mode:
             return
+        ident = t is IDENTITY       # (transform_of returns no other identity)
+        trans = ident or t.is_translation
         try:
-            if not t.is_identity:
+            if not ident:
                 st.check(t)     # an overflowing CTM: the element is left out
-            if name == 'line' or name == 'polyline' or name == 'polygon':
-                tol = self.tolerance        # no curves: the tolerance is not used
-            elif name == 'path':
-                d = el.get('d')
-                tol = (self.arc_tolerance(st, t) if d and ('a' in d or 'A' in d)
-                       else self.tolerance)
-            elif name == 'rect' and 'rx' not in el.attrib and 'ry' not in el.attrib:
-                tol = self.tolerance
+            if name == 'path':
+                if self._path_batch is None:
+                    self._batch_paths()
+                path = self._el_paths.get(el)
+                if path is None:
+                    d = el.get('d')
+                    if not d:
+                        return
+                    if 'a' in d or 'A' in d:
+                        tol = st._arc_tol if trans else None
+                        if tol is None:
+                            tol = self.arc_tolerance(st, t)
+                        path = self._path_cache.get((d, tol))   # (path_data's key)
+                    else:
+                        tol = self.tolerance
+                        path = self._path_cache.get(d)
+                    if path is None:
+                        path = self.path_data(d, tol)
             else:
-                tol = self.arc_tolerance(st, t)
-            path = self.geometry(el, name, ctx, tol)
+                if name == 'line' or name == 'polyline' or name == 'polygon':
+                    tol = self.tolerance        # no curves: the tolerance is not used
+                elif name == 'rect' and el.get('rx') is None and el.get('ry') is None:
+                    tol = self.tolerance
+                else:
+                    tol = self.arc_tolerance(st, t)
+                path = self.geometry(el, name, ctx, tol)
         except RasterError:
             return
         if path is None or len(path.verbs) == 0:
             return
         # an invisible shape paints nothing but still counts in its parent's
         # object bounding box (resvg): keep it unpainted
-        fill, stroke = (None, None) if hidden else self.fill_and_stroke(inh, ctx, path, st)
+        if hidden:
+            fill = stroke = None
+        elif paints is not None and not clip_mode:     # (fill_and_stroke, inlined)
+            fp, fop, rule, sp, params = paints
+            fill = None if fp is None else Fill(fp, fop, rule)
+            stroke = None if sp is None else Stroke(sp, *params)
+        else:
+            fill, stroke = self.fill_and_stroke(inh, ctx, path, st)
         markers = None
-        if not hidden and st.mode != 'clip' and (inh['marker-start'] != 'none' or inh['marker-mid'] != 'none'
-                                  or inh['marker-end'] != 'none'):
+        if has_markers and not hidden and not clip_mode:
             from .markers import build_markers      # marker logic: raster/svg/markers.py
             markers = build_markers(self, el, name, path, inh, own, ctx, st.sub(t), fill, stroke)
         if fill is None and stroke is None and markers is None and not hidden:
             return
-        order = _paint_order(inh.get('paint-order'))
-        sr = inh.get('shape-rendering', 'auto')
-        node = PathNode(id=el.get('id') or '', path=path, fill=fill, stroke=stroke,
-                        paint_order=order, markers=markers,
-                        antialias=sr not in ('crispEdges', 'optimizeSpeed'))
-        e = self.effects(el, own, st, [node], t)
-        if not e.ok or e.opacity <= 0.0:
-            return
-        (node,), e = _fold_opacity([node], e)
-        self.note_id(el, node)
-        self.emit(node, t, e, out)
+        i = el.get('id') or ''
+        node = PathNode(id=i, path=path, fill=fill, stroke=stroke,
+                        paint_order=order, markers=markers, antialias=antialias)
+        e = self.effects(el, own, st, [node], t) if own else _NO_EFFECTS
+        if e is not _NO_EFFECTS:
+            if not e.ok or e.opacity <= 0.0:
+                return
+            if e.opacity < 1.0 and not e.composited and markers is None \
+                    and (fill is None) != (stroke is None):
+                # group opacity over one paint: folded into it (the Fill or
+                # Stroke was made for this node alone, so it is updated in
+                # place; see _fold_opacity)
+                if fill is not None:
+                    fill.opacity = fill.opacity * e.opacity
+                else:
+                    stroke.opacity = stroke.opacity * e.opacity
+                e = _NO_EFFECTS
+        if i and i not in self.tree_ids:
+            self.tree_ids[i] = node
+        if ident and (e is _NO_EFFECTS or e.trivial):
+            out.append(node)
+        else:           # (as emit does)
+            g = (Group(id=i, transform=t, children=[node]) if e is _NO_EFFECTS
+                 else e.group(i, t, [node]))
+            if i:
+                self.tree_ids[i] = g
+            out.append(g)
 
     def fill_and_stroke(self, inh, ctx, path, st):
         """The resolved ``(Fill or None, Stroke or None)`` of a shape or text
@@ -1263,6 +1415,13 @@ class _Builder:
         if st.mode == 'clip':
             rule = inh.get('clip-rule', 'nonzero')
             return Fill(SolidPaint(_BLACK), 1.0, 'evenodd' if rule == 'evenodd' else 'nonzero'), None
+        # colours and 'none' depend on the style alone: resolved once per
+        # computed style
+        spec = self._shape_style(inh, ctx)[5]
+        if spec is not None:
+            fp, fop, rule, sp, params = spec
+            return (None if fp is None else Fill(fp, fop, rule),
+                    None if sp is None else Stroke(sp, *params))
         fill = stroke = None
         fp = self.paint(inh.get('fill', 'black'), inh, ctx, path, st)
         if fp is not None:
@@ -1288,7 +1447,34 @@ class _Builder:
             self.tree_ids[node.id] = g
         out.append(g)
 
+    def _static_paints(self, inh, ctx):
+        """``(fill paint, fill opacity, fill rule, stroke paint, stroke
+        parameters)`` of computed style ``inh`` when neither paint depends
+        on the shape or the context (colours, ``currentColor``, ``none``,
+        invalid values); None otherwise (references, context paints).  A
+        paint is None when not painted."""
+        fv = inh.get('fill', 'black')
+        sv = inh.get('stroke')
+        for v in (fv, sv):
+            p = parse_paint(v) if v is not None else None
+            if p is not None and p.kind not in ('none', 'color', 'current'):
+                return None
+        fp = self.paint(fv, inh, ctx)
+        rule = inh.get('fill-rule', 'nonzero')
+        sp = self.paint(sv, inh, ctx) if sv is not None else None
+        params = self._stroke_params_cached(inh, ctx) if sp is not None else False
+        if params is False:
+            sp = None
+        return (fp, _opacity(inh.get('fill-opacity')),
+                'evenodd' if rule == 'evenodd' else 'nonzero', sp, params)
+
     def stroke(self, paint, inh, ctx):
+        params = self._stroke_params_cached(inh, ctx)
+        if params is False:
+            return None
+        return Stroke(paint, *params)
+
+    def _stroke_params_cached(self, inh, ctx):
         key = (inh.get('stroke-width'), inh.get('stroke-linejoin'), inh.get('stroke-linecap'),
                inh.get('stroke-miterlimit'), inh.get('stroke-dasharray'),
                inh.get('stroke-dashoffset'), inh.get('stroke-opacity'), ctx)
@@ -1297,9 +1483,7 @@ class _Builder:
             params = self._stroke_params(inh, ctx)
             if len(self._stroke_cache) < 4096:
                 self._stroke_cache[key] = params
-        if params is False:
-            return None
-        return Stroke(paint, *params)
+        return params
 
     def _stroke_params(self, inh, ctx):
         """(width, opacity, join, cap, miterlimit, dash, dash_offset) or
@@ -1415,7 +1599,19 @@ def _fold_opacity(kids, e):
     return [n], dataclasses.replace(e, opacity=1.0)
 
 
+_PAINT_ORDERS = {}
+
+
 def _paint_order(v):
+    r = _PAINT_ORDERS.get(v)
+    if r is None:
+        r = _parse_paint_order(v)
+        if len(_PAINT_ORDERS) < 256:
+            _PAINT_ORDERS[v] = r
+    return r
+
+
+def _parse_paint_order(v):
     if v is None:
         return ('fill', 'stroke', 'markers')
     words = v.split()
@@ -1495,10 +1691,40 @@ def build_tree(root, *, base_dir=None, allow_files_under=None, resources_dir=Non
         raise SVGError('not an SVG document: root element is not <svg>')
     if not (isinstance(tolerance, (int, float)) and math.isfinite(tolerance) and tolerance > 0):
         raise SVGError('tolerance must be a positive number, got %r' % (tolerance,))
-    b = _Builder(root, dpi, font_size, languages, tolerance, max_elements, max_use_depth,
-                 extra_css)
-    b.image_sources = (base_dir, allow_files_under, resources_dir)   # for raster.svg.image
-    b.font_dirs = tuple(font_dirs or ())      # for raster.svg.text
+    with _gc_paused():
+        b = _Builder(root, dpi, font_size, languages, tolerance, max_elements, max_use_depth,
+                     extra_css)
+        b.image_sources = (base_dir, allow_files_under, resources_dir)  # for raster.svg.image
+        b.font_dirs = tuple(font_dirs or ())      # for raster.svg.text
+        return _build_root(b, root, font_size)
+
+
+@contextlib.contextmanager
+def _gc_paused():
+    """Pause Python's cyclic garbage collector while a tree is built.
+
+    Building allocates tens of thousands of small objects (nodes, paints,
+    lists) that all stay alive, and the collector would keep scanning them
+    (a sixth of the build time of a chart).  Afterwards the objects alive
+    are moved to the oldest generation (``gc.freeze()`` then
+    ``gc.unfreeze()``, which moves lists without scanning them) rather than
+    scanned as young objects right away: the tree is long-lived.  That is
+    skipped when the application has frozen objects of its own (the pair
+    would unfreeze them) or had the collector disabled."""
+    was = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if was:
+            if gc.get_freeze_count() == 0:
+                gc.freeze()
+                gc.unfreeze()
+            gc.enable()
+
+
+def _build_root(b, root, font_size):
+    """The Tree of document ``root`` (see :func:`build_tree`), built by ``b``."""
     inh0 = _initial_inherited(font_size)
     inh, own = b.style(root, inh0, {})
     vb_attr = root.get('viewBox')

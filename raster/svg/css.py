@@ -752,6 +752,13 @@ class _Index:
                 d.setdefault(val, []).append(r)
 
     def candidates(self, el, local):
+        """The rules that may match ``el`` (local name ``local``), in no
+        particular order (the caller sorts what matches)."""
+        if not self.by_id and not self.by_class:      # only reads the tag
+            t = self.by_tag.get(local)
+            if not self.universal:
+                return t or ()
+            return self.universal + t if t else self.universal
         out = list(self.universal)
         i = el.get('id')
         if i is not None and i in self.by_id:
@@ -789,7 +796,7 @@ def _sort_declarations(decls, props, normal, important):
     return important
 
 
-def declared_styles(root, extra_css=''):
+def declared_styles(root, extra_css='', found=None):
     """The cascaded (declared) style of every element of a document.
 
     Parameters
@@ -800,6 +807,11 @@ def declared_styles(root, extra_css=''):
     extra_css : str
         An additional author stylesheet, applied after the document's
         ``<style>`` elements (so it wins ties).
+    found : dict, optional
+        Attribute name -> list: each list gets, in document order, the
+        elements that have that (non-presentation) attribute.  The tree
+        builder learns ids and conditional attributes this way, without a
+        second pass over the document.
 
     Returns
     -------
@@ -835,23 +847,30 @@ def declared_styles(root, extra_css=''):
     out = {}
     for el in elements:
         d = {}
-        attrib = el.attrib
-        # keys() only: values such as path data are never copied out
-        for k in attrib.keys():
-            if k in pres:
-                d[k] = attrib[k].strip()
+        style = None
+        # names first: values such as path data are never copied out
+        keys = el.keys()
+        if keys:
+            get = el.get
+            for k in keys:
+                if k in pres:
+                    d[k] = get(k).strip()
+                elif k == 'style':
+                    style = get(k)
+                elif found is not None and k in found:
+                    found[k].append(el)
         important = None
         if index is not None:
             tag = el.tag
             local = tag.rpartition('}')[2] if tag[0] == '{' else tag
-            matched = [r for r in index.candidates(el, local)
-                       if r.selector.matches(el, memos.get(id(r.selector)))]
+            cands = index.candidates(el, local)
+            matched = [r for r in cands
+                       if r.selector.matches(el, memos.get(id(r.selector)))] if cands else None
             if matched:
                 if len(matched) > 1:
                     matched.sort(key=lambda r: (r.selector.specificity, r.order))
                 for r in matched:
                     important = _sort_declarations(r.declarations, props, d, important)
-        style = attrib.get('style')
         # precedence: sheet < style attribute < sheet !important < style !important
         simp = _sort_declarations(_parse_declarations(style), props, d, None) if style else None
         if important:

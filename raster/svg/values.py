@@ -813,9 +813,23 @@ _TF_SIMPLE_RE = re.compile(r'[ \t\r\n]*(translate|scale|matrix)[ \t\r\n]*'
                            r'\(([^()]*)\)[ \t\r\n]*')
 
 
+# ``translate(x[ y])`` with plain separators: one regular expression
+# reads it all (a subset of what the paths below accept, same values).
+_TF_TRANSLATE_RE = re.compile(
+    r'[ \t\r\n]*translate[ \t\r\n]*\([ \t\r\n\f]*(' + NUMBER + r')'
+    r'(?:(?:[ \t\r\n\f]+,?|,)[ \t\r\n\f]*(' + NUMBER + r'))?[ \t\r\n\f]*\)[ \t\r\n]*')
+
+
 def _simple_transform(s):
     """``translate``/``scale``/``matrix`` alone (same arguments as the
     general path accepts), or None when ``s`` is not that form."""
+    m = _TF_TRANSLATE_RE.fullmatch(s)
+    if m is not None:
+        x, y = m.group(1, 2)
+        x = float(x)
+        y = 0.0 if y is None else float(y)
+        if math.isfinite(x) and math.isfinite(y):
+            return Affine(1.0, 0.0, 0.0, 1.0, x, y)
     m = _TF_SIMPLE_RE.fullmatch(s)
     if m is None:
         return None
@@ -842,6 +856,11 @@ def _parse_transform(s, css):
             t = None
         if t is not None:
             return t
+    return _transform_list(s, css)
+
+
+def _transform_list(s, css):
+    """The general transform-list parser behind :func:`parse_transform`."""
     if css and s.strip(_WS).lower() == 'none':
         return Affine()
     pos, n = 0, len(s)
