@@ -364,30 +364,40 @@ def _split(ua, va, ub, vb, hi, tag=None):
     ends = np.cumsum(npc)
     pstart = ends - npc                          # first piece of each segment
     n_pieces = int(ends[-1])
-    # point sequence: segment i owns points pstart[i] + i ... + n[i] + 1
-    off = pstart + np.arange(n_in)
-    U = np.empty(n_pieces + n_in)
-    V = np.empty(n_pieces + n_in)
-    U[off] = ua
-    V[off] = va
-    U[off + n + 1] = ub
-    V[off + n + 1] = vb
-    owner = np.repeat(np.arange(n_in), n)
-    first = np.cumsum(n) - n
-    m = np.arange(m_total) - first[owner]
-    a_u, b_u = ua[owner], ub[owner]
-    k = np.where(b_u > a_u, kmin[owner] + m, kmax[owner] - m)
-    t = (k - a_u) / (b_u - a_u)
+    # the pieces' end points are written in place: segment i's first piece
+    # starts at its start, its last piece ends at its end, and crossing m
+    # ends piece pstart + m and starts piece pstart + m + 1 (one computed
+    # value for both, so consecutive pieces share it bitwise)
+    UA = np.empty(n_pieces)
+    VA = np.empty(n_pieces)
+    UB = np.empty(n_pieces)
+    VB = np.empty(n_pieces)
+    UA[pstart] = ua
+    VA[pstart] = va
+    last = ends - 1
+    UB[last] = ub
+    VB[last] = vb
+    split = np.flatnonzero(n)
+    ns = n[split]
+    owner = np.repeat(split, ns)
+    first = np.cumsum(ns) - ns
+    m = np.arange(m_total) - np.repeat(first, ns)
+    up = ub[split] > ua[split]
+    k0 = np.where(up, kmin[split], kmax[split])
+    step = np.where(up, 1.0, -1.0)
+    k = np.repeat(k0, ns) + np.repeat(step, ns) * m
+    a_u = ua[owner]
     a_v = va[owner]
-    pos = off[owner] + 1 + m
-    U[pos] = k
-    V[pos] = a_v + t * (vb[owner] - a_v)
-    # piece j starts at point j + (segment index of piece j)
-    piece_owner = np.repeat(np.arange(n_in), npc)
-    idx = np.arange(n_pieces) + piece_owner
+    t = (k - a_u) / (ub[owner] - a_u)
+    v = a_v + t * (vb[owner] - a_v)
+    pos = pstart[owner] + m                      # the piece the crossing ends
+    UB[pos] = k
+    VB[pos] = v
+    UA[pos + 1] = k
+    VA[pos + 1] = v
     if tag is not None:
-        return U[idx], V[idx], U[idx + 1], V[idx + 1], tag[piece_owner]
-    return U[idx], V[idx], U[idx + 1], V[idx + 1]
+        return UA, VA, UB, VB, np.repeat(tag, npc)
+    return UA, VA, UB, VB
 
 
 def _pieces(loc, w, h):
@@ -1371,26 +1381,30 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out):
         vals = np.where(eo, v_eo, _rule(vals, False))
     else:
         vals = _rule(vals, False)
-    flat = np.repeat(vals.astype(np.float32), lens)
     has = np.zeros(k, bool)
     has[tsid] = True
     fsid = np.searchsorted(roff, flagged // W, side='right') - 1
+    tail = 0
     if len(fsid) and not has[fsid].all():
-        # shapes with flagged cells but no cover terms: zero images first,
-        # as _resolve_cells gives them
-        size_t = np.where(has, sw * sh, 0)
-        off_t = np.cumsum(size_t) - size_t
-        has[fsid] = True
-        size = np.where(has, sw * sh, 0)
-        ooff = np.cumsum(size) - size
-        buf = np.zeros(int(size.sum()), np.float32)
-        ts = np.flatnonzero(size_t)
-        shift = np.repeat(ooff[ts] - off_t[ts], size_t[ts])
-        buf[np.arange(len(flat)) + shift] = flat
-        flat = buf
-    else:
-        size = np.where(has, sw * sh, 0)
-        ooff = np.cumsum(size) - size
+        # shapes with flagged cells but no cover terms get zero images (as
+        # _resolve_cells gives them): their sizes are added to the leading
+        # zeros of the next shape with cover terms (or appended)
+        only = np.zeros(k, bool)
+        only[fsid] = True
+        only &= ~has
+        osz = np.where(only, sw * sh, 0)
+        cum = np.cumsum(osz)
+        hs = np.flatnonzero(has)
+        before = cum[hs] - osz[hs]                  # flagged-only sizes before shape
+        gap = np.diff(np.concatenate([[0], before]))
+        lens[0::4] += np.where(shape_first, gap[np.searchsorted(hs, tsid)], 0)
+        tail = int(cum[-1] - (before[-1] if len(hs) else 0))
+        has |= only
+    flat = np.repeat(vals.astype(np.float32), lens)
+    if tail:
+        flat = np.concatenate([flat, np.zeros(tail, np.float32)])
+    size = np.where(has, sw * sh, 0)
+    ooff = np.cumsum(size) - size
     # -- exact recompute of the flagged cells ---------------------------------
     if len(flagged):
         pieces = (xa, ya, xb, yb, col, grow)

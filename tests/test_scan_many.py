@@ -144,7 +144,8 @@ def test_zero_area_shape_with_flagged_cells():
     z = np.array([[3.2, 3.2], [3.8, 3.5], [3.2, 3.8], [3.8, 3.9]])
     zig = np.concatenate([np.stack([z[:-1], z[1:]], 1), np.stack([z[:0:-1], z[-2::-1]], 1)])
     sq = polygon_edges([[2.5, 2.5], [6.5, 2.5], [6.5, 6.5], [2.5, 6.5]])
-    for shapes in ([zig, sq], [zig], [sq, zig, sq]):
+    for shapes in ([zig, sq], [zig], [sq, zig, sq], [zig, zig + 1, sq, zig, sq + 1, zig + 2],
+                   [sq, zig, zig + 1]):
         got = coverage_many(shapes, 10, 10)
         assert all(same(g, coverage(e, 10, 10)) for e, g in zip(shapes, got))
     assert coverage_many([zig], 10, 10) == [None]
