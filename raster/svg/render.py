@@ -227,6 +227,7 @@ def _find(tree, node_id):
 # ---------------------------------------------------------------------------
 
 _CLIP_FILL = SolidPaint((0.0, 0.0, 0.0, 1.0))
+_ABSENT = object()
 
 
 class _Renderer:
@@ -268,7 +269,8 @@ class _Renderer:
                 f = n.fill
                 wf = f is not None and f.opacity > 0
                 wh = _wants_hair(n, m)
-                style = _batch_stroke_style(n, m)
+                # (hairlines are never outlined by the general stroker here)
+                style = None if wh else _batch_stroke_style(n, m)
                 if not (wf or wh or style is not None):
                     continue
                 area = _device_area(n.path, m, size)
@@ -562,23 +564,26 @@ class _Renderer:
         s = n.stroke
         if s.opacity <= 0 or s.width <= 0:
             return
+        key = (id(n), t)
+        if key in self._geo_pending:
+            self._flush_geometry(key, canvas)
+        m = self._hair_ready.pop(key, _ABSENT)
+        if m is not _ABSENT:
+            # a batched hairline: coverage scaled by its device width, as
+            # raster.stroke.hairline_scale gives it
+            if m is not None:
+                self.paint(canvas, m, s.paint, s.opacity * (s.width * t.mean_scale()),
+                           n.path, t)
+            return
         style = StrokeStyle(width=s.width, join=s.join, cap=s.cap, miterlimit=s.miterlimit,
                             dash=s.dash, dash_offset=s.dash_offset)
         opacity = s.opacity
         hair = hairline_scale(style, t)
-        key = (id(n), t)
         if hair is not None:
             style = StrokeStyle(width=1.0 / t.mean_scale(), join=s.join, cap=s.cap,
                                 miterlimit=s.miterlimit, dash=s.dash, dash_offset=s.dash_offset)
             opacity *= hair
             if s.dash is None:
-                if key in self._geo_pending:
-                    self._flush_geometry(key, canvas)
-                if key in self._hair_ready:
-                    m = self._hair_ready.pop(key)
-                    if m is not None:
-                        self.paint(canvas, m, s.paint, opacity, n.path, t)
-                    return
                 edges = _hairline_edges(self.flat(n.path, t), s.cap, s.join, s.miterlimit)
                 if edges is not None:
                     m = coverage(edges, canvas.width, canvas.height, 'nonzero', n.antialias,
