@@ -678,3 +678,16 @@ def test_rectangle_clip_of_a_blended_group_lerps_with_coverage():
     assert np.allclose(c[5, 5], [0, 0, 1, 1], atol=1e-6)      # inside: blue
     assert np.allclose(c[2, 5], [0.5, 0.5, 1, 1], atol=1e-6)   # half covered row
     assert np.allclose(c[0, 0], [1, 1, 1, 1], atol=1e-6)       # outside: white
+
+
+def test_element_beyond_coordinate_limit_is_left_out_with_a_warning():
+    """A stroke 1e12 wide would put outline coordinates above MAX_COORD:
+    that element is dropped (one RasterWarning), the others are drawn."""
+    from raster.errors import RasterWarning
+    huge = PathNode(path=line(2, 2, 18, 18), stroke=Stroke(RED, width=1e12))
+    far = filled(rect(0, 0, 4e9, 3), BLUE)
+    ok = filled(rect(10, 2, 5, 5), BLUE)
+    with pytest.warns(RasterWarning, match='not drawn'):
+        c = render_tree(tree(filled(rect(0, 10, 5, 5)), huge, far, ok)).data
+    assert np.allclose(c[12, 2], [1, 0, 0, 1]) and np.allclose(c[4, 12], [0, 0, 1, 1])
+    assert c[18, 18, 3] == 0

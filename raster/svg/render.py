@@ -56,12 +56,13 @@ at device resolution, sampled with wrapping).
 """
 
 import math
+import warnings
 
 import numpy as np
 
 from .. import _malloc, limits
 from ..canvas import Canvas
-from ..errors import CanvasError, RasterError, SVGError
+from ..errors import CanvasError, LimitError, RasterError, RasterWarning, SVGError
 from ..flatten import flatten, flatten_joined
 from ..path import CLOSE, LINE, MOVE, Path
 from ..scan import Mask, coverage, coverage_batch
@@ -233,6 +234,7 @@ _ABSENT = object()
 class _Renderer:
     def __init__(self, tolerance):
         self.tol = tolerance
+        self._limit_warned = False
         self._flat_key = self._flat_path = self._flat = None
         # batched fills and undashed hairlines: (id(node), t) -> (node, t,
         # size, area, fill?, hair?) waiting in document order (see plan)
@@ -516,6 +518,16 @@ class _Renderer:
     def path(self, n, t, canvas, clip_mode=False):
         if n.path is None or len(n.path.verbs) == 0:
             return
+        try:
+            self._path(n, t, canvas, clip_mode)
+        except LimitError as e:
+            # one element beyond a limit (a coordinate above MAX_COORD, too
+            # many dashes...) is left out; the rest of the document is drawn
+            if not self._limit_warned:
+                self._limit_warned = True
+                warnings.warn('element not drawn: %s' % e, RasterWarning, stacklevel=2)
+
+    def _path(self, n, t, canvas, clip_mode):
         if clip_mode:
             # a clip path uses the geometry whatever the paint (fill="none"
             # has no effect); the fill rule carries clip-rule
