@@ -42,7 +42,7 @@ _BLOCK = 1 << 14
 def _color(color, opacity):
     """Straight RGB/RGBA + opacity -> (r, g, b) float64, alpha*opacity."""
     try:
-        c = [float(v) for v in color]
+        c = list(map(float, color))
     except (TypeError, ValueError):
         raise CanvasError('colour must be 3 or 4 numbers, got %r' % (color,)) from None
     if len(c) not in (3, 4):
@@ -51,11 +51,70 @@ def _color(color, opacity):
         op = float(opacity)
     except (TypeError, ValueError):
         raise CanvasError('opacity must be a number, got %r' % (opacity,)) from None
-    if not (all(math.isfinite(v) for v in c) and math.isfinite(op)):
+    # one test for the common case (a sum of finite numbers may still
+    # overflow, hence the exact test when it is not finite)
+    if not math.isfinite(sum(c) + op) and not (
+            all(map(math.isfinite, c)) and math.isfinite(op)):
         raise CanvasError('colour and opacity must be finite')
-    c = [min(max(v, 0.0), 1.0) for v in c]
-    a = (c[3] if len(c) == 4 else 1.0) * min(max(op, 0.0), 1.0)
-    return c[0], c[1], c[2], a
+    r, g, b = [min(max(v, 0.0), 1.0) for v in c[:3]]
+    a = (min(max(c[3], 0.0), 1.0) if len(c) == 4 else 1.0) * min(max(op, 0.0), 1.0)
+    return r, g, b, a
+
+
+# Recent paints of fill (see _paint): {(color, opacity): (alpha, vec)}.
+_PAINTS = {}
+_PAINTS_MAX = 64
+
+
+def _paint(color, opacity):
+    """Straight RGB/RGBA + opacity -> (alpha * opacity as float32,
+    (r, g, b, 1) as a read-only (4,) float32 array), validated by
+    :func:`_color`; remembered for tuples (renderers repeat few paints)."""
+    key = (color, opacity) if type(color) is tuple else None
+    if key is not None:
+        try:
+            hit = _PAINTS.get(key)
+        except TypeError:               # unhashable parts
+            key = hit = None
+        if hit is not None:
+            return hit
+    r, g, b, a = _color(color, opacity)
+    vec = np.array([r, g, b, 1.0], np.float32)
+    vec.flags.writeable = False
+    hit = (np.float32(a), vec)
+    if key is not None:
+        if len(_PAINTS) >= _PAINTS_MAX:
+            _PAINTS.clear()
+        _PAINTS[key] = hit
+    return hit
+
+
+def _tile4(vec, n):
+    """``vec`` ((4,) float32) repeated ``n`` times: (4 n,) float32 (a
+    broadcast assignment, cheaper than ``np.tile`` for short rows)."""
+    out = np.empty((n, 4), np.float32)
+    out[...] = vec
+    return out.reshape(4 * n)
+
+
+# Recent colours repeated along a row (see _row_of): {vec bytes: (4 n,)
+# float32, read-only}; documents alternate between few colours.
+_ROWS = {}
+_ROWS_MAX = 8
+
+
+def _row_of(vec, n):
+    """``vec`` ((4,) float32 RGBA, alpha 1) repeated at least ``n`` times,
+    as a read-only (4 m,) float32 array (m >= n) shared between calls."""
+    key = vec.tobytes()
+    row = _ROWS.get(key)
+    if row is None or len(row) < 4 * n:
+        if len(_ROWS) >= _ROWS_MAX:
+            _ROWS.clear()
+        row = _tile4(vec, max(n, 256))
+        row.flags.writeable = False
+        _ROWS[key] = row
+    return row
 
 
 def _spread4(k, lanes):
@@ -170,8 +229,8 @@ class Canvas:
         """
         if mask is None:
             return
-        r, g, b, a = _color(color, opacity)
-        if a == 0.0:
+        alpha, vec = _paint(color, opacity)
+        if alpha == 0.0:
             return
         cov = np.asarray(mask.data, np.float32)
         if cov.ndim != 2:
@@ -181,30 +240,46 @@ class Canvas:
             return
         dst_sl, src_sl = win
         k = cov[src_sl]
-        alpha = np.float32(a)
-        vec = np.array([r, g, b, 1.0], np.float32)
-        if k.size <= _SMALL:
+        if k.size <= _SMALL or not self.data.flags.c_contiguous:
             # small masks: a few whole-window operations cost less than
-            # finding the covered pixels
-            reg = self.data[dst_sl]
-            kk = k[..., None] * alpha if alpha != 1.0 else k[..., None]
-            t = vec - reg
-            t *= kk
+            # finding the covered pixels; rows of interleaved RGBA with the
+            # coverage repeated to 4 lanes keep numpy's loops long (a
+            # (h, w, 1) x (h, w, 4) broadcast runs w h loops of 4).  Canvas
+            # data replaced by a non-contiguous array has no such rows:
+            # plain broadcasting over the window
+            h, w = k.shape
+            if self.data.flags.c_contiguous:
+                reg = self.data[dst_sl].reshape(h, 4 * w, copy=False)
+                k4 = k.repeat(4, axis=1)
+                row = _row_of(vec, w)[:4 * w]
+            else:
+                reg, k4, row = self.data[dst_sl], k[..., None].copy(), vec
+            if alpha != 1.0:
+                k4 *= alpha
+            t = row - reg
+            t *= k4
             reg += t
             return
-        if k.size <= _SPARSE_MAX and self.data.flags.c_contiguous:
-            nnz = np.count_nonzero(k)
+        # (counting, finding and testing the nonzero pixels of a bool array
+        # is several times faster than of the float32 coverage)
+        covered = k != 0.0
+        if k.size <= _SPARSE_MAX:
+            nnz = np.count_nonzero(covered)
             if nnz == 0:
                 return
             if nnz * _SPARSE_SHARE <= k.size:
-                self._fill_pixels(np.flatnonzero(k), k, dst_sl, alpha, vec)
+                self._fill_pixels(np.flatnonzero(covered), k, dst_sl, alpha, vec)
+                return
+            if alpha == 1.0:
+                self._fill_opaque(k, covered, nnz, dst_sl, vec)
                 return
         # crop to the rows holding coverage (masks are often mostly empty)
-        rows = np.flatnonzero(k.any(axis=1))
+        rows = np.flatnonzero(covered.any(axis=1))
         if len(rows) == 0:
             return
         r0, r1 = int(rows[0]), int(rows[-1]) + 1
         k = k[r0:r1]
+        covered = covered[r0:r1]
         region = self.data[dst_sl][r0:r1]
         # region += k * (vec - region) on contiguous rows of interleaved
         # RGBA: the coverage is spread to 4 lanes per pixel (see _spread4)
@@ -215,10 +290,10 @@ class Canvas:
         nb = min(step, k.shape[0]) * w
         tmp = np.empty(4 * nb, np.float32)
         lanes = np.empty((nb, 2), np.uint64)
-        vt = np.tile(vec, nb)
+        vt = _row_of(vec, nb)
         for i0 in range(0, k.shape[0], step):
             kk = k[i0:i0 + step]
-            cols = np.flatnonzero(kk.any(axis=0))
+            cols = np.flatnonzero(covered[i0:i0 + step].any(axis=0))
             if len(cols) == 0:
                 continue
             c0, c1 = int(cols[0]), int(cols[-1]) + 1
@@ -233,6 +308,28 @@ class Canvas:
             t *= k4
             reg += t
 
+    def _fill_opaque(self, k, covered, nnz, dst_sl, vec):
+        """:meth:`fill` of opaque paint (``alpha * opacity == 1``) through
+        the mask window ``k`` ((h, w) float32) onto ``self.data[dst_sl]``.
+
+        ``covered`` ((h, w) bool) is ``k != 0`` and ``nnz`` its count.
+        Pixels of full coverage (``k == 1``) take the colour ``vec`` ((4,)
+        float32, alpha 1) by a masked copy, without reading the canvas; the
+        partly covered ones (edges) are blended by :meth:`_fill_pixels`.
+        """
+        h, w = k.shape
+        full = k == 1.0
+        nfull = np.count_nonzero(full)
+        # the bool mask repeated to the 4 lanes of each pixel: each byte
+        # times 0x01010101 fills a uint32 with 4 copies of it
+        full4 = full.view(np.uint8).astype(np.uint32)
+        full4 *= np.uint32(0x01010101)
+        reg = self.data[dst_sl].reshape(h, 4 * w, copy=False)
+        np.copyto(reg, _row_of(vec, w)[:4 * w], where=full4.view(np.bool_).reshape(h, 4 * w))
+        if nfull < nnz:
+            covered &= ~full
+            self._fill_pixels(np.flatnonzero(covered), k, dst_sl, np.float32(1.0), vec)
+
     def _fill_pixels(self, idx, k, dst_sl, alpha, vec):
         """:meth:`fill` of the pixels ``idx`` (flat indices into the mask
         window ``k``, the nonzero ones) by gathering and scattering them."""
@@ -246,7 +343,7 @@ class Canvas:
             kk = kk * alpha
         n = len(idx)
         k4 = _spread4(kk.reshape(1, n), np.empty((n, 2), np.uint64)).reshape(n, 4)
-        t = np.tile(vec, (n, 1))
+        t = _tile4(vec, n).reshape(n, 4)
         t -= reg
         t *= k4
         reg += t
@@ -320,44 +417,44 @@ class Canvas:
         >>> c.to_rgba8(premultiplied=True)[0, 0].tolist()
         [64, 0, 0, 128]
         """
-        data = self.data
         H, W = self.height, self.width
-        out = np.empty((H, W, 4), np.uint8)
-        step = max(1, 2 * _BLOCK // W)
-        buf = np.empty((min(step, H), W, 4), np.float32)
+        flat = self.data.reshape(-1, 4)
+        out = np.empty((H * W, 4), np.uint8)
+        step = max(1, 2 * _BLOCK // W) * W          # pixels per block
+        buf = np.empty((min(step, H * W), 4), np.float32)
         zero, one = np.float32(0.0), np.float32(1.0)
         s255, half = np.float32(255.0), np.float32(0.5)
-        flat = data.reshape(-1, 4)
-        part = None
-        if not premultiplied:
-            a = flat[:, 3]
-            part = np.flatnonzero((a > zero) & (a < one))
-            if 4 * len(part) > len(a):
-                part = None         # mostly translucent: demultiply every block
-        for i0 in range(0, H, step):
-            b = buf[:min(step, H - i0)]
-            np.clip(data[i0:i0 + step], zero, one, out=b)
-            if not premultiplied and part is None:
-                _demultiply(b.reshape(-1, 4))
-            b *= s255
-            if not premultiplied and part is None:
-                np.minimum(b, s255, out=b)   # demultiplied colour may exceed 1
+        for p0 in range(0, H * W, step):
+            src = flat[p0:p0 + step]
+            b = buf[:len(src)]
+            np.multiply(src, s255, out=b)
+            clipped = b.min() < zero or b.max() > s255
+            if clipped:                 # values out of [0, 1] (rare)
+                np.clip(b, zero, s255, out=b)
+            if not premultiplied:
+                # demultiply the translucent pixels (0 < alpha < 1) from the
+                # float data, as clip(colour) / clip(alpha) * 255; alpha 1
+                # leaves the colour as it is and alpha 0 zeroes it below
+                part = src[:, 3] < one
+                part &= src[:, 3] > zero
+                idx = np.flatnonzero(part)
+                if len(idx):
+                    sub = src[idx]
+                    if clipped:
+                        np.clip(sub, zero, one, out=sub)
+                    _demultiply(sub)
+                    sub *= s255
+                    np.minimum(sub, s255, out=sub)   # colour may exceed 1
+                    b[idx] = sub
             b += half
-            o = out[i0:i0 + len(b)]
+            o = out[p0:p0 + len(b)]
             np.copyto(o, b, casting='unsafe')   # truncation = floor (b >= 0.5)
             if not premultiplied:
-                o[b[..., 3] < one, :3] = 0
-        if part is not None and len(part):
-            # the few translucent pixels: demultiplied from the float data
-            sub = np.clip(flat[part], zero, one)
-            _demultiply(sub)
-            sub *= s255
-            np.minimum(sub, s255, out=sub)
-            sub += half
-            px = sub.astype(np.uint8)
-            px[sub[:, 3] < one, :3] = 0
-            out.reshape(-1, 4)[part] = px
-        return out
+                # pixels whose alpha rounds to 0 become (0, 0, 0, 0): as
+                # little-endian uint32 the alpha byte is the top one
+                px = o.view('<u4').reshape(-1)
+                np.multiply(px, px >= np.uint32(1 << 24), out=px)
+        return out.reshape(H, W, 4)
 
     def to_image(self):
         """The canvas as a ``PIL.Image.Image`` in mode RGBA (straight alpha)."""

@@ -287,3 +287,85 @@ def test_sparse_fill_matches_the_formula(contiguous):
         ref = _ref_fill(c.data, k, -5, 9, rgba)
         c.fill(Mask(k, -5, 9), rgba)
         assert np.array_equal(c.data, ref)
+
+
+@pytest.mark.parametrize('block', [64, 1 << 14])
+@pytest.mark.parametrize('rgba', [(0.2, 0.4, 0.8, 1.0), (0.9, 0.1, 0.3, 0.6)])
+def test_large_dense_fill_matches_the_formula(monkeypatch, block, rgba):
+    # a mask above the small-mask size, mostly covered (no gather): opaque
+    # paint copies the colour into fully covered pixels and blends the
+    # edges, translucent paint blends in blocks; both equal the formula
+    # within float32 rounding, and full coverage of opaque paint gives the
+    # colour exactly
+    import raster.canvas as canvas_mod
+    monkeypatch.setattr(canvas_mod, '_BLOCK', block)
+    rng = np.random.default_rng(11)
+    k = rng.choice([0.0, 1.0, 1.0, 1.0, 0.3, 0.85], (60, 45)).astype(np.float32)
+    k[:3] = 0
+    assert k.size > canvas_mod._SMALL and np.count_nonzero(k) * 8 > k.size
+    c = Canvas(50, 70, background=(0.5, 0.25, 0.0, 0.5))
+    c.data += rng.uniform(0, 0.1, c.data.shape).astype(np.float32)
+    ref = _ref_fill(c.data, k, -4, 6, rgba)
+    c.fill(Mask(k, -4, 6), rgba)
+    assert np.abs(c.data - ref).max() <= 1e-6
+    changed = np.zeros((70, 50), bool)
+    changed[6:66, 0:41] = k[:, 4:] != 0
+    assert np.array_equal(np.any(c.data != ref, axis=2) | changed, changed)
+    if rgba[3] == 1.0:
+        full = np.zeros((70, 50), bool)
+        full[6:66, 0:41] = k[:, 4:] == 1
+        assert np.all(c.data[full] == np.float32([0.2, 0.4, 0.8, 1.0]))
+
+
+def test_fill_paints_repeat_and_still_validate():
+    # the same colour as tuple and list, several opacities and row widths
+    # (remembered paints and colour rows) give the formula every time
+    rng = np.random.default_rng(12)
+    c = Canvas(300, 8, background=(0.1, 0.2, 0.3, 0.4))
+    ref = c.data.copy()
+    for color, op, w in [((0.3, 0.6, 0.9), 1.0, 3), ([0.3, 0.6, 0.9], 0.5, 290),
+                         ((0.3, 0.6, 0.9), 0.5, 7), ((0.9, 0.6, 0.3, 0.5), 1.0, 300),
+                         ((0.3, 0.6, 0.9), 1.0, 300)]:
+        k = rng.uniform(0, 1, (3, w)).astype(np.float32)
+        ref = _ref_fill(ref, k, 0, 2, tuple(color[:3]) + ((color[3] if len(color) == 4 else 1.0) * op,))
+        c.fill(Mask(k, 0, 2), color, op)
+        assert np.abs(c.data - ref).max() <= 1e-6
+    for _ in range(2):
+        with pytest.raises(CanvasError):
+            c.fill(Mask(np.ones((1, 1), np.float32), 0, 0), (float('nan'), 0, 0))
+        with pytest.raises(CanvasError):
+            c.fill(Mask(np.ones((1, 1), np.float32), 0, 0), (0.1, 0.2, 0.3), float('inf'))
+
+
+def test_to_rgba8_blocks_of_different_kinds(monkeypatch):
+    # many small blocks: all opaque, all transparent, mostly translucent,
+    # out of range, transparent with colour: each equals the formula
+    import raster.canvas as canvas_mod
+    monkeypatch.setattr(canvas_mod, '_BLOCK', 24)
+    rng = np.random.default_rng(13)
+    d = rng.uniform(0, 1, (60, 9, 4)).astype(np.float32)
+    d[:10, :, 3] = 1.0
+    d[10:20] = 0.0
+    d[20:25, :, :3] = 0.3                       # transparent, with colour
+    d[20:25, :, 3] = 0.0
+    d[30:35] = rng.uniform(-0.5, 1.5, (5, 9, 4))
+    d[40:45, :, 3] = rng.choice([1.0, 1e-4, 0.3], (5, 9))
+    c = Canvas(9, 60)
+    c.data = d
+    assert np.array_equal(c.to_rgba8(), _ref_rgba8(d))
+    assert np.array_equal(c.to_rgba8(premultiplied=True), _ref_rgba8(d, True))
+
+
+def test_fill_on_a_non_contiguous_canvas_matches_the_formula():
+    # canvas data replaced by a Fortran-ordered array: small, sparse and
+    # dense masks still follow the formula (no row reshapes)
+    rng = np.random.default_rng(14)
+    base = np.asfortranarray(rng.uniform(0, 1, (40, 50, 4)).astype(np.float32))
+    for shape in [(5, 6), (30, 40)]:
+        k = rng.choice([0.0, 1.0, 0.4], shape).astype(np.float32)
+        for rgba in [(0.2, 0.4, 0.8, 1.0), (0.9, 0.1, 0.3, 0.6)]:
+            c = Canvas(50, 40)
+            c.data = base.copy(order='F')
+            ref = _ref_fill(base, k, 3, 2, rgba)
+            c.fill(Mask(k, 3, 2), rgba)
+            assert np.abs(c.data - ref).max() <= 1e-6
