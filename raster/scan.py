@@ -353,50 +353,56 @@ def _split(ua, va, ub, vb, hi, tag=None):
     """
     n_in = len(ua)
     umin = np.minimum(ua, ub)
+    kmin = np.floor(umin, out=umin)
+    kmin += 1.0
+    np.maximum(kmin, 0.0, out=kmin)
     umax = np.maximum(ua, ub)
-    kmin = np.maximum(np.floor(umin) + 1.0, 0.0)
-    kmax = np.minimum(np.ceil(umax) - 1.0, hi if tag is not None else float(hi))
-    n = np.maximum(kmax - kmin + 1.0, 0.0).astype(np.int64)
-    m_total = int(n.sum())
+    kmax = np.ceil(umax, out=umax)
+    kmax -= 1.0
+    np.minimum(kmax, hi, out=kmax)
+    d = kmax - kmin
+    d += 1.0
+    n = d.astype(np.int64)
+    np.maximum(n, 0, out=n)
+    ends = np.cumsum(n)
+    m_total = int(ends[-1]) if n_in else 0
     if m_total == 0:
         return (ua, va, ub, vb) if tag is None else (ua, va, ub, vb, tag)
-    npc = n + 1                                  # pieces per segment
-    ends = np.cumsum(npc)
-    pstart = ends - npc                          # first piece of each segment
-    n_pieces = int(ends[-1])
+    cb = ends - n                                # crossings before each segment
+    n_pieces = n_in + m_total                    # n + 1 per segment
     # the pieces' end points are written in place: segment i's first piece
-    # starts at its start, its last piece ends at its end, and crossing m
-    # ends piece pstart + m and starts piece pstart + m + 1 (one computed
-    # value for both, so consecutive pieces share it bitwise)
+    # (pstart) starts at its start, its last piece ends at its end, and
+    # crossing m ends piece pstart + m and starts piece pstart + m + 1 (one
+    # computed value for both, so consecutive pieces share it bitwise)
     UA = np.empty(n_pieces)
     VA = np.empty(n_pieces)
     UB = np.empty(n_pieces)
     VB = np.empty(n_pieces)
+    pstart = cb + np.arange(n_in)
     UA[pstart] = ua
     VA[pstart] = va
-    last = ends - 1
+    last = pstart + n
     UB[last] = ub
     VB[last] = vb
-    split = np.flatnonzero(n)
-    ns = n[split]
-    owner = np.repeat(split, ns)
-    first = np.cumsum(ns) - ns
-    m = np.arange(m_total) - np.repeat(first, ns)
-    up = ub[split] > ua[split]
-    k0 = np.where(up, kmin[split], kmax[split])
-    step = np.where(up, 1.0, -1.0)
-    k = np.repeat(k0, ns) + np.repeat(step, ns) * m
+    # crossing j (of all) is crossing m = j - cb of segment owner: the line
+    # kmin + m going up, kmax - m going down
+    owner = np.repeat(np.arange(n_in), n)
+    j = np.arange(m_total)
+    m = j - cb[owner]
     a_u = ua[owner]
+    b_u = ub[owner]
+    k = np.where(b_u > a_u, kmin[owner] + m, kmax[owner] - m)
     a_v = va[owner]
-    t = (k - a_u) / (ub[owner] - a_u)
+    t = (k - a_u) / (b_u - a_u)
     v = a_v + t * (vb[owner] - a_v)
-    pos = pstart[owner] + m                      # the piece the crossing ends
+    pos = j + owner                              # the piece the crossing ends
     UB[pos] = k
     VB[pos] = v
-    UA[pos + 1] = k
-    VA[pos + 1] = v
+    pos += 1
+    UA[pos] = k
+    VA[pos] = v
     if tag is not None:
-        return UA, VA, UB, VB, np.repeat(tag, npc)
+        return UA, VA, UB, VB, np.repeat(tag, n + 1)
     return UA, VA, UB, VB
 
 
@@ -756,7 +762,7 @@ def _collect_rows(loc, w, h, flagged):
     return [np.concatenate([p[i] for p in parts]) for i in range(6)]
 
 
-def _exact_cells(pieces, flagged, w, h, evenodd, lrow=None):
+def _exact_cells(pieces, flagged, w, h, evenodd, lrow=None, cellidx=None):
     """Exact coverage of the flagged cells (sorted flat indices).
 
     In a cell, the covered length ``g(y)`` of the horizontal line at height
@@ -774,6 +780,12 @@ def _exact_cells(pieces, flagged, w, h, evenodd, lrow=None):
     evenly spaced heights instead (the midpoint rule is then approximate).
     ``lrow`` (optional) is each piece's row in its own y coordinates when
     ``row`` is a row of a stack of several boxes (see :func:`coverage_many`).
+    ``cellidx`` (optional) is ``(cells, inv)``: the sorted distinct keys
+    ``row * w + max(col, 0)`` of all the pieces (``flagged`` among them)
+    and each piece's index into ``cells``, int64 ndarrays; with it the
+    pieces are matched to the flagged cells through ``inv`` (one gather
+    per piece instead of a search) and the corner windings are summed
+    per cell.
     """
     xa, ya, xb, yb, col, row = pieces
     if lrow is None:
@@ -781,6 +793,8 @@ def _exact_cells(pieces, flagged, w, h, evenodd, lrow=None):
     F = len(flagged)
     frow = flagged // w
     fcol = flagged % w
+    if cellidx is not None:
+        return _exact_cells_indexed(pieces, flagged, w, h, evenodd, lrow, cellidx)
 
     if h * (w + 1) <= min(_CELLMAP_MAX, _CELLMAP_RATIO * len(xa)):
         # flagged index of every cell, -1 elsewhere (extra column for c = w)
@@ -798,10 +812,10 @@ def _exact_cells(pieces, flagged, w, h, evenodd, lrow=None):
             np.minimum(i, F - 1, out=i)
             return i, (flagged[i] == key) & (c >= 0) & (c < w)
 
-    dy = yb - ya
     # -- winding at each flagged cell's top-left corner ------------------------
     # pieces starting on their row's top line (not horizontal) cross it; the
     # crossing counts for cells right of the piece's column
+    dy = yb - ya
     ymin = np.minimum(ya, yb)
     top = (ymin == lrow) & (dy != 0)
     tkey = row[top] * (w + 1) + (col[top] + 1)
@@ -811,20 +825,87 @@ def _exact_cells(pieces, flagged, w, h, evenodd, lrow=None):
     qrow = frow * (w + 1)
     corner = (tcs[np.searchsorted(tkey, qrow + fcol + 1, side='left')]
               - tcs[np.searchsorted(tkey, qrow, side='left')])
+    fl, okl = lookup(row, col + 1)
+    fi, oki = lookup(row, col)
+    return _exact_tail(pieces, lrow, fcol, corner, fl, okl, fi, oki, evenodd)
 
+
+def _exact_cells_indexed(pieces, flagged, w, h, evenodd, lrow, cellidx):
+    """:func:`_exact_cells` with the pieces' cell index ``cellidx``.
+
+    Only the pieces in rows holding a flagged cell take part (the cells'
+    own pieces, their left neighbours' and the crossings of the rows' top
+    lines left of them are all there), kept in their order.
+    """
+    cells, inv = cellidx
+    F = len(flagged)
+    fcol = flagged % w
+    U = len(cells)
+    rows = np.zeros(h, bool)
+    rows[flagged // w] = True
+    sub = np.flatnonzero(rows[pieces[5]])
+    pieces = tuple(a[sub] for a in pieces)
+    xa, ya, xb, yb, col, row = pieces
+    lrow = lrow[sub]
+    inv = inv[sub]
+    real = col >= 0
+    # flagged index of every distinct cell (-1: not flagged), and of the
+    # cell right of it in its row
+    uf = np.searchsorted(cells, flagged)            # flagged is among cells
+    here = np.full(U, -1, np.int64)
+    here[uf] = np.arange(F)
+    right = np.full(U, -1, np.int64)
+    ul = uf - 1
+    nb = np.flatnonzero((fcol > 0) & (ul >= 0))
+    nb = nb[cells[ul[nb]] == flagged[nb] - 1]
+    right[ul[nb]] = nb
+    fi = here[inv]
+    # a virtual piece (col -1) shares the key of column 0: its right
+    # neighbour is that cell itself
+    fl = np.where(real, right[inv], fi)
+    oki = (fi >= 0) & real
+    okl = fl >= 0
+    # -- winding at each flagged cell's top-left corner ------------------------
+    # the signed crossings of the row's top line (pieces starting on it)
+    # summed per distinct cell, then over the cells of the row left of the
+    # flagged cell; virtual pieces in the flagged cell's own key (column 0)
+    # are left of it too.  All sums are of small integers (exact).
+    dy = yb - ya
+    top = np.flatnonzero((np.minimum(ya, yb) == lrow) & (dy != 0))
+    tsg = np.sign(dy[top])
+    tcell = np.bincount(inv[top], weights=tsg, minlength=U)
+    tcs = np.concatenate([[0.0], np.cumsum(tcell)])
+    rstart = np.searchsorted(cells, flagged - fcol)
+    corner = tcs[uf] - tcs[rstart]
+    tv = ~real[top]
+    if tv.any():
+        vc = np.bincount(inv[top[tv]], weights=tsg[tv], minlength=U)
+        corner += vc[uf]
+    return _exact_tail(pieces, lrow, fcol, corner, fl, okl, fi, oki, evenodd)
+
+
+def _exact_tail(pieces, lrow, fcol, corner, fl, okl, fi, oki, evenodd):
+    """The rest of :func:`_exact_cells`, given the winding at each flagged
+    cell's top-left corner and, for every piece, the flagged cell right of
+    it (``fl``, valid where ``okl``) and the one holding it (``fi``, valid
+    where ``oki``)."""
+    xa, ya, xb, yb, col, row = pieces
+    F = len(fcol)
     # -- changes of the left-side winding inside each cell --------------------
     # every piece contributes +1 at its start height and -1 at its end height
     # (for either direction); summed over the pieces left of the cell these
     # cancel except where a chain crosses the cell's left side, so only the
     # pieces of the left neighbour ending on that side (or, for column 0, the
     # virtual column) need to be counted
-    fl, okl = lookup(row, col + 1)
-    virt = col < 0
-    s_on = okl & (virt | (xa == col + 1))
-    e_on = okl & (virt | (xb == col + 1))
+    # (tested on the pieces left of a flagged cell only, in piece order)
+    lp = np.flatnonzero(okl)
+    lv = col[lp] < 0
+    lc = col[lp] + 1
+    s_on = lp[lv | (xa[lp] == lc)]
+    e_on = lp[lv | (xb[lp] == lc)]
     ev_f = np.concatenate([fl[s_on], fl[e_on]])
     ev_y = np.concatenate([ya[s_on] - lrow[s_on], yb[e_on] - lrow[e_on]])
-    ev_c = np.concatenate([np.ones(int(s_on.sum())), -np.ones(int(e_on.sum()))])
+    ev_c = np.concatenate([np.ones(len(s_on)), -np.ones(len(e_on))])
     inner = ev_y > 0
     ev_f, ev_y, ev_c = ev_f[inner], ev_y[inner], ev_c[inner]
     eorder = np.argsort(ev_f * 2.0 + ev_y)
@@ -833,7 +914,6 @@ def _exact_cells(pieces, flagged, w, h, evenodd, lrow=None):
     efirst = np.cumsum(ecount) - ecount
 
     # -- the pieces inside each flagged cell, grouped by cell -----------------
-    fi, oki = lookup(row, col)
     sel = np.flatnonzero(oki)
     order = sel[np.argsort(fi[sel], kind='stable')]
     pf = fi[order]
@@ -1291,7 +1371,7 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out):
     k = len(ne)
     roff = np.cumsum(sh) - sh
     W = int(sw.max())
-    sid = np.repeat(np.arange(k), ne)
+    sid = np.repeat(np.arange(k, dtype=np.int32), ne)      # (int32: cheaper to repeat)
     # -- pieces (as _pieces, with each shape's own box) -----------------------
     xa, ya = loc[:, 0, 0], loc[:, 0, 1]
     xb, yb = loc[:, 1, 0], loc[:, 1, 1]
@@ -1304,13 +1384,15 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out):
         return
     xa, ya, xb, yb, sid = _split(xa, ya, xb, yb, sw[sid].astype(np.float64), tag=sid)
     xm = 0.5 * (xa + xb)
-    keep = xm < sw[sid]
+    swp = sw[sid]                               # each piece's box width
+    keep = xm < swp
     if not keep.all():
-        xa, ya, xb, yb, xm, sid = xa[keep], ya[keep], xb[keep], yb[keep], xm[keep], sid[keep]
+        xa, ya, xb, yb, xm, sid, swp = (xa[keep], ya[keep], xb[keep], yb[keep], xm[keep],
+                                        sid[keep], swp[keep])
     if len(xa) == 0:
         return
     col = np.floor(xm).astype(np.int64)
-    col = np.minimum(np.maximum(col, -1), sw[sid] - 1)
+    col = np.minimum(np.maximum(col, -1), swp - 1)
     left = col < 0
     if left.any():
         xa = np.where(left, -0.5, xa)
@@ -1323,7 +1405,7 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out):
     cell = grow * W + np.maximum(col, 0)
     dy = yb - ya
     fx = np.where(real, 0.5 * (xa + xb) - col, 0.0)
-    cells, inv = np.unique(cell, return_inverse=True)
+    cells, inv = _distinct_cells(cell, sid, row, np.maximum(col, 0), swp, sw, sh)
     cv = np.bincount(inv, weights=dy, minlength=len(cells))
     pv = np.bincount(inv, weights=dy * fx, minlength=len(cells))
     # cells to recompute exactly, among the pieces of exact shapes only
@@ -1400,7 +1482,12 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out):
         lens[0::4] += np.where(shape_first, gap[np.searchsorted(hs, tsid)], 0)
         tail = int(cum[-1] - (before[-1] if len(hs) else 0))
         has |= only
-    flat = np.repeat(vals.astype(np.float32), lens)
+    vals = vals.astype(np.float32)
+    # nonzero pixels per shape (only the cell and run entries hold values)
+    nnz = np.bincount(tsid, weights=np.where(vals[1::4] != 0, lens[1::4], 0)
+                      + np.where(vals[2::4] != 0, lens[2::4], 0),
+                      minlength=k).astype(np.float64, copy=False)   # (int64 when empty)
+    flat = np.repeat(vals, lens)
     if tail:
         flat = np.concatenate([flat, np.zeros(tail, np.float32)])
     size = np.where(has, sw * sh, 0)
@@ -1415,36 +1502,77 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out):
                 continue
             fl = flagged[sel]
             fs = fsid[sel]
-            v = _exact_cells(pieces, fl, W, H, evenodd, lrow=row)
+            v = _exact_cells(pieces, fl, W, H, evenodd, lrow=row, cellidx=(cells, inv))
             np.clip(v, 0.0, 1.0, out=v)
             v[v < _RESIDUE] = 0.0
             fr = fl // W - roff[fs]
-            flat[ooff[fs] + fr * sw[fs] + fl % W] = v
+            pos = ooff[fs] + fr * sw[fs] + fl % W
+            v = v.astype(np.float32)
+            nnz += np.bincount(fs, weights=(v != 0).astype(np.float64) - (flat[pos] != 0),
+                               minlength=k)
+            flat[pos] = v
     X0l, Y0l, swl, shl, offl, idl = (X0.tolist(), Y0.tolist(), sw.tolist(), sh.tolist(),
                                       ooff.tolist(), ids.tolist())
-    for s in np.flatnonzero(has).tolist():
+    for s in np.flatnonzero(has & (nnz > 0.5)).tolist():
         w, h = swl[s], shl[s]
-        data = flat[offl[s]:offl[s] + w * h].reshape(h, w)
-        if data.any():
-            out[idl[s]] = Mask(data, X0l[s], Y0l[s])
+        out[idl[s]] = Mask(flat[offl[s]:offl[s] + w * h].reshape(h, w), X0l[s], Y0l[s])
+
+
+def _distinct_cells(cell, sid, row, col, swp, sw, sh):
+    """``np.unique(cell, return_inverse=True)`` for the pieces of a batch:
+    ``cell`` (int64) their keys in the stacked boxes, ``sid`` their shape,
+    ``row`` / ``col`` (>= 0) their cell in the shape's own box, ``swp``
+    that box's width; ``sw``, ``sh`` the (k,) box sizes.
+
+    When the boxes' total area is small for the number of pieces the cells
+    are marked in a dense map of the boxes laid end to end (same order as
+    the stacked keys), which avoids sorting the pieces.
+
+    Returns
+    -------
+    cells : (U,) int64 ndarray
+        The sorted distinct keys.
+    inv : (P,) int64 ndarray
+        Each piece's index into ``cells``.
+    """
+    area = sw * sh
+    total = int(area.sum())
+    if total > _SPARSE_RATIO * len(cell):
+        return np.unique(cell, return_inverse=True)
+    off = np.cumsum(area) - area
+    key = off[sid] + row * swp + col
+    mark = np.zeros(total, bool)
+    mark[key] = True
+    rank = np.cumsum(mark, dtype=np.int64 if total >= 1 << 31 else np.int32)
+    inv = rank[key].astype(np.int64)
+    inv -= 1
+    cells = np.empty(int(rank[-1]), np.int64)
+    cells[inv] = cell
+    return cells, inv
 
 
 def _segmented_cumsum(v, seg, k):
     """Running sums of ``v`` restarted at every new value of ``seg`` (sorted
     ints in 0..k-1), bitwise equal to ``np.cumsum`` of each segment alone:
     the segments are laid out as rows of zero-padded 2-D arrays (one per
-    power-of-two length class) and summed along the rows."""
+    length class, four classes per power of two, each as wide as its
+    longest segment) and summed along the rows."""
     cnt = np.bincount(seg, minlength=k)
-    pos = np.arange(len(v)) - (np.cumsum(cnt) - cnt)[seg]
+    start = np.cumsum(cnt) - cnt
+    cls = np.ceil(np.log2(np.maximum(cnt, 1)) * 4).astype(np.int16)
+    ce = cls[seg]
+    order = np.argsort(ce, kind='stable')          # elements by class, in order
+    ccount = np.bincount(ce)
+    cstart = np.cumsum(ccount) - ccount
     out = np.empty(len(v))
-    cls = np.ceil(np.log2(np.maximum(cnt, 1))).astype(np.int64)
-    for c in np.unique(cls[cnt > 0]).tolist():
+    for c in np.flatnonzero(ccount).tolist():
+        el = order[cstart[c]:cstart[c] + ccount[c]]
+        sg = seg[el]
         members = np.flatnonzero((cls == c) & (cnt > 0))
-        slot = np.full(k, -1, np.int64)
-        slot[members] = np.arange(len(members))
-        pick = np.flatnonzero(slot[seg] >= 0)
-        M = np.zeros((len(members), 1 << c))
-        M[slot[seg[pick]], pos[pick]] = v[pick]
+        slot = np.searchsorted(members, sg)
+        pos = el - start[sg]
+        M = np.zeros((len(members), int(cnt[members].max())))
+        M[slot, pos] = v[el]
         np.cumsum(M, axis=1, out=M)
-        out[pick] = M[slot[seg[pick]], pos[pick]]
+        out[el] = M[slot, pos]
     return out

@@ -635,3 +635,38 @@ def test_merged_start_cell_needs_no_recompute(monkeypatch):
     calls.clear()
     coverage(poly_edges(np.roll(p, 4, axis=0)), 24, 24)
     assert calls == []
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.booleans())
+def test_property_split_pieces_chain_between_grid_lines(seed, per_segment_hi):
+    """_split: pieces in travel order, consecutive ones sharing their split
+    point bitwise, each between two consecutive integer lines of [0, hi]
+    (or beyond them), split points exactly on the lines."""
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(1, 40))
+    ua, ub = rng.uniform(-3, 12, n), rng.uniform(-3, 12, n)
+    ub[::5] = ua[::5]                                   # no extent in u
+    ua[1::7] = np.round(ua[1::7])                       # ends on grid lines
+    va, vb = rng.uniform(-5, 5, n), rng.uniform(-5, 5, n)
+    hi = rng.integers(0, 10, n).astype(float) if per_segment_hi else 6
+    tag = np.arange(n)
+    UA, VA, UB, VB, T = scan._split(ua, va, ub, vb, hi, tag=tag)
+    h = np.broadcast_to(hi, (n,))
+    for i in range(n):
+        s = np.flatnonzero(T == i)
+        assert (np.diff(s) == 1).all() and len(s)
+        assert UA[s[0]] == ua[i] and VA[s[0]] == va[i] and UB[s[-1]] == ub[i] and VB[s[-1]] == vb[i]
+        assert (UB[s[:-1]] == UA[s[1:]]).all() and (VB[s[:-1]] == VA[s[1:]]).all()
+        inner = UB[s[:-1]]
+        assert (inner == np.round(inner)).all() and ((inner >= 0) & (inner <= h[i])).all()
+        lines = np.arange(0, h[i] + 1)
+        lo, hi_ = min(ua[i], ub[i]), max(ua[i], ub[i])
+        assert len(inner) == int(((lines > lo) & (lines < hi_)).sum())
+        if len(inner) > 1:
+            assert (np.diff(inner) * np.sign(ub[i] - ua[i]) > 0).all()     # travel order
+        # the split point lies on the segment
+        t = (inner - ua[i]) / (ub[i] - ua[i])
+        assert np.allclose(VB[s[:-1]], va[i] + t * (vb[i] - va[i]), atol=1e-12)
+    # without a tag: the same pieces
+    assert all(np.array_equal(a, b) for a, b in zip(scan._split(ua, va, ub, vb, hi), (UA, VA, UB, VB)))

@@ -223,3 +223,119 @@ def test_aliased_shapes_in_one_batch_equal_one_by_one(seed):
     got = coverage_many(shapes, 70, 68, rules, False, clip=clip)
     for e, r, g in zip(shapes, rules, got):
         assert same(g, coverage(e, 70, 68, r, False, clip=clip))
+
+
+# -- internals of the batched path ---------------------------------------------
+
+def jaggy_contour(rng, c, r, n, amp):
+    """A closed walk of n short steps around c (radius r, radial noise amp):
+    map-like outlines that re-enter pixels often."""
+    th = 2 * np.pi * (np.arange(n) + rng.uniform(0, 1, n)) / n
+    rr = r + rng.uniform(-amp, amp, n)
+    return c + np.stack([rr * np.cos(th), rr * np.sin(th)], 1)
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.integers(0, 2**32 - 1), st.booleans(), st.sampled_from([0, 1, 10**9]))
+def test_exact_cells_of_batches_on_left_edge_crossings_and_holes(seed, evenodd, ratio):
+    """Shapes straddling the canvas' left side (virtual column), crossing
+    themselves (bow ties, stars), nested contours of either orientation and
+    jaggy outlines, batched with the cell index built either way: every
+    mask equals the shape drawn alone, bit for bit."""
+    import raster.scan as scan
+    rng = np.random.default_rng(seed)
+    shapes = []
+    for _ in range(12):
+        c = rng.uniform(-3, 25, 2)
+        kind = rng.integers(0, 4)
+        if kind == 0:       # bow tie crossing near the left side
+            x = rng.uniform(-0.5, 1.5)
+            y = c[1]
+            d = rng.uniform(0.3, 6, 2)
+            pts = [[x - d[0], y - d[1]], [x + d[0], y + d[1]], [x + d[0], y - d[1]],
+                   [x - d[0], y + d[1]]]
+            shapes.append(polygon_edges(pts))
+        elif kind == 1:     # pentagram
+            a = np.pi / 2 + 4 * np.pi / 5 * np.arange(5)
+            shapes.append(polygon_edges(c + rng.uniform(1, 8) * np.stack([np.cos(a), np.sin(a)], 1)))
+        elif kind == 2:     # nested jaggy contours, random orientations
+            r = rng.uniform(2, 9)
+            parts = []
+            for f in (1.0, 0.6, 0.3):
+                p = jaggy_contour(rng, c, r * f, int(40 * f) + 4, 0.4)
+                parts.append(polygon_edges(p if rng.random() < 0.5 else p[::-1]))
+            shapes.append(np.concatenate(parts))
+        else:               # one jaggy outline crossing itself
+            p = jaggy_contour(rng, c, rng.uniform(2, 9), 60, 1.5)
+            shapes.append(polygon_edges(np.concatenate([p, p[::7] + 0.3])))
+    rule = 'evenodd' if evenodd else 'nonzero'
+    ref = [coverage(e, 30, 28, rule) for e in shapes]
+    orig = scan._SPARSE_RATIO
+    try:
+        scan._SPARSE_RATIO = ratio
+        got = coverage_many(shapes, 30, 28, rule)
+    finally:
+        scan._SPARSE_RATIO = orig
+    assert all(same(g, r) for g, r in zip(got, ref))
+
+
+def test_exact_cells_of_batches_are_used_at_column_zero(monkeypatch):
+    """A bow tie crossing in column 0 with its left half off canvas: the
+    crossing cell is recomputed in the batch (through the cell index) and
+    the area is the analytic one."""
+    import raster.scan as scan
+    calls = []
+    real = scan._exact_cells_indexed
+
+    def spy(pieces, flagged, w, *a):
+        calls.append(flagged % w)
+        return real(pieces, flagged, w, *a)
+    monkeypatch.setattr(scan, '_exact_cells_indexed', spy)
+    # crossing at (0.5, 5.5); triangles of half-width 4, height 3 each side
+    bow = polygon_edges([[-3.5, 2.5], [4.5, 8.5], [4.5, 2.5], [-3.5, 8.5]])
+    got = coverage_many([bow, bow + [0, 10]], 8, 20)
+    assert calls and any((c == 0).any() for c in calls)
+    for g, e in zip(got, (bow, bow + [0, 10])):
+        assert same(g, coverage(e, 8, 20))
+        # right triangle (apex (0.5, 5.5), side 6 at x = 4.5): 12; of the left
+        # one only x in [0, 0.5] is on canvas: apex 0.5 wide, side 0.75
+        want = 12.0 + 0.5 * 0.5 * 0.75
+        assert abs(float(g.data.sum(dtype=np.float64)) - want) < 1e-5     # (float32 data)
+
+
+def test_distinct_cells_equals_unique():
+    import raster.scan as scan
+    rng = np.random.default_rng(3)
+    k = 50
+    sw = rng.integers(1, 9, k)
+    sh = rng.integers(1, 7, k)
+    roff = np.cumsum(sh) - sh
+    W = int(sw.max())
+    sid = np.sort(rng.integers(0, k, 400)).astype(np.int32)
+    row = rng.integers(0, 100, 400) % sh[sid]
+    col = rng.integers(0, 100, 400) % sw[sid]
+    cell = (row + roff[sid]) * W + col
+    want = np.unique(cell, return_inverse=True)
+    for ratio in (0, 10**9):
+        orig = scan._SPARSE_RATIO
+        try:
+            scan._SPARSE_RATIO = ratio
+            got = scan._distinct_cells(cell, sid, row, col, sw[sid], sw, sh)
+        finally:
+            scan._SPARSE_RATIO = orig
+        assert np.array_equal(got[0], want[0]) and np.array_equal(got[1], want[1])
+
+
+def test_segmented_cumsum_is_bitwise_per_segment():
+    import raster.scan as scan
+    rng = np.random.default_rng(4)
+    k = 300
+    cnt = np.concatenate([[0, 1, 2, 3, 5, 8, 9, 1000, 1023, 1024, 1025, 0],
+                          rng.integers(0, 70, k - 12)])
+    seg = np.repeat(np.arange(k), cnt)
+    v = rng.normal(size=len(seg)) * 10.0 ** rng.integers(-8, 8, len(seg))
+    got = scan._segmented_cumsum(v, seg, k)
+    start = np.cumsum(cnt) - cnt
+    want = np.concatenate([np.cumsum(v[s:s + c]) for s, c in zip(start, cnt)])
+    assert got.tobytes() == want.tobytes()
+    assert len(scan._segmented_cumsum(np.zeros(0), np.zeros(0, np.int64), 3)) == 0
