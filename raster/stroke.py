@@ -59,7 +59,14 @@ numbered by path, the tolerance (user units) and the merge distance are
 kept per contour, each point of the outline is mapped by the transform of
 its path and the outline is split back per path.  A call of :func:`stroke`
 costs a fixed ~0.2 ms of numpy overhead (more with curves); in a batch this
-is paid once.
+is paid once.  The user-space outline depends only on the path and the
+tolerance in user units, ``tolerance / max_scale``, so a path repeated in a
+batch (the same object, or equal verbs and points) under transforms of the
+same largest scale -- the markers of a scatter plot, translated copies of
+one circle -- is outlined once and that outline is mapped by each copy's
+transform: the same arithmetic as for separate copies, so the result
+differs at most by the rounding of the flattening in another batch (none on
+the corpus' scatter plots, see ``tests/test_stroke_many.py``).
 
 Dashes
 ------
@@ -936,12 +943,14 @@ class _Items:
         iid = np.repeat(np.arange(len(cnt)), cnt)
         k = np.arange(total) - np.repeat(_starts(cnt), cnt)
         src = start[iid] + np.where(rev[iid], cnt[iid] - 1 - k, k)
-        pts = pool[src]
+        # points as complex numbers (x + iy, the same 16 bytes): one compare
+        # per point pair, same result as comparing x and y (-0.0 == 0.0)
+        pts = np.ascontiguousarray(pool[src], np.float64).view(np.complex128).reshape(-1)
         pid = poly[iid]
         # drop repeated points (collinear vertices, coincident join ends)
         keep = np.ones(total, bool)
         if total > 1:
-            keep[1:] = (pid[1:] != pid[:-1]) | np.any(pts[1:] != pts[:-1], axis=1)
+            keep[1:] = (pid[1:] != pid[:-1]) | (pts[1:] != pts[:-1])
             pts, pid = pts[keep], pid[keep]
         # drop a last point back on the first
         head = np.ones(len(pid), bool)
@@ -952,7 +961,7 @@ class _Items:
         h = np.flatnonzero(head)
         tails = np.flatnonzero(tail)
         if len(tails):
-            back = np.all(pts[tails] == pts[h[np.searchsorted(h, tails, 'right') - 1]], axis=1)
+            back = pts[tails] == pts[h[np.searchsorted(h, tails, 'right') - 1]]
             if back.any():
                 keep = np.ones(len(pts), bool)
                 keep[tails[back]] = False
@@ -964,7 +973,7 @@ class _Items:
         # piece (positive shoelace areas, x right and y down)
         ends = np.cumsum(counts)
         src = np.repeat(ends + _starts(counts) - 1, counts) - np.arange(len(pts))
-        return pts[src], counts, ids
+        return pts[src].view(np.float64).reshape(-1, 2), counts, ids
 
 
 def _outline(lines, style, tol):
@@ -1152,15 +1161,22 @@ def _outline(lines, style, tol):
 
 def _emit(points, counts):
     """Path of closed polygons (M L ... Z per polygon)."""
-    K = len(counts)
-    if K == 0:
+    if len(counts) == 0:
         return Path.empty()
+    return Path(_emit_verbs(counts), np.ascontiguousarray(points), _checked=True)
+
+
+def _emit_verbs(counts):
+    """Verbs of closed polygons of ``counts`` (K,) int64 points each: (V,)
+    uint8, ``M L ... L Z`` per polygon, read-only."""
+    K = len(counts)
     starts = _starts(counts)
-    verbs = np.full(len(points) + K, LINE, np.uint8)
+    verbs = np.full(int(np.sum(counts)) + K, LINE, np.uint8)
     ar = np.arange(K)
     verbs[starts + ar] = MOVE
     verbs[starts + counts + ar] = CLOSE
-    return Path(verbs, np.ascontiguousarray(points), _checked=True)
+    verbs.flags.writeable = False
+    return verbs
 
 
 # ---------------------------------------------------------------------------
@@ -1321,7 +1337,10 @@ def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
     strokes when the paths' transforms have the same largest scale
     (:meth:`~raster.transform.Affine.max_scale`); otherwise, and for dashes
     (whose arc lengths are summed over all paths in float64), within a
-    rounding error far below ``tolerance``.
+    rounding error far below ``tolerance``.  Repeated paths (equal verbs
+    and points) whose transforms have the same largest scale share one
+    user-space outline, mapped by each one's transform; the returned paths
+    of such a group share one read-only verbs array.
 
     Parameters
     ----------
@@ -1379,14 +1398,15 @@ def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
     else:
         if isinstance(transforms, (str, bytes)):
             raise StrokeError('transforms must be Affine objects, got %r' % (transforms,))
-        ts = [_affine(t) for t in transforms]
+        ts = [t if type(t) is Affine else _affine(t) for t in transforms]
         if len(ts) != n:
             raise StrokeError('stroke_many() got %d transforms for %d paths' % (len(ts), n))
     empty = Path.empty()
     out = [empty] * n
     if style.width == 0 or n == 0:
         return out
-    scales = np.array([t.max_scale() for t in ts])
+    m = np.array([(t.a, t.b, t.c, t.d, t.e, t.f) for t in ts], np.float64).reshape(-1, 6)
+    scales = _max_scales(m)
     if not np.all(np.isfinite(scales)):
         raise LimitError('transform scale is too large (%r)'
                          % (ts[int(np.flatnonzero(~np.isfinite(scales))[0])],))
@@ -1394,27 +1414,79 @@ def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
     use = np.flatnonzero((lens > 0) & (scales > 0))
     if len(use) == 0:
         return out
-    sub = [paths[i] for i in use.tolist()]
+    # the user-space outline depends only on the path and the tolerance in
+    # user units (tol / max_scale): build it once per distinct pair and map
+    # it by the transform of every path that shares it
+    rep, inv = _distinct(paths, use, scales)
+    sub = [paths[i] for i in rep.tolist()]
     big = Path(np.concatenate([p.verbs for p in sub]),
                np.concatenate([p.points for p in sub]), _checked=True)
-    vpath = np.repeat(np.arange(len(use)), lens[use])
+    vpath = np.repeat(np.arange(len(rep)), lens[rep])
     cpath = vpath[big.verbs == MOVE]
-    tol_u = (tol / scales[use])[cpath]
-    pts, counts, owner = _geometry(big, style, tol_u, cpath, len(use))
-    # polygons come out path by path: map each point by its path's transform
-    ppath = np.repeat(owner, counts)
-    m = np.array([tuple(ts[i]) for i in use.tolist()]).reshape(-1, 6)
-    if len(ppath) and not all(ts[i].is_identity for i in use.tolist()):
-        a, b, c, d, e, f = m[ppath].T
+    tol_u = (tol / scales[rep])[cpath]
+    pts, rcounts, owner = _geometry(big, style, tol_u, cpath, len(rep))
+    # polygons come out path by path
+    ppath = np.repeat(owner, rcounts)
+    npoly = np.bincount(owner, minlength=len(rep))
+    npts = np.bincount(ppath, minlength=len(rep))
+    if len(rep) < len(use):
+        # gather each used path's copy of its representative's polygons
+        ipath, loc = _ranges(npts[inv])
+        pts = pts[_starts(npts)[inv][ipath] + loc]
+    else:
+        ipath = ppath
+    mu = m[use]
+    if len(ipath) and not np.all(mu == (1.0, 0.0, 0.0, 1.0, 0.0, 0.0)):
+        a, b, c, d, e, f = mu[ipath].T
         x, y = pts[:, 0], pts[:, 1]
         pts = np.stack([a * x + c * y + e, b * x + d * y + f], axis=1)
     _check_device(pts)
-    full = _emit(pts, counts)
-    npoly = np.bincount(owner, minlength=len(use))
-    npts = np.bincount(ppath, minlength=len(use))
-    vcut = np.cumsum(npts + npoly)[:-1]
-    pcut = np.cumsum(npts)[:-1]
-    for i, v, p in zip(use.tolist(), np.split(full.verbs, vcut), np.split(full.points, pcut)):
-        if len(v):
-            out[i] = Path(v, p, _checked=True)
+    pts = np.ascontiguousarray(pts)
+    pts.flags.writeable = False
+    # verbs per representative, shared (read-only) by the paths using it
+    vall = _emit_verbs(rcounts)
+    vcut = np.cumsum(npts + npoly).tolist()
+    vrep = [vall[a:b] for a, b in zip([0] + vcut[:-1], vcut)]
+    pend = np.cumsum(npts[inv]).tolist()
+    for i, r, a, b in zip(use.tolist(), inv.tolist(), [0] + pend[:-1], pend):
+        if b > a:
+            out[i] = Path(vrep[r], pts[a:b], _checked=True)
     return out
+
+
+def _max_scales(m):
+    """(K,) :meth:`~raster.transform.Affine.max_scale` of transforms ``m``
+    ((K, 6) float64, rows ``a b c d e f``), computed once per distinct linear
+    part (bit for bit the method's value)."""
+    if len(m) == 0:
+        return np.zeros(0)
+    if np.all(m[:, :4] == m[0, :4]):               # one linear part (common)
+        return np.full(len(m), Affine(*m[0, :4].tolist()).max_scale())
+    lin, inv = np.unique(m[:, :4], axis=0, return_inverse=True)
+    s = np.array([Affine(*row).max_scale() for row in lin.tolist()])
+    return s[inv.reshape(-1)]
+
+
+def _distinct(paths, use, scales):
+    """Group the paths ``paths[use]`` by (verbs, points, scale).
+
+    Returns ``(rep, inv)``: ``rep`` (R,) int64, the index (into ``paths``)
+    of the first path of each group, in order of first occurrence, and
+    ``inv`` (len(use),) int64, the group of each used path; without repeats
+    ``rep`` is ``use`` and ``inv`` is ``arange(len(use))``.  A path object
+    met again is recognized by identity, equal paths by their bytes."""
+    by_id, by_content = {}, {}
+    used = [paths[i] for i in use.tolist()]
+    for p in used:
+        if id(p) not in by_id:
+            key = (p.verbs.tobytes(), p.points.tobytes())
+            by_id[id(p)] = by_content.setdefault(key, len(by_content))
+    group = np.array([by_id[id(p)] for p in used], np.int64)
+    sc_val, sc_id = np.unique(scales[use], return_inverse=True)
+    code = group * len(sc_val) + sc_id.reshape(-1)
+    _, first, inv = np.unique(code, return_index=True, return_inverse=True)
+    # renumber the groups by first occurrence
+    order = np.argsort(first, kind='stable')
+    rank = np.empty(len(order), np.int64)
+    rank[order] = np.arange(len(order))
+    return use[first[order]], rank[inv.reshape(-1)]

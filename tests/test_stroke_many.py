@@ -211,3 +211,104 @@ def test_round_caps_in_batch_honour_tolerance(tol):
         d = np.hypot(q[:, 0] - (a[0] + 20 * t), q[:, 1] - a[1])
         assert np.all(np.abs(d - 5) <= tol)
         assert np.max(d) > 5 - tol                  # not a degenerate outline
+
+
+# -- repeated paths: one user-space outline per (path, scale) --------------
+
+def no_sharing(monkeypatch):
+    """Disable the grouping of repeated paths (the general path: every path
+    gets its own user-space outline)."""
+    import raster.stroke as S
+
+    def distinct(paths, use, scales):
+        return use, np.arange(len(use))
+    monkeypatch.setattr(S, '_distinct', distinct)
+
+
+def repeated_batch(rng, n):
+    """``n`` paths drawn from a few random ones (the same objects and equal
+    copies) under random transforms sharing few largest scales: translations,
+    rotations and reflections of a few scales, one general transform."""
+    base = [random_path(rng, kind=int(k)) for k in rng.integers(1, 6, 4)]
+    lin = [Affine.scale(2), Affine.rotate(30) @ Affine.scale(2), Affine.scale(-2, 2),
+           Affine.scale(3, 1), Affine(*rng.uniform(-2, 2, 4), 0, 0)]
+    paths, ts = [], []
+    for _ in range(n):
+        p = base[int(rng.integers(len(base)))]
+        if rng.random() < 0.3:
+            p = Path(p.verbs.copy(), p.points.copy(), _checked=True)      # equal copy
+        paths.append(p)
+        ts.append(Affine.translate(*rng.uniform(-500, 500, 2)) @ lin[int(rng.integers(len(lin)))])
+    return paths, ts
+
+
+@pytest.mark.parametrize('seed', range(4))
+@pytest.mark.parametrize('style', [StrokeStyle(width=2), StrokeStyle(width=3, join='round', cap='round'),
+                                   StrokeStyle(width=1.5, join='miter-clip', cap='square'),
+                                   StrokeStyle(width=2, dash=(3.0, 1.0), cap='round')])
+def test_repeated_paths_equal_the_general_path(seed, style, monkeypatch):
+    # sharing the user-space outline of equal paths (same largest scale)
+    # and mapping it by each path's transform is what the general path
+    # computes for each of them, to rounding (flatten_beziers may round a
+    # curve differently in another batch); paths of lines: bit for bit
+    rng = np.random.default_rng(seed)
+    paths, ts = repeated_batch(rng, 60)
+    fast = stroke_many(paths, style, transforms=ts, tolerance=0.2)
+    one = [Affine.translate(*t.apply(np.zeros((1, 2)))[0]) @ Affine.scale(2) for t in ts]
+    fast_one = stroke_many(paths, style, transforms=one, tolerance=0.2)
+    with monkeypatch.context() as mp:
+        no_sharing(mp)
+        assert_same(fast, stroke_many(paths, style, transforms=ts, tolerance=0.2))
+        assert_same(fast_one, stroke_many(paths, style, transforms=one, tolerance=0.2))
+    polys = [Path.polygon(p.points) if len(p.points) else p for p in paths]
+    fast_polys = stroke_many(polys, style, transforms=ts, tolerance=0.2)
+    no_sharing(monkeypatch)
+    assert_same(fast_polys, stroke_many(polys, style, transforms=ts, tolerance=0.2),
+                exact=style.dash is None)
+    # and each is the stroke of its path alone
+    assert_same(fast, [stroke(p, style, transform=t, tolerance=0.2) for p, t in zip(paths, ts)])
+
+
+def test_repeated_circle_outline_is_translated_exactly():
+    # a circle of 4 cubics stroked at many translations (a scatter plot): each
+    # outline is the first one moved by the difference of the offsets, to
+    # the rounding of the additions
+    circle = parse_path('M2.7 0 C2.7 1.5 1.5 2.7 0 2.7 C-1.5 2.7 -2.7 1.5 -2.7 0 '
+                        'C-2.7 -1.5 -1.5 -2.7 0 -2.7 C1.5 -2.7 2.7 -1.5 2.7 0 Z')
+    rng = np.random.default_rng(9)
+    off = rng.uniform(0, 2000, (500, 2))
+    ts = [Affine.translate(*o) @ Affine.scale(2.03) for o in off]
+    outs = stroke_many([circle] * len(ts), StrokeStyle(width=2), transforms=ts)
+    ref = stroke(circle, width=2, transform=Affine.scale(2.03))
+    assert len(ref.verbs) > 20
+    for o, d in zip(outs, off):
+        assert o.verbs is outs[0].verbs                 # shared, read-only
+        assert np.array_equal(o.verbs, ref.verbs)
+        assert np.allclose(o.points - d, ref.points, rtol=0, atol=1e-9)
+        assert o.points.flags.writeable is False
+        assert o == stroke(circle, width=2, transform=Affine.translate(*d) @ Affine.scale(2.03))
+
+
+def test_distinct_groups_by_content_and_scale():
+    from raster.stroke import _distinct
+    a = parse_path('M0 0 L10 0')
+    a2 = parse_path('M0 0 L10 0')
+    b = parse_path('M0 0 L10 1')
+    paths = [a, Path.empty(), a2, b, a, a, b]
+    scales = np.array([2.0, 2.0, 2.0, 2.0, 3.0, 2.0, 2.0])
+    use = np.array([0, 2, 3, 4, 5, 6])
+    rep, inv = _distinct(paths, use, scales)
+    assert rep.tolist() == [0, 3, 4]                   # first of each group, in order
+    assert inv.tolist() == [0, 0, 1, 2, 0, 1]
+    rep, inv = _distinct([a, b], np.array([0, 1]), np.array([1.0, 1.0]))
+    assert rep.tolist() == [0, 1] and inv.tolist() == [0, 1]
+
+
+def test_max_scales_are_the_methods_values():
+    from raster.stroke import _max_scales
+    rng = np.random.default_rng(4)
+    ts = [Affine(*rng.uniform(-3, 3, 6)) for _ in range(50)]
+    ts += [Affine.rotate(float(a)) @ Affine.scale(1.7) for a in rng.uniform(0, 360, 20)]
+    for group in (ts, ts[:1] * 5, []):
+        m = np.array([tuple(t) for t in group]).reshape(-1, 6)
+        assert _max_scales(m).tolist() == [t.max_scale() for t in group]
