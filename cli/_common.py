@@ -16,6 +16,7 @@ import gzip
 import io
 import os
 import sys
+import warnings
 import tempfile
 import zlib
 
@@ -62,6 +63,10 @@ def run(prog, body, parser, argv):
         args = parser.parse_args(argv)
     except SystemExit as e:
         return e.code if isinstance(e.code, int) else 2
+    # warnings (an element skipped, no fonts for text...) as one line each
+    warnings.showwarning = (lambda message, category, filename, lineno, file=None, line=None:
+                            print('%s: warning: %s' % (prog, _one_line(message)),
+                                  file=sys.stderr))
     try:
         rc = body(args)
     except UsageError as e:

@@ -366,3 +366,18 @@ def test_output_file_gets_the_usual_permissions(tmp_path):
     finally:
         os.umask(old)
     assert stat.S_IMODE(out.stat().st_mode) == 0o644
+
+
+def test_rasterize_skips_an_element_beyond_a_limit_with_a_one_line_warning(tmp_path):
+    src = tmp_path / 'dashes.svg'
+    src.write_text('<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100">'
+                   '<rect width="50" height="50" fill="green"/>'
+                   '<path d="M 0 50 L 1e8 50" stroke="red" stroke-dasharray="0.5 0.5"/>'
+                   '</svg>')
+    out = tmp_path / 'out.png'
+    rc, _, err = cli('rasterize', str(src), str(out))
+    assert rc == 0 and out.exists()
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert len(lines) == 1 and lines[0].startswith('rasterize: warning: element not drawn')
+    img = np.asarray(Image.open(out))
+    assert img[25, 25].tolist() == [0, 128, 0, 255]
