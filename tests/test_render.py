@@ -215,7 +215,7 @@ def test_hairline_matches_general_stroker_on_convex_polygons(seed, join):
     (union of segment rectangles and join triangles) covers exactly what the
     general stroker's 1 px wide outline covers."""
     from raster.hull import convex_hull
-    from raster.scan import coverage
+    from raster.scan import coverage, path_coverage
     from raster.stroke import StrokeStyle, stroke as stroke_outline
     rng = np.random.default_rng(seed)
     pts = np.asarray(convex_hull(rng.uniform(3, 37, (12, 2))))
@@ -224,7 +224,7 @@ def test_hairline_matches_general_stroker_on_convex_polygons(seed, join):
     e = render_mod._hairline_edges(pl, 'butt', join, 4.0)
     a = coverage(e, 40, 40).full(40, 40)
     o = stroke_outline(path, StrokeStyle(width=1.0, join=join, miterlimit=4.0))
-    b = render_mod._cover(o, Affine(), 40, 40, 'nonzero', True, 0.25).full(40, 40)
+    b = path_coverage(o, 40, 40, 'nonzero', True, tolerance=0.25).full(40, 40)
     assert np.abs(a - b).max() < 1e-6
 
 

@@ -21,8 +21,7 @@ from PIL import Image
 
 from ..errors import RasterError
 from ..path import Path
-from ..scan import coverage
-from ..flatten import flatten
+from ..scan import path_coverage
 from ..transform import Affine
 from .tree import LinearGradient
 
@@ -30,14 +29,6 @@ __all__ = ['gradient_colors', 'draw_pixels', 'sample', 'user_bbox', 'resample_wi
 
 _F32 = np.float32
 
-
-def _cover(path, t, w, h, rule, antialias, tol):
-    """Coverage Mask of ``path`` filled under ``t`` on a w x h target."""
-    pl = flatten(path, tol, transform=t)
-    edges = pl.edges(close_all=True)
-    if len(edges) == 0:
-        return None
-    return coverage(edges, w, h, rule, antialias)
 
 
 # ---------------------------------------------------------------------------
@@ -448,14 +439,16 @@ def draw_pixels(n, t, canvas, tol):
     # the drawn region: the image rectangle, clipped to the viewport
     img_rect = n.transform.apply(np.array([[0, 0], [iw, 0], [iw, ih], [0, ih]], float))
     region = Path.polygon(img_rect)
-    m = _cover(region, t, canvas.width, canvas.height, 'nonzero', True, tol)
+    m = path_coverage(region, canvas.width, canvas.height, 'nonzero', True, tolerance=tol,
+                      transform=t)
     if m is None:
         return
     cov, x0, y0 = m.data, m.x0, m.y0
     if n.clip is not None:
         x, y, w, h = n.clip
         rect = Path.polygon([(x, y), (x + w, y), (x + w, y + h), (x, y + h)])
-        cm = _cover(rect, t, canvas.width, canvas.height, 'nonzero', True, tol)
+        cm = path_coverage(rect, canvas.width, canvas.height, 'nonzero', True, tolerance=tol,
+                           transform=t)
         if cm is None:
             return
         # the two windows' intersection only (no canvas-sized arrays)

@@ -65,7 +65,7 @@ from ..canvas import Canvas
 from ..errors import CanvasError, LimitError, RasterError, RasterWarning, SVGError
 from ..flatten import flatten, flatten_joined
 from ..path import CLOSE, LINE, MOVE, Path
-from ..scan import Mask, coverage, coverage_batch
+from ..scan import Mask, coverage, coverage_batch, path_coverage
 from ..stroke import StrokeStyle, hairline_scale, stroke as stroke_outline, stroke_many
 from ..transform import IDENTITY, Affine
 from .paint import draw_pixels, gradient_colors, sample, user_bbox
@@ -506,7 +506,7 @@ class _Renderer:
             m = (0.2125 * d[..., 0] + 0.7154 * d[..., 1] + 0.0721 * d[..., 2]).astype(np.float32)
         x, y, rw, rh = mask.rect
         rect = Path.polygon([(x, y), (x + rw, y), (x + rw, y + rh), (x, y + rh)])
-        rc = _cover(rect, t, w, h, 'nonzero', True, self.tol)
+        rc = path_coverage(rect, w, h, 'nonzero', True, tolerance=self.tol, transform=t)
         if rc is None:
             return np.zeros((h, w), np.float32)
         m *= rc.full(w, h)
@@ -532,7 +532,8 @@ class _Renderer:
             # a clip path uses the geometry whatever the paint (fill="none"
             # has no effect); the fill rule carries clip-rule
             rule = n.fill.rule if n.fill is not None else 'nonzero'
-            m = _cover(n.path, t, canvas.width, canvas.height, rule, n.antialias, self.tol)
+            m = path_coverage(n.path, canvas.width, canvas.height, rule, n.antialias,
+                              tolerance=self.tol, transform=t)
             if m is not None:
                 canvas.fill(m, _CLIP_FILL.color, 1.0)
             return
@@ -611,8 +612,8 @@ class _Renderer:
             outline = stroke_outline(n.path, style, transform=t, tolerance=self.tol)
             if len(outline.verbs) == 0:
                 return
-            m = _cover(outline, IDENTITY, canvas.width, canvas.height, 'nonzero', n.antialias,
-                       self.tol)
+            m = path_coverage(outline, canvas.width, canvas.height, 'nonzero', n.antialias,
+                              tolerance=self.tol)
         if m is not None:
             self.paint(canvas, m, s.paint, opacity, n.path, t)
 
@@ -706,7 +707,8 @@ class _Renderer:
             lt = Affine.translate(-x0, -y0)
             self.node(g, lt @ it, layer)
             rect = Path.polygon([(x, y), (x + w, y), (x + w, y + h), (x, y + h)])
-            rc = _cover(rect, lt @ t, layer.width, layer.height, 'nonzero', True, self.tol)
+            rc = path_coverage(rect, layer.width, layer.height, 'nonzero', True,
+                               tolerance=self.tol, transform=lt @ t)
             if rc is None:
                 return
             layer.data *= rc.full(layer.width, layer.height)[..., None]
@@ -764,14 +766,6 @@ def _wants_hair(n, t):
     return (s is not None and s.dash is None and s.opacity > 0
             and 0.0 < s.width * t.mean_scale() < 1.0)
 
-
-def _cover(path, t, w, h, rule, antialias, tol):
-    """Coverage Mask of ``path`` filled under ``t`` on a w x h target."""
-    pl = flatten(path, tol, transform=t)
-    edges = pl.edges(close_all=True)
-    if len(edges) == 0:
-        return None
-    return coverage(edges, w, h, rule, antialias)
 
 
 def _hairline_edges(pl, cap, join, miterlimit):
