@@ -1063,11 +1063,17 @@ def _exact_batch(pf, pxa, pya, pxb, pyb, gcount, gfirst, ev_f, ev_y, ev_c, corne
 
 # -- pixel centres ----------------------------------------------------------
 
-def _centre_coverage(loc, w, h, evenodd):
-    """1 where the pixel centre is inside, from crossings of the scanlines
-    y = i + 0.5 (half-open: an edge crosses when min(y) <= y_c < max(y))."""
-    xa, ya = loc[:, 0, 0], loc[:, 0, 1]
-    xb, yb = loc[:, 1, 0], loc[:, 1, 1]
+def _centre_crossings(xa, ya, xb, yb, h, w):
+    """Crossings of the scanlines y = i + 0.5 (0 <= i < h) by the edges
+    (xa, ya) -> (xb, yb), half-open (an edge crosses when min(y) <= y_c <
+    max(y)).  ``h`` and ``w`` (the box height and width) are numbers or
+    one per edge.
+
+    Returns None without crossings, else ``(owner, i, j, sign)``: the edge,
+    the scanline and the first pixel column whose centre (j + 0.5 > the
+    crossing) the crossing changes the winding of (-1 <= j - 1 < w), and
+    +1 or -1 (float64) for the edge's direction.
+    """
     i_lo = np.clip(np.ceil(np.minimum(ya, yb) - 0.5), 0, h)
     i_hi = np.clip(np.ceil(np.maximum(ya, yb) - 0.5), 0, h)
     n = (i_hi - i_lo).astype(np.int64)
@@ -1082,10 +1088,19 @@ def _centre_coverage(loc, w, h, evenodd):
     a_y, a_x = ya[owner], xa[owner]
     dyo = yb[owner] - a_y
     xc = a_x + (i + 0.5 - a_y) * ((xb[owner] - a_x) / dyo)
-    # the crossing changes the winding of centres j + 0.5 > xc
-    j = np.floor(np.clip(xc - 0.5, -1.0, float(w - 1))).astype(np.int64) + 1
-    cell = i * (w + 1) + j
-    wsum = np.bincount(cell, weights=np.where(dyo > 0, 1.0, -1.0), minlength=h * (w + 1))
+    last = float(w - 1) if np.ndim(w) == 0 else (w[owner] - 1).astype(np.float64)
+    j = np.floor(np.clip(xc - 0.5, -1.0, last)).astype(np.int64) + 1
+    return owner, i, j, np.where(dyo > 0, 1.0, -1.0)
+
+
+def _centre_coverage(loc, w, h, evenodd):
+    """1 where the pixel centre is inside, from the crossings of the
+    scanlines through the centres (:func:`_centre_crossings`)."""
+    cr = _centre_crossings(loc[:, 0, 0], loc[:, 0, 1], loc[:, 1, 0], loc[:, 1, 1], h, w)
+    if cr is None:
+        return None
+    _, i, j, sign = cr
+    wsum = np.bincount(i * (w + 1) + j, weights=sign, minlength=h * (w + 1))
     wind = np.cumsum(wsum.reshape(h, w + 1)[:, :w], axis=1)
     wind = np.rint(wind).astype(np.int64)
     if evenodd:
@@ -1313,6 +1328,9 @@ def _aliased_batch(e, counts, first, sel, eo, width, height, clip, out):
 
 
 def _aliased_run(e, counts, first, idx, X0, Y0, sw, sh, eo, out):
+    """Aliased masks of the shapes ``idx`` (boxes X0, Y0, sw, sh; evenodd
+    flags ``eo`` per shape of the batch) into ``out``; see
+    :func:`_aliased_batch`."""
     ne = counts[idx]
     mark = np.zeros(len(counts), bool)
     mark[idx] = True                     # idx increasing: edges stay in shape order
@@ -1323,29 +1341,15 @@ def _aliased_run(e, counts, first, idx, X0, Y0, sw, sh, eo, out):
     ya = loc[:, 0, 1] - Y0[sid]
     xb = loc[:, 1, 0] - X0[sid]
     yb = loc[:, 1, 1] - Y0[sid]
-    h_e = sh[sid].astype(np.float64)
-    i_lo = np.clip(np.ceil(np.minimum(ya, yb) - 0.5), 0, h_e)
-    i_hi = np.clip(np.ceil(np.maximum(ya, yb) - 0.5), 0, h_e)
-    n = (i_hi - i_lo).astype(np.int64)
-    total = int(n.sum())
-    if total == 0:
+    cr = _centre_crossings(xa, ya, xb, yb, sh[sid].astype(np.float64), sw[sid])
+    if cr is None:
         return
-    if total > limits.MAX_FLATTEN_POINTS:
-        raise LimitError('too many scanline crossings (%d)' % total)
-    owner = np.repeat(np.arange(len(xa)), n)
-    m = np.arange(total) - np.repeat(np.cumsum(n) - n, n)
-    i = i_lo[owner].astype(np.int64) + m
-    a_y, a_x = ya[owner], xa[owner]
-    dyo = yb[owner] - a_y
-    xc = a_x + (i + 0.5 - a_y) * ((xb[owner] - a_x) / dyo)
+    owner, i, j, sign = cr
     so = sid[owner]
-    wrow = sw[so] + 1
-    # the crossing changes the winding of centres j + 0.5 > xc
-    j = np.floor(np.clip(xc - 0.5, -1.0, (sw[so] - 1).astype(np.float64))).astype(np.int64) + 1
     size = sh * (sw + 1)
     off = np.cumsum(size) - size
-    cell = off[so] + i * wrow + j
-    acc = np.bincount(cell, weights=np.where(dyo > 0, 1.0, -1.0), minlength=int(size.sum()))
+    cell = off[so] + i * (sw[so] + 1) + j
+    acc = np.bincount(cell, weights=sign, minlength=int(size.sum()))
     # running sums along each row: a global running sum minus its value
     # before the row's first cell
     cs = np.cumsum(acc)
