@@ -72,7 +72,7 @@ import numpy as np
 
 from .errors import PathError, LimitError
 from . import limits
-from .transform import as_affine
+from .transform import apply_each, as_affine
 from .bbox import quadratic_roots
 
 __all__ = ['flatten', 'flatten_many', 'flatten_joined', 'flatten_beziers', 'Polylines',
@@ -900,20 +900,14 @@ def flatten_joined(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
     aff = [as_affine(t) for t in transforms]
     ident = np.array([a.is_identity for a in aff], bool)
     if not ident.all():
-        # the same arithmetic as Affine.apply, per path (identities untouched)
+        # the arithmetic of Affine.apply, per path (identities untouched)
         M = np.array([tuple(a) for a in aff], np.float64)          # (n, 6)
         c_path = np.repeat(np.arange(n), nc)                       # path of each contour
 
         def apply(pts, owner):
-            Mi = M[owner]
-            move = ~ident[owner]
-            shape = (-1,) + (1,) * (pts.ndim - 2)
-            a, b, c, d, e, f = (Mi[:, k].reshape(shape) for k in range(6))
-            x, y = pts[..., 0], pts[..., 1]
             out = pts.copy()
-            with np.errstate(over='ignore', invalid='ignore'):   # checked below
-                out[..., 0] = np.where(move.reshape(shape), a * x + c * y + e, x)
-                out[..., 1] = np.where(move.reshape(shape), b * x + d * y + f, y)
+            move = np.flatnonzero(~ident[owner])
+            out[move] = apply_each(M[owner[move]], pts[move])
             return out
         ctrl = apply(ctrl, c_path[seg.contour])
         cstart = apply(cstart, c_path)

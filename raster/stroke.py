@@ -103,7 +103,7 @@ import numpy as np
 from .errors import LimitError, RasterError
 from .limits import MAX_COORD, MAX_FLATTEN_POINTS
 from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
-from .transform import Affine, as_affine
+from .transform import Affine, apply_each, as_affine
 
 __all__ = ['StrokeStyle', 'Stroke', 'StrokeError', 'stroke', 'stroke_many', 'dash_polylines',
            'dash_pattern', 'hairline_scale', 'DashedLines']
@@ -1437,9 +1437,7 @@ def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
         ipath = ppath
     mu = m[use]
     if len(ipath) and not np.all(mu == (1.0, 0.0, 0.0, 1.0, 0.0, 0.0)):
-        a, b, c, d, e, f = mu[ipath].T
-        x, y = pts[:, 0], pts[:, 1]
-        pts = np.stack([a * x + c * y + e, b * x + d * y + f], axis=1)
+        pts = apply_each(mu[ipath], pts)
     _check_device(pts)
     pts = np.ascontiguousarray(pts)
     pts.flags.writeable = False

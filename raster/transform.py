@@ -210,3 +210,34 @@ def as_affine(t):
     if arr.shape in ((2, 3), (3, 3)):
         return Affine.from_matrix(arr)
     raise TransformError('cannot interpret %r as an affine transform' % (t,))
+
+
+def apply_each(m, pts):
+    """Map each item of ``pts`` by its own affine transform.
+
+    Parameters
+    ----------
+    m : (N, 6) float64 ndarray
+        One transform ``(a, b, c, d, e, f)`` per item.
+    pts : (N, ..., 2) float64 ndarray
+        Item ``k`` holds points (x right, y down) mapped by ``m[k]``.
+
+    Returns
+    -------
+    (N, ..., 2) float64 ndarray
+        ``(a x + c y + e, b x + d y + f)``: the arithmetic of
+        :meth:`Affine.apply`.  Overflow is not checked (callers test the
+        result for finiteness).
+
+    >>> apply_each(np.array([[2, 0, 0, 2, 1, 0], [1, 0, 0, 1, 0, 5]], float),
+    ...            np.array([[1.0, 1.0], [1.0, 1.0]])).tolist()
+    [[3.0, 2.0], [1.0, 6.0]]
+    """
+    shape = (-1,) + (1,) * (pts.ndim - 2)
+    a, b, c, d, e, f = (m[:, k].reshape(shape) for k in range(6))
+    x, y = pts[..., 0], pts[..., 1]
+    out = np.empty(pts.shape)
+    with np.errstate(over='ignore', invalid='ignore'):
+        out[..., 0] = a * x + c * y + e
+        out[..., 1] = b * x + d * y + f
+    return out
