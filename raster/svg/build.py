@@ -70,6 +70,7 @@ from ..svgpath import (circle_path, ellipse_path, line_path, parse_path, parse_p
                        polyline_path, rect_path)
 from ..transform import IDENTITY, Affine
 from .css import declared_styles
+from .document import chain_attr
 from .properties import INHERITED, PROPERTIES
 from .tree import (ClipPath, Fill, GradientStop, Group, LinearGradient, Mask, PathNode,
                    Pattern, RadialGradient, SolidPaint, Stroke, Tree, walk)
@@ -1163,11 +1164,7 @@ class _Builder:
         chain = self.href_chain(el, ('pattern',))
 
         def attr(n):
-            for e in chain:
-                v = e.get(n)
-                if v is not None:
-                    return v
-            return None
+            return chain_attr(chain, n)
         content_el = None
         for e in chain:
             if any(isinstance(c.tag, str) and c.tag.startswith(_P) for c in e):
@@ -1225,13 +1222,7 @@ class _Builder:
         chain = self.href_chain(el, ('linearGradient', 'radialGradient'))
 
         def attr(n, same_kind=False):
-            for e in chain:
-                if same_kind and e.tag != el.tag:
-                    continue
-                v = e.get(n)
-                if v is not None:
-                    return v
-            return None
+            return chain_attr(chain, n, el.tag if same_kind else None)
         stops_el = None
         for e in chain:
             ss = [c for c in e if isinstance(c.tag, str) and c.tag == _P + 'stop']

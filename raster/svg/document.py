@@ -35,7 +35,7 @@ from lxml import etree
 
 from ..errors import SVGError
 
-__all__ = ['load_document', 'SVG_NS', 'XLINK_NS', 'MAX_DOCUMENT_BYTES']
+__all__ = ['load_document', 'chain_attr', 'SVG_NS', 'XLINK_NS', 'MAX_DOCUMENT_BYTES']
 
 SVG_NS = 'http://www.w3.org/2000/svg'
 XLINK_NS = 'http://www.w3.org/1999/xlink'
@@ -201,3 +201,16 @@ def _adopt_svg_namespace(root, only_under_svg=False):
                 if p is None or not p.tag.startswith(pre):
                     continue
             el.tag = pre + t
+
+
+def chain_attr(chain, name, tag=None):
+    """The first value of attribute ``name`` along an href chain of elements
+    (the referencing element first), among elements with tag ``tag`` when
+    given; None when no element has it."""
+    for e in chain:
+        if tag is not None and e.tag != tag:
+            continue
+        v = e.get(name)
+        if v is not None:
+            return v
+    return None

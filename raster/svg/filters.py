@@ -57,6 +57,7 @@ import numpy as np
 
 from ..errors import RasterError
 from ..transform import Affine
+from .document import chain_attr
 
 __all__ = ['FilterError', 'Filter', 'Primitive', 'resolve_filter_property', 'filter_box',
            'filter_pixel_box', 'group_filters', 'apply_filters', 'gaussian_blur', 'box_blur',
@@ -354,21 +355,13 @@ def _saturate_matrix(s):
     return m
 
 
-def _attr(chain, name):
-    for e in chain:
-        v = e.get(name)
-        if v is not None:
-            return v
-    return None
-
-
 def _resolve_filter(b, fel, kids, st):
     from .values import LengthContext, parse_length
     chain = b.href_chain(fel, ('filter',))
     inh, _own = b.doc_style(fel)
-    units = _attr(chain, 'filterUnits')
+    units = chain_attr(chain, 'filterUnits')
     obb = units != 'userSpaceOnUse'
-    pobb = _attr(chain, 'primitiveUnits') == 'objectBoundingBox'
+    pobb = chain_attr(chain, 'primitiveUnits') == 'objectBoundingBox'
     box = None
     if obb or pobb:
         box = b.object_box(kids)
@@ -380,7 +373,7 @@ def _resolve_filter(b, fel, kids, st):
     def rect(src, ctx, in_obb, default):
         vals = []
         for name, axis, d in zip(('x', 'y', 'width', 'height'), 'xyxy', default):
-            s = _attr(src, name)
+            s = chain_attr(src, name)
             v = parse_length(s, axis, ctx) if s is not None else None
             vals.append(v)
         if in_obb:
