@@ -180,6 +180,22 @@ def _check_edges(edges):
     return e
 
 
+def _window(width, height, clip):
+    """The pixel rectangle (x0, y0, x1, y1) where work may happen: the
+    canvas, cut by ``clip`` rounded outward to whole pixels (it may come
+    out empty).  Raises CanvasError for a malformed ``clip``."""
+    if clip is None:
+        return 0, 0, width, height
+    try:
+        c = [float(v) for v in clip]
+    except (TypeError, ValueError):
+        raise CanvasError('clip must be four numbers (x0, y0, x1, y1)') from None
+    if len(c) != 4 or not all(np.isfinite(c)):
+        raise CanvasError('clip must be four finite numbers (x0, y0, x1, y1)')
+    return (max(0, math.floor(c[0])), max(0, math.floor(c[1])),
+            min(width, math.ceil(c[2])), min(height, math.ceil(c[3])))
+
+
 def _box(e, width, height, clip, antialias):
     """Integer pixel box [X0, X1) x [Y0, Y1) where work happens, or None."""
     xs, ys = e[:, :, 0], e[:, :, 1]
@@ -189,17 +205,9 @@ def _box(e, width, height, clip, antialias):
     else:   # pixels whose centre may be inside
         X0, X1 = np.floor(xs.min() + 0.5), np.ceil(xs.max() - 0.5)
         Y0, Y1 = np.floor(ys.min() + 0.5), np.ceil(ys.max() - 0.5)
-    X0, Y0 = max(int(X0), 0), max(int(Y0), 0)
-    X1, Y1 = min(int(X1), width), min(int(Y1), height)
-    if clip is not None:
-        try:
-            c = [float(v) for v in clip]
-        except (TypeError, ValueError):
-            raise CanvasError('clip must be four numbers (x0, y0, x1, y1)') from None
-        if len(c) != 4 or not all(np.isfinite(c)):
-            raise CanvasError('clip must be four finite numbers (x0, y0, x1, y1)')
-        X0, Y0 = max(X0, int(np.floor(c[0]))), max(Y0, int(np.floor(c[1])))
-        X1, Y1 = min(X1, int(np.ceil(c[2]))), min(Y1, int(np.ceil(c[3])))
+    wx0, wy0, wx1, wy1 = _window(width, height, clip)
+    X0, Y0 = max(int(X0), wx0), max(int(Y0), wy0)
+    X1, Y1 = min(int(X1), wx1), min(int(Y1), wy1)
     if X1 <= X0 or Y1 <= Y0:
         return None
     return X0, Y0, X1, Y1
@@ -1226,19 +1234,18 @@ def coverage_batch(edges, counts, width, height, fill_rules='nonzero', antialias
     eo = _rules_evenodd(_per_shape(fill_rules, n, 'fill rule', str))
     aa = np.array(_per_shape(antialias, n, 'antialias flag', (bool, np.bool_, int)), bool)
     ex = np.array(_per_shape(exact, n, 'exact flag', (bool, np.bool_, int)), bool)
-    if clip is not None:
-        _box(np.zeros((1, 2, 2)), width, height, clip, True)      # validates clip
+    win = _window(width, height, clip)
     out = [None] * n
     if n == 0 or len(e) == 0:
         return out
     first = np.cumsum(counts) - counts
     rules = ['evenodd' if v else 'nonzero' for v in eo.tolist()]
     if (~aa & (counts > 0)).any():
-        _aliased_batch(e, counts, first, ~aa & (counts > 0), eo, width, height, clip, out)
+        _aliased_batch(e, counts, first, ~aa & (counts > 0), eo, win, out)
     idx = np.flatnonzero(aa & (counts > 0))
     if len(idx) == 0:
         return out
-    X0, Y0, X1, Y1 = _shape_boxes(e, counts, first, idx, width, height, clip, True)
+    X0, Y0, X1, Y1 = _shape_boxes(e, counts, first, idx, win, True)
     full = np.flatnonzero(counts > 0)
     f = first[full]
     pick = np.searchsorted(full, idx)
@@ -1278,9 +1285,10 @@ def coverage_batch(edges, counts, width, height, fill_rules='nonzero', antialias
     return out
 
 
-def _shape_boxes(e, counts, first, idx, width, height, clip, antialias):
+def _shape_boxes(e, counts, first, idx, win, antialias):
     """Integer pixel boxes (X0, Y0, X1, Y1), int64 arrays, of the shapes
-    ``idx`` (with edges; boxes as :func:`_box` makes them)."""
+    ``idx`` (with edges; boxes as :func:`_box` makes them, inside the
+    :func:`_window` ``win``)."""
     full = np.flatnonzero(counts > 0)
     f = first[full]
     pick = np.searchsorted(full, idx)
@@ -1295,22 +1303,18 @@ def _shape_boxes(e, counts, first, idx, width, height, clip, antialias):
     else:       # pixels whose centre may be inside
         x0, x1 = np.floor(lo_x + 0.5), np.ceil(hi_x - 0.5)
         y0, y1 = np.floor(lo_y + 0.5), np.ceil(hi_y - 0.5)
-    cx0, cy0, cx1, cy1 = 0.0, 0.0, float(width), float(height)
-    if clip is not None:
-        c = [float(v) for v in clip]
-        cx0, cy0 = max(cx0, math.floor(c[0])), max(cy0, math.floor(c[1]))
-        cx1, cy1 = min(cx1, math.ceil(c[2])), min(cy1, math.ceil(c[3]))
+    cx0, cy0, cx1, cy1 = win
     return (np.maximum(x0, cx0).astype(np.int64), np.maximum(y0, cy0).astype(np.int64),
             np.minimum(x1, cx1).astype(np.int64), np.minimum(y1, cy1).astype(np.int64))
 
 
-def _aliased_batch(e, counts, first, sel, eo, width, height, clip, out):
+def _aliased_batch(e, counts, first, sel, eo, win, out):
     """Aliased masks (as :func:`_centre_coverage`) of the shapes ``sel``
     (bool per shape) into ``out``: the crossings of all shapes' scanlines
     are summed into one flat array of the shapes' boxes (one extra column
     each), and the windings are running sums along its rows."""
     idx = np.flatnonzero(sel)
-    X0, Y0, X1, Y1 = _shape_boxes(e, counts, first, idx, width, height, clip, False)
+    X0, Y0, X1, Y1 = _shape_boxes(e, counts, first, idx, win, False)
     live = (X1 > X0) & (Y1 > Y0)
     idx, X0, Y0, sw, sh = idx[live], X0[live], Y0[live], (X1 - X0)[live], (Y1 - Y0)[live]
     if len(idx) == 0:
