@@ -6,15 +6,20 @@
   traceback; usage errors from :mod:`argparse` exit with status 2.
 * :func:`read_source` reads a file or ``-`` (stdin) as bytes, gunzipping
   ``.svgz`` (gzip) data.
-* :func:`write_output` writes bytes to a file atomically (a temporary file in
-  the target directory, renamed into place, removed on failure, so a failed
-  run never leaves a partial file at the output path) or to stdout for ``-``.
+* :func:`write_output` writes bytes to a regular file atomically (a
+  temporary file in the target directory, renamed into place, removed on
+  failure, so a failed run never leaves a partial file at the output path);
+  anything else that exists (a character device such as ``/dev/null``, a
+  FIFO, a socket, ``/dev/stdout``) is opened and written directly, never
+  replaced; ``-`` is stdout.
 """
 
 import argparse
+import errno
 import gzip
 import io
 import os
+import stat
 import sys
 import warnings
 import tempfile
@@ -118,12 +123,28 @@ def base_dir_of(path):
 
 
 def write_output(path, data):
-    """Write ``data`` (bytes) to ``path`` atomically, or to stdout for ``-``."""
+    """Write ``data`` (bytes) to ``path``, or to stdout for ``-``.
+
+    A regular file (or a path that does not exist yet) is written
+    atomically: a temporary file beside it, renamed over it.  Any other
+    existing file (a device, a FIFO, a socket, a link to one) is opened and
+    written directly: renaming over it would replace the device node."""
     if path == '-':
         sys.stdout.buffer.write(data)
         sys.stdout.buffer.flush()
         return
-    target = os.path.abspath(path)
+    try:
+        st = os.stat(path)
+    except FileNotFoundError:
+        st = None
+    if st is not None and not stat.S_ISREG(st.st_mode):
+        if stat.S_ISDIR(st.st_mode):
+            raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), path)
+        with open(path, 'wb') as f:
+            f.write(data)
+        return
+    # a link to a regular file: replace the file it names, not the link
+    target = os.path.realpath(path)
     d = os.path.dirname(target)
     fd, tmp = tempfile.mkstemp(prefix='.%s.' % os.path.basename(target), suffix='.tmp', dir=d)
     try:

@@ -10,6 +10,8 @@ import io
 import json
 import os
 import subprocess
+import sys
+import sysconfig
 
 import numpy as np
 import pytest
@@ -39,9 +41,19 @@ def png(path):
     return np.asarray(Image.open(path).convert('RGBA'))
 
 
-def cli(*args, stdin=None):
-    """Run a console script as a subprocess: (returncode, stdout bytes, stderr str)."""
-    p = subprocess.run(list(args), input=stdin, capture_output=True, timeout=60)
+def script(name):
+    """Path of console script ``name`` installed beside this interpreter (the
+    environment the tests run in, activated or not; never a copy on PATH)."""
+    path = os.path.join(sysconfig.get_path('scripts'), name)
+    assert os.path.exists(path), '%s is not installed in %s' % (name, sys.prefix)
+    return path
+
+
+def cli(name, *args, stdin=None):
+    """Run a console script of this environment as a subprocess:
+    (returncode, stdout bytes, stderr str)."""
+    p = subprocess.run([script(name)] + list(args), input=stdin, capture_output=True,
+                       timeout=60)
     return p.returncode, p.stdout, p.stderr.decode('utf-8', 'replace')
 
 
@@ -381,3 +393,112 @@ def test_rasterize_skips_an_element_beyond_a_limit_with_a_one_line_warning(tmp_p
     assert len(lines) == 1 and lines[0].startswith('rasterize: warning: element not drawn')
     img = np.asarray(Image.open(out))
     assert img[25, 25].tolist() == [0, 128, 0, 255]
+
+
+# -- output onto special files -------------------------------------------------------------
+
+def _reader(path, out):
+    """Thread body: read everything from ``path`` into ``out`` (a list)."""
+    with open(path, 'rb') as f:
+        out.append(f.read())
+
+
+def test_output_to_a_fifo_is_written_into_the_fifo(tmp_path):
+    """``mkfifo p; rasterize in.svg p``: the reader gets the PNG and the FIFO
+    stays a FIFO (an atomic rename would have replaced it by a file)."""
+    import stat
+    import threading
+    src = write(tmp_path, 'in.svg', SQUARE)
+    fifo = tmp_path / 'p'
+    os.mkfifo(fifo)
+    got = []
+    t = threading.Thread(target=_reader, args=(str(fifo), got))
+    t.start()
+    rc = rasterize.main([src, str(fifo)])
+    t.join(30)
+    assert rc == 0
+    assert stat.S_ISFIFO(os.stat(fifo).st_mode)
+    assert got and got[0][:8] == b'\x89PNG\r\n\x1a\n'
+    assert np.asarray(Image.open(io.BytesIO(got[0]))).shape == (10, 20, 4)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ['in.svg', 'p']
+
+
+def test_output_to_a_character_device_keeps_the_device(tmp_path):
+    """A character device of the test's own (the slave side of a new
+    pseudo-terminal, or a node made with mknod when allowed) is written
+    directly, never replaced by a regular file."""
+    import stat
+    import threading
+    src = write(tmp_path, 'in.svg', SQUARE)
+    master, slave = os.openpty()
+    try:
+        import tty
+        tty.setraw(slave)                # bytes pass unchanged
+        dev = os.ttyname(slave)
+        got = bytearray()
+
+        def drain():
+            while True:
+                try:
+                    chunk = os.read(master, 65536)
+                except OSError:
+                    return
+                if not chunk:
+                    return
+                got.extend(chunk)
+        t = threading.Thread(target=drain, daemon=True)
+        t.start()
+        assert stat.S_ISCHR(os.stat(dev).st_mode)
+        assert svg_bbox.main([src, '-o', dev]) == 0
+        assert stat.S_ISCHR(os.stat(dev).st_mode)
+        import time
+        deadline = time.time() + 10
+        result = None
+        while result is None and time.time() < deadline:
+            try:
+                result = json.loads(bytes(got).decode())
+            except ValueError:
+                time.sleep(0.05)
+        want = json.loads(subprocess.run([script('svg-bbox'), src], capture_output=True,
+                                         timeout=60).stdout)
+        assert result == want
+    finally:
+        os.close(slave)
+        os.close(master)
+
+
+def test_output_through_a_link_to_a_device_keeps_the_device(tmp_path):
+    """A symbolic link to a FIFO is followed and written, not replaced."""
+    import stat
+    import threading
+    src = write(tmp_path, 'in.svg', SQUARE)
+    fifo = tmp_path / 'p'
+    os.mkfifo(fifo)
+    link = tmp_path / 'link.png'
+    link.symlink_to(fifo)
+    got = []
+    t = threading.Thread(target=_reader, args=(str(fifo), got))
+    t.start()
+    assert rasterize.main([src, str(link)]) == 0
+    t.join(30)
+    assert link.is_symlink() and stat.S_ISFIFO(os.stat(fifo).st_mode)
+    assert got and got[0][:4] == b'\x89PNG'
+
+
+def test_output_through_a_link_to_a_file_replaces_the_file(tmp_path):
+    src = write(tmp_path, 'in.svg', SQUARE)
+    real = tmp_path / 'real.png'
+    real.write_bytes(b'old')
+    link = tmp_path / 'link.png'
+    link.symlink_to(real)
+    assert rasterize.main([src, str(link)]) == 0
+    assert link.is_symlink() and real.read_bytes()[:4] == b'\x89PNG'
+
+
+def test_output_to_a_directory_is_an_error(tmp_path, capsys):
+    src = write(tmp_path, 'in.svg', SQUARE)
+    d = tmp_path / 'dir'
+    d.mkdir()
+    assert rasterize.main([src, str(d)]) == 1
+    assert one_error_line(capsys.readouterr().err, 'rasterize')
+    assert list(d.iterdir()) == []
