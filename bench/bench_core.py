@@ -27,9 +27,9 @@ import tracemalloc
 
 import numpy as np
 
-from raster.canvas import Canvas
+from raster.pixels.canvas import Canvas
 from raster.path import Path
-from raster.scan import coverage
+from raster.pixels.scan import coverage
 
 W = H = 2000
 CANVAS_BYTES = W * H * 4 * 4

@@ -12,7 +12,7 @@ natural size and at 2000 px width, to PNG bytes, so every renderer pays its
 own PNG encode:
 
 * raster: ``raster.render(path, width)`` then raster's PNG encode
-  (:func:`raster.png.encode_png` at ``raster.canvas.DEFAULT_COMPRESS_LEVEL``,
+  (:func:`raster.pixels.png.encode_png` at ``raster.pixels.canvas.DEFAULT_COMPRESS_LEVEL``,
   what ``Canvas.save_png`` and the ``rasterize`` command do);
   the time without the encode is reported as well ("render-only");
 * resvg-py: ``resvg_py.svg_to_bytes`` with the options of
@@ -92,8 +92,8 @@ def _make_renderer(name):
 
         import raster
         import raster.svg  # noqa: F401
-        from raster.canvas import DEFAULT_COMPRESS_LEVEL
-        from raster.png import encode_png
+        from raster.pixels.canvas import DEFAULT_COMPRESS_LEVEL
+        from raster.pixels.png import encode_png
 
         def fn(path, width):
             c0 = time.process_time()

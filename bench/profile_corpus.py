@@ -10,11 +10,11 @@ FILES are corpus file names or substrings (default: every file of
 1. *Stage times, no profiler*: the public stages are timed one after
    the other, in wall-clock and in process CPU time (median of
    ``--repeat`` runs each): XML parse
-   (``raster.svg.document.load_document``), tree build incl. CSS cascade
-   (``raster.svg.build.build_tree``), rendering (``render_tree``: path
+   (``raster.parser.document.load_document``), tree build incl. CSS cascade
+   (``raster.parser.build_tree``), rendering (``render_tree``: path
    parse, flatten, stroke, scan conversion, compositing), conversion to
-   8-bit (``Canvas.to_rgba8``) and PNG encode (:func:`raster.png.encode_png`, at
-   ``raster.canvas.DEFAULT_COMPRESS_LEVEL``).
+   8-bit (``Canvas.to_rgba8``) and PNG encode (:func:`raster.pixels.png.encode_png`, at
+   ``raster.pixels.canvas.DEFAULT_COMPRESS_LEVEL``).
 2. *cProfile attribution*: one run under cProfile.  Every function's own
    time is assigned to a stage by the module it lives in (``raster/scan.py``
    -> scan conversion, ...).  Time spent in code outside raster (numpy,
@@ -122,12 +122,12 @@ def stage_times(path, width, repeat, cpu=False):
     """Median wall (or, with ``cpu``, process CPU) time of each public stage,
     without profiler."""
 
-    from raster.canvas import DEFAULT_COMPRESS_LEVEL
-    from raster.png import encode_png
+    from raster.pixels.canvas import DEFAULT_COMPRESS_LEVEL
+    from raster.pixels.png import encode_png
     from raster.svg import _source_and_base, load_svg  # noqa: F401
-    from raster.svg.build import build_tree
-    from raster.svg.document import load_document
-    from raster.svg.render import render_tree
+    from raster.parser import build_tree
+    from raster.parser.document import load_document
+    from raster.renderer import render_tree
     rows = defaultdict(list)
     clock = time.process_time if cpu else time.perf_counter
     for _ in range(repeat):
@@ -152,8 +152,8 @@ def stage_times(path, width, repeat, cpu=False):
 def render_png(path, width):
 
     import raster
-    from raster.canvas import DEFAULT_COMPRESS_LEVEL
-    from raster.png import encode_png
+    from raster.pixels.canvas import DEFAULT_COMPRESS_LEVEL
+    from raster.pixels.png import encode_png
     arr = raster.render(path, width)
     buf = io.BytesIO()
     buf.write(encode_png(arr, DEFAULT_COMPRESS_LEVEL))
@@ -210,10 +210,10 @@ def profile_file(path, width, top, repeat):
 def cost_model():
     """Print the fixed per-call CPU cost of each stage on a small shape and
     the per-pixel CPU cost on a 2000x2000 one (min of 3 batches)."""
-    from raster.canvas import Canvas
+    from raster.pixels.canvas import Canvas
     from raster.flatten import flatten
     from raster.path import Path
-    from raster.scan import coverage
+    from raster.pixels.scan import coverage
     from raster.stroke import stroke
     from raster.svgpath import parse_path
 

@@ -174,11 +174,11 @@ def write_text(path, text):
 def drawn_shapes(tree):
     """Every painted path of a resolved tree in drawing order.
 
-    Yields ``(node, transform)``: a :class:`~raster.svg.tree.PathNode` with a
+    Yields ``(node, transform)``: a :class:`~raster.tree.PathNode` with a
     fill or a stroke, and the transform mapping its coordinates to the
     tree's document pixels.  Descends into groups and marker instances (not
     into clip paths, masks or patterns, which are not drawn themselves)."""
-    from raster.svg.tree import Group, PathNode
+    from raster.tree import Group, PathNode
     from raster.transform import IDENTITY
     stack = [(tree.root, IDENTITY)]
     while stack:
@@ -196,7 +196,7 @@ def drawn_shapes(tree):
 def subtree_shapes(node, t):
     """Like :func:`drawn_shapes` for the subtree of one node whose parent
     coordinates map to document px by ``t``."""
-    from raster.svg.tree import Group, Tree
+    from raster.tree import Group, Tree
     for n, tt in drawn_shapes(Tree(1.0, 1.0, Group(children=[node]))):
         yield n, t @ tt
 
@@ -204,7 +204,7 @@ def subtree_shapes(node, t):
 def node_transforms(tree):
     """``{id(node): transform to document px}`` of every node of the tree,
     markers included (the transform of the node's own coordinates)."""
-    from raster.svg.tree import Group, PathNode
+    from raster.tree import Group, PathNode
     from raster.transform import IDENTITY
     out = {}
     stack = [(tree.root, IDENTITY)]

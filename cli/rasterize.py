@@ -44,15 +44,14 @@ def _body(args):
         raise UsageError('--zoom cannot be combined with --width/--height')
     if not (math.isfinite(args.dpi) and args.dpi > 0):
         raise CanvasError('--dpi must be positive and finite, got %g' % args.dpi)
-    from raster.svg import _background, load_svg
-    from raster.svg.render import render_tree
-    bg = _background(args.background)            # a bad colour fails before any work
+    from raster.svg import background_color, load_svg, render_tree
+    bg = background_color(args.background)       # a bad colour fails before any work
     data = read_source(args.input)
     tree = load_svg(data, dpi=args.dpi, font_dirs=args.font_dir,
                     resources_dir=args.allow_dir, base_dir=base_dir_of(args.input))
     canvas = render_tree(tree, width=args.width, height=args.height, zoom=args.zoom,
                          background=bg, node_id=args.id, tolerance=args.tolerance)
-    from raster.png import encode_png
+    from raster.pixels.png import encode_png
     write_output(args.output, encode_png(canvas.to_rgba8()))
     return 0
 

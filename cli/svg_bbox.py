@@ -36,10 +36,8 @@ def shape_box(node, t, with_stroke=False):
     if node.fill is not None or not with_stroke or node.stroke is None:
         boxes.append(_path_box(path, t))
     if with_stroke and node.stroke is not None:
-        from raster.stroke import StrokeStyle, stroke
-        s = node.stroke
-        style = StrokeStyle(width=s.width, join=s.join, cap=s.cap, miterlimit=s.miterlimit,
-                            dash=s.dash, dash_offset=s.dash_offset)
+        from raster.stroke import stroke
+        style = node.stroke.style
         box = None
         try:
             from raster.bbox import bbox as exact

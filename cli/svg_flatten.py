@@ -59,7 +59,7 @@ def build_parser():
 
 
 def _paint_value(paint):
-    from raster.svg.tree import SolidPaint
+    from raster.tree import SolidPaint
     if paint is None:
         return None, 1.0
     if isinstance(paint, SolidPaint):
@@ -72,7 +72,7 @@ def collect(tree, tolerance=0.25, pixels=False, outline_strokes=False):
 
     Parameters
     ----------
-    tree : raster.svg.tree.Tree
+    tree : raster.tree.Tree
     tolerance : float
         In output units.
     pixels : bool
@@ -86,7 +86,7 @@ def collect(tree, tolerance=0.25, pixels=False, outline_strokes=False):
     """
     from raster.errors import RasterError
     from raster.flatten import flatten
-    from raster.stroke import StrokeStyle, stroke
+    from raster.stroke import stroke
     if not (math.isfinite(tolerance) and tolerance > 0):
         raise RasterError('--tolerance must be positive, got %g' % tolerance)
     to_out = None
@@ -106,10 +106,7 @@ def collect(tree, tolerance=0.25, pixels=False, outline_strokes=False):
                'stroke_width': (node.stroke.width * ot.mean_scale()) if node.stroke else 0.0}
         outline = None
         if outline_strokes and node.stroke is not None:
-            s = node.stroke
-            style = StrokeStyle(width=s.width, join=s.join, cap=s.cap, miterlimit=s.miterlimit,
-                                dash=s.dash, dash_offset=s.dash_offset)
-            op = stroke(node.path, style, transform=ot, tolerance=tolerance)
+            op = stroke(node.path, node.stroke.style, transform=ot, tolerance=tolerance)
             outline = dict(rec, fill=strk, fill_opacity=rec['stroke_opacity'],
                            fill_rule='nonzero', stroke=None, stroke_opacity=None,
                            stroke_width=0.0, polylines=_polylines(flatten(op, tolerance)))

@@ -21,9 +21,9 @@ __version__ = '0.1.0'
 _LAZY = {
     'parse_path': 'raster.svgpath',
     'StrokeStyle': 'raster.stroke',
-    'coverage': 'raster.scan',
-    'path_coverage': 'raster.scan',
-    'Canvas': 'raster.canvas',
+    'coverage': 'raster.pixels.scan',
+    'path_coverage': 'raster.pixels.scan',
+    'Canvas': 'raster.pixels.canvas',
     'render': 'raster.svg',
     'render_image': 'raster.svg',
     'load_svg': 'raster.svg',

@@ -40,6 +40,7 @@ record.
 ([0, 1, 3, 4], (5, 2))
 """
 
+import enum
 from typing import NamedTuple
 
 import numpy as np
@@ -48,6 +49,14 @@ from .errors import PathError
 from .transform import as_affine
 
 MOVE, LINE, QUAD, CUBIC, CLOSE = 0, 1, 2, 3, 4
+
+
+class FillRule(str, enum.Enum):
+    """Which points a closed path covers: ``NONZERO`` (winding number not
+    0) or ``EVENODD`` (odd winding number).  Equal to its string value, so
+    ``'evenodd'`` is accepted wherever a rule is."""
+    NONZERO = 'nonzero'
+    EVENODD = 'evenodd'
 VERB_NAMES = ('M', 'L', 'Q', 'C', 'Z')
 _NPTS = np.array([1, 1, 2, 3, 0], dtype=np.int64)
 

@@ -1,4 +1,4 @@
-"""Tests of raster.canvas: premultiplied compositing, conversion, PNG."""
+"""Tests of raster.pixels.canvas: premultiplied compositing, conversion, PNG."""
 
 import io
 
@@ -7,9 +7,9 @@ import pytest
 from hypothesis import given, settings, strategies as st
 from PIL import Image
 
-from raster.canvas import DEFAULT_COMPRESS_LEVEL, Canvas
+from raster.pixels.canvas import DEFAULT_COMPRESS_LEVEL, Canvas
 from raster.errors import CanvasError
-from raster.scan import Mask, coverage
+from raster.pixels.scan import Mask, coverage
 
 
 def mask(values, x0=0, y0=0):
@@ -203,7 +203,7 @@ def test_fill_blocks_and_crops_match_the_formula(monkeypatch, block, seed):
     # a sparse mask (empty rows and columns, exact 0 and 1, partial values)
     # placed partly off a translucent canvas, with translucent and opaque
     # colours: the blocked, cropped, lane-spread fill equals the formula
-    import raster.canvas as canvas_mod
+    import raster.pixels.canvas as canvas_mod
     monkeypatch.setattr(canvas_mod, '_BLOCK', block)
     rng = np.random.default_rng(seed)
     k = rng.choice([0.0, 0.0, 1.0, 0.25, 0.7], (23, 31)).astype(np.float32)
@@ -218,7 +218,7 @@ def test_fill_blocks_and_crops_match_the_formula(monkeypatch, block, seed):
 
 
 def test_spread4_repeats_bits():
-    from raster.canvas import _spread4
+    from raster.pixels.canvas import _spread4
     rng = np.random.default_rng(3)
     k = rng.normal(size=(5, 40)).astype(np.float32)
     k[0, :3] = [-0.0, np.inf, 1e-45]
@@ -297,7 +297,7 @@ def test_large_dense_fill_matches_the_formula(monkeypatch, block, rgba):
     # edges, translucent paint blends in blocks; both equal the formula
     # within float32 rounding, and full coverage of opaque paint gives the
     # colour exactly
-    import raster.canvas as canvas_mod
+    import raster.pixels.canvas as canvas_mod
     monkeypatch.setattr(canvas_mod, '_BLOCK', block)
     rng = np.random.default_rng(11)
     k = rng.choice([0.0, 1.0, 1.0, 1.0, 0.3, 0.85], (60, 45)).astype(np.float32)
@@ -340,7 +340,7 @@ def test_fill_paints_repeat_and_still_validate():
 def test_to_rgba8_blocks_of_different_kinds(monkeypatch):
     # many small blocks: all opaque, all transparent, mostly translucent,
     # out of range, transparent with colour: each equals the formula
-    import raster.canvas as canvas_mod
+    import raster.pixels.canvas as canvas_mod
     monkeypatch.setattr(canvas_mod, '_BLOCK', 24)
     rng = np.random.default_rng(13)
     d = rng.uniform(0, 1, (60, 9, 4)).astype(np.float32)

@@ -65,11 +65,11 @@ def one_error_line(err, prog):
 # -- builder-independent parts ------------------------------------------------------------
 
 def _circle_tree(with_fill=False, transform=None):
-    from raster.svg.tree import Fill, Group, PathNode, SolidPaint, Stroke, Tree
+    from raster.tree import Fill, Group, PathNode, SolidPaint, Stroke, Tree
     from raster.transform import Affine
     from _geometry import kappa_circle
     black = SolidPaint((0, 0, 0, 1))
-    node = PathNode(id='c', path=kappa_circle(50.0, 50.0, 10.0), stroke=Stroke(black, width=4),
+    node = PathNode(id='c', path=kappa_circle(50.0, 50.0, 10.0), stroke=Stroke.of(black, width=4),
                     fill=Fill(black) if with_fill else None)
     root = Group(transform=transform or Affine(), children=[node])
     return Tree(100, 100, root, ids={'c': node})

@@ -4,7 +4,7 @@ rounds the other side up (values measured with resvg-py 0.5.0)."""
 
 import pytest
 
-from raster.svg.render import output_size
+from raster.renderer import output_size
 
 
 @pytest.mark.parametrize('doc, width, expected', [

@@ -1,4 +1,4 @@
-"""Tests of raster.svg.paint: gradient colours, raster image resampling and
+"""Tests of raster.renderer.paint: gradient colours, raster image resampling and
 image sampling.
 
 Gradients are checked against an independent float64 evaluation (the
@@ -14,13 +14,13 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as hs
 
-from raster.canvas import Canvas
+from raster.pixels.canvas import Canvas
 from raster.path import Path
-from raster.scan import Mask
-from raster.svg import paint
-from raster.svg.paint import (color_lut, draw_pixels, gradient_colors, resample_window, sample,
+from raster.pixels.scan import Mask
+from raster.renderer import paint
+from raster.renderer.paint import (color_lut, draw_pixels, gradient_colors, resample_window, sample,
                               stop_colors)
-from raster.svg.tree import GradientStop, ImageNode, LinearGradient, RadialGradient
+from raster.tree import GradientStop, ImageNode, LinearGradient, RadialGradient
 from raster.transform import Affine
 
 LEVEL = 1.0 / 255.0
@@ -233,7 +233,7 @@ def random_gradient(rng, kind, spread, hard=False):
         if rng.random() < 0.5 else Affine()
     if kind == 'linear':
         x1, y1, x2, y2 = rng.random(4) * 60
-        return LinearGradient(x1, y1, x2, y2, stops, 'userSpaceOnUse', tr, spread)
+        return LinearGradient(x1, y1, x2, y2, stops, transform=tr, spread=spread)
     cx, cy, r = rng.random() * 60, rng.random() * 60, rng.random() * 40 + 2
     fx, fy, fr = cx, cy, 0.0
     if kind in ('focal', 'focal-fr'):
@@ -243,7 +243,7 @@ def random_gradient(rng, kind, spread, hard=False):
         fr = rng.random() * 0.8 * r
     if kind == 'outside':
         fx, fy = cx + 1.5 * r, cy
-    return RadialGradient(cx, cy, r, fx, fy, stops, fr, 'userSpaceOnUse', tr, spread)
+    return RadialGradient(cx, cy, r, fx, fy, stops, fr, transform=tr, spread=spread)
 
 
 @pytest.mark.parametrize('kind', ['linear', 'centred', 'focal', 'focal-fr', 'outside'])
@@ -261,7 +261,7 @@ def test_gradient_matches_float64_reference(kind, spread, sparse):
             data[data < 0.05] = 0
         mask = Mask(data, int(rng.integers(-5, 30)), int(rng.integers(-5, 30)))
         t = Affine.scale(rng.random() * 3 + 0.3)
-        got = gradient_colors(p, mask, SQUARE, t)
+        got = gradient_colors(p, mask, t)
         assert got.dtype == np.float32 and got.shape == (h, w, 4)
         ref = ref_gradient(p, mask, t)
         diff = np.abs(got - ref).max(axis=-1)
@@ -281,9 +281,9 @@ def test_sparse_and_dense_paths_agree(kind, monkeypatch):
     mask = Mask(data, 3, 4)
     t = Affine.scale(1.7)
     monkeypatch.setattr(paint, '_SPARSE', 0.0)
-    dense = gradient_colors(p, mask, SQUARE, t)
+    dense = gradient_colors(p, mask, t)
     monkeypatch.setattr(paint, '_SPARSE', 1.0)
-    sparse = gradient_colors(p, mask, SQUARE, t)
+    sparse = gradient_colors(p, mask, t)
     assert np.all(sparse[data == 0] == 0)
     assert np.abs(dense - sparse).max() <= LEVEL
 
@@ -297,8 +297,8 @@ def test_linear_gradient_analytic_ramp_and_spreads():
     expect = {'pad': np.clip(s, 0, 1), 'repeat': s - np.floor(s),
               'reflect': np.abs(np.mod(s + 1, 2) - 1)}
     for spread, e in expect.items():
-        p = LinearGradient(10, 0, 20, 0, stops, 'userSpaceOnUse', Affine(), spread)
-        got = gradient_colors(p, mask, SQUARE, Affine())
+        p = LinearGradient(10, 0, 20, 0, stops, spread=spread)
+        got = gradient_colors(p, mask, Affine())
         assert np.abs(got[0, :, 0] - e).max() <= LEVEL, spread
         assert np.all(got[..., 3] == 1) and np.array_equal(got[0], got[1])
 
@@ -306,23 +306,24 @@ def test_linear_gradient_analytic_ramp_and_spreads():
 def test_centred_radial_is_distance_over_radius():
     stops = [GradientStop(0.0, (1, 1, 1, 1)), GradientStop(1.0, (0, 0, 0, 1))]
     p = RadialGradient(20, 20, 16, 20, 20, stops)
-    p.units = 'userSpaceOnUse'
     mask = Mask(np.ones((40, 40), np.float32), 0, 0)
-    got = gradient_colors(p, mask, SQUARE, Affine())
+    got = gradient_colors(p, mask, Affine())
     jj, ii = np.meshgrid(np.arange(40) + 0.5, np.arange(40) + 0.5)
     d = np.clip(np.hypot(jj - 20, ii - 20) / 16, 0, 1)
     assert np.abs(got[..., 0] - (1 - d)).max() <= LEVEL
 
 
-def test_object_bounding_box_units_follow_the_path():
+def test_object_bounding_box_units_resolve_to_the_box():
+    """objectBoundingBox units are resolved by the parser: the gradient
+    vector (0, 0) -> (1, 0) of the box x 4..14 runs over x 4..14."""
+    from raster.parser.paint import GradientServer, in_space
     stops = [GradientStop(0.0, (0, 0, 0, 1)), GradientStop(1.0, (1, 1, 1, 1))]
-    p = LinearGradient(0, 0, 1, 0, stops)                        # objectBoundingBox
-    path = Path.polygon([(4, 0), (14, 0), (14, 3), (4, 3)])
+    server = GradientServer(LinearGradient(0, 0, 1, 0, stops), obb=True)
+    p = in_space(server, Affine(), (4.0, 0.0, 10.0, 3.0))
     mask = Mask(np.ones((3, 20), np.float32), 0, 0)
-    got = gradient_colors(p, mask, path, Affine())
+    got = gradient_colors(p, mask, Affine())
     assert np.abs(got[1, :, 0] - np.clip((np.arange(20) + 0.5 - 4) / 10, 0, 1)).max() <= LEVEL
-    flat = Path.polygon([(4, 0), (14, 0), (14, 0)])              # no height: nothing
-    assert gradient_colors(p, mask, flat, Affine()) is None
+    assert in_space(server, Affine(), (4.0, 0.0, 10.0, 0.0)) is None   # no height: nothing
 
 
 def test_single_stop_degenerate_vectors_and_empty_masks():
@@ -330,28 +331,25 @@ def test_single_stop_degenerate_vectors_and_empty_masks():
     two = [GradientStop(0.0, (1, 0, 0, 1)), GradientStop(1.0, (0, 0, 1, 0.5))]
     cov = np.full((3, 4), 0.5, np.float32)
     mask = Mask(cov, 0, 0)
-    got = gradient_colors(LinearGradient(0, 0, 1, 0, one, 'userSpaceOnUse'), mask, SQUARE, Affine())
+    got = gradient_colors(LinearGradient(0, 0, 1, 0, one), mask, Affine())
     assert np.allclose(got, (0.25, 0, 0, 0.25))
     # zero-length vector / zero radius: the last stop
-    got = gradient_colors(LinearGradient(1, 1, 1, 1, two, 'userSpaceOnUse'), mask, SQUARE, Affine())
+    got = gradient_colors(LinearGradient(1, 1, 1, 1, two), mask, Affine())
     assert np.allclose(got, (0, 0, 0.25, 0.25))
-    got = gradient_colors(RadialGradient(1, 1, 0, 1, 1, two, 0.0, 'userSpaceOnUse'), mask, SQUARE,
-                          Affine())
+    got = gradient_colors(RadialGradient(1, 1, 0, 1, 1, two, 0.0), mask, Affine())
     assert np.allclose(got, (0, 0, 0.25, 0.25))
     empty = Mask(np.zeros((3, 4), np.float32), 0, 0)
-    assert gradient_colors(LinearGradient(0, 0, 1, 0, two, 'userSpaceOnUse'), empty, SQUARE,
-                           Affine()) is None
-    assert gradient_colors(LinearGradient(0, 0, 1, 0, [], 'userSpaceOnUse'), mask, SQUARE,
-                           Affine()) is None
+    assert gradient_colors(LinearGradient(0, 0, 1, 0, two), empty, Affine()) is None
+    assert gradient_colors(LinearGradient(0, 0, 1, 0, []), mask, Affine()) is None
 
 
 def test_far_from_origin_keeps_float32_precision():
     """A window far out in device space with a gradient in big user
     coordinates: the separable terms are centred on the window."""
     stops = [GradientStop(0.0, (0, 0, 0, 1)), GradientStop(1.0, (1, 1, 1, 1))]
-    p = RadialGradient(30000, 30000, 40, 30010, 30000, stops, 0.0, 'userSpaceOnUse')
+    p = RadialGradient(30000, 30000, 40, 30010, 30000, stops, 0.0)
     mask = Mask(np.ones((90, 90), np.float32), 29955, 29955)
-    got = gradient_colors(p, mask, SQUARE, Affine())
+    got = gradient_colors(p, mask, Affine())
     ref = ref_gradient(p, mask, Affine())
     assert np.abs(got - ref).max() <= 1.5 * LEVEL
 

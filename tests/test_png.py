@@ -1,4 +1,4 @@
-"""raster.png: PNG files that Pillow reads back bit for bit."""
+"""raster.pixels.png: PNG files that Pillow reads back bit for bit."""
 
 import io
 
@@ -8,7 +8,7 @@ from hypothesis import given, settings, strategies as st
 from PIL import Image
 
 from raster.errors import CanvasError
-from raster.png import _filtered, encode_png, write_png
+from raster.pixels.png import _filtered, encode_png, write_png
 
 
 def decode(data):

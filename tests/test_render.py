@@ -1,4 +1,4 @@
-"""raster.svg.render on hand-built resolved trees (no SVG parsing involved)."""
+"""raster.renderer on hand-built resolved trees (no SVG parsing involved)."""
 
 import importlib
 import math
@@ -10,13 +10,16 @@ from hypothesis import given, settings, strategies as st
 from raster.errors import CanvasError, SVGError
 from raster.path import Path, PathBuilder
 from raster.transform import Affine
-from raster.svg.render import output_size, render_tree
-from raster.svg import paint as paint_mod
-from raster.svg.tree import (ClipPath, Fill, GradientStop, Group, ImageNode, LinearGradient, Mask,
+from raster.renderer import output_size, render_tree
+from raster.renderer import paint as paint_mod
+from raster.tree import (ClipPath, Fill, GradientStop, Group, ImageNode, LinearGradient, Mask,
                              PathNode, Pattern, RadialGradient, SolidPaint, Stroke, Tree)
 from _geometry import kappa_circle as circle
 
-render_mod = importlib.import_module('raster.svg.render')  # the module, not raster.svg.render()
+import raster.renderer as renderer_pkg
+from raster.renderer import batch as batch_mod, draw as draw_mod
+from raster.pixels.hairline import hairline_edges
+from raster.flatten import flatten
 
 RED = SolidPaint((1.0, 0.0, 0.0, 1.0))
 BLUE = SolidPaint((0.0, 0.0, 1.0, 1.0))
@@ -136,12 +139,12 @@ def line(x0, y0, x1, y1):
 
 def test_butt_stroke_area():
     """A 16 px line stroked 2 wide with butt caps covers 32 px^2."""
-    n = PathNode(path=line(2, 10, 18, 10), stroke=Stroke(RED, width=2))
+    n = PathNode(path=line(2, 10, 18, 10), stroke=Stroke.of(RED, width=2))
     assert alpha(render_tree(tree(n))).sum() == pytest.approx(32.0)
 
 
 def test_stroke_width_scales_with_transform():
-    n = PathNode(path=line(1, 5, 9, 5), stroke=Stroke(RED, width=1))
+    n = PathNode(path=line(1, 5, 9, 5), stroke=Stroke.of(RED, width=1))
     t = tree(Group(transform=Affine.scale(2), children=[n]))
     assert alpha(render_tree(t)).sum() == pytest.approx(16 * 2)
 
@@ -150,7 +153,7 @@ def test_stroke_width_scales_with_transform():
 def test_hairline_keeps_average_darkness(width):
     """A stroke thinner than a pixel is drawn 1 px wide with coverage scaled
     by its width: the total coverage still equals length * width."""
-    n = PathNode(path=line(2, 10.5, 18, 10.5), stroke=Stroke(RED, width=width))
+    n = PathNode(path=line(2, 10.5, 18, 10.5), stroke=Stroke.of(RED, width=width))
     a = alpha(render_tree(tree(n)))
     assert a.sum() == pytest.approx(16 * width, rel=1e-5)
     assert a.max() == pytest.approx(width)          # one row, never broken up
@@ -160,8 +163,8 @@ def test_paint_order():
     """The stroke's inner half shows the stroke colour when the stroke is
     painted last, the fill colour when the fill is painted last."""
     sq = rect(5, 5, 10, 10)
-    normal = PathNode(path=sq, fill=Fill(BLUE), stroke=Stroke(RED, width=4))
-    reverse = PathNode(path=sq, fill=Fill(BLUE), stroke=Stroke(RED, width=4),
+    normal = PathNode(path=sq, fill=Fill(BLUE), stroke=Stroke.of(RED, width=4))
+    reverse = PathNode(path=sq, fill=Fill(BLUE), stroke=Stroke.of(RED, width=4),
                        paint_order=('stroke', 'fill', 'markers'))
     a = render_tree(tree(normal)).data
     b = render_tree(tree(reverse)).data
@@ -171,7 +174,7 @@ def test_paint_order():
 
 def test_markers_group_drawn_with_node():
     dot = filled(rect(0, 0, 2, 2), BLUE)
-    n = PathNode(path=line(2, 10, 18, 10), stroke=Stroke(RED, width=1),
+    n = PathNode(path=line(2, 10, 18, 10), stroke=Stroke.of(RED, width=1),
                  markers=Group(transform=Affine.translate(17, 9), children=[dot]))
     c = render_tree(tree(n)).data
     assert np.allclose(c[9, 17], [0, 0, 1, 1])
@@ -196,7 +199,7 @@ def _l_path():
     ('miter', 'butt', 23.25), ('bevel', 'butt', 23.125),
     ('miter', 'square', 24.25), ('bevel', 'square', 24.125)])
 def test_hairline_l_shape_area(join, cap, area):
-    n = PathNode(path=_l_path(), stroke=Stroke(RED, width=0.5, join=join, cap=cap))
+    n = PathNode(path=_l_path(), stroke=Stroke.of(RED, width=0.5, join=join, cap=cap))
     a = alpha(render_tree(tree(n)))
     assert a.sum() == pytest.approx(0.5 * area, abs=1e-6)
     assert a[5, 8] == pytest.approx(0.25)          # row 4.5..5.5 half in row 5
@@ -204,7 +207,7 @@ def test_hairline_l_shape_area(join, cap, area):
 
 def test_hairline_miter_limit_falls_back_to_bevel():
     """The L turns by 90 degrees: miter ratio sqrt(2) > limit 1.2: bevel."""
-    n = PathNode(path=_l_path(), stroke=Stroke(RED, width=0.5, miterlimit=1.2))
+    n = PathNode(path=_l_path(), stroke=Stroke.of(RED, width=0.5, miterlimit=1.2))
     assert alpha(render_tree(tree(n))).sum() == pytest.approx(0.5 * 23.125, abs=1e-6)
 
 
@@ -215,13 +218,13 @@ def test_hairline_matches_general_stroker_on_convex_polygons(seed, join):
     (union of segment rectangles and join triangles) covers exactly what the
     general stroker's 1 px wide outline covers."""
     from raster.hull import convex_hull
-    from raster.scan import coverage, path_coverage
+    from raster.pixels.scan import coverage, path_coverage
     from raster.stroke import StrokeStyle, stroke as stroke_outline
     rng = np.random.default_rng(seed)
     pts = np.asarray(convex_hull(rng.uniform(3, 37, (12, 2))))
     path = Path.polygon(pts)
-    pl = render_mod.flatten(path, 0.25)
-    e = render_mod._hairline_edges(pl, 'butt', join, 4.0)
+    pl = flatten(path, 0.25)
+    e = hairline_edges(pl, 'butt', join, 4.0)
     a = coverage(e, 40, 40).full(40, 40)
     o = stroke_outline(path, StrokeStyle(width=1.0, join=join, miterlimit=4.0))
     b = path_coverage(o, 40, 40, 'nonzero', True, tolerance=0.25).full(40, 40)
@@ -233,7 +236,7 @@ def test_hairline_circle_area_within_tolerance(tol):
     """Hairline (width 0.5) on the circle r = 8: the 1 px annulus has area
     2 pi r; the flattened circle is within ``tol`` of it, so the area is
     within (perimeter x tol) of it; coverage is scaled by 0.5."""
-    n = PathNode(path=circle(10, 10, 8), stroke=Stroke(RED, width=0.5))
+    n = PathNode(path=circle(10, 10, 8), stroke=Stroke.of(RED, width=0.5))
     a = alpha(render_tree(tree(n), tolerance=tol)).sum()
     assert abs(a - 0.5 * 2 * math.pi * 8) <= 0.5 * 2 * math.pi * 8.5 * tol + 1e-3
 
@@ -245,20 +248,20 @@ def test_hairline_zero_length_subpath_dot(cap, area):
     b = PathBuilder()
     b.moveTo((5, 5))
     b.lineTo((5, 5))
-    n = PathNode(path=b.path(), stroke=Stroke(RED, width=0.5, cap=cap))
+    n = PathNode(path=b.path(), stroke=Stroke.of(RED, width=0.5, cap=cap))
     assert alpha(render_tree(tree(n))).sum() == pytest.approx(0.5 * area, abs=2e-3)
 
 
 def test_filled_hairline_path_is_flattened_once(monkeypatch):
     calls = []
-    orig = render_mod.flatten
-    monkeypatch.setattr(render_mod, 'flatten', lambda *a, **k: calls.append(1) or orig(*a, **k))
+    orig = batch_mod.flatten
+    monkeypatch.setattr(batch_mod, 'flatten', lambda *a, **k: calls.append(1) or orig(*a, **k))
     # the renderer may flatten in batches: a batch call counts once per path
-    orig_joined = render_mod.flatten_joined
-    monkeypatch.setattr(render_mod, 'flatten_joined',
+    orig_joined = batch_mod.flatten_joined
+    monkeypatch.setattr(batch_mod, 'flatten_joined',
                         lambda paths, *a, **k: calls.extend([1] * len(paths))
                         or orig_joined(paths, *a, **k))
-    n = PathNode(path=circle(10, 10, 8), fill=Fill(BLUE), stroke=Stroke(RED, width=0.5))
+    n = PathNode(path=circle(10, 10, 8), fill=Fill(BLUE), stroke=Stroke.of(RED, width=0.5))
     c = render_tree(tree(n)).data
     assert len(calls) == 1 and c[10, 10, 2] == pytest.approx(1.0)
 
@@ -277,12 +280,13 @@ def test_group_opacity_uses_a_layer():
 
 def test_layer_covers_only_the_group_box(monkeypatch):
     sizes = []
-    orig = render_mod.Canvas
+    orig = draw_mod.Canvas
 
     def spy(w, h, *a, **k):
         sizes.append((w, h))
         return orig(w, h, *a, **k)
-    monkeypatch.setattr(render_mod, 'Canvas', spy)
+    monkeypatch.setattr(draw_mod, 'Canvas', spy)
+    monkeypatch.setattr(renderer_pkg, 'Canvas', draw_mod.Canvas)
     g = Group(opacity=0.5, children=[filled(rect(100, 100, 10, 5))])
     render_tree(Tree(400, 400, Group(children=[g])))
     assert sizes[0] == (400, 400)
@@ -291,9 +295,10 @@ def test_layer_covers_only_the_group_box(monkeypatch):
 
 def test_group_outside_canvas_allocates_nothing(monkeypatch):
     sizes = []
-    orig = render_mod.Canvas
-    monkeypatch.setattr(render_mod, 'Canvas', lambda w, h, *a, **k: sizes.append((w, h)) or
+    orig = draw_mod.Canvas
+    monkeypatch.setattr(draw_mod, 'Canvas', lambda w, h, *a, **k: sizes.append((w, h)) or
                         orig(w, h, *a, **k))
+    monkeypatch.setattr(renderer_pkg, 'Canvas', draw_mod.Canvas)
     g = Group(opacity=0.5, children=[filled(rect(-50, -50, 10, 10))])
     c = render_tree(tree(g))
     assert len(sizes) == 1 and alpha(c).sum() == 0
@@ -355,18 +360,24 @@ def test_node_id_renders_subtree_with_ancestor_transforms():
 # -- paints ---------------------------------------------------------------------------
 
 def test_linear_gradient_user_space():
-    grad = LinearGradient(0, 0, 20, 0, [GradientStop(0, (1, 0, 0, 1)), GradientStop(1, (0, 0, 1, 1))],
-                          units='userSpaceOnUse')
+    grad = LinearGradient(0, 0, 20, 0, [GradientStop(0, (1, 0, 0, 1)), GradientStop(1, (0, 0, 1, 1))])
     c = render_tree(tree(filled(rect(0, 0, 20, 20), grad))).data
     # pixel centre x = 10.5 -> t = 0.525
     assert np.allclose(c[3, 10], [0.475, 0, 0.525, 1], atol=1e-5)
     assert np.allclose(c[3, 0], [0.975, 0, 0.025, 1], atol=1e-5)
 
 
+def _svg_tree(body, w=20, h=20):
+    from raster.svg import load_svg
+    return load_svg(('<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d">%s</svg>'
+                     % (w, h, body)).encode())
+
+
 def test_linear_gradient_bbox_units_and_pad():
-    grad = LinearGradient(0.25, 0, 0.75, 0, [GradientStop(0, (1, 0, 0, 1)),
-                                             GradientStop(1, (0, 0, 1, 1))])
-    c = render_tree(tree(filled(rect(0, 0, 20, 20), grad))).data
+    t = _svg_tree('<linearGradient id="g" x1="0.25" x2="0.75"><stop stop-color="red"/>'
+                  '<stop offset="1" stop-color="blue"/></linearGradient>'
+                  '<rect width="20" height="20" fill="url(#g)"/>')
+    c = render_tree(t).data
     assert np.allclose(c[5, 1], [1, 0, 0, 1]) and np.allclose(c[5, 18], [0, 0, 1, 1])
 
 
@@ -375,15 +386,14 @@ def test_gradient_spread(spread, expect):
     """Stops 0 -> 1 of the blue channel over x in [0, 8]; the pixel centred
     at x = 10 (s = 1.25) gets blue 1 (pad), 0.25 (repeat), 0.75 (reflect)."""
     grad = LinearGradient(-0.5, 0, 7.5, 0, [GradientStop(0, (0, 0, 0, 1)), GradientStop(1, (0, 0, 1, 1))],
-                          units='userSpaceOnUse', spread=spread)
+                          spread=spread)
     c = render_tree(tree(filled(rect(0, 0, 20, 20), grad))).data
     assert c[2, 9, 2] == pytest.approx(expect, abs=1e-5)
 
 
 def test_hard_stop():
     grad = LinearGradient(0, 0, 20, 0, [GradientStop(0, (1, 0, 0, 1)), GradientStop(0.5, (1, 0, 0, 1)),
-                                        GradientStop(0.5, (0, 0, 1, 1)), GradientStop(1, (0, 0, 1, 1))],
-                          units='userSpaceOnUse')
+                                        GradientStop(0.5, (0, 0, 1, 1)), GradientStop(1, (0, 0, 1, 1))])
     c = render_tree(tree(filled(rect(0, 0, 20, 20), grad))).data
     assert np.allclose(c[1, 9], [1, 0, 0, 1]) and np.allclose(c[1, 10], [0, 0, 1, 1])
 
@@ -392,7 +402,7 @@ def test_radial_gradient_is_radial():
     """Centred radial gradient: colour depends on the distance only; at
     distance d the blue channel is d / r."""
     grad = RadialGradient(10, 10, 8, 10, 10, [GradientStop(0, (0, 0, 0, 1)),
-                                              GradientStop(1, (0, 0, 1, 1))], units='userSpaceOnUse')
+                                              GradientStop(1, (0, 0, 1, 1))])
     c = render_tree(tree(filled(rect(0, 0, 20, 20), grad))).data
     d = math.hypot(13.5 - 10, 10.5 - 10)
     assert c[10, 13, 2] == pytest.approx(d / 8, abs=1e-5)
@@ -408,8 +418,7 @@ def test_unsupported_paint_is_skipped():
 def test_pattern_tiles_user_space():
     """4x4 tiles each holding a 2x2 red square: a quarter of the area, and
     the square repeats every 4 px."""
-    pat = Pattern(rect=(0, 0, 4, 4), root=Group(children=[filled(rect(0, 0, 2, 2))]),
-                  units='userSpaceOnUse')
+    pat = Pattern(rect=(0, 0, 4, 4), root=Group(children=[filled(rect(0, 0, 2, 2))]))
     c = render_tree(tree(filled(rect(0, 0, 20, 20), pat)))
     a = alpha(c)
     assert a.sum() == pytest.approx(100.0, abs=0.5)
@@ -419,8 +428,9 @@ def test_pattern_tiles_user_space():
 
 def test_pattern_bbox_units():
     """Tile = a quarter of the bbox in each direction (objectBoundingBox)."""
-    pat = Pattern(rect=(0, 0, 0.25, 0.25), root=Group(children=[filled(rect(0, 0, 2.5, 2.5))]))
-    c = render_tree(tree(filled(rect(0, 0, 20, 20), pat)))
+    c = render_tree(_svg_tree('<pattern id="p" width="0.25" height="0.25">'
+                              '<rect width="2.5" height="2.5" fill="red"/></pattern>'
+                              '<rect width="20" height="20" fill="url(#p)"/>'))
     assert alpha(c).sum() == pytest.approx(100.0, abs=0.5)
     assert c.data[1, 6, 3] == pytest.approx(1.0, abs=1e-3) and c.data[3, 3, 3] == pytest.approx(0)
 
@@ -445,9 +455,10 @@ def test_blend_modes_over_grey(mode, src, expect):
 def test_pattern_bbox_units_viewbox_aspect_ratio(par, area, red_at, empty_at):
     """objectBoundingBox tile = the whole 20 x 10 bbox; a 10 x 10 viewBox
     holding a full red square is mapped onto it per preserveAspectRatio."""
-    pat = Pattern(rect=(0, 0, 1, 1), root=Group(children=[filled(rect(0, 0, 10, 10))]),
-                  view_box=(0, 0, 10, 10), preserve_aspect_ratio=par)
-    c = render_tree(tree(filled(rect(0, 0, 20, 10), pat)))
+    attr = '' if par is None else ' preserveAspectRatio="%s %s"' % par
+    c = render_tree(_svg_tree('<pattern id="p" width="1" height="1" viewBox="0 0 10 10"%s>'
+                              '<rect width="10" height="10" fill="red"/></pattern>'
+                              '<rect width="20" height="10" fill="url(#p)"/>' % attr, 20, 10))
     assert alpha(c).sum() == pytest.approx(area, abs=0.5)
     assert c.data[red_at][3] == pytest.approx(1.0, abs=1e-3)
     if empty_at is not None:
@@ -641,12 +652,14 @@ def test_rectangle_clip_without_layer_matches_layer(monkeypatch, seed):
                     transform=Affine.translate(*rng.uniform(-1, 1, 2)))
     t = tree(g)
     sizes = []
-    orig = render_mod.Canvas
-    monkeypatch.setattr(render_mod, 'Canvas', lambda w_, h_, *a, **k: sizes.append((w_, h_))
+    orig = draw_mod.Canvas
+    monkeypatch.setattr(draw_mod, 'Canvas', lambda w_, h_, *a, **k: sizes.append((w_, h_))
                         or orig(w_, h_, *a, **k))
+    monkeypatch.setattr(renderer_pkg, 'Canvas', draw_mod.Canvas)
     fast = render_tree(t, width=37).data
     assert len(sizes) == 1                      # the output canvas only
-    monkeypatch.setattr(render_mod, '_clip_rect', lambda g, m: None)
+    monkeypatch.setattr(draw_mod, 'clip_rect', lambda g, m: None)
+    monkeypatch.setattr(batch_mod, 'clip_rect', lambda g, m: None)
     slow = render_tree(t, width=37).data
     assert np.abs(fast - slow).max() < 1e-6
     assert fast[..., 3].sum() > 1.0
@@ -654,13 +667,13 @@ def test_rectangle_clip_without_layer_matches_layer(monkeypatch, seed):
 
 def test_rectangle_clip_is_not_taken_for_rotations_and_other_shapes():
     sq = _clip_group([filled(rect(0, 0, 20, 20))], 2, 2, 8, 8)
-    assert render_mod._clip_rect(sq, Affine()) == (2.0, 2.0, 10.0, 10.0)
-    assert render_mod._clip_rect(sq, Affine.rotate(10)) is None
+    assert draw_mod.clip_rect(sq, Affine()) == (2.0, 2.0, 10.0, 10.0)
+    assert draw_mod.clip_rect(sq, Affine.rotate(10)) is None
     disc = Group(children=[filled(rect(0, 0, 20, 20))],
                  clip_path=ClipPath(root=Group(children=[filled(circle(5, 5, 3))])))
-    assert render_mod._clip_rect(disc, Affine()) is None
+    assert draw_mod.clip_rect(disc, Affine()) is None
     half = _clip_group([filled(rect(0, 0, 20, 20))], 2, 2, 8, 8, opacity=0.5)
-    assert render_mod._clip_rect(half, Affine()) is None
+    assert draw_mod.clip_rect(half, Affine()) is None
     # the clipped result: exact area of the rectangle, fractional edges included
     g = _clip_group([filled(rect(0, 0, 20, 20))], 2.25, 3.5, 8.5, 6.25)
     a = alpha(render_tree(tree(g)))
@@ -684,7 +697,7 @@ def test_element_beyond_coordinate_limit_is_left_out_with_a_warning():
     """A stroke 1e12 wide would put outline coordinates above MAX_COORD:
     that element is dropped (one RasterWarning), the others are drawn."""
     from raster.errors import RasterWarning
-    huge = PathNode(path=line(2, 2, 18, 18), stroke=Stroke(RED, width=1e12))
+    huge = PathNode(path=line(2, 2, 18, 18), stroke=Stroke.of(RED, width=1e12))
     far = filled(rect(0, 0, 4e9, 3), BLUE)
     ok = filled(rect(10, 2, 5, 5), BLUE)
     with pytest.warns(RasterWarning, match='not drawn'):

@@ -5,10 +5,10 @@ import numpy as np
 import pytest
 
 import importlib
-render_mod = importlib.import_module("raster.svg.render")
+from raster.renderer import batch as batch_mod
 from raster.path import Path
-from raster.svg.tree import Fill, Group, PathNode, SolidPaint, Stroke, Tree
-from raster.svg.render import render_tree
+from raster.tree import Fill, Group, PathNode, SolidPaint, Stroke, Tree
+from raster.renderer import render_tree
 from raster.transform import Affine
 from _geometry import kappa_circle as circle
 
@@ -28,7 +28,7 @@ def scene(seed):
             [[cx, cy], [cx + 7, cy + 1], [cx + 6, cy + 8], [cx - 1, cy + 5]])
         stroke = None
         if i % 4 == 0:
-            stroke = Stroke(SolidPaint((0, 0, 0, 1)), width=float(rng.choice([0.3, 2.0])))
+            stroke = Stroke.of(SolidPaint((0, 0, 0, 1)), width=float(rng.choice([0.3, 2.0])))
         kids.append(PathNode(path=p, fill=Fill(SolidPaint(col),
                                                rule=('nonzero', 'evenodd')[i % 2]),
                              stroke=stroke))
@@ -42,15 +42,15 @@ def scene(seed):
 @pytest.mark.parametrize('seed', range(4))
 def test_batched_render_equals_unbatched(seed, monkeypatch):
     batched = render_tree(scene(seed)).data.copy()
-    monkeypatch.setattr(render_mod._Renderer, 'plan', lambda self, *a: None)
+    monkeypatch.setattr(batch_mod.Masks, 'plan', lambda self, *a: None)
     single = render_tree(scene(seed)).data
     assert np.array_equal(batched, single)
 
 
 def test_small_batches_change_nothing(monkeypatch):
     ref = render_tree(scene(9)).data.copy()
-    monkeypatch.setattr(render_mod, '_BATCH_VERBS', 7)
-    monkeypatch.setattr(render_mod, '_BATCH_AREA', 400)
+    monkeypatch.setattr(batch_mod, 'BATCH_VERBS', 7)
+    monkeypatch.setattr(batch_mod, 'BATCH_AREA', 400)
     assert np.array_equal(render_tree(scene(9)).data, ref)
 
 
@@ -62,7 +62,7 @@ def stroke_scene(seed):
     for i in range(40):
         cx, cy = rng.uniform(5, 60, 2)
         dash = (3.0, 2.0) if i % 3 == 0 else None
-        st = Stroke(SolidPaint((0.1, 0.2, 0.9, 0.8)), width=float(rng.uniform(1.2, 4)), dash=dash)
+        st = Stroke.of(SolidPaint((0.1, 0.2, 0.9, 0.8)), width=float(rng.uniform(1.2, 4)), dash=dash)
         node = PathNode(path=circle(cx, cy, rng.uniform(1, 8)), stroke=st)
         kids.append(Group(transform=Affine.scale(float(rng.choice([0.8, 1.0, 1.3]))),
                           children=[node]))
@@ -74,7 +74,7 @@ def test_batched_strokes_match_single_strokes(seed, monkeypatch):
     """Batched stroke outlines equal single ones up to float rounding: the
     8-bit images agree within 1 level everywhere."""
     batched = render_tree(stroke_scene(seed)).to_rgba8().astype(int)
-    monkeypatch.setattr(render_mod._Renderer, 'plan', lambda self, *a: None)
+    monkeypatch.setattr(batch_mod.Masks, 'plan', lambda self, *a: None)
     single = render_tree(stroke_scene(seed)).to_rgba8().astype(int)
     assert batched.max() > 0
     assert np.abs(batched - single).max() <= 1

@@ -1,12 +1,12 @@
-"""Tests of raster.scan: exact-area coverage masks."""
+"""Tests of raster.pixels.scan: exact-area coverage masks."""
 
 import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-import raster.scan as scan
+import raster.pixels.scan as scan
 from raster.errors import CanvasError, LimitError, PathError, RasterError
-from raster.scan import Mask, coverage, path_coverage
+from raster.pixels.scan import Mask, coverage, path_coverage
 from _geometry import kappa_circle as circle_path
 
 

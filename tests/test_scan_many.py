@@ -1,11 +1,11 @@
-"""Tests of raster.scan.coverage_many: identical to per-shape coverage."""
+"""Tests of raster.pixels.scan.coverage_many: identical to per-shape coverage."""
 
 import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st, HealthCheck
 
 from raster.errors import CanvasError, LimitError, PathError
-from raster.scan import coverage, coverage_many
+from raster.pixels.scan import coverage, coverage_many
 
 
 def polygon_edges(pts):
@@ -128,7 +128,7 @@ def test_errors():
 def test_small_batches_and_large_shapes(monkeypatch):
     """With a tiny piece budget the shapes are cut into many batches and the
     large ones drawn alone: the masks do not change."""
-    import raster.scan as scan
+    import raster.pixels.scan as scan
     rng = np.random.default_rng(5)
     shapes = random_shapes(rng, 40, 80)
     ref = [coverage(e, 80, 80) for e in shapes]
@@ -154,7 +154,7 @@ def test_zero_area_shape_with_flagged_cells():
 # -- coverage_batch and exact=False ------------------------------------------
 
 from raster.errors import PathError as _PathError  # noqa: E402
-from raster.scan import coverage_batch  # noqa: E402
+from raster.pixels.scan import coverage_batch  # noqa: E402
 
 
 @pytest.mark.parametrize('seed', range(4))
@@ -242,7 +242,7 @@ def test_exact_cells_of_batches_on_left_edge_crossings_and_holes(seed, evenodd, 
     themselves (bow ties, stars), nested contours of either orientation and
     jaggy outlines, batched with the cell index built either way: every
     mask equals the shape drawn alone, bit for bit."""
-    import raster.scan as scan
+    import raster.pixels.scan as scan
     rng = np.random.default_rng(seed)
     shapes = []
     for _ in range(12):
@@ -283,7 +283,7 @@ def test_exact_cells_of_batches_are_used_at_column_zero(monkeypatch):
     """A bow tie crossing in column 0 with its left half off canvas: the
     crossing cell is recomputed in the batch (through the cell index) and
     the area is the analytic one."""
-    import raster.scan as scan
+    import raster.pixels.scan as scan
     calls = []
     real = scan._exact_cells_indexed
 
@@ -304,7 +304,7 @@ def test_exact_cells_of_batches_are_used_at_column_zero(monkeypatch):
 
 
 def test_distinct_cells_equals_unique():
-    import raster.scan as scan
+    import raster.pixels.scan as scan
     rng = np.random.default_rng(3)
     k = 50
     sw = rng.integers(1, 9, k)
@@ -327,7 +327,7 @@ def test_distinct_cells_equals_unique():
 
 
 def test_segmented_cumsum_is_bitwise_per_segment():
-    import raster.scan as scan
+    import raster.pixels.scan as scan
     rng = np.random.default_rng(4)
     k = 300
     cnt = np.concatenate([[0, 1, 2, 3, 5, 8, 9, 1000, 1023, 1024, 1025, 0],

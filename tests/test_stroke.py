@@ -794,10 +794,10 @@ def test_hairline_scale():
     assert hairline_scale(StrokeStyle(width=0.3), Affine.scale(2, 0.5)) == pytest.approx(0.3)
 
 
-# -- rasterized coverage (raster.scan) ------------------------------------------------
+# -- rasterized coverage (raster.pixels.scan) ------------------------------------------------
 
 def rasterize(path, width, height):
-    from raster.scan import coverage
+    from raster.pixels.scan import coverage
     return coverage(edges(path), width, height, fill_rule='nonzero').full(width, height)
 
 

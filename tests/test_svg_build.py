@@ -1,4 +1,4 @@
-"""Tests of raster.svg.build.build_tree: the resolved tree of small inline
+"""Tests of raster.parser.build_tree: the resolved tree of small inline
 documents (inheritance, CSS, units, use/symbol/nested svg, switch,
 display/visibility, opacity, group dropping) and a sweep over the resvg
 suite's structure/shapes/painting documents."""
@@ -13,9 +13,9 @@ import pytest
 from hypothesis import given, settings, strategies as hs
 
 from raster.errors import RasterWarning, SVGError
-from raster.svg.build import build_tree
-from raster.svg.document import load_document
-from raster.svg.tree import ClipPath, Group, PathNode, SolidPaint, walk
+from raster.parser import build_tree
+from raster.parser.document import load_document
+from raster.tree import ClipPath, Group, PathNode, SolidPaint, walk
 from raster.transform import Affine
 
 from _shared import SUITE_TESTS as SUITE
@@ -154,7 +154,7 @@ def test_stroke_width_percent_and_dasharray():
     t = tree_of('<rect width="1" height="1" stroke="red" stroke-width="10%" '
                 'stroke-dasharray="5, 10%, 1" stroke-dashoffset="1mm"/>',
                 'width="300" height="400" viewBox="0 0 300 400"')
-    s = only_path(t)[0].stroke
+    s = only_path(t)[0].stroke.style
     diag = math.sqrt((300 ** 2 + 400 ** 2) / 2)
     assert s.width == pytest.approx(diag / 10)
     assert s.dash == pytest.approx((5, diag / 10, 1, 5, diag / 10, 1))
@@ -164,7 +164,7 @@ def test_stroke_width_percent_and_dasharray():
 @pytest.mark.parametrize('da', ['none', '0 0', '5 -1', '5,,5', ''])
 def test_dasharray_solid_cases(da):
     t = tree_of('<rect width="1" height="1" stroke="red" stroke-dasharray="%s"/>' % da)
-    assert only_path(t)[0].stroke.dash is None
+    assert only_path(t)[0].stroke.style.dash is None
 
 
 def test_stroke_properties():
@@ -173,7 +173,8 @@ def test_stroke_properties():
                 '<line x2="10" stroke="red" stroke-width="0"/>')
     n, _ = paths(t)[0]
     s = n.stroke
-    assert (s.join, s.cap, s.miterlimit, s.opacity) == ('round', 'square', 4.0, 1.0)
+    assert (s.style.join, s.style.cap, s.style.miterlimit, s.opacity) == \
+        ('round', 'square', 4.0, 1.0)
     assert n.fill.opacity == 0.0
     assert paths(t)[1][0].stroke is None
 
@@ -445,12 +446,14 @@ def _fill_of(body, **kw):
 
 
 def test_linear_gradient_defaults_and_stops():
-    from raster.svg.tree import LinearGradient
+    from raster.tree import LinearGradient
     p = _fill_of('<linearGradient id="g"><stop offset="-1" stop-color="red"/>'
                  '<stop offset="50%" stop-color="lime" stop-opacity="0.5"/>'
                  '<stop offset="0.2" stop-color="blue"/><stop offset="7"/></linearGradient>')
     assert isinstance(p, LinearGradient)
-    assert (p.x1, p.y1, p.x2, p.y2, p.units, p.spread) == (0, 0, 1, 0, 'objectBoundingBox', 'pad')
+    assert (p.x1, p.y1, p.x2, p.y2, p.spread) == (0, 0, 1, 0, 'pad')
+    # objectBoundingBox units resolved: the box of the 10 x 10 rect
+    assert p.transform == Affine(10, 0, 0, 10, 0, 0)
     # offsets clamped to [0, 1] and made non-decreasing
     assert [s.offset for s in p.stops] == [0, 0.5, 0.5, 1]
     assert p.stops[1].color == (0, 1, 0, 0.5)
@@ -458,7 +461,7 @@ def test_linear_gradient_defaults_and_stops():
 
 
 def test_gradient_href_chain_and_cycle():
-    from raster.svg.tree import LinearGradient, RadialGradient
+    from raster.tree import LinearGradient, RadialGradient
     p = _fill_of('<radialGradient id="base" y2="1" spreadMethod="reflect" cx="0.2">'
                  '<stop offset="0" stop-color="red"/><stop offset="1" stop-color="blue"/>'
                  '</radialGradient>'
@@ -467,7 +470,7 @@ def test_gradient_href_chain_and_cycle():
     assert isinstance(p, LinearGradient)
     # x2 own, y1 from the linear parent, y2 of the radial gradient ignored
     assert (p.x1, p.y1, p.x2, p.y2) == (0, 0.3, 0.7, 0)
-    assert p.spread == 'reflect' and p.transform == Affine.rotate(90)
+    assert p.spread == 'reflect' and p.transform == Affine.scale(10) @ Affine.rotate(90)
     assert [s.color for s in p.stops] == [(1, 0, 0, 1), (0, 0, 1, 1)]
     # a cycle of hrefs terminates; no stops anywhere paints nothing
     t = tree_of('<linearGradient id="g" href="#h"/><linearGradient id="h" href="#g"/>'
@@ -482,7 +485,7 @@ def test_gradient_user_space_units_and_single_stop():
     p = _fill_of('<linearGradient id="g" gradientUnits="userSpaceOnUse" x1="10%" x2="1in">'
                  '<stop offset="0"/><stop offset="1"/></linearGradient>',
                  attrs='width="200" height="100"')
-    assert (p.units, p.x1, p.x2) == ('userSpaceOnUse', 20, 96)
+    assert (p.x1, p.x2, p.transform) == (20, 96, Affine())
     p = _fill_of('<linearGradient id="g"><stop offset="0.3" stop-color="currentColor" '
                  'color="lime" style="stop-opacity:0.25"/></linearGradient>')
     assert isinstance(p, SolidPaint) and p.color == (0, 1, 0, 0.25)
@@ -562,14 +565,14 @@ def test_gradient_fallbacks():
 
 
 def test_pattern_resolved():
-    from raster.svg.tree import Pattern
+    from raster.tree import Pattern
     t = tree_of('<pattern id="base" width="20" height="10" patternUnits="userSpaceOnUse" '
                 'viewBox="0 0 2 1" patternTransform="scale(2)"><rect width="1" height="1"/></pattern>'
                 '<pattern id="p" href="#base" x="5" fill="green"/>'
                 '<rect width="100" height="100" fill="url(#p)"/>')
     p = only_path(t)[0].fill.paint
     assert isinstance(p, Pattern)
-    assert p.rect == (5, 0, 20, 10) and p.units == 'userSpaceOnUse'
+    assert p.rect == (5, 0, 20, 10)
     assert p.transform == Affine.scale(2) and p.content_transform == Affine.scale(10)
     (n,) = p.root.children
     assert box(n) == (0, 0, 1, 1)
@@ -600,7 +603,7 @@ def test_context_fill_in_use():
 def test_gradient_transform_origin():
     p = _fill_of('<radialGradient id="g" gradientTransform="scale(2)" transform-origin="0.5 0.5">'
                  '<stop offset="0"/><stop offset="1"/></radialGradient>')
-    assert p.transform == Affine(2, 0, 0, 2, -0.5, -0.5)
+    assert p.transform == Affine.scale(10) @ Affine(2, 0, 0, 2, -0.5, -0.5)
 
 
 # -- robustness -------------------------------------------------------------------------
@@ -686,7 +689,7 @@ def test_context_gradient_in_use_spans_the_use_bounding_box():
     assert len(ps) == 2
     for n, m in ps:
         g = n.fill.paint
-        assert g.units == 'userSpaceOnUse'
+        assert type(g).__name__ == 'LinearGradient'
         # the gradient's x axis, mapped to the document, runs 0 -> 55
         gm = m @ g.transform
         assert gm.apply([[g.x1, g.y1], [g.x2, g.y2]])[:, 0].tolist() == \
@@ -777,7 +780,7 @@ def test_group_opacity_over_one_paint_is_folded_into_the_paint():
     layer stays, since the stroke must not show the fill through it."""
     import numpy as np
     import raster
-    from raster.svg.tree import Group, PathNode, walk
+    from raster.tree import Group, PathNode, walk
     svg = ('<svg xmlns="http://www.w3.org/2000/svg" width="40" height="20">'
            '<circle cx="10" cy="10" r="8" fill="red" fill-opacity="0.5" opacity="0.5"/>'
            '<circle cx="30" cy="10" r="8" fill="blue" stroke="black" opacity="0.5"/></svg>')

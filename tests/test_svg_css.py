@@ -1,5 +1,5 @@
-"""Tests of raster.svg.css (parser, selectors, cascade) and
-raster.svg.properties."""
+"""Tests of raster.parser.css (parser, selectors, cascade) and
+raster.parser.properties."""
 
 import glob
 import os
@@ -9,9 +9,9 @@ from hypothesis import given, settings, strategies as st
 from lxml import etree
 
 from raster.errors import RasterError
-from raster.svg.css import (CSSError, Declaration, declared_styles, parse_declarations,
+from raster.parser.css import (CSSError, Declaration, declared_styles, parse_declarations,
                             parse_selector, parse_selector_list, parse_stylesheet, select)
-from raster.svg.properties import (PRESENTATION_ATTRIBUTES, PROPERTIES, SHORTHANDS,
+from raster.parser.properties import (PRESENTATION_ATTRIBUTES, PROPERTIES, SHORTHANDS,
                                    initial_value, is_inherited)
 
 SVG = 'http://www.w3.org/2000/svg'

@@ -1,4 +1,4 @@
-"""Tests of raster.svg.document.load_document: sources, gzip, XML errors,
+"""Tests of raster.parser.document.load_document: sources, gzip, XML errors,
 entities (internal ones work, billion laughs is refused), the root check."""
 
 import gzip
@@ -7,7 +7,7 @@ import io
 import pytest
 
 from raster.errors import SVGError
-from raster.svg.document import SVG_NS, load_document
+from raster.parser.document import SVG_NS, load_document
 
 SVG = b'<svg xmlns="http://www.w3.org/2000/svg" width="10" height="20"><rect width="1" height="1"/></svg>'
 ROOT = '{%s}svg' % SVG_NS

@@ -1,4 +1,6 @@
-"""Tests of raster.svg.filters: pixel operations, resolution and rendering."""
+"""Filter effects: the pixel operations (raster.pixels.effects,
+raster.pixels.compositing), their resolution (raster.parser.filters) and
+application (raster.renderer.filters), and rendering."""
 
 import os
 import warnings
@@ -10,7 +12,12 @@ from PIL import Image
 
 import raster
 from raster.errors import RasterError
-from raster.svg import filters as F
+from raster.errors import CanvasError
+from raster.parser import filters as P
+from raster.pixels import compositing as C
+from raster.pixels import effects as F
+from raster.renderer.filters import apply_filters
+from raster.tree import filter as T
 from raster.transform import Affine
 from raster.testing import compare_images
 
@@ -149,7 +156,7 @@ def test_blur_restricted_to_the_content_box_equals_the_whole_blur(sx, sy, where)
     patch = _img(6, 9, seed=5)
     y, x = {'middle': (27, 30), 'corner': (0, 61), 'edge': (54, 20)}[where]
     img[y:y + 6, x:x + 9] = patch
-    plans = F._blur_plans(sx, sy, None)
+    plans = F.blur_plans(sx, sy, None)
     ref = _uncropped_blur(img, *plans)
     out = F.gaussian_blur(img, sx, sy)
     assert np.abs(out - ref).max() <= 1e-6
@@ -168,51 +175,50 @@ def test_blur_of_a_transparent_image_is_transparent():
 
 def test_nonzero_box_hand_computed():
     img = np.zeros((10, 12, 4), np.float32)
-    assert F._nonzero_box(img) is None
+    assert F.nonzero_box(img) is None
     img[2, 7, 1] = 0.5                   # a colour channel alone counts
     img[6, 3, 3] = 0.25
-    assert F._nonzero_box(img) == (2, 7, 3, 8)
-    assert F._nonzero_box(img[..., 3]) == (6, 7, 3, 4)
+    assert F.nonzero_box(img) == (2, 7, 3, 8)
+    assert F.nonzero_box(img[..., 3]) == (6, 7, 3, 4)
 
 
 def test_solid_colour_is_recognised_and_rejected():
     rng = np.random.default_rng(7)
     a = rng.random((40, 50), dtype=np.float32)
     c = np.array([0.2, 0.7, 1.0], np.float32)
-    img = F._solid_image(a, c)
-    assert np.allclose(F._solid_colour(img), c, atol=1e-6)
-    assert F._solid_colour(np.zeros((5, 5, 4), np.float32)).tolist() == [0.0, 0.0, 0.0]
+    img = F.solid_image(a, c)
+    assert np.allclose(F.solid_colour(img), c, atol=1e-6)
+    assert F.solid_colour(np.zeros((5, 5, 4), np.float32)).tolist() == [0.0, 0.0, 0.0]
     off = img.copy()
     off[3, 5, 1] += 1e-3                 # off the sampling grid
-    assert F._solid_colour(off) is None
+    assert F.solid_colour(off) is None
     near = img.copy()
     near[3, 5, 1] += 1e-6                # float32 rounding of compositing
-    assert F._solid_colour(near) is not None
-    assert F._solid_colour(_img(40, 50, seed=2)) is None
+    assert F.solid_colour(near) is not None
+    assert F.solid_colour(_img(40, 50, seed=2)) is None
 
 
 @pytest.mark.parametrize('c', [(0.0, 0.0, 0.0), (1.0, 1.0, 1.0), (0.3, 0.05, 0.9)])
 def test_solid_blur_equals_four_channel_blur(c):
     a = np.zeros((50, 60), np.float32)
     a[10:30, 15:50] = np.random.default_rng(1).random((20, 35), dtype=np.float32)
-    img = F._solid_image(a, np.array(c, np.float32))
-    plans = F._blur_plans(4.0, 1.5, None)
-    solid = F._Image.of(img)
+    img = F.solid_image(a, np.array(c, np.float32))
+    plans = F.blur_plans(4.0, 1.5, None)
+    solid = F.FilterImage.of(img)
     assert solid.solid
-    fast = F._blur(solid, *plans).data
-    general = F._blur(F._Image(img), *plans).data
+    fast = F.blur_image(solid, *plans).data
+    general = F.blur_image(F.FilterImage(img), *plans).data
     assert np.abs(fast - general).max() <= 1e-6
 
 
 def _chain_filter():
-    prim = F.Primitive
-    return F.Filter(region=(2.0, 3.0, 56.0, 40.0), primitives=[
-        prim('feGaussianBlur', (None,), 'b', (None,) * 4, True, {'std': (2.5, 1.5)}),
-        prim('feOffset', ('b',), 'o', (None,) * 4, True, {'dx': 3.0, 'dy': -2.0}),
-        prim('feFlood', (), 'fl', (10.0, 8.0, 20.0, 15.0), True,
-             {'color': (0.2, 0.4, 0.9, 0.5)}),
-        prim('feGaussianBlur', ('SourceAlpha',), 'sa', (None,) * 4, False, {'std': (1.0, 1.0)}),
-        prim('feMerge', ('fl', 'o', 'sa', 'SourceGraphic'), '', (None,) * 4, True, {}),
+    src, res = T.Source, T.Result
+    return T.Filter(region=(2.0, 3.0, 56.0, 40.0), primitives=[
+        T.GaussianBlur(inputs=(src.GRAPHIC,), result='b', std_dev=(2.5, 1.5)),
+        T.Offset(inputs=(res('b'),), result='o', dx=3.0, dy=-2.0),
+        T.Flood(result='fl', subregion=(10.0, 8.0, 20.0, 15.0), color=(0.2, 0.4, 0.9, 0.5)),
+        T.GaussianBlur(inputs=(src.ALPHA,), result='sa', linear=False, std_dev=(1.0, 1.0)),
+        T.Merge(inputs=(res('fl'), res('o'), res('sa'), src.GRAPHIC)),
     ])
 
 
@@ -220,12 +226,12 @@ def _chain_filter():
 def test_apply_filters_solid_fast_path_matches_the_general_path(monkeypatch, solid):
     a = np.zeros((50, 64), np.float32)
     a[12:35, 10:40] = np.random.default_rng(4).random((23, 30), dtype=np.float32)
-    data = F._solid_image(a, np.array([0.9, 0.3, 0.1], np.float32)) if solid \
+    data = F.solid_image(a, np.array([0.9, 0.3, 0.1], np.float32)) if solid \
         else _img(50, 64, seed=8)
     t = Affine.identity()
-    fast = F.apply_filters([_chain_filter()], data, t)
-    monkeypatch.setattr(F, '_solid_colour', lambda img, tol=None: None)
-    general = F.apply_filters([_chain_filter()], data, t)
+    fast = apply_filters([_chain_filter()], data, t)
+    monkeypatch.setattr(F, 'solid_colour', lambda img, tol=None: None)
+    general = apply_filters([_chain_filter()], data, t)
     assert np.abs(fast - general).max() <= 2e-6
     assert not fast[:3].any() and not fast[43:].any()      # outside the region
 
@@ -233,15 +239,15 @@ def test_apply_filters_solid_fast_path_matches_the_general_path(monkeypatch, sol
 def test_apply_filters_returns_a_new_array():
     data = _img(20, 20, seed=1)
     # a disabled blur passes its input on (resvg): the layer must be copied
-    f = F.Filter(region=(-5.0, -5.0, 30.0, 30.0), primitives=[
-        F.Primitive('feGaussianBlur', (None,), '', (None,) * 4, False, {'std': (0.0, 0.0)})])
-    out = F.apply_filters([f], data, Affine.identity())
+    f = T.Filter(region=(-5.0, -5.0, 30.0, 30.0), primitives=[
+        T.GaussianBlur(inputs=(T.Source.GRAPHIC,), linear=False, std_dev=(0.0, 0.0))])
+    out = apply_filters([f], data, Affine.identity())
     assert np.array_equal(out, data) and not np.shares_memory(out, data)
 
 
 def test_row_blocks_do_not_change_pixel_maps(monkeypatch):
     img = _img(23, 31, seed=6)
-    m = F._saturate_matrix(0.3)
+    m = P._saturate_matrix(0.3)
     funcs = {0: ('gamma', (1.0, 2.0, 0.0)), 3: ('table', (0.0, 0.5, 1.0))}
     whole = (F.color_matrix(img, m), F.component_transfer(img, funcs),
              F._convert_pixels(img, F.srgb_to_linear))
@@ -316,47 +322,47 @@ B = np.array([[[0.0, 0.0, 1.0, 1.0]]], np.float32)
     ('xor', [0.0, 0.0, 0.5, 0.5]),         # A (1 - Ba) + B (1 - Aa)
 ])
 def test_composite_operators_hand_computed(op, expected):
-    assert np.allclose(F.composite(A, B, op)[0, 0], expected)
+    assert np.allclose(C.composite(A, B, op)[0, 0], expected)
 
 
 def test_composite_arithmetic_hand_computed():
     # k1 A B + k2 A + k3 B + k4 = 0.5 A + 0.5 B, then colour <= alpha
-    out = F.composite(A, B, 'arithmetic', (0, 0.5, 0.5, 0))[0, 0]
+    out = C.composite(A, B, 'arithmetic', (0, 0.5, 0.5, 0))[0, 0]
     assert np.allclose(out, [0.25, 0.0, 0.5, 0.75])
     # k4 alone: a flat grey, clamped
-    out = F.composite(A, B, 'arithmetic', (0, 0, 0, 2))[0, 0]
+    out = C.composite(A, B, 'arithmetic', (0, 0, 0, 2))[0, 0]
     assert np.allclose(out, [1, 1, 1, 1])
     # k1 A B only: product
-    out = F.composite(A, B, 'arithmetic', (1, 0, 0, 0))[0, 0]
+    out = C.composite(A, B, 'arithmetic', (1, 0, 0, 0))[0, 0]
     assert np.allclose(out, [0, 0, 0, 0.5])
 
 
 def test_composite_bad_operator_and_shapes():
-    with pytest.raises(F.FilterError):
-        F.composite(A, B, 'plus')
-    with pytest.raises(F.FilterError):
-        F.composite(A, np.zeros((2, 2, 4), np.float32))
+    with pytest.raises(CanvasError):
+        C.composite(A, B, 'plus')
+    with pytest.raises(CanvasError):
+        C.composite(A, np.zeros((2, 2, 4), np.float32))
 
 
 def test_blend_normal_is_over_and_multiply_hand_computed():
     img1, img2 = _img(6, 7, 1), _img(6, 7, 2)
-    assert np.allclose(F.blend(img1, img2, 'normal'), F.composite(img1, img2, 'over'),
+    assert np.allclose(C.blend(img1, img2, 'normal'), C.composite(img1, img2, 'over'),
                        atol=1e-6)
     # opaque colours: multiply is the product of the colours
     a = np.array([[[0.5, 1.0, 0.2, 1.0]]], np.float32)
     b = np.array([[[0.4, 0.5, 1.0, 1.0]]], np.float32)
-    assert np.allclose(F.blend(a, b, 'multiply')[0, 0], [0.2, 0.5, 0.2, 1.0])
+    assert np.allclose(C.blend(a, b, 'multiply')[0, 0], [0.2, 0.5, 0.2, 1.0])
 
 
 def test_color_matrix_identity_and_luminance_to_alpha():
     img = _img(9, 11, 5)
-    ident = F._color_matrix_of('matrix', None)
+    ident = P._color_matrix_of('matrix', None)
     assert np.allclose(F.color_matrix(img, ident), img, atol=1e-6)
     # saturate 1 and hueRotate 0 are the identity too
     for kind, v in (('saturate', '1'), ('hueRotate', '0')):
-        m = F._color_matrix_of(kind, v)
+        m = P._color_matrix_of(kind, v)
         assert np.allclose(F.color_matrix(img, m), img, atol=2e-3)
-    m = F._color_matrix_of('luminanceToAlpha', None)
+    m = P._color_matrix_of('luminanceToAlpha', None)
     white = np.ones((1, 1, 4), np.float32)
     assert np.allclose(F.color_matrix(white, m)[0, 0], [0, 0, 0, 1.0], atol=1e-4)
     with pytest.raises(F.FilterError):
@@ -580,7 +586,7 @@ def test_unknown_primitive_warns_and_is_skipped():
 
 
 def test_filter_functions_resolve_to_primitives():
-    from raster.svg.filters import _functions
+    _functions = P._functions
     assert _functions('url(#a) drop-shadow(rgb(0, 0, 255) 1 2)') == \
         [('url', '#a'), ('drop-shadow', 'rgb(0, 0, 255) 1 2')]
     assert _functions('blur(2') is None
@@ -612,7 +618,7 @@ def test_filter_on_an_empty_group_can_flood():
 def test_tile_repeats_the_input_subregion():
     img = np.zeros((8, 8, 4), np.float32)
     img[1, 1] = 1                                    # tile (1..3) x (1..3)
-    out = F._tile(img, (1, 1, 3, 3), (0, 0, 8, 8))
+    out = F.tile(img, (1, 1, 3, 3), (0, 0, 8, 8))
     assert out[1::2, 1::2, 3].all() and out[..., 3].sum() == 16
 
 

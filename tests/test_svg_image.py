@@ -1,4 +1,4 @@
-"""Tests of raster.svg.image: the SVG <image> element.
+"""Tests of raster.parser.imageload: the SVG <image> element.
 
 Decoding (PNG incl. 16-bit / palette / grey+alpha, JPEG, GIF, WebP) checked
 pixel for pixel at 1:1 scale, preserveAspectRatio placements against
@@ -22,11 +22,11 @@ from PIL import Image
 
 import raster
 from raster.errors import RasterWarning
-from raster.svg import image as image_mod
+from raster.parser import imageload as image_mod
 from raster.svg import load_svg
-from raster.svg.image import (ImageError, ImageSource, decode_raster, load_image,
+from raster.parser.imageload import (ImageError, ImageSource, decode_raster, fetch_image,
                               parse_data_uri, sniff)
-from raster.svg.tree import Group, ImageNode, walk
+from raster.tree import Group, ImageNode, walk
 from raster.testing import compare_images
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -633,12 +633,12 @@ def test_chain_of_svg_files_terminates(tmp_path):
 def test_load_image_api(tmp_path):
     write_png(tmp_path / 'a.png', GREEN, (3, 2))
     src = ImageSource(str(tmp_path), (os.path.realpath(str(tmp_path)),), True)
-    pix = load_image('a.png', src)
-    assert pix.shape == (2, 3, 4) and pix[0, 0].tolist() == list(GREEN)
+    kind, pix = fetch_image('a.png', src)
+    assert kind == 'png' and pix.shape == (2, 3, 4) and pix[0, 0].tolist() == list(GREEN)
     with pytest.raises(ImageError, match='network image reference not fetched'):
-        load_image('https://example.com/a.png', src)
+        fetch_image('https://example.com/a.png', src)
     with pytest.raises(ImageError, match='outside'):
-        load_image('a.png', ImageSource(str(tmp_path), (), True))
+        fetch_image('a.png', ImageSource(str(tmp_path), (), True))
 
 
 # ---------------------------------------------------------------------------
@@ -688,7 +688,7 @@ def test_suite_list_covers_the_image_directory():
 def circle_error(tree, centre, radius):
     """Largest radial error (document px) of the circle inside the SVG image,
     sampled on its cubics; and the number of cubics."""
-    from raster.svg.tree import PathNode
+    from raster.tree import PathNode
     (img, t_img), = images(tree)
     (node, t_in), = [(n, t) for n, t in walk(img.tree.root) if isinstance(n, PathNode)]
     ctrl = node.path.segments().ctrl                        # (S, 4, 2) cubics

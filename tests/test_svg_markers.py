@@ -1,4 +1,4 @@
-"""Tests of raster.svg.markers: marker vertices and angles (analytic
+"""Tests of raster.parser.markers: marker vertices and angles (analytic
 answers on polylines, curves, closed subpaths), instance transforms
 (orient, markerUnits, viewBox/refX, overflow clip), context paints, and
 renders of the resvg suite's marker cases against their reference PNGs."""
@@ -14,11 +14,11 @@ from hypothesis import assume, given, settings, strategies as hs
 import raster
 from raster.errors import RasterWarning
 from raster.path import Path
-from raster.svg.build import build_tree
-from raster.svg.document import load_document
-from raster.svg.markers import (MARKABLE, context_paint, marker_transform, marker_vertices,
+from raster.parser import build_tree
+from raster.parser.document import load_document
+from raster.parser.markers import (MARKABLE, context_paint, marker_transform, marker_vertices,
                                 parse_orient)
-from raster.svg.tree import Group, LinearGradient, Pattern, PathNode, SolidPaint, walk
+from raster.tree import Group, LinearGradient, Pattern, PathNode, SolidPaint, walk
 from raster.svgpath import parse_path
 from raster.testing import compare_images
 from raster.transform import Affine
@@ -192,7 +192,7 @@ def test_marker_transform_maps_ref_point_to_vertex():
 
 
 def test_marker_matrices_equal_composed_affines():
-    from raster.svg.markers import marker_matrices
+    from raster.parser.markers import marker_matrices
     rng = np.random.default_rng(7)
     pts = rng.uniform(-100, 100, (50, 2))
     ang = rng.uniform(-720, 720, 50)
@@ -371,19 +371,22 @@ def test_context_fill_and_stroke():
 
 
 def test_context_paint_gradient_stays_in_context_space():
-    g = LinearGradient(0, 0, 1, 0, [], units='objectBoundingBox')
+    from raster.parser.paint import GradientServer, PatternServer
+    g = GradientServer(LinearGradient(0, 0, 1, 0, ()), obb=True)
     T = marker_transform((10, 20), 90, 2, 2, (1, 1))
     p = context_paint(g, T, box=(10, 20, 30, 60))
-    assert p.units == 'userSpaceOnUse'
+    assert isinstance(p, LinearGradient)
     # gradient start (0, 0) in bbox units is the box corner (10, 20) in the
     # context space: in marker content space it is T^-1 of that
     np.testing.assert_allclose(T.apply(p.transform.apply([[0.0, 0.0], [1.0, 0.0]])),
                                [[10, 20], [30, 20]], atol=1e-12)
     assert context_paint(SolidPaint(BLUE), T) == SolidPaint(BLUE)
     assert context_paint(g, T, box=(0, 0, 0, 5)) is None
-    pat = Pattern(rect=(0, 0, 0.5, 0.5), root=Group(), units='objectBoundingBox')
+    pat = PatternServer(rect=(0, 0, 0.5, 0.5), root=Group(), obb=True, content_obb=False,
+                        transform=Affine(), content_transform=Affine(), view_box=None,
+                        par=None, id='')
     q = context_paint(pat, T, box=(10, 20, 30, 60))
-    assert q.rect == (10, 20, 10, 20) and q.units == 'userSpaceOnUse'
+    assert isinstance(q, Pattern) and q.rect == (10, 20, 10, 20)
     np.testing.assert_allclose((T @ q.transform).matrix, Affine().matrix, atol=1e-12)
 
 
@@ -468,7 +471,7 @@ def test_fills_that_might_cancel_are_not_merged(d):
 
 
 def test_merged_render_equals_separate_instances(monkeypatch):
-    import raster.svg.markers as mk
+    import raster.parser.markers as mk
     doc = ('<svg xmlns="http://www.w3.org/2000/svg" width="200" height="40">%s%s</svg>'
            % (ARROW % 'blue', ZIGZAG)).encode()
     merged = raster.render(doc)

@@ -1,4 +1,4 @@
-"""Tests of raster.svg.text: SVG text laid out as glyph outlines."""
+"""Tests of raster.parser.text: SVG text laid out as glyph outlines."""
 import os
 import warnings
 
@@ -12,8 +12,8 @@ from raster.errors import RasterWarning
 from raster.fonts import Font, FontDB
 from raster.path import Path
 from raster.svg import load_svg, render
-from raster.svg.text import collapse_whitespace
-from raster.svg.tree import PathNode, walk
+from raster.parser.text import collapse_whitespace
+from raster.tree import PathNode, walk
 from raster.testing import compare_images
 
 HERE = os.path.dirname(__file__)
@@ -446,7 +446,7 @@ def test_glyph_path_of_mixed_fonts_scales_and_turns_equals_per_glyph():
     per-glyph or shared scales and with or without rotations, equals the
     outlines transformed one by one."""
     import math
-    from raster.svg.text import _Glyphs, _glyph_path
+    from raster.parser.text import _Glyphs, _glyph_path
     db = FontDB([FONTS])
     fonts = [Font.load(db.match(['Noto Sans'])), Font.load(db.match(['Amiri']))]
     rng = np.random.default_rng(8)
@@ -477,26 +477,27 @@ def test_per_build_shaping_memo_is_bounded(monkeypatch, noto):
     """Shaped chunks are remembered per build, at most _SHAPED_LIMIT (+1)
     of them; evicted ones shape again the same."""
     import types
-    import raster.svg.text as T
+    import raster.parser.text as T
+    from raster.parser.context import Cache, Options
     monkeypatch.setattr(T, '_SHAPED_LIMIT', 3)
-    b = types.SimpleNamespace()
+    b = Cache(Options(), None, {}, {}, set(), {}, None)
     db = FontDB([FONTS])
     span = types.SimpleNamespace(font=noto, features=None)
     words = ['w%d' % i for i in range(20)] + ['w1', 'w2']
     for w in words:
-        sh = T._shape_single(b, db, w, span)
-        assert len(b._text_shaped) <= 4
+        sh = T._shape_single(db, w, span, b)
+        assert len(b.table('text_shaped')) <= 4
         assert sh.gid.tolist() == [g[0] for g in noto.shape(w)]
-        assert T._shape_single(b, db, w, span) is sh
+        assert T._shape_single(db, w, span, b) is sh
     # the same text in another font or without kerning is another chunk
     serif = Font.load(db.match(['Noto Serif']))
-    other = T._shape_single(b, db, 'w1', types.SimpleNamespace(font=serif, features=None))
+    other = T._shape_single(db, 'w1', types.SimpleNamespace(font=serif, features=None), b)
     assert other.fonts == [serif]
     assert other.gid.tolist() == [g[0] for g in serif.shape('w1')]
-    nokern = T._shape_single(b, db, 'AV',
-                             types.SimpleNamespace(font=noto, features={'kern': False}))
+    nokern = T._shape_single(db, 'AV',
+                             types.SimpleNamespace(font=noto, features={'kern': False}), b)
     assert nokern.xa.tolist() == [g[2] for g in noto.shape('AV', {'kern': False})]
-    assert nokern.xa.tolist() != T._shape_single(b, db, 'AV', span).xa.tolist()
+    assert nokern.xa.tolist() != T._shape_single(db, 'AV', span, b).xa.tolist()
 
 
 def test_same_string_in_other_fonts_of_one_document():

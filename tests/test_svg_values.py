@@ -1,4 +1,4 @@
-"""Tests of raster.svg.values: colours, paints, lengths, transforms, viewBox."""
+"""Tests of raster.parser.values: colours, paints, lengths, transforms, viewBox."""
 
 import glob
 import math
@@ -11,8 +11,8 @@ from hypothesis import given, settings, strategies as st
 
 from raster.errors import RasterError, SVGError
 from raster.transform import Affine
-from raster.svg import values as V
-from raster.svg.values import (
+from raster.parser import values as V
+from raster.parser.values import (
     CURRENT_COLOR, PAINT_NONE, LengthContext, Paint, parse_angle, parse_color,
     parse_font_size, parse_length, parse_length_list, parse_number,
     parse_number_list, parse_opacity, parse_paint, parse_preserve_aspect_ratio,
@@ -615,7 +615,7 @@ def test_parsers_never_raise_on_text(s):
 def test_single_function_transforms_match_the_general_parser():
     # the fast path for translate/scale/matrix alone agrees with composing
     # the same function after an identity through the general path
-    from raster.svg.values import parse_transform
+    from raster.parser.values import parse_transform
     for s, want in [('translate(3,4)', Affine.translate(3, 4)),
                     ('translate(3)', Affine.translate(3, 0)),
                     (' scale( 2 ) ', Affine.scale(2)), ('scale(2 -1)', Affine.scale(2, -1)),

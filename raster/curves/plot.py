@@ -3,8 +3,8 @@ the convex hull of the control points, rings at the joints between
 segments, and labelled sample points.
 
 PNG output goes through raster's core (:func:`raster.stroke.stroke`,
-:func:`raster.flatten.flatten`, :func:`raster.scan.coverage`,
-:class:`raster.canvas.Canvas`); SVG output is written as text with the same
+:func:`raster.flatten.flatten`, :func:`raster.pixels.scan.coverage`,
+:class:`raster.pixels.canvas.Canvas`); SVG output is written as text with the same
 geometry (labels as glyph outlines, so the file needs no font).  Labels are
 set in Noto Sans (SIL Open Font License, ``NotoSans-LICENSE-OFL.txt``),
 subset to ASCII and shipped next to this module.
@@ -180,9 +180,9 @@ class Plot:
         return self.canvas().to_rgba8()
 
     def canvas(self):
-        from ..canvas import Canvas
+        from ..pixels.canvas import Canvas
         from ..flatten import flatten
-        from ..scan import coverage
+        from ..pixels.scan import coverage
         from ..stroke import stroke
         c = Canvas(self.width, self.height, background=COLORS['background'])
         for kind, path, st in self.layers:

@@ -24,7 +24,7 @@ import zlib
 
 import numpy as np
 
-from .errors import CanvasError
+from ..errors import CanvasError
 
 __all__ = ['encode_png', 'write_png', 'DEFAULT_LEVEL']
 

@@ -1,7 +1,7 @@
 """Paint sources: gradients, raster images and image sampling.
 
 Every function here works on device pixels of a window (a coverage
-:class:`raster.scan.Mask` or a pixel box) and returns premultiplied float32
+:class:`raster.pixels.scan.Mask` or a pixel box) and returns premultiplied float32
 RGBA, x right and y down, pixel (i, j) centred at (j + 0.5, i + 0.5).
 
 Gradients work in float32 over the window (or only over its nonzero
@@ -21,11 +21,11 @@ from PIL import Image
 
 from ..errors import RasterError
 from ..path import Path
-from ..scan import path_coverage
+from ..pixels.scan import path_coverage
 from ..transform import Affine
-from .tree import LinearGradient
+from ..tree import LinearGradient
 
-__all__ = ['gradient_colors', 'draw_pixels', 'sample', 'user_bbox', 'resample_window']
+__all__ = ['gradient_colors', 'draw_pixels', 'sample', 'resample_window']
 
 _F32 = np.float32
 
@@ -45,17 +45,6 @@ _LUT_MIN, _LUT_MAX = 256, 4096
 _LUT_ERR = 0.9
 
 
-def user_bbox(path):
-    """Bounding box (x, y, w, h) of a path in its own units, for
-    objectBoundingBox paints."""
-    try:
-        from ..bbox import bbox as exact_bbox
-        x0, y0, x1, y1 = exact_bbox(path)
-    except (ImportError, RasterError, TypeError, ValueError):
-        x0, y0, x1, y1 = path.control_box()
-    return x0, y0, x1 - x0, y1 - y0
-
-
 def _stop_table(stops):
     offs = np.array([s.offset for s in stops], np.float64)
     cols = np.array([s.color for s in stops], np.float64).reshape(-1, 4)
@@ -63,16 +52,15 @@ def _stop_table(stops):
     return offs, cols
 
 
-def gradient_colors(paint, mask, path, t):
+def gradient_colors(paint, mask, t):
     """Premultiplied colours of a gradient over a coverage mask's window.
 
     Parameters
     ----------
-    paint : LinearGradient or RadialGradient
-    mask : raster.scan.Mask
+    paint : raster.tree.LinearGradient or raster.tree.RadialGradient
+        In the painted node's user space.
+    mask : raster.pixels.scan.Mask
         Coverage; ``mask.data`` is (h, w) float32.
-    path : raster.path.Path
-        The painted path in user units (for objectBoundingBox units).
     t : Affine
         User units -> device pixels.
 
@@ -88,14 +76,7 @@ def gradient_colors(paint, mask, path, t):
     offs, cols = _stop_table(stops)
     cover = np.asarray(mask.data, _F32)
     h, w = cover.shape
-    # paint space -> device
-    pt = t
-    if paint.units == 'objectBoundingBox':
-        bx, by, bw, bh = user_bbox(path)
-        if bw <= 0 or bh <= 0:
-            return None
-        pt = pt @ Affine(bw, 0, 0, bh, bx, by)
-    pt = pt @ paint.transform
+    pt = t @ paint.transform            # paint space -> device
     try:
         inv = pt.inverse()
     except RasterError:
@@ -423,7 +404,7 @@ def draw_pixels(n, t, canvas, tol):
         image pixels to user units.
     t : Affine
         User units -> device pixels.
-    canvas : raster.canvas.Canvas
+    canvas : raster.pixels.canvas.Canvas
     tol : float
         Flattening tolerance (device pixels) of the covered region.
     """

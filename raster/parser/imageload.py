@@ -1,9 +1,5 @@
-"""The SVG ``<image>`` element: fetch, decode and place raster and SVG images.
-
-:func:`build_image` is called by the tree builder (:mod:`raster.svg.build`)
-for every ``image`` element and appends an
-:class:`~raster.svg.tree.ImageNode` (wrapped in a Group when the element has a
-transform, clip path, mask, blend mode ...) to the output list.
+"""Images referenced by documents (``<image>``, ``feImage``): fetch and
+decode raster images, parse SVG images.
 
 Sources (``href``, else ``xlink:href``):
 
@@ -24,27 +20,15 @@ unsupported format, an image above :data:`MAX_IMAGE_PIXELS` pixels or
 :data:`MAX_IMAGE_BYTES` bytes -- is skipped with one
 :class:`raster.errors.RasterWarning`; no exception escapes.
 
-SVG images are parsed with :func:`raster.svg.document.load_document` and
-resolved with :func:`raster.svg.build.build_tree` into ``ImageNode.tree``.
+SVG images are parsed with :func:`raster.parser.document.load_document` and
+resolved by the parser (:attr:`raster.parser.context.Cache.parse_nested`)
+into ``ImageNode.tree``.
 Like a browser showing an SVG through ``<img>``, an SVG image is
 self-contained: images inside it may only come from ``data:`` URIs (file
 references are refused with a warning, so a document that references itself
 stops after one level, as resvg's ``recursive-*`` tests expect), and images
-nest at most :data:`MAX_IMAGE_DEPTH` levels deep.  The builder's
-``tolerance`` (device pixels at the document's natural size) is honoured
-inside SVG images: an image document drawn larger than its natural size is
-built with a proportionally finer tolerance.
-
-Geometry: ``x``, ``y``, ``width``, ``height`` (``auto`` or absent: the
-intrinsic size, the other side keeping the aspect ratio; zero or negative:
-not rendered), ``preserveAspectRatio`` through
-:func:`raster.svg.values.viewbox_transform`; ``ImageNode.transform`` maps
-image pixels (SVG images: the image document's pixels) to the element's user
-space, ``ImageNode.clip`` is the visible rectangle (set for ``slice`` and
-for every SVG image, whose content may overflow its natural size).
-``image-rendering`` ``optimizeSpeed``/``pixelated``/``crisp-edges`` selects
-nearest-neighbour sampling (``smooth=False``).  EXIF orientation of JPEG
-files is ignored, as resvg does.
+nest at most :data:`MAX_IMAGE_DEPTH` levels deep.  EXIF orientation of
+JPEG files is ignored, as resvg does.
 
 Pixels are ``(H, W, 4) uint8`` straight-alpha RGBA, row 0 at the top; the
 arrays are shared between uses of one image and are read-only.
@@ -64,9 +48,7 @@ arrays are shared between uses of one image and are read-only.
 
 import base64
 import dataclasses
-import contextvars
 import io
-import math
 import os
 import urllib.parse
 import warnings
@@ -76,11 +58,9 @@ import numpy as np
 
 from .. import limits
 from ..errors import RasterError
-from ..svgpath import rect_path
-from .tree import ImageNode, PathNode
-from .values import parse_length, parse_preserve_aspect_ratio, viewbox_transform
+from .document import load_document
 
-__all__ = ['build_image', 'load_image', 'decode_raster', 'sniff', 'parse_data_uri',
+__all__ = ['load_image', 'fetch_image', 'image_source', 'decode_raster', 'sniff', 'parse_data_uri',
            'ImageSource', 'ImageError', 'MAX_IMAGE_DEPTH', 'MAX_IMAGE_BYTES', 'MAX_IMAGE_PIXELS']
 
 #: Deepest nesting of SVG images (an image inside an SVG image inside ...).
@@ -93,14 +73,12 @@ MAX_IMAGE_BYTES = 64 * 1024 * 1024
 #: at most :data:`raster.limits.MAX_PIXELS`).
 MAX_IMAGE_PIXELS = min(limits.MAX_PIXELS, 89_478_485)
 
-_NEAREST = frozenset(['optimizeSpeed', 'pixelated', 'crisp-edges'])
-_XLINK_HREF = '{http://www.w3.org/1999/xlink}href'
 _PIL_FORMATS = {'png': 'PNG', 'jpeg': 'JPEG', 'gif': 'GIF', 'webp': 'WEBP'}
 
 
 class ImageError(RasterError):
     """An image cannot be used (refused, missing, broken, unsupported or
-    too large).  :func:`build_image` turns it into a warning."""
+    too large).  The converters turn it into a warning."""
 
 
 class ImageSource(NamedTuple):
@@ -118,15 +96,6 @@ class ImageSource(NamedTuple):
     base_dir: Optional[str] = None
     allowed: tuple = ()
     files: bool = True
-
-
-class _Nesting(NamedTuple):
-    depth: int          # nesting depth of the document being built
-    cache: dict         # shared decode cache of the outermost build
-
-
-# Set while an SVG image is being built (build_tree has no parameter for it).
-_NESTING = contextvars.ContextVar('raster_svg_image_nesting', default=None)
 
 
 # ---------------------------------------------------------------------------
@@ -336,21 +305,44 @@ def decode_raster(data, kind=None):
         raise ImageError('cannot decode %s image (%s)' % (kind.upper(), _short(msg))) from None
 
 
-def _load_svg(data, builder, source, depth, cache, tolerance):
-    """Parse and build an SVG image one nesting level deeper."""
-    from .build import build_tree
-    from .document import load_document
+def _load_svg(data, source, cache, tolerance):
+    """Parse and convert an SVG image one nesting level deeper."""
+    depth = cache.options.image_depth + 1
     if depth > MAX_IMAGE_DEPTH:
         raise ImageError('SVG images nested deeper than %d levels' % MAX_IMAGE_DEPTH)
     root = load_document(data, max_bytes=MAX_IMAGE_BYTES)
-    token = _NESTING.set(_Nesting(depth, cache))
-    try:
-        return build_tree(root, base_dir=source.base_dir, dpi=getattr(builder, 'dpi', 96),
-                          font_size=getattr(builder, 'font_size', 12),
-                          languages=getattr(builder, 'languages', ('en',)) or ('en',),
-                          tolerance=tolerance)
-    finally:
-        _NESTING.reset(token)
+    o = cache.options
+    opts = type(o)(dpi=o.dpi, font_size=o.font_size, languages=o.languages or ('en',),
+                   tolerance=tolerance, base_dir=source.base_dir, image_depth=depth)
+    return cache.parse_nested(root, opts, cache.image_cache)
+
+
+def fetch_image(href, source=ImageSource(), images=None):
+    """Fetch the image an ``href`` names and decode it when it is a raster
+    image.
+
+    Parameters
+    ----------
+    href : str
+        A ``data:`` URI, a file path or a ``file:`` URL.
+    source : ImageSource
+        Where files may be read from.
+    images : dict or None
+        Results (and errors) by resolved reference, shared between calls.
+
+    Returns
+    -------
+    (kind, payload)
+        ``kind`` is ``'png'``, ``'jpeg'``, ``'gif'``, ``'webp'`` (then
+        ``payload`` is a read-only (H, W, 4) uint8 straight RGBA array) or
+        ``'svg'`` (then ``payload`` is the document's bytes).
+
+    Raises
+    ------
+    ImageError
+        The reference is refused or the image cannot be used.
+    """
+    return _fetch(href, source, {} if images is None else images)[1:]
 
 
 def _fetch(href, source, cache):
@@ -390,34 +382,24 @@ def _fetch(href, source, cache):
     return r
 
 
-def load_image(href, source=ImageSource(), *, builder=None, depth=0, cache=None,
-               tolerance=None):
+def load_image(href, cache, tolerance=None):
     """Fetch and decode the image an ``href`` names.
 
     Parameters
     ----------
     href : str
         A ``data:`` URI, a file path or a ``file:`` URL.
-    source : ImageSource
-        Where files may be read from.
-    builder : optional
-        The tree builder (its dpi, font size, languages and tolerance are
-        used for SVG images).
-    depth : int
-        Nesting depth of the document the reference appears in (0: the
-        outermost document).
-    cache : dict, optional
-        Results by resolved reference (and tolerance for SVG images), shared
-        between uses.
+    cache : raster.parser.context.Cache
+        The document's cache: where files may be read from (its options),
+        the decoded images by resolved reference (shared with nested SVG
+        images) and the parser for SVG images.
     tolerance : float, optional
         Flattening tolerance for an SVG image, in pixels of the image
-        document at its natural size (see
-        :func:`raster.svg.build.build_tree`); default: the builder's, else
-        0.1.
+        document at its natural size (default: the document's).
 
     Returns
     -------
-    (H, W, 4) uint8 ndarray or raster.svg.tree.Tree
+    (H, W, 4) uint8 ndarray or raster.tree.Tree
         A raster image (read-only) or a resolved SVG document.
 
     Raises
@@ -426,179 +408,40 @@ def load_image(href, source=ImageSource(), *, builder=None, depth=0, cache=None,
         The reference is refused or the image cannot be used (see the
         module docstring).
     """
-    if cache is None:
-        cache = {}
-    key, kind, payload = _fetch(href, source, cache)
+    images = cache.image_cache
+    key, kind, payload = _fetch(href, image_source(cache.options), images)
     if kind != 'svg':
         return payload
     if tolerance is None:
-        tolerance = getattr(builder, 'tolerance', 0.1)
+        tolerance = cache.options.tolerance
     tkey = ('tree', key, float(tolerance))
-    r = cache.get(tkey)
+    r = images.get(tkey)
     if r is None:
         base = os.path.dirname(key[1]) if key[0] == 'file' else None
         try:
-            r = _load_svg(payload, builder, ImageSource(base, (), False), depth + 1, cache,
-                          tolerance)
+            r = _load_svg(payload, ImageSource(base, (), False), cache, tolerance)
         except ImageError as e:
             r = e
         except (RasterError, OSError, ValueError) as e:
             msg = str(e).splitlines()[0] if str(e) else type(e).__name__
             r = ImageError('cannot use SVG image %s (%s)' % (_short(href, 40), msg))
-        cache[tkey] = r
+        images[tkey] = r
     if isinstance(r, ImageError):
         raise r
     return r
 
 
-# ---------------------------------------------------------------------------
-# The element
-# ---------------------------------------------------------------------------
-
-def _source_of(builder, depth):
-    """ImageSource of the document ``builder`` is building."""
-    if depth > 0:
+def image_source(options):
+    """The :class:`ImageSource` of a document parsed with ``options``
+    (nested SVG images read no files)."""
+    if options.image_depth > 0:
         return ImageSource(None, (), False)
-    opts = getattr(builder, 'image_sources', None)
-    if opts is None:
-        opts = (getattr(builder, 'base_dir', None), getattr(builder, 'allow_files_under', None),
-                getattr(builder, 'resources_dir', None))
-    base_dir, allow_under, resources_dir = opts
+    base_dir = options.base_dir
     roots = []
-    first = allow_under if allow_under is not None else base_dir
-    for d in (first, resources_dir):
+    first = options.allow_files_under if options.allow_files_under is not None else base_dir
+    for d in (first, options.resources_dir):
         if d is not None:
             roots.append(os.path.realpath(os.fspath(d)))
-    if base_dir is None and resources_dir is not None:
-        base_dir = resources_dir
+    if base_dir is None and options.resources_dir is not None:
+        base_dir = options.resources_dir
     return ImageSource(None if base_dir is None else os.fspath(base_dir), tuple(roots), True)
-
-
-def _size_attr(builder, el, name, axis, ctx):
-    """A width/height attribute: a length, None for auto (absent, 'auto',
-    invalid)."""
-    s = el.get(name)
-    if s is None or s.strip() == 'auto':
-        return None
-    return parse_length(s, axis, ctx)
-
-
-def build_image(builder, el, pinh, pown, st, out):
-    """Build an ``image`` element and append its node(s) to ``out``.
-
-    Parameters
-    ----------
-    builder : raster.svg.build._Builder
-        The tree builder (styles, lengths, effects, warnings).
-    el : lxml element
-        The ``image`` element.
-    pinh, pown : dict
-        Computed inherited / own style of the rendering parent.
-    st : raster.svg.build._State
-        Viewport size, CTM and nesting state of the parent.
-    out : list
-        Nodes of the parent; receives an ImageNode, or a Group holding it
-        when the element has a transform or group effects.
-
-    Returns
-    -------
-    ImageNode or None
-        None when nothing is drawn (hidden, zero size, or the image cannot
-        be used: then one RasterWarning says why).
-    """
-    decl = builder.styles.get(el)
-    if decl and decl.get('display', '').strip() == 'none':
-        return None
-    if not builder.passes_conditions(el) or not builder.tick():
-        return None
-    inh, own = builder.style(el, pinh, pown)
-    if inh.get('visibility', 'visible') in ('hidden', 'collapse'):
-        return None
-    ctx = builder.ctx(inh, st)
-    t = builder.transform_of(el, own, ctx)
-    if t is None:
-        return None
-    w = _size_attr(builder, el, 'width', 'x', ctx)
-    h = _size_attr(builder, el, 'height', 'y', ctx)
-    if (w is not None and not w > 0) or (h is not None and not h > 0):
-        return None
-    href = el.get('href')
-    if href is None:
-        href = el.get(_XLINK_HREF)
-    if href is None or not href.strip():
-        return None
-    nest = _NESTING.get()
-    depth = 0 if nest is None else nest.depth
-    cache = getattr(builder, '_image_cache', None)
-    if cache is None:
-        cache = {} if nest is None else nest.cache
-        try:
-            builder._image_cache = cache
-        except AttributeError:
-            pass
-    source = _source_of(builder, depth)
-    tol = float(getattr(builder, 'tolerance', 0.1))
-    try:
-        img = load_image(href, source, builder=builder, depth=depth, cache=cache, tolerance=tol)
-    except ImageError as e:
-        builder.warn(('image', str(e)), 'image not rendered: %s' % e)
-        return None
-    if isinstance(img, np.ndarray):
-        iw, ih = float(img.shape[1]), float(img.shape[0])
-        tree = None
-    else:
-        iw, ih = float(img.width), float(img.height)
-        tree = img
-    if not (iw > 0 and ih > 0):
-        return None
-    if w is None and h is None:
-        w, h = iw, ih
-    elif w is None:
-        w = h * iw / ih
-    elif h is None:
-        h = w * ih / iw
-    x = builder.length(el, 'x', 'x', ctx)
-    y = builder.length(el, 'y', 'y', ctx)
-    par = parse_preserve_aspect_ratio(el.get('preserveAspectRatio', ''))
-    try:
-        m = viewbox_transform((0.0, 0.0, iw, ih), par, w, h, x, y)
-    except RasterError:
-        return None
-    if tree is not None:
-        # the image document's tolerance is in its own pixels: when it is
-        # scaled up, rebuild it finer (by powers of two, so uses share)
-        scale = (st.ctm @ t @ m).max_scale()
-        if scale > 1.0 and math.isfinite(scale):
-            fine = tol * 2.0 ** math.floor(math.log2(1.0 / scale))
-            try:
-                tree = load_image(href, source, builder=builder, depth=depth, cache=cache,
-                                  tolerance=max(fine, 1e-9))
-            except ImageError as e:
-                builder.warn(('image', str(e)), 'image not rendered: %s' % e)
-                return None
-    clip = None
-    slice_ = par is not None and par[0] != 'none' and par[1] == 'slice'
-    if tree is not None or slice_:
-        # visible part: the image's box (under m) within the viewport
-        x0 = max(x, m.e)
-        y0 = max(y, m.f)
-        x1 = min(x + w, m.e + m.a * iw)
-        y1 = min(y + h, m.f + m.d * ih)
-        if not (x1 > x0 and y1 > y0):
-            return None
-        clip = (x0, y0, x1 - x0, y1 - y0)
-    smooth = inh.get('image-rendering', 'auto').strip() not in _NEAREST
-    node = ImageNode(id=el.get('id') or '', view_rect=(x, y, w, h), transform=m, clip=clip,
-                     pixels=None if tree is not None else img, tree=tree, smooth=smooth)
-    builder.note_id(el, node)
-    # group effects; an object bounding box (clip path / mask units) is the
-    # image's viewport, so effects see a rectangle standing in for the image
-    proxy = [PathNode(path=rect_path(x, y, w, h))]
-    e = builder.effects(el, own, st.sub(t), proxy)
-    if not e.ok or e.opacity <= 0.0:
-        return None
-    if not e.composited:
-        node.opacity = e.opacity        # drawn in one pass: no layer needed
-        e = dataclasses.replace(e, opacity=1.0)
-    builder.emit(node, t, e, out)
-    return node

@@ -1,10 +1,9 @@
 """SVG text converted to paths (usvg's "text as paths" model).
 
-:func:`build_text` is called by the tree builder (:mod:`raster.svg.build`)
-for every ``text`` element.  It lays the text out and appends ordinary
-:class:`~raster.svg.tree.PathNode` objects: the glyph outlines of each run
-of characters sharing one style, in the text element's user space (x right,
-y down), filled and stroked as the builder resolves paints for shapes.
+:func:`convert_text` converts every ``text`` element.  It lays the text
+out and appends ordinary :class:`~raster.tree.PathNode` objects: the glyph
+outlines of each run of characters sharing one style, in the text
+element's user space (x right, y down), filled and stroked as shapes are.
 
 What is laid out:
 
@@ -52,28 +51,25 @@ import numpy as np
 
 from .. import limits
 from ..errors import RasterError
+from ..flatten import flatten
 from ..fonts import Font, FontDB, FontError, cached, parse_font_family
 from ..path import Path
 from ..transform import Affine
-from .tree import PathNode
-from .values import parse_length, parse_length_list, parse_number_list
+from ..tree import PathNode
+from .effects import wrap
+from .shapes import fill_and_stroke, geometry
+from .style import (is_displayed, length_context, local_name, paint_order, passes_conditions,
+                    style_of, transform_of)
+from .values import parse_length, parse_length_list, parse_number_list, parse_transform
 
-__all__ = ['build_text', 'collapse_whitespace']
+__all__ = ['convert_text', 'collapse_whitespace']
 
 _XML_SPACE = '{http://www.w3.org/XML/1998/namespace}space'
 _SPAN_NAMES = frozenset(['tspan', 'a'])
 _WEIGHTS = {'normal': 400, 'bold': 700}
 _DB_CACHE = {}
 _SHAPED_LIMIT = 4096    # shaped chunks remembered per build
-_paint_order = None     # raster.svg.build._paint_order, imported on first use
 _SPACES = re.compile(' {2,}')
-
-
-def _local(el):
-    tag = el.tag
-    if not isinstance(tag, str):
-        return None
-    return tag.rsplit('}', 1)[-1]
 
 
 def collapse_whitespace(text, preserve=False, prev_space=True):
@@ -147,51 +143,45 @@ def _spacing(value, ctx):
     return 0.0 if v is None else float(v)
 
 
-def _font_db(b):
-    db = getattr(b, '_text_fontdb', None)
+def _font_db(cache):
+    memo = cache.table('text')
+    db = memo.get('fontdb')
     if db is None:
-        dirs = tuple(str(d) for d in (getattr(b, 'font_dirs', ()) or ()))
-        db = cached(_DB_CACHE, dirs, lambda: FontDB(dirs), 16)
-        b._text_fontdb = db
+        dirs = tuple(str(d) for d in (cache.options.font_dirs or ()))
+        db = memo['fontdb'] = cached(_DB_CACHE, dirs, lambda: FontDB(dirs), 16)
     return db
 
 
-def build_text(b, el, pinh, pown, st, out):
-    """Lay out the ``text`` element ``el`` and append its nodes to ``out``.
-
-    ``b`` is the tree builder (:class:`raster.svg.build._Builder`); ``pinh``/
-    ``pown`` the rendering parent's computed style; ``st`` the builder
-    state.  Never raises for bad text: problems warn
+def convert_text(el, state, cache, parent):
+    """Lay out the ``text`` element ``el`` and append its nodes to
+    ``parent``.  Never raises for bad text: problems warn
     (:class:`~raster.errors.RasterWarning`) and the element is skipped.
     """
-    decl = b.styles.get(el)
-    if decl and decl.get('display', '').strip() == 'none':
-        return
-    if not b.passes_conditions(el) or not b.tick():
-        return
-    mark = len(out)
+    mark = len(parent)
     try:
-        _build(b, el, pinh, pown, st, out)
+        _build(el, state, cache, parent)
     except Exception as e:      # text must never break a document (RasterError too)
-        del out[mark:]
-        b.warn('text-error', 'text element not rendered: %s' % (e,))
+        del parent[mark:]
+        cache.warn('text-error', 'text element not rendered: %s' % (e,))
 
 
-def _build(b, el, pinh, pown, st, out):
-    inh, own = b.style(el, pinh, pown)
-    ctx = b.ctx(inh, st)
-    t = b.transform_of(el, own, ctx)
+def _build(el, state, cache, out):
+    st = state
+    pinh, pown = state.inh, state.own
+    inh, own = style_of(el, pinh, pown, cache)
+    ctx = length_context(inh, st, cache)
+    t = transform_of(el, own, ctx)
     if t is None:
         return
     wm = (inh.get('writing-mode') or 'lr-tb').strip()
     vertical = wm in ('tb', 'tb-rl', 'vertical-rl', 'vertical-lr')
     if vertical:
-        b.warn('text-vertical', 'vertical writing modes are approximated: every glyph is '
+        cache.warn('text-vertical', 'vertical writing modes are approximated: every glyph is '
                'turned a quarter turn clockwise (no upright CJK, no vertical metrics)')
-    db = _font_db(b)
+    db = _font_db(cache)
     if not db.faces:
-        b.warn('text-nofont', 'no fonts available (font_dirs=%r); text is not rendered'
-               % (tuple(getattr(b, 'font_dirs', ()) or ()),))
+        cache.warn('text-nofont', 'no fonts available (font_dirs=%r); text is not rendered'
+               % (tuple(cache.options.font_dirs or ()),))
         return
     # -- collect characters ---------------------------------------------------
     chars = []          # characters after whitespace processing
@@ -236,21 +226,19 @@ def _build(b, el, pinh, pown, st, out):
             return
         add_text(e.text)
         for ch in e:
-            name = _local(ch)
+            name = local_name(ch)
             if name in _SPAN_NAMES:
-                d = b.styles.get(ch)
-                if not (d and d.get('display', '').strip() == 'none') and b.passes_conditions(ch):
-                    cinh, cown = b.style(ch, einh, eown)
-                    cctx = b.ctx(cinh, st)
+                if is_displayed(ch, cache) and passes_conditions(ch, cache):
+                    cinh, cown = style_of(ch, einh, eown, cache)
+                    cctx = length_context(cinh, st, cache)
                     sp_pres = ch.get(_XML_SPACE)
                     walk(ch, cinh, cown, cctx, sp,
                          preserve if sp_pres is None else sp_pres == 'preserve')
             elif name == 'textPath' and e is el:
-                d = b.styles.get(ch)
-                if not (d and d.get('display', '').strip() == 'none'):
-                    cinh, cown = b.style(ch, einh, eown)
-                    cctx = b.ctx(cinh, st)
-                    tp = _text_path_geometry(b, ch, cctx)
+                if is_displayed(ch, cache):
+                    cinh, cown = style_of(ch, einh, eown, cache)
+                    cctx = length_context(cinh, st, cache)
+                    tp = _text_path_geometry(ch, cctx, cache)
                     if tp is not None:
                         first = len(chars)
                         sp_pres = ch.get(_XML_SPACE)
@@ -259,18 +247,17 @@ def _build(b, el, pinh, pown, st, out):
                         path_ranges.append((first, len(chars), tp))
             elif name == 'tref':
                 href = ch.get('{http://www.w3.org/1999/xlink}href') or ch.get('href') or ''
-                tgt = b.by_id.get(href[1:].strip()) if href.startswith('#') else None
-                d = b.styles.get(ch)
-                if tgt is not None and not (d and d.get('display', '').strip() == 'none'):
-                    cinh, cown = b.style(ch, einh, eown)
+                tgt = cache.by_id.get(href[1:].strip()) if href.startswith('#') else None
+                if tgt is not None and is_displayed(ch, cache):
+                    cinh, cown = style_of(ch, einh, eown, cache)
                     sp_pres = ch.get(_XML_SPACE)
-                    walk(ch, cinh, cown, b.ctx(cinh, st), sp,
+                    walk(ch, cinh, cown, length_context(cinh, st, cache), sp,
                          preserve if sp_pres is None else sp_pres == 'preserve',
                          ''.join(t for t in tgt.itertext() if isinstance(t, str)))
             add_text(ch.tail)
         ends[e] = len(chars)
 
-    root_span = _Span(None, pinh, pown, ctx, None, _parent_weight(b, el))
+    root_span = _Span(None, pinh, pown, ctx, None, _parent_weight(el, cache))
     walk(el, inh, own, ctx, root_span, el.get(_XML_SPACE) == 'preserve')
     spans[0].parent = None
     # default mode: drop trailing spaces
@@ -306,7 +293,7 @@ def _build(b, el, pinh, pown, st, out):
     if math.isnan(ay[0]):
         ay[0] = 0.0
     # -- fonts and per-span metrics --------------------------------------------
-    fonts_of = _span_fonts(b, db)
+    fonts_of = _span_fonts(db, cache)
     for sp in spans:
         i = sp.inh
         style = (i.get('font-style') or 'normal').strip()
@@ -326,7 +313,7 @@ def _build(b, el, pinh, pown, st, out):
         sp.shift = (sp.parent.shift + _baseline_shift(sp)) if sp.parent is not None else 0.0
         decos = [sp.own.get('text-decoration', sp.el.get('text-decoration'))]
         if sp is spans[0]:
-            decos += _ancestor_decorations(b, el)
+            decos += _ancestor_decorations(el, cache)
         sp.decor = tuple(w for d in decos for w in _decoration(d))
         kern = (i.get('font-kerning') or 'auto').strip()
         no_kern = kern == 'none' or (i.get('kerning') or 'auto').strip() == '0'
@@ -358,7 +345,7 @@ def _build(b, el, pinh, pown, st, out):
         x0 = ax[c0] if not math.isnan(ax[c0]) else cur_x
         y0 = ay[c0] if not math.isnan(ay[c0]) else cur_y
         if len(spans) == 1:     # shaped like any chunk of the same text and style
-            shaped = _shape_single(b, db, ''.join(chars[c0:c1]), spans[0])
+            shaped = _shape_single(db, ''.join(chars[c0:c1]), spans[0], cache)
         else:
             shaped = _shape_chunk(db, chars, owner_l, spans, c0, c1)
         res = _place_chunk(shaped, sm, c0, c1, along, across, angle)
@@ -437,29 +424,27 @@ def _build(b, el, pinh, pown, st, out):
         if not big <= limits.MAX_COORD:
             if not np.isfinite(big):    # (glyph paths are not validated)
                 Path.from_arrays(p.verbs, p.points)     # raises PathError
-            b.warn('text-coord', 'text beyond the coordinate limit is not rendered')
+            cache.warn('text-coord', 'text beyond the coordinate limit is not rendered')
             continue
-        node = _paint_node(b, spans[si], p, st)
+        node = _paint_node(spans[si], p, st, cache)
         if node is not None:
             kids.append(node)
-    out.extend(b.wrap(el, own, t, kids, st))
+    out.extend(wrap(el, own, t, kids, st, cache))
 
 
-def _parent_weight(b, el):
+def _parent_weight(el, cache):
     """Computed font-weight of the document parent of ``el`` (relative
     keywords resolved along the ancestor chain)."""
     parent = el.getparent()
-    return 400 if parent is None else _ancestry(b, parent)[0]
+    return 400 if parent is None else _ancestry(parent, cache)[0]
 
 
-def _ancestry(b, el):
+def _ancestry(el, cache):
     """``(font-weight, text-decoration values)`` that ``el`` passes on:
     its computed weight (relative keywords resolved along the ancestor
     chain) and the decorations declared on it and its ancestors, nearest
-    first.  Remembered per element for the whole build (on ``b``)."""
-    memo = getattr(b, '_text_ancestry', None)
-    if memo is None:
-        memo = b._text_ancestry = {}
+    first.  Remembered per element for the whole document."""
+    memo = cache.table('text_ancestry')
     chain = []
     e = el
     while e is not None and e not in memo:
@@ -467,7 +452,7 @@ def _ancestry(b, el):
         e = e.getparent()
     w, decos = (400, ()) if e is None else memo[e]
     for e in reversed(chain):
-        d = b.styles.get(e)
+        d = cache.styles.get(e)
         if d:
             if 'font-weight' in d and d['font-weight'] != 'inherit':
                 w = _weight(d['font-weight'], w)
@@ -523,11 +508,11 @@ def _decoration(value):
     return tuple(w for w in words if w != 'none')
 
 
-def _ancestor_decorations(b, el):
+def _ancestor_decorations(el, cache):
     """text-decoration values declared on document ancestors of ``el``
     (they decorate the text too), nearest first."""
     parent = el.getparent()
-    return [] if parent is None else list(_ancestry(b, parent)[1])
+    return [] if parent is None else list(_ancestry(parent, cache)[1])
 
 
 def _preserved(e):
@@ -592,7 +577,7 @@ def _dominant(sp):
     return 0.0
 
 
-def _load_font(b, db, face):
+def _load_font(db, face, cache):
     """The Font of a matched face; a face that cannot be used (no outlines,
     a broken file) warns and is replaced by the default family's face, else
     by the first usable face."""
@@ -601,7 +586,7 @@ def _load_font(b, db, face):
     try:
         return Font.load(face)
     except FontError as e:
-        b.warn('text-font-' + face.path, 'font not usable, default family used: %s' % (e,))
+        cache.warn('text-font-' + face.path, 'font not usable, default family used: %s' % (e,))
     for other in [db.match([])] + list(db.faces):
         if other is None or other == face:
             continue
@@ -631,22 +616,20 @@ def _fallback_font(db, ch, font, cache={}):
     return r
 
 
-def _text_path_geometry(b, tp_el, ctx):
+def _text_path_geometry(tp_el, ctx, cache):
     """(edges (E, 2, 2), cumulative start lengths (E,), start offset) of
     the path a textPath follows, or None when it has no usable path."""
-    from ..flatten import flatten
-    from .values import parse_transform
     # the SVG 2 ``path`` attribute is not used (resvg ignores it too)
     href = tp_el.get('{http://www.w3.org/1999/xlink}href') or tp_el.get('href')
     if not href or not href.startswith('#'):
         return None
-    tgt = b.by_id.get(href[1:].strip())
-    name = _local(tgt) if tgt is not None else None
+    tgt = cache.by_id.get(href[1:].strip())
+    name = local_name(tgt) if tgt is not None else None
     if name not in ('path', 'rect', 'circle', 'ellipse', 'line', 'polyline', 'polygon'):
         return None
     ts = tgt.get('transform')
     t = parse_transform(ts) if ts else None
-    path = b.geometry(tgt, name, ctx, 0.01)     # basic shapes too (SVG 2)
+    path = geometry(tgt, name, ctx, 0.01, cache)     # basic shapes too (SVG 2)
     if path is None or not len(path.verbs):
         return None
     if t is not None:
@@ -705,22 +688,18 @@ def _on_path(glyphs, tp, offset):
     return out, end
 
 
-def _span_fonts(b, db):
+def _span_fonts(db, cache):
     """A function ``(font-family value, weight, style, stretch) -> (face,
-    Font or None)`` with its answers remembered for the whole build (on the
-    builder ``b``): a document's text elements share a few font
-    descriptions."""
-    memo = getattr(b, '_text_fonts', None)
-    if memo is None or memo[0] is not db:
-        memo = b._text_fonts = (db, {})
-    memo = memo[1]
+    Font or None)`` with its answers remembered for the whole document: a
+    document's text elements share a few font descriptions."""
+    memo = cache.table('text_fonts')
 
     def fonts_of(family, weight, style, stretch):
         key = (family, weight, style, stretch)
         r = memo.get(key)
         if r is None:
             face = db.match(parse_font_family(family), weight, style, stretch)
-            r = memo[key] = (face, _load_font(b, db, face))
+            r = memo[key] = (face, _load_font(db, face, cache))
         return r
     return fonts_of
 
@@ -914,13 +893,11 @@ def _shape_chunk(db, chars, owner, spans, c0, c1):
     return sh
 
 
-def _shape_single(b, db, text, span):
+def _shape_single(db, text, span, cache):
     """The :class:`_Shaped` glyphs of a chunk ``text`` owned by the one
-    span ``span``, remembered for the whole build (on ``b``; at most
+    span ``span``, remembered for the whole document (at most
     ``_SHAPED_LIMIT`` chunks): documents repeat short strings."""
-    memo = getattr(b, '_text_shaped', None)
-    if memo is None:
-        memo = b._text_shaped = {}
+    memo = cache.table('text_shaped')
     key = (text, span.font, span.features is None)
     return cached(memo, key, lambda: _shape_chunk(db, text, [0] * len(text), [span], 0, len(text)),
                   _SHAPED_LIMIT)
@@ -1090,17 +1067,14 @@ def _glyph_path(glyphs, ox, oy):
     return Path(verbs, out, _checked=True)
 
 
-def _paint_node(b, sp, path, st):
-    global _paint_order
-    if _paint_order is None:
-        from .build import _paint_order
+def _paint_node(sp, path, st, cache):
     inh = sp.inh
     vis = inh.get('visibility', 'visible')
     if vis in ('hidden', 'collapse'):
         return None
-    fill, stroke = b.fill_and_stroke(inh, sp.ctx, path, st)
+    fill, stroke = fill_and_stroke(inh, sp.ctx, path, st, cache)
     if fill is None and stroke is None:
         return None
     return PathNode(id='', path=path, fill=fill, stroke=stroke,
-                    paint_order=_paint_order(inh.get('paint-order')))
+                    paint_order=paint_order(inh.get('paint-order')))
 

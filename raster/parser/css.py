@@ -19,19 +19,19 @@ What is supported
 
 The cascade (:func:`declared_styles`), lowest priority first:
 
-1. presentation attributes (see :data:`raster.svg.properties.PRESENTATION_ATTRIBUTES`);
+1. presentation attributes (see :data:`raster.parser.properties.PRESENTATION_ATTRIBUTES`);
 2. normal stylesheet declarations, by specificity then source order;
 3. normal declarations of the ``style`` attribute;
 4. ``!important`` stylesheet declarations, by specificity then order;
 5. ``!important`` declarations of the ``style`` attribute.
 
-Only properties of :data:`raster.svg.properties.PROPERTIES` are kept (a
+Only properties of :data:`raster.parser.properties.PROPERTIES` are kept (a
 ``height`` in CSS is ignored, as resvg does for SVG 1.1 geometry).  The
 shorthands ``marker`` and ``font`` are expanded.  Values are trimmed strings;
 ``inherit`` (and ``initial``/``unset``) are kept as is for the tree builder to
 resolve.  A ``transform`` entry can only come from CSS (the attribute is not a
 presentation attribute), so it is CSS syntax: parse it with
-``raster.svg.values.parse_transform(value, css=True)``; it replaces the
+``raster.parser.values.parse_transform(value, css=True)``; it replaces the
 element's ``transform`` attribute.
 
 Cost: rules are indexed by the id, first class or type of their rightmost

@@ -6,7 +6,7 @@ holding *premultiplied* red, green, blue and alpha in [0, 1].  Colours passed
 in are *straight* (not premultiplied) RGB or RGBA in [0, 1].
 
 >>> import numpy as np
->>> from raster.scan import Mask
+>>> from raster.pixels.scan import Mask
 >>> c = Canvas(2, 1, background=(1, 1, 1))
 >>> c.fill(Mask(np.array([[1.0, 0.5]], np.float32), 0, 0), (0, 0, 1))
 >>> c.to_rgba8().tolist()
@@ -17,13 +17,13 @@ import math
 
 import numpy as np
 
-from .errors import CanvasError
+from ..errors import CanvasError
 from .png import DEFAULT_LEVEL, write_png
 from .scan import check_canvas_size
 
 __all__ = ['Canvas', 'DEFAULT_COMPRESS_LEVEL']
 
-#: zlib level used by :meth:`Canvas.save_png` (:func:`raster.png.encode_png`:
+#: zlib level used by :meth:`Canvas.save_png` (:func:`raster.pixels.png.encode_png`:
 #: levels 1-3 use zlib's run-length strategy, 4-9 the default strategy).
 DEFAULT_COMPRESS_LEVEL = DEFAULT_LEVEL
 
@@ -210,7 +210,7 @@ class Canvas:
 
         Parameters
         ----------
-        mask : raster.scan.Mask or None
+        mask : raster.pixels.scan.Mask or None
             Coverage (h, w) float32 at (x0, y0); the part outside the
             canvas is ignored.  None does nothing.
         color : sequence of 3 or 4 float
@@ -221,7 +221,7 @@ class Canvas:
         Each pixel becomes ``src + dst * (1 - src_alpha)`` with
         ``src = coverage * opacity * alpha * (r, g, b, 1)``.
 
-        >>> from raster.scan import Mask
+        >>> from raster.pixels.scan import Mask
         >>> c = Canvas(1, 1)
         >>> c.fill(Mask(np.ones((1, 1), np.float32), 0, 0), (1, 0, 0, 0.5))
         >>> c.data.tolist()
@@ -400,6 +400,11 @@ class Canvas:
             reg *= keep.reshape(reg.shape)
             reg += ss
 
+    def store(self, y0, y1, x0, x1, pixels):
+        """Replace canvas pixels ``[y0:y1, x0:x1]`` by ``pixels`` ((y1-y0,
+        x1-x0, 4) premultiplied RGBA; the window must lie on the canvas)."""
+        self.data[y0:y1, x0:x1] = pixels
+
     def to_rgba8(self, premultiplied=False):
         """8-bit RGBA image, (H, W, 4) uint8.
 
@@ -463,7 +468,7 @@ class Canvas:
 
     def save_png(self, path_or_file, compress_level=DEFAULT_COMPRESS_LEVEL):
         """Write the canvas as an RGBA PNG (straight alpha) with
-        :func:`raster.png.write_png`.
+        :func:`raster.pixels.png.write_png`.
 
         Parameters
         ----------

@@ -1,37 +1,31 @@
-"""SVG front end: load a document, resolve it into a tree, render it.
+"""SVG documents in one call: load, resolve, render.
 
-The entry points:
+The front door over the parser (:mod:`raster.parser`: a document to a
+resolved :class:`raster.tree.Tree`) and the renderer
+(:mod:`raster.renderer`: a tree onto a canvas):
 
-* :func:`load_svg` -- an SVG source to a resolved :class:`~raster.svg.tree.Tree`;
+* :func:`load_svg` -- an SVG source to a resolved Tree;
 * :func:`render` -- an SVG source to an ``(H, W, 4) uint8`` RGBA array;
 * :func:`render_image` -- the same as a :class:`PIL.Image.Image`.
 
 A *source* is a file path (``str`` or :class:`os.PathLike`; ``.svgz`` gzip
 files are accepted), the document as ``bytes``, or a binary file object.
-Relative references (images, external ``use``) resolve against the file's
-directory; files are only read from inside ``resources_dir`` when it is
-given (and from the document's own directory).
+Relative references (images) resolve against the file's directory; files
+are only read from inside ``resources_dir`` when it is given (and from the
+document's own directory).
 
 Output sizes are in device pixels; the document's natural size is its
 ``width``/``height`` in CSS px (96 per inch at ``dpi=96``).
-
-Note: the package attribute ``raster.svg.render`` is the :func:`render`
-function; the renderer *module* of the same name is
-``sys.modules['raster.svg.render']`` (``from raster.svg.render import
-render_tree`` works as usual).
 """
 
 import os
 
-try:
-    # Import the renderer module first: loading a submodule binds its name on
-    # the package, and the function ``render`` defined below must win.
-    from . import render as _render_module  # noqa: F401
-    from .render import render_tree  # noqa: F401
-except ImportError:          # pragma: no cover - a dependency is missing
-    _render_module = None
+from .errors import SVGError
+from .parser import Options, build_tree, load_document
+from .parser.values import CURRENT_COLOR, parse_color
+from .renderer import DEFAULT_TOLERANCE, render_tree
 
-__all__ = ['render', 'render_image', 'load_svg', 'render_tree']
+__all__ = ['load_svg', 'render', 'render_image', 'render_tree', 'background_color']
 
 
 def _source_and_base(source):
@@ -42,7 +36,7 @@ def _source_and_base(source):
     return source, None
 
 
-def load_svg(source, *, dpi=96, font_dirs=(), resources_dir=None, base_dir=None, **opts):
+def load_svg(source, *, dpi=96, font_dirs=(), resources_dir=None, base_dir=None, **options):
     """Load and resolve an SVG document.
 
     Parameters
@@ -58,12 +52,14 @@ def load_svg(source, *, dpi=96, font_dirs=(), resources_dir=None, base_dir=None,
     base_dir : str or None
         Directory relative references resolve against (default: the
         source file's directory).
-    **opts
-        Further options of :func:`raster.svg.build.build_tree`.
+    **options
+        Further fields of :class:`raster.parser.Options` (``font_size``,
+        ``languages``, ``tolerance``, ``max_elements``, ``max_use_depth``,
+        ``extra_css``, ``allow_files_under``).
 
     Returns
     -------
-    raster.svg.tree.Tree
+    raster.tree.Tree
 
     Raises
     ------
@@ -72,20 +68,27 @@ def load_svg(source, *, dpi=96, font_dirs=(), resources_dir=None, base_dir=None,
     OSError
         The file cannot be read.
     """
-    from .build import build_tree
-    from .document import load_document
     src, sbase = _source_and_base(source)
     root = load_document(src)
-    return build_tree(root, base_dir=base_dir if base_dir is not None else sbase, dpi=dpi,
-                      font_dirs=tuple(font_dirs or ()), resources_dir=resources_dir, **opts)
+    if 'languages' in options:
+        options['languages'] = tuple(options['languages'])
+    opts = Options(dpi=float(dpi), font_dirs=tuple(font_dirs or ()), resources_dir=resources_dir,
+                   base_dir=base_dir if base_dir is not None else sbase, **options)
+    return build_tree(root, opts)
 
 
-def _background(bg):
+def background_color(bg):
+    """A background given as a CSS colour string or 3 or 4 floats in [0, 1]
+    as straight RGBA floats (None stays None).
+
+    Raises
+    ------
+    raster.errors.SVGError
+        Not a colour.
+    """
     if bg is None:
         return None
-    from ..errors import SVGError
     if isinstance(bg, str):
-        from .values import CURRENT_COLOR, parse_color
         c = parse_color(bg)
         if c is None or c is CURRENT_COLOR:
             raise SVGError('invalid background colour %r' % (bg,))
@@ -102,7 +105,7 @@ def _background(bg):
 
 
 def render(source, width=None, height=None, *, zoom=None, dpi=96, background=None, id=None,
-           font_dirs=(), resources_dir=None, premultiplied=False, tolerance=0.25):
+           font_dirs=(), resources_dir=None, premultiplied=False, tolerance=DEFAULT_TOLERANCE):
     """Render an SVG document to an RGBA array.
 
     Parameters
@@ -147,9 +150,7 @@ def render(source, width=None, height=None, *, zoom=None, dpi=96, background=Non
     >>> img.shape, img[0, 0].tolist(), img[0, 3].tolist()
     ((2, 4, 4), [0, 0, 255, 255], [0, 0, 0, 0])
     """
-    from .render import render_tree
-    _rebind()
-    bg = _background(background)
+    bg = background_color(background)
     tree = load_svg(source, dpi=dpi, font_dirs=font_dirs, resources_dir=resources_dir)
     canvas = render_tree(tree, width=width, height=height, zoom=zoom, background=bg,
                          node_id=id, tolerance=tolerance)
@@ -163,20 +164,3 @@ def render_image(source, width=None, height=None, **kwargs):
     if 'premultiplied' in kwargs:
         raise TypeError('render_image() always returns straight alpha')
     return Image.fromarray(render(source, width, height, **kwargs), 'RGBA')
-
-
-def _rebind():
-    """Restore the package attribute ``render`` to the function after a late
-    first import of the ``render`` submodule rebound it."""
-    globals()['render'] = _render_function
-
-
-_render_function = render
-
-
-def __getattr__(name):
-    if name == 'render_tree':
-        from .render import render_tree
-        _rebind()
-        return render_tree
-    raise AttributeError('module raster.svg has no attribute %r' % name)

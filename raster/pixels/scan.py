@@ -47,8 +47,9 @@ import math
 
 import numpy as np
 
-from . import limits
-from .errors import CanvasError, LimitError, PathError
+from .. import limits
+from ..errors import CanvasError, LimitError, PathError
+from ..flatten import flatten
 
 __all__ = ['Mask', 'coverage', 'coverage_many', 'coverage_batch', 'path_coverage', 'check_canvas_size', 'SUBSCANLINES']
 
@@ -343,7 +344,6 @@ def path_coverage(path, width, height, fill_rule='nonzero', antialias=True, clip
     >>> m.box, float(m.data.sum())
     ((1, 1, 3, 2), 1.0)
     """
-    from .flatten import flatten
     edges = flatten(path, tolerance=tolerance, transform=transform).edges(close_all=True)
     return coverage(edges, width, height, fill_rule=fill_rule, antialias=antialias, clip=clip)
 

@@ -3,7 +3,7 @@ into the render tree.
 
 A marker is drawn at vertices of a shape's path: ``marker-start`` at the
 first vertex, ``marker-end`` at the last, ``marker-mid`` at every vertex in
-between.  Each instance is a :class:`~raster.svg.tree.Group` whose transform
+between.  Each instance is a :class:`~raster.tree.Group` whose transform
 maps the marker's content coordinates to the path's user space::
 
     translate(vertex) @ rotate(angle) @ scale(sx, sy) @ translate(-refX, -refY)
@@ -15,7 +15,7 @@ of the path at the vertex.  Unless ``overflow`` is ``visible``/``auto`` the
 content is clipped to the marker viewport (``0 0 markerWidth
 markerHeight``, mapped into viewBox coordinates when there is a viewBox).
 All instances of a path are the children of the Group stored in
-:attr:`PathNode.markers <raster.svg.tree.PathNode>`, in the path's user
+:attr:`PathNode.markers <raster.tree.PathNode>`, in the path's user
 space, and are drawn at the ``markers`` position of ``paint-order``.
 
 Vertices and directions follow resvg (usvg's marker module), the reference
@@ -66,7 +66,11 @@ from ..errors import PathError, RasterError
 from ..path import CLOSE, CUBIC, MOVE, QUAD, Path
 from ..transform import Affine
 from ..bbox import bbox as exact_bbox
-from .tree import Group, LinearGradient, PathNode, Pattern, RadialGradient, SolidPaint
+from ..tree import FillRule, Group, PathNode, SolidPaint
+from .convert import convert_children
+from .effects import clip_rect
+from .paint import in_space
+from .style import doc_style, length, local_name
 from .values import (parse_angle, parse_length, parse_preserve_aspect_ratio, parse_url,
                      parse_viewbox, viewbox_transform)
 
@@ -360,51 +364,15 @@ def context_paint(paint, to_context, box=None):
     Returns None when the paint cannot be used (singular transform, empty
     box).  Solid colours and None are returned unchanged.
     """
-    if paint is None or isinstance(paint, SolidPaint):
-        return paint
-    try:
-        inv = to_context.inverse()
-    except RasterError:
-        return None
-    needs_box = (getattr(paint, 'units', '') == 'objectBoundingBox'
-                 or getattr(paint, 'content_units', '') == 'objectBoundingBox')
-    bx = by = 0.0
-    bw = bh = 1.0
-    if needs_box:
-        if box is None:
-            return None
-        bx, by, bw, bh = box[0], box[1], box[2] - box[0], box[3] - box[1]
-        if not (bw > 0 and bh > 0):
-            return None
-    if isinstance(paint, (LinearGradient, RadialGradient)):
-        t = paint.transform
-        if paint.units == 'objectBoundingBox':
-            t = Affine(bw, 0, 0, bh, bx, by) @ t
-        return dataclasses.replace(paint, units='userSpaceOnUse', transform=inv @ t)
-    if isinstance(paint, Pattern):
-        x, y, w, h = paint.rect
-        if paint.units == 'objectBoundingBox':
-            x, y, w, h = bx + x * bw, by + y * bh, w * bw, h * bh
-        ct = paint.content_transform
-        if paint.view_box is None and paint.content_units == 'objectBoundingBox':
-            ct = ct @ Affine.scale(bw, bh)
-        return dataclasses.replace(paint, rect=(x, y, w, h), units='userSpaceOnUse',
-                                   content_units='userSpaceOnUse', content_transform=ct,
-                                   transform=inv @ paint.transform)
-    return paint
+    if box is not None:
+        box = (box[0], box[1], box[2] - box[0], box[3] - box[1])
+    return in_space(paint, to_context, box)
 
 
 # -- tree building ----------------------------------------------------------------
 
 
-def _local(el):
-    tag = el.tag
-    if isinstance(tag, str) and tag.startswith('{http://www.w3.org/2000/svg}'):
-        return tag[28:]
-    return None
-
-
-def _marker_ref(builder, value):
+def _marker_ref(value, cache):
     if value is None:
         return None
     v = value.strip()
@@ -413,8 +381,8 @@ def _marker_ref(builder, value):
     u = parse_url(v)
     if u is None:
         return None
-    el = builder.by_id.get(u[0])
-    if el is None or _local(el) != 'marker':
+    el = cache.by_id.get(u[0])
+    if el is None or local_name(el) != 'marker':
         return None
     return el
 
@@ -451,12 +419,12 @@ class _Marker:
                  'vh')
 
 
-def _resolve_marker(builder, mk, ctx, sw):
+def _resolve_marker(mk, ctx, sw, cache):
     """The vertex-independent part of a marker, or None when it draws
     nothing (zero or negative size, zero stroke scale, bad viewBox)."""
-    inh, own = builder.doc_style(mk)
-    mw = builder.length(mk, 'markerWidth', 'x', ctx, 3.0)
-    mh = builder.length(mk, 'markerHeight', 'y', ctx, 3.0)
+    inh, own = doc_style(mk, cache)
+    mw = length(mk, 'markerWidth', 'x', ctx, 3.0)
+    mh = length(mk, 'markerHeight', 'y', ctx, 3.0)
     if not (mw > 0 and mh > 0):
         return None
     units = 1.0 if mk.get('markerUnits', '').strip() == 'userSpaceOnUse' else sw
@@ -476,7 +444,7 @@ def _resolve_marker(builder, mk, ctx, sw):
     if vb is None:
         sx = sy = units
         lox, loy, vw, vh = 0.0, 0.0, mw, mh
-        clip_rect = (0.0, 0.0, mw, mh)
+        vp_rect = (0.0, 0.0, mw, mh)
     else:
         try:
             par = parse_preserve_aspect_ratio(mk.get('preserveAspectRatio', ''))
@@ -486,17 +454,17 @@ def _resolve_marker(builder, mk, ctx, sw):
         sx, sy = vbt.a * units, vbt.d * units
         lox, loy, vw, vh = vb
         # the viewport (0 0 mw mh) in viewBox coordinates
-        clip_rect = (-vbt.e / vbt.a, -vbt.f / vbt.d, mw / vbt.a, mh / vbt.d)
+        vp_rect = (-vbt.e / vbt.a, -vbt.f / vbt.d, mw / vbt.a, mh / vbt.d)
     m.scale = (sx, sy)
     m.vw, m.vh = vw, vh
     m.ref = (_ref(mk, 'refX', 'x', ctx, lox, vw), _ref(mk, 'refY', 'y', ctx, loy, vh))
     # markers default to overflow: hidden (user agent style sheet); `inherit`
     # takes the parent's value, whose initial value is visible
-    decl = builder.styles.get(mk) or {}
+    decl = cache.styles.get(mk) or {}
     inherit = decl.get('overflow', '').strip() == 'inherit'
     ov = own.get('overflow', 'visible' if inherit else 'hidden').strip()
-    m.clip = None if ov in ('visible', 'auto') else builder.clip_rect(*clip_rect)
-    m.clip_rect = clip_rect
+    m.clip = None if ov in ('visible', 'auto') else clip_rect(*vp_rect)
+    m.clip_rect = vp_rect
     m.orient = parse_orient(mk.get('orient'))
     return m
 
@@ -522,8 +490,10 @@ def _content_box(nodes):
             pad = 0.0
             if n.stroke is not None:
                 s = n.stroke
-                k = max(1.0, s.miterlimit) if s.join in ('miter', 'miter-clip', 'arcs') else 1.0
-                if s.cap == 'square':
+                st = s.style
+                k = max(1.0, st.miterlimit) if st.join in ('miter', 'miter-clip', 'arcs') \
+                    else 1.0
+                if st.cap == 'square':
                     k = max(k, math.sqrt(2.0))
                 pad = 0.5 * s.width * k * (1.0 if t is None else t.max_scale())
             lo = np.minimum(lo, pts.min(0) - pad)
@@ -586,9 +556,9 @@ def _merged(nodes, mats, scale):
     if (not isinstance(use.paint, SolidPaint) or use.paint.color[3] < 1.0
             or use.opacity < 1.0):
         return None
-    if f is not None and (f.rule != 'nonzero' or not _convex_single_contour(n.path)):
+    if f is not None and (f.rule != FillRule.NONZERO or not _convex_single_contour(n.path)):
         return None
-    if s is not None and s.dash is not None:
+    if s is not None and s.style.dash is not None:
         return None
     m = np.asarray(mats, dtype=np.float64)                     # (K, 6): a b c d e f
     x, y = n.path.points[:, 0], n.path.points[:, 1]
@@ -599,77 +569,61 @@ def _merged(nodes, mats, scale):
         return None
     path = Path(np.tile(n.path.verbs, len(m)), pts.reshape(-1, 2))
     if s is not None:
-        s = dataclasses.replace(s, width=s.width * abs(scale[0]))
+        s = dataclasses.replace(s, style=dataclasses.replace(
+            s.style, width=s.style.width * abs(scale[0])))
     return PathNode(path=path, fill=f, stroke=s, antialias=n.antialias)
 
 
-def _content(builder, m, st, T, context):
+def _content(m, state, T, context, cache):
     """Marker content nodes built for the instance transform ``T``."""
-    sub = st.sub(T, m.vw, m.vh, context=context)
-    ids = set(builder.tree_ids)
+    sub = state.sub(m.inh, m.own, transform=T, vw=m.vw, vh=m.vh, context=context)
+    ids = set(cache.tree_ids)
     nodes = []
-    with builder.referencing(m.el):
-        builder.children(m.el, m.inh, m.own, sub, nodes)
+    with cache.referencing(m.el):
+        convert_children(m.el, sub, cache, nodes)
     # marker content is not a document node: keep `ids` for real elements
-    for k in [k for k in builder.tree_ids if k not in ids]:
-        del builder.tree_ids[k]
+    for k in [k for k in cache.tree_ids if k not in ids]:
+        del cache.tree_ids[k]
     return nodes
 
 
-def _placement_path(builder, el, name, path, ctx):
-    """The path whose vertices carry markers: arcs (path arcs, rounded
-    corners, ellipses) split only into pieces of at most 90 degrees."""
-    if name in ('line', 'polyline', 'polygon'):
-        return path
-    if name == 'path':
-        d = el.get('d') or ''
-        if 'a' not in d and 'A' not in d:
-            return path
-    if name == 'rect' and el.get('rx') is None and el.get('ry') is None:
-        return path
-    try:
-        p = builder.geometry(el, name, ctx, _PLACEMENT_TOL)
-    except RasterError:
-        return path
-    return path if p is None else p
-
-
-def build_markers(builder, el, name, path, inh, own, ctx, st, fill=None, stroke=None):
+def build_markers(el, name, path, placement, inh, ctx, state, cache, fill=None, stroke=None):
     """Marker instances of a shape, as one Group in the shape's user space.
 
     Parameters
     ----------
-    builder : raster.svg.build._Builder
-        The tree builder (its ``children``, ``doc_style``, ``clip_rect``,
-        ``geometry`` ... build the marker content like any other content).
     el : lxml element
         The shape element; ``name`` its local name.
     path : raster.Path
         The shape's geometry in its user space.
-    inh, own : dict
-        The shape's computed inherited and own properties.
-    ctx : raster.svg.values.LengthContext
+    placement : raster.Path
+        The path whose vertices carry the markers (``path`` with arcs
+        split into pieces of at most 90 degrees, as resvg places them).
+    inh : dict
+        The shape's computed inherited properties.
+    ctx : raster.parser.values.LengthContext
         Length context of the shape.
-    st : build state
+    state : raster.parser.context.State
         State whose CTM includes the shape's transform.
-    fill, stroke : raster.svg.tree.Fill, raster.svg.tree.Stroke or None
+    cache : raster.parser.context.Cache
+    fill, stroke : raster.tree.Fill, raster.tree.Stroke or None
         The shape's resolved paints: the context for ``context-fill`` /
         ``context-stroke`` in the marker content.
 
     Returns
     -------
-    raster.svg.tree.Group or None
+    raster.tree.Group or None
         None when no marker draws anything.
     """
-    if name not in MARKABLE or st.mode == 'clip':
+    if name not in MARKABLE or state.clip:
         return None
-    refs = [_marker_ref(builder, inh.get(p)) for p in ('marker-start', 'marker-mid', 'marker-end')]
+    refs = [_marker_ref(inh.get(p), cache) for p in ('marker-start', 'marker-mid', 'marker-end')]
     if all(r is None for r in refs):
         return None
     sw = _stroke_width(inh, ctx)
     if not sw > 0:
         return None
-    mv = marker_vertices(_placement_path(builder, el, name, path, ctx))
+    mv = marker_vertices(placement)
     if len(mv.points) == 0:
         return None
     cfill = fill.paint if fill is not None else None
@@ -694,12 +648,12 @@ def build_markers(builder, el, name, path, inh, own, ctx, st, fill=None, stroke=
             idx = [mv.end] if mv.end >= 0 else []
         if not idx:
             continue
-        if mk in builder._active_refs:
-            builder.warn('marker-recursive', 'recursive marker reference ignored')
+        if mk in cache.active:
+            cache.warn('marker-recursive', 'recursive marker reference ignored')
             continue
         m = resolved.get(mk)
         if m is None:
-            m = resolved[mk] = _resolve_marker(builder, mk, ctx, sw)
+            m = resolved[mk] = _resolve_marker(mk, ctx, sw, cache)
         if m is None:
             continue
         o = m.orient
@@ -714,7 +668,7 @@ def build_markers(builder, el, name, path, inh, own, ctx, st, fill=None, stroke=
             continue
         if simple:
             T0 = Affine(*mats[0])
-            shared = _content(builder, m, st, T0, (cfill, cstroke))
+            shared = _content(m, state, T0, (cfill, cstroke), cache)
             if not shared:
                 continue
             clip = m.clip
@@ -726,20 +680,20 @@ def build_markers(builder, el, name, path, inh, own, ctx, st, fill=None, stroke=
                     out.append(g)
                     continue
             for row in mats:
-                if not builder.tick():
+                if not cache.tick():
                     break
                 out.append(Group(transform=Affine(*row), clip_path=clip, children=list(shared)))
             continue
         for row in mats:
             T = Affine(*row)
-            nodes = _content(builder, m, st, T, (context_paint(cfill, T, box),
-                                                 context_paint(cstroke, T, box)))
+            nodes = _content(m, state, T, (context_paint(cfill, T, box),
+                                           context_paint(cstroke, T, box)), cache)
             clip = m.clip
             if clip is not None and not _needs_clip(nodes, m.clip_rect):
                 clip = None
             if nodes:
                 out.append(Group(transform=T, clip_path=clip, children=nodes))
-            if builder.stopped:
+            if cache.stopped:
                 break
     if not out:
         return None

@@ -1,0 +1,141 @@
+"""The parser: an SVG document to a resolved :class:`raster.tree.Tree`.
+
+Layers inside (each module imports only those above it in this list):
+
+* :mod:`.document` (safe XML loading: entity limits, svgz),
+  :mod:`.css` (the cascade), :mod:`.values` (micro-syntaxes),
+  :mod:`.properties` (the property table);
+* :mod:`.context` (:class:`Options`, per-subtree ``State``, per-document
+  ``Cache``), :mod:`.style` (computed style, lengths, transforms,
+  conditions), :mod:`.refs` (references), :mod:`.boxes` (content boxes);
+* :mod:`.convert`: the dispatcher every converter calls for children;
+* one converter module per element family, each with the signature
+  ``convert(el, state, cache, parent)``: :mod:`.structure` (``g``,
+  ``a``, ``switch``, ``svg``, ``use``/``symbol``, the root), :mod:`.shapes`
+  (basic shapes, ``path``), :mod:`.paint` (paint servers),
+  :mod:`.clipmask`, :mod:`.markers`, :mod:`.images` (with
+  :mod:`.imageload`), :mod:`.text`, :mod:`.filters`; :mod:`.effects`
+  decides every group effect in one place.
+
+The parser never imports the renderer: the tree is the only contract.
+
+>>> root = load_document(b'<svg xmlns="http://www.w3.org/2000/svg" width="20" height="10">'
+...                      b'<rect width="5" height="5" fill="red"/></svg>')
+>>> tree = build_tree(root)
+>>> tree.width, tree.height, tree.root.children[0].fill.paint.color
+(20.0, 10.0, (1.0, 0.0, 0.0, 1.0))
+"""
+
+import contextlib
+import dataclasses
+import gc
+import math
+
+from ..errors import SVGError
+from .context import Cache, Options
+from .css import declared_styles
+from .document import load_document
+from .images import convert_image
+from .shapes import SHAPES, convert_shape
+from .structure import convert_group, convert_root, convert_svg, convert_switch, convert_use
+from .text import convert_text
+
+__all__ = ['Options', 'build_tree', 'parse', 'load_document', 'CONVERTERS']
+
+#: Element local name -> converter ``convert(el, state, cache, parent)``.
+#: Elements not listed are never rendered directly (``defs``, ``symbol``,
+#: paint servers, ``clipPath``, ``mask``, ``marker``, ``filter``, ...) or
+#: unknown.
+CONVERTERS = dict({name: convert_shape for name in SHAPES},
+                  g=convert_group, a=convert_group, switch=convert_switch, svg=convert_svg,
+                  use=convert_use, text=convert_text, image=convert_image)
+
+
+def parse(source, options=None):
+    """Load an SVG document (see :func:`~raster.parser.document.load_document`
+    for the accepted sources) and resolve it into a Tree."""
+    return build_tree(load_document(source), options)
+
+
+def build_tree(root, options=None, image_cache=None, **fields):
+    """Resolve a loaded SVG document into a render :class:`~raster.tree.Tree`.
+
+    Parameters
+    ----------
+    root : lxml element
+        The root ``svg`` element (see :func:`load_document`).
+    options : Options or None
+        How to parse (default ``Options()``).
+    image_cache : dict or None
+        Decoded images to share (SVG images pass their document's).
+    **fields
+        Fields of :class:`Options` replacing those of ``options``
+        (``build_tree(root, tolerance=0.05)``).
+
+    Returns
+    -------
+    raster.tree.Tree
+        ``width``/``height``: natural size in px; ``root``: a Group whose
+        transform maps user space to document px; ``ids``: id -> first
+        node built for that id.
+
+    Raises
+    ------
+    raster.errors.SVGError
+        The root is not ``svg``, the document size is zero, negative or
+        invalid, or the tolerance is not a positive number.
+
+    Warns
+    -----
+    raster.errors.RasterWarning
+        Once per kind of unsupported or ignored content.
+    """
+    if options is None:
+        options = Options()
+    if fields:
+        if 'languages' in fields:
+            fields['languages'] = tuple(fields['languages'])
+        options = dataclasses.replace(options, **fields)
+    tag = root.tag
+    if not (isinstance(tag, str) and tag == '{http://www.w3.org/2000/svg}svg'):
+        raise SVGError('not an SVG document: root element is not <svg>')
+    tol = options.tolerance
+    if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
+        raise SVGError('tolerance must be a positive number, got %r' % (tol,))
+    with _gc_paused():
+        found = {'id': [], 'requiredExtensions': [], 'systemLanguage': []}
+        styles = declared_styles(root, options.extra_css, found)
+        by_id = {}
+        for el in found['id']:
+            i = el.get('id')
+            if i not in by_id:
+                by_id[i] = el
+        cache = Cache(options=options, root=root, styles=styles, by_id=by_id,
+                      conditional=set(found['requiredExtensions']) | set(found['systemLanguage']),
+                      converters=CONVERTERS, parse_nested=build_tree,
+                      image_cache={} if image_cache is None else image_cache)
+        return convert_root(root, cache)
+
+
+@contextlib.contextmanager
+def _gc_paused():
+    """Pause Python's cyclic garbage collector while a tree is built.
+
+    Building allocates tens of thousands of small objects (nodes, paints,
+    lists) that all stay alive, and the collector would keep scanning them
+    (a sixth of the build time of a chart).  Afterwards the objects alive
+    are moved to the oldest generation (``gc.freeze()`` then
+    ``gc.unfreeze()``, which moves lists without scanning them) rather than
+    scanned as young objects right away: the tree is long-lived.  That is
+    skipped when the application has frozen objects of its own (the pair
+    would unfreeze them) or had the collector disabled."""
+    was = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if was:
+            if gc.get_freeze_count() == 0:
+                gc.freeze()
+                gc.unfreeze()
+            gc.enable()

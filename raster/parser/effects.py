@@ -1,0 +1,166 @@
+"""Group effects, decided in one place: what an element does to its
+content as a group (opacity, ``mix-blend-mode``, ``isolation``,
+``clip-path``, ``mask``, ``filter``), and the Group that carries them.
+
+:func:`effects` resolves them for an element whose content is known (clip
+paths, masks and filters with ``objectBoundingBox`` units need the
+content's box); :func:`wrap` and :func:`emit` put the content in a Group
+when something needs one.
+"""
+
+import dataclasses
+
+from ..svgpath import rect_path
+from ..tree import BlendMode, ClipPath, Fill, Group, PathNode, SolidPaint
+from .clipmask import EMPTY, build_mask, clip_property, cut_masks
+from .filters import resolve_filter_property
+from .refs import reference
+from .style import BLACK, opacity
+
+__all__ = ['Effects', 'NO_EFFECTS', 'effects', 'wrap', 'emit', 'clip_rect']
+
+
+@dataclasses.dataclass(frozen=True, slots=True)
+class Effects:
+    """What an element does to its content as a group; ``ok`` False: the
+    element is not rendered at all."""
+    opacity: float = 1.0
+    blend: BlendMode = BlendMode.NORMAL
+    isolate: bool = False
+    clip: object = None
+    mask: object = None
+    filters: tuple = ()
+    ok: bool = True
+    #: Needs a layer for something other than opacity (derived).
+    composited: bool = dataclasses.field(init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        object.__setattr__(self, 'composited', (
+            self.clip is not None or self.mask is not None or self.blend != BlendMode.NORMAL
+            or self.isolate or bool(self.filters)))
+
+    @property
+    def trivial(self):
+        """Changes nothing: no Group is needed (but for a transform or id)."""
+        return self.opacity >= 1.0 and not self.composited
+
+    def group(self, id, transform, children):
+        """A Group with these effects."""
+        return Group(id=id, transform=transform, opacity=self.opacity, clip_path=self.clip,
+                     mask=self.mask, filters=tuple(self.filters), blend_mode=self.blend,
+                     isolate=self.isolate, children=children)
+
+
+NO_EFFECTS = Effects()
+NOT_DRAWN = Effects(ok=False)
+# properties that make Effects more than an opacity
+_EFFECT_PROPS = frozenset(['clip-path', 'mask', 'filter', 'mix-blend-mode', 'isolation'])
+_BLEND = {m.value: m for m in BlendMode}
+
+
+def effects(el, own, state, cache, kids, t=None):
+    """Group effects of element ``el`` with own style ``own`` whose content
+    is ``kids`` (nodes in its user space; ``t`` its transform, in
+    ``state``).  ``ok`` is False when the element is not rendered: an empty
+    clip path, an objectBoundingBox clip or mask of an empty box, an
+    invalid filter reference."""
+    if not own:
+        return NO_EFFECTS
+    for k in own:
+        if k in _EFFECT_PROPS:
+            break
+    else:       # at most an opacity (ignored inside a clip path)
+        o = own.get('opacity')
+        if o is None or state.clip:
+            return NO_EFFECTS
+        memo = cache.table('opacity_effects')
+        e = memo.get(o)
+        if e is None:
+            e = memo[o] = Effects(opacity=opacity(o))
+        return e
+    mask = None
+    if t is not None and not t.is_identity and ('clip-path' in own or 'mask' in own):
+        state = state.sub(transform=t)
+    clip = clip_property(own, kids, state, cache)
+    if clip is EMPTY:
+        return NOT_DRAWN
+    if state.clip:
+        return Effects(clip=clip)
+    v = own.get('mask')
+    if v is not None and v.strip() != 'none' and el not in cut_masks(cache):
+        mask = reference(v, 'mask', 'mask', cache)
+        if mask is not None:
+            mask = build_mask(mask, kids, state, cache)
+            if mask is EMPTY:
+                return NOT_DRAWN
+    v = own.get('filter')
+    filters = None
+    if v is not None and v.strip() != 'none':
+        filters = resolve_filter_property(el, v, kids, state, cache)
+        if filters is None:         # invalid reference, empty filter: not rendered
+            return NOT_DRAWN
+    blend = _BLEND.get(own.get('mix-blend-mode', 'normal'), BlendMode.NORMAL)
+    return Effects(opacity=opacity(own.get('opacity')), blend=blend,
+                   isolate=own.get('isolation') == 'isolate', clip=clip, mask=mask,
+                   filters=tuple(filters or ()))
+
+
+def wrap(el, own, t, kids, state, cache, clip=None, keep=False):
+    """The nodes to add to the parent for content ``kids`` of ``el``: the
+    content itself, or a Group when the element changes something (or has
+    an id, or ``keep``).  ``clip`` is a viewport clip (nested svg,
+    symbol)."""
+    if not kids and own.get('filter', 'none').strip() == 'none':
+        return []       # (a filter can draw for an empty element: feFlood)
+    e = effects(el, own, state, cache, kids, t)
+    if not e.ok or e.opacity <= 0.0:
+        return []
+    if clip is not None:
+        if e.clip is not None:      # viewport clip inside the element's clip path
+            kids = [Group(clip_path=clip, children=kids)]
+        else:
+            e = dataclasses.replace(e, clip=clip)
+    kids, e = _fold_opacity(kids, e)
+    i = el.get('id') or ''
+    if not keep and not i and t.is_identity and e.trivial:
+        return kids
+    g = e.group(i, t, kids)
+    cache.note_id(el, g)
+    return [g]
+
+
+def emit(node, t, e, cache, parent):
+    """Append a leaf node to ``parent``, inside a Group when its transform
+    ``t`` or its effects ``e`` need one (the Group then stands for the
+    node's id)."""
+    if t.is_identity and e.trivial:
+        parent.append(node)
+        return
+    g = e.group(node.id, t, [node])
+    if node.id:
+        cache.tree_ids[node.id] = g
+    parent.append(g)
+
+
+def clip_rect(x, y, w, h):
+    """A ClipPath of the rectangle (x, y, w, h) (viewport clips)."""
+    rect = PathNode(path=rect_path(x, y, w, h), fill=Fill(SolidPaint(BLACK)))
+    return ClipPath(root=Group(children=[rect]))
+
+
+def _fold_opacity(kids, e):
+    """Group opacity over a single path painted once (fill or stroke, no
+    markers) equals that paint's own opacity times the group's: fold it in
+    and spare the renderer a layer.  Returns ``(kids, effects)``."""
+    if e.opacity >= 1.0 or e.composited or len(kids) != 1 or not isinstance(kids[0], PathNode):
+        return kids, e
+    n = kids[0]
+    if n.markers is not None or (n.fill is None) == (n.stroke is None):
+        return kids, e
+    if n.fill is not None:
+        n = dataclasses.replace(n, fill=dataclasses.replace(n.fill,
+                                                            opacity=n.fill.opacity * e.opacity))
+    else:
+        n = dataclasses.replace(n, stroke=dataclasses.replace(
+            n.stroke, opacity=n.stroke.opacity * e.opacity))
+    return [n], dataclasses.replace(e, opacity=1.0)

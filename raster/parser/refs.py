@@ -1,0 +1,93 @@
+"""References between elements: ``href`` targets, ``url(#id)`` property
+values, ``href`` chains of paint servers and filters, ``use`` cycles.
+
+References to other documents are not followed (one warning); a missing
+target or one of the wrong kind is ignored, as resvg does.
+"""
+
+from .context import SVG_NS, XLINK_HREF
+from .style import local_name
+from .values import parse_url
+
+__all__ = ['href_target', 'reference', 'href_chain', 'is_recursive']
+
+_USE = '{%s}use' % SVG_NS
+
+
+def href_target(el, cache):
+    """The element ``el``'s ``href`` (or ``xlink:href``) names in this
+    document, or None."""
+    href = el.get('href')
+    if href is None:
+        href = el.get(XLINK_HREF)
+    if href is None:
+        return None
+    href = href.strip()
+    if not href.startswith('#'):
+        if href:
+            cache.warn('external', 'references to other documents are not supported')
+        return None
+    return cache.by_id.get(href[1:])
+
+
+def reference(value, kind, prop, cache):
+    """The element of local name ``kind`` that a ``url(#id)`` value of
+    property ``prop`` references, or None."""
+    u = parse_url(value)
+    if u is None:
+        cache.warn(prop + '-syntax', 'unsupported %s value %r ignored' % (prop, value))
+        return None
+    tgt = cache.by_id.get(u[0])
+    if tgt is None or local_name(tgt) != kind:
+        return None
+    return tgt
+
+
+def href_chain(el, kinds, cache):
+    """``el`` and the elements it references through ``href`` while they
+    are of one of the local names ``kinds`` (cycles cut)."""
+    chain = [el]
+    seen = {el}
+    while True:
+        nxt = href_target(chain[-1], cache)
+        if nxt is None or nxt in seen or local_name(nxt) not in kinds:
+            return chain
+        chain.append(nxt)
+        seen.add(nxt)
+
+
+def is_recursive(use, cache):
+    """True when instantiating ``use`` would (directly or through other
+    ``use`` elements) instantiate itself, or nest deeper than the use depth
+    limit.  Memoized per element."""
+    memo = cache.table('use_recursive')
+    gray = 'gray'
+    max_depth = cache.options.max_use_depth
+
+    def visit(u, depth):
+        v = memo.get(u)
+        if v is gray:
+            return True
+        if v is not None:
+            return v
+        if depth > max_depth:
+            return True
+        memo[u] = gray
+        res = False
+        tgt = href_target(u, cache)
+        if tgt is not None:
+            anc = u
+            while anc is not None:
+                if anc is tgt:
+                    res = True
+                    break
+                anc = anc.getparent()
+            if not res:
+                for u2 in tgt.iter(_USE):
+                    if visit(u2, depth + 1):
+                        res = True
+                        break
+        memo[u] = res
+        return res
+
+    return visit(use, 0)

@@ -1,0 +1,297 @@
+"""Coverage masks of paths, computed a batch of nodes at a time.
+
+The renderer's loop asks for one node's fill or stroke mask at a time, in
+document order; drawing one path costs a fixed overhead that dominates
+documents of thousands of small shapes.  :class:`Masks` therefore plans
+ahead: :meth:`Masks.plan` queues the paths of a subtree drawn directly on
+one canvas (not inside layered groups), and the first request for a
+queued node computes the masks of a whole batch of queued nodes at once:
+
+* fills and undashed hairlines are flattened together
+  (:func:`raster.flatten.flatten_joined`), the hairlines outlined in one
+  pass (:func:`raster.pixels.hairline.hairline_outline`) and every mask
+  scan converted in one :func:`raster.pixels.scan.coverage_batch` call
+  (hairlines with ``exact=False``);
+* other strokes are outlined with one :func:`raster.stroke.stroke_many`
+  call per stroke style, flattened together and scan converted in one
+  batch.
+
+Only the masks are computed ahead; compositing stays in document order.
+Queued entries are keyed by ``(id(node), CTM)`` and remember the canvas
+size they were planned for; a batch holds at most :data:`BATCH_VERBS`
+verbs and :data:`BATCH_AREA` mask pixels.  A node that was not queued (or
+whose batch failed) is drawn on its own.
+"""
+
+import numpy as np
+
+from ..errors import RasterError
+from ..flatten import flatten, flatten_joined
+from ..pixels.hairline import hairline_edges, hairline_outline
+from ..pixels.scan import coverage, coverage_batch, path_coverage
+from ..stroke import StrokeStyle, hairline_scale, stroke as stroke_outline, stroke_many
+from ..tree import Group, PathNode
+from .bounds import clip_rect, device_area, stroke_reach
+
+__all__ = ['Masks', 'BATCH_VERBS', 'BATCH_AREA']
+
+#: Verbs per batch of fills and hairlines (a quarter of it for strokes):
+#: bounds the batch's geometry.
+BATCH_VERBS = 100_000
+
+#: Mask pixels per batch (the masks of a batch are held until drawn).
+BATCH_AREA = 4_000_000
+
+_ABSENT = object()
+
+
+class Masks:
+    """Fill and stroke masks of path nodes, batched (see the module
+    docstring); ``tolerance`` is the flattening tolerance in device
+    pixels."""
+
+    def __init__(self, tolerance):
+        self.tol = tolerance
+        self._flat_key = self._flat_path = self._flat = None
+        # fills and undashed hairlines: key -> (node, t, size, area, fill?,
+        # hair?) waiting in document order, and key -> Mask or None of
+        # those already scan converted (a hairline is absent when the
+        # general stroker is needed)
+        self._geo_pending = {}
+        self._fill_ready = {}
+        self._hair_ready = {}
+        # other strokes: key -> (node, t, size, area, style) waiting, and
+        # key -> Mask or None already scan converted
+        self._stroke_pending = {}
+        self._stroke_ready = {}
+
+    # -- planning ----------------------------------------------------------------
+    def plan(self, nodes, t, canvas):
+        """Queue the paths of ``nodes`` (with CTM ``t``) drawn directly on
+        ``canvas`` (not inside layered groups)."""
+        stack = [(n, t) for n in reversed(nodes)]
+        geo = self._geo_pending
+        strokes = self._stroke_pending
+        size = (canvas.width, canvas.height)
+        while stack:
+            n, m = stack.pop()
+            if isinstance(n, Group):
+                if n.needs_layer and clip_rect(n, m) is None:
+                    continue
+                ct = m @ n.transform
+                stack.extend((c, ct) for c in reversed(n.children))
+            elif isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
+                f = n.fill
+                wf = f is not None and f.opacity > 0
+                wh = _wants_hair(n, m)
+                # (hairlines are never outlined by the general stroker here)
+                style = None if wh else _batch_stroke_style(n, m)
+                if not (wf or wh or style is not None):
+                    continue
+                area = device_area(n.path, m, size)
+                if wf or wh:
+                    geo.setdefault((id(n), m), (n, m, size, area, wf, wh))
+                if style is not None:
+                    reach = stroke_reach(style) * m.max_scale() + 1.0
+                    sarea = device_area(n.path, m, size, reach)
+                    strokes.setdefault((id(n), m), (n, m, size, sarea, style))
+
+    # -- masks -------------------------------------------------------------------
+    def fill(self, n, t, canvas):
+        """The fill coverage Mask of PathNode ``n`` under ``t`` on
+        ``canvas`` (None: nothing covered)."""
+        key = (id(n), t)
+        if key in self._geo_pending:
+            self._flush_geometry(key, canvas)
+        if key in self._fill_ready:
+            return self._fill_ready.pop(key)
+        edges = self.flat(n.path, t).edges(close_all=True)
+        if len(edges) == 0:
+            return None
+        return coverage(edges, canvas.width, canvas.height, n.fill.rule, n.antialias)
+
+    def stroke(self, n, t, canvas):
+        """``(Mask or None, opacity factor)`` of PathNode ``n``'s stroke
+        under ``t`` on ``canvas``.  A stroke thinner than one device pixel
+        is drawn one pixel wide with its coverage scaled by its device width
+        (the factor), as resvg does; an undashed one is outlined from the
+        fill's polylines (:func:`raster.pixels.hairline.hairline_edges`)."""
+        s = n.stroke.style
+        key = (id(n), t)
+        if key in self._geo_pending:
+            self._flush_geometry(key, canvas)
+        m = self._hair_ready.pop(key, _ABSENT)
+        if m is not _ABSENT:            # a batched hairline
+            return m, s.width * t.mean_scale()
+        factor = 1.0
+        style = s
+        hair = hairline_scale(s, t)
+        if hair is not None:
+            style = StrokeStyle(width=1.0 / t.mean_scale(), join=s.join, cap=s.cap,
+                                miterlimit=s.miterlimit, dash=s.dash, dash_offset=s.dash_offset)
+            factor = hair
+            if s.dash is None:
+                edges = hairline_edges(self.flat(n.path, t), s.cap, s.join, s.miterlimit)
+                if edges is not None:
+                    if not len(edges):
+                        return None, factor
+                    return coverage(edges, canvas.width, canvas.height, 'nonzero',
+                                    n.antialias, exact=False), factor
+        else:
+            if key in self._stroke_pending:
+                self._flush_strokes(key, canvas)
+            if key in self._stroke_ready:
+                return self._stroke_ready.pop(key), factor
+        outline = stroke_outline(n.path, style, transform=t, tolerance=self.tol)
+        if len(outline.verbs) == 0:
+            return None, factor
+        return path_coverage(outline, canvas.width, canvas.height, 'nonzero', n.antialias,
+                             tolerance=self.tol), factor
+
+    def flat(self, path, t):
+        """Polylines of ``path`` flattened under ``t`` (device pixels).  The
+        last result is kept: a filled and stroked hairline path drawn one
+        by one is flattened once."""
+        key = (id(path), t)
+        if self._flat_key == key and self._flat_path is path:
+            return self._flat
+        pl = flatten(path, self.tol, transform=t)
+        self._flat_key, self._flat_path, self._flat = key, path, pl
+        return pl
+
+    # -- batches -----------------------------------------------------------------
+    def _take(self, pending, key, canvas, verbs_max):
+        """Pop queued entries of ``pending`` in document order, up to and
+        including ``key`` and then while the batch holds fewer than
+        ``verbs_max`` verbs and :data:`BATCH_AREA` pixels of masks; return
+        those drawn on ``canvas`` (others are drawn one by one)."""
+        size = (canvas.width, canvas.height)
+        keys, verbs, area, seen = [], 0, 0.0, False
+        for k in pending:
+            v = pending[k]
+            if seen and (verbs >= verbs_max or area + v[3] > BATCH_AREA):
+                break
+            keys.append(k)
+            seen = seen or k == key
+            if v[2] == size:
+                verbs += len(v[0].path.verbs)
+                area += v[3]
+        out = []
+        for k in keys:
+            v = pending.pop(k)
+            if v[2] == size:
+                out.append((k,) + v)
+        return out
+
+    def _flush_geometry(self, key, canvas):
+        """Masks of queued fills and undashed hairlines for ``canvas``, in
+        document order up to and including ``key`` and then while the batch
+        has room."""
+        items = self._take(self._geo_pending, key, canvas, BATCH_VERBS)
+        if not items:
+            return
+        try:
+            pl, first = flatten_joined([it[1].path for it in items], [it[2] for it in items],
+                                       self.tol)
+        except RasterError:
+            return          # drawn one by one (errors where they were)
+        k = len(items)
+        npl = np.diff(first)
+        poly_item = np.repeat(np.arange(k), npl)
+        wf = np.array([it[5] for it in items], bool)
+        wh = np.array([it[6] for it in items], bool)
+        parts, counts, rules, aas, exact, keys = [], [], [], [], [], []
+        fi = np.flatnonzero(wf)
+        if len(fi):
+            sub = pl if wf.all() else pl.take(np.flatnonzero(wf[poly_item]))
+            e, own = sub.edges(close_all=True, owners=True)
+            parts.append(e)
+            counts.append(np.bincount(np.repeat(np.arange(len(fi)), npl[fi])[own]
+                                      if len(own) else own, minlength=len(fi)))
+            for i in fi.tolist():
+                n = items[i][1]
+                rules.append(n.fill.rule)
+                aas.append(bool(n.antialias))
+                exact.append(True)
+                keys.append((self._fill_ready, items[i][0]))
+        hi = np.flatnonzero(wh)
+        if len(hi):
+            sub = pl if wh.all() else pl.take(np.flatnonzero(wh[poly_item]))
+            styles = [items[i][1].stroke.style for i in hi.tolist()]
+            per = npl[hi]
+            capped = np.repeat([s.cap != 'butt' for s in styles], per).astype(bool)
+            mitered = np.repeat([s.join in ('miter', 'miter-clip', 'arcs') for s in styles],
+                                per).astype(bool)
+            limit = np.repeat([float(s.miterlimit) for s in styles], per).astype(np.float64)
+            e, own, dots = hairline_outline(sub, capped, mitered, limit)
+            hair_of = np.repeat(np.arange(len(hi)), per)
+            dotted = np.zeros(len(hi), bool)
+            dotted[hair_of[dots]] = True
+            keep = ~dotted[hair_of[own]]
+            parts.append(e[keep])
+            cnt = np.bincount(hair_of[own[keep]], minlength=len(hi))
+            cnt[dotted] = 0
+            counts.append(cnt)
+            for j, i in enumerate(hi.tolist()):
+                n = items[i][1]
+                rules.append('nonzero')
+                aas.append(bool(n.antialias))
+                exact.append(False)
+                # a dotted hairline is left to the general stroker
+                keys.append(None if dotted[j] else (self._hair_ready, items[i][0]))
+        try:
+            masks = coverage_batch(np.concatenate(parts), np.concatenate(counts),
+                                   canvas.width, canvas.height, rules, aas, exact=exact)
+        except RasterError:
+            return          # drawn one by one (errors where they were)
+        for where, m in zip(keys, masks):
+            if where is not None:
+                where[0][where[1]] = m
+
+    def _flush_strokes(self, key, canvas):
+        """Outline queued strokes for ``canvas`` in document order, up to
+        and including ``key`` and then while the batch has room: one
+        :func:`raster.stroke.stroke_many` call per stroke style, then one
+        :func:`raster.flatten.flatten_joined` and one
+        :func:`raster.pixels.scan.coverage_batch` call for all outlines."""
+        items = self._take(self._stroke_pending, key, canvas, BATCH_VERBS // 4)
+        if not items:
+            return
+        by_style = {}
+        for j, it in enumerate(items):
+            by_style.setdefault(it[5], []).append(j)
+        outlines = [None] * len(items)
+        try:
+            for style, js in by_style.items():
+                outs = stroke_many([items[j][1].path for j in js], style,
+                                   transforms=[items[j][2] for j in js], tolerance=self.tol)
+                for j, o in zip(js, outs):
+                    outlines[j] = o
+            pl, first = flatten_joined(outlines, None, self.tol)
+            e, own = pl.edges(close_all=True, owners=True)
+            counts = np.bincount(np.repeat(np.arange(len(items)), np.diff(first))[own]
+                                 if len(own) else own, minlength=len(items))
+            masks = coverage_batch(e, counts, canvas.width, canvas.height, 'nonzero',
+                                   [bool(it[1].antialias) for it in items])
+        except RasterError:
+            return          # stroked one by one (errors where they were)
+        self._stroke_ready.update(zip([it[0] for it in items], masks))
+
+
+def _batch_stroke_style(n, t):
+    """The StrokeStyle of PathNode ``n``'s stroke when it can be outlined in
+    a batch (visible, not a hairline), else None."""
+    s = n.stroke
+    if s is None or s.opacity <= 0 or s.style.width <= 0:
+        return None
+    if hairline_scale(s.style, t) is not None:
+        return None
+    return s.style
+
+
+def _wants_hair(n, t):
+    """Whether PathNode ``n`` under ``t`` has an undashed hairline stroke
+    (outlined from the fill's polylines)."""
+    s = n.stroke
+    return (s is not None and s.style.dash is None and s.opacity > 0
+            and 0.0 < s.style.width * t.mean_scale() < 1.0)

@@ -1,0 +1,293 @@
+"""The renderer's loop: a resolved tree onto a canvas.
+
+Every node is drawn with its *current transformation matrix* (CTM), user
+space to device (or layer) pixels, x right and y down:
+
+* a :class:`~raster.tree.Group` that only transforms composes its
+  transform onto the CTM; one that needs a layer renders its children into
+  a transparent layer over its device box, then applies its filters, clip
+  path and mask, and composites the layer with its opacity and blend mode
+  (a group clipped by one device rectangle is drawn through the
+  rectangle's coverage instead, :class:`~raster.pixels.views.ClipRect`);
+* a :class:`~raster.tree.PathNode` draws its fill, stroke and markers in
+  ``paint_order``; masks come from :class:`~raster.renderer.batch.Masks`,
+  colours from the paint (:mod:`raster.renderer.paint`);
+* an :class:`~raster.tree.ImageNode` resamples its pixels, or renders its
+  SVG document, clipped to its viewport.
+
+The loop never parses a string and never imports the parser.
+"""
+
+import math
+import warnings
+
+import numpy as np
+
+from .. import limits
+from ..errors import LimitError, RasterError, RasterWarning
+from ..path import Path
+from ..pixels.canvas import Canvas
+from ..pixels.compositing import blend_layer
+from ..pixels.scan import path_coverage
+from ..pixels.views import ClipRect
+from ..transform import Affine
+from ..tree import (Group, ImageNode, LinearGradient, MaskType, PaintItem, PathNode, Pattern,
+                    RadialGradient, SolidPaint)
+from .batch import Masks
+from .bounds import clip_rect, group_box, pixel_box
+from .filters import apply_filters, filter_box, filter_pixel_box
+from .paint import draw_pixels, gradient_colors, sample
+
+__all__ = ['Renderer']
+
+_BLACK = (0.0, 0.0, 0.0, 1.0)
+
+
+class Renderer:
+    """Draws tree nodes onto canvases with flattening ``tolerance`` (device
+    pixels)."""
+
+    def __init__(self, tolerance):
+        self.tol = tolerance
+        self.masks = Masks(tolerance)
+        self._limit_warned = False
+
+    def draw(self, node, t, canvas):
+        """Draw ``node`` (and what is below it) with CTM ``t`` on ``canvas``,
+        planning the masks of its subtree first."""
+        self.masks.plan([node], t, canvas)
+        self.node(node, t, canvas)
+
+    def node(self, node, t, canvas):
+        if isinstance(node, Group):
+            self.group(node, t, canvas)
+        elif isinstance(node, PathNode):
+            self.path(node, t, canvas)
+        elif isinstance(node, ImageNode):
+            self.image(node, t, canvas)
+
+    # -- groups ----------------------------------------------------------------
+    def group(self, g, t, canvas):
+        ct = t @ g.transform
+        if not g.needs_layer:
+            for c in g.children:
+                self.node(c, ct, canvas)
+            return
+        if g.opacity <= 0:
+            return
+        box = clip_rect(g, t)
+        if box is not None:
+            # clipped by an axis-aligned rectangle only: no layer, the
+            # children are drawn through the rectangle's coverage
+            view = ClipRect(canvas, box)
+            if not view.empty:
+                for c in g.children:
+                    self.node(c, ct, view)
+            return
+        # the layer: the group's box, or its filter region (effects draw
+        # outside the content)
+        if g.filters:
+            px = filter_pixel_box(filter_box(g.filters, ct), canvas.width, canvas.height)
+        else:
+            box = group_box(g, ct)
+            px = None if box is None else pixel_box(box, canvas.width, canvas.height)
+        if px is None:
+            return
+        x0, y0, x1, y1 = px
+        layer = Canvas(x1 - x0, y1 - y0)
+        lt = Affine.translate(-x0, -y0) @ ct
+        self.masks.plan(g.children, lt, layer)
+        for c in g.children:
+            self.node(c, lt, layer)
+        if g.filters:
+            layer.data[...] = apply_filters(g.filters, layer.data, lt, draw=self._draw_new)
+        if g.clip_path is not None:
+            layer.data *= self.clip_coverage(g.clip_path, lt, layer.width, layer.height)[..., None]
+        if g.mask is not None:
+            layer.data *= self.mask_values(g.mask, lt, layer.width, layer.height)[..., None]
+        blend_layer(canvas, layer.data, x0, y0, float(g.opacity), g.blend_mode)
+
+    def _draw_new(self, node, m, w, h):
+        """``node`` drawn with CTM ``m`` into a new (h, w, 4) premultiplied
+        array (feImage content)."""
+        img = Canvas(w, h)
+        self.node(node, m, img)
+        return img.data
+
+    # -- clip paths and masks ------------------------------------------------
+    def clip_coverage(self, clip, t, w, h):
+        """(h, w) float32 coverage of a ClipPath with CTM ``t`` (the
+        clipped group's user space to layer pixels)."""
+        layer = Canvas(w, h)
+        self._clip_node(clip.root, t @ clip.transform, layer)
+        cov = layer.data[..., 3].copy()
+        if clip.clip_path is not None:
+            cov *= self.clip_coverage(clip.clip_path, t, w, h)
+        return cov
+
+    def _clip_node(self, n, t, layer):
+        """Inside a clip path only geometry counts: paths are filled black
+        with their rule (which carries ``clip-rule``) whatever their paint;
+        a clip path on a child still restricts that child."""
+        if isinstance(n, Group):
+            if n.clip_path is not None:
+                ct = t @ n.transform
+                sub = Canvas(layer.width, layer.height)
+                for c in n.children:
+                    self._clip_node(c, ct, sub)
+                sub.data *= self.clip_coverage(n.clip_path, ct, layer.width,
+                                               layer.height)[..., None]
+                layer.composite(sub.data)
+                return
+            ct = t @ n.transform
+            for c in n.children:
+                self._clip_node(c, ct, layer)
+        elif isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
+            rule = n.fill.rule if n.fill is not None else 'nonzero'
+            try:
+                m = path_coverage(n.path, layer.width, layer.height, rule, n.antialias,
+                                  tolerance=self.tol, transform=t)
+            except LimitError as e:
+                self._left_out(e)
+                return
+            if m is not None:
+                layer.fill(m, _BLACK, 1.0)
+
+    def mask_values(self, mask, t, w, h):
+        """(h, w) float32 values of a Mask with CTM ``t``."""
+        layer = Canvas(w, h)
+        self.node(mask.root, t, layer)
+        d = layer.data
+        if mask.kind == MaskType.ALPHA:
+            m = d[..., 3].copy()
+        else:
+            # luminance of the premultiplied colour = luminance * alpha
+            m = (0.2125 * d[..., 0] + 0.7154 * d[..., 1] + 0.0721 * d[..., 2]).astype(np.float32)
+        x, y, rw, rh = mask.rect
+        rect = Path.polygon([(x, y), (x + rw, y), (x + rw, y + rh), (x, y + rh)])
+        rc = path_coverage(rect, w, h, 'nonzero', True, tolerance=self.tol, transform=t)
+        if rc is None:
+            return np.zeros((h, w), np.float32)
+        m *= rc.full(w, h)
+        if mask.mask is not None:
+            m *= self.mask_values(mask.mask, t, w, h)
+        return np.clip(m, 0.0, 1.0)
+
+    # -- paths ---------------------------------------------------------------
+    def path(self, n, t, canvas):
+        if n.path is None or len(n.path.verbs) == 0:
+            return
+        try:
+            for item in n.paint_order:
+                if item == PaintItem.FILL and n.fill is not None:
+                    self.fill(n, t, canvas)
+                elif item == PaintItem.STROKE and n.stroke is not None:
+                    self.stroke(n, t, canvas)
+                elif item == PaintItem.MARKERS and n.markers is not None:
+                    self.node(n.markers, t, canvas)
+        except LimitError as e:
+            self._left_out(e)
+
+    def _left_out(self, e):
+        """One element beyond a limit (a coordinate above MAX_COORD, too
+        many dashes...) is left out with one warning; the rest of the
+        document is drawn."""
+        if not self._limit_warned:
+            self._limit_warned = True
+            warnings.warn('element not drawn: %s' % e, RasterWarning, stacklevel=3)
+
+    def fill(self, n, t, canvas):
+        f = n.fill
+        if f.opacity <= 0:
+            return
+        m = self.masks.fill(n, t, canvas)
+        if m is not None:
+            self.paint(canvas, m, f.paint, f.opacity, t)
+
+    def stroke(self, n, t, canvas):
+        s = n.stroke
+        if s.opacity <= 0 or s.style.width <= 0:
+            return
+        m, factor = self.masks.stroke(n, t, canvas)
+        if m is not None:
+            self.paint(canvas, m, s.paint, s.opacity * factor, t)
+
+    def paint(self, canvas, mask, paint, opacity, t):
+        """Composite ``paint`` (in the user space that ``t`` maps to the
+        canvas) through coverage ``mask`` with ``opacity``."""
+        if isinstance(paint, SolidPaint):
+            canvas.fill(mask, paint.color, opacity)
+            return
+        if isinstance(paint, (LinearGradient, RadialGradient)):
+            src = gradient_colors(paint, mask, t)
+        elif isinstance(paint, Pattern):
+            src = self.pattern(paint, mask, t)
+        else:
+            return
+        if src is not None:
+            canvas.composite(src, mask.x0, mask.y0, opacity)
+
+    def pattern(self, p, mask, t):
+        """Premultiplied (h, w, 4) colours of a pattern over the mask window,
+        multiplied by the coverage; None when the tile is empty.
+
+        The tile is rendered once into a raster at device resolution and
+        sampled (bilinear, wrapping) through the inverse of the tile-to-device
+        transform, the way resvg paints patterns."""
+        x, y, w, h = p.rect
+        if not (w > 0 and h > 0):
+            return None
+        tile_to_dev = t @ p.transform @ Affine.translate(x, y)
+        sx = math.hypot(tile_to_dev.a, tile_to_dev.b)
+        sy = math.hypot(tile_to_dev.c, tile_to_dev.d)
+        tw = max(1, int(math.ceil(w * sx)))
+        th = max(1, int(math.ceil(h * sy)))
+        if tw * th > limits.MAX_PIXELS // 4:
+            return None
+        # As resvg: the tile raster has whole-pixel size (rounded up) and the
+        # content is drawn at the device scale, so the period is tw / sx
+        # (up to a pixel longer than the tile): references tile this way.
+        tile = Canvas(tw, th)
+        self.node(p.root, Affine.scale(sx, sy) @ p.content_transform, tile)
+        try:
+            inv = (tile_to_dev @ Affine.scale(1.0 / sx, 1.0 / sy)).inverse()
+        except RasterError:
+            return None
+        hh, ww = mask.data.shape
+        jj, ii = np.meshgrid(np.arange(ww) + mask.x0 + 0.5, np.arange(hh) + mask.y0 + 0.5)
+        uv = inv.apply(np.stack([jj, ii], -1))
+        col = sample(tile.data, uv[..., 0], uv[..., 1], smooth=True, wrap=True)
+        return (col * mask.data[..., None]).astype(np.float32)
+
+    # -- images ----------------------------------------------------------------
+    def image(self, n, t, canvas):
+        if n.opacity <= 0:
+            return
+        if n.tree is not None:
+            self.svg_image(n, t, canvas)
+        elif n.pixels is not None:
+            draw_pixels(n, t, canvas, self.tol)
+
+    def svg_image(self, n, t, canvas):
+        it = t @ n.transform
+        g = Group(children=[n.tree.root])
+        if n.clip is None:
+            self.node(g, it, canvas)
+            return
+        x, y, w, h = n.clip
+        box = t.apply(np.array([[x, y], [x + w, y], [x + w, y + h], [x, y + h]], float))
+        px = pixel_box((box[:, 0].min(), box[:, 1].min(), box[:, 0].max(), box[:, 1].max()),
+                       canvas.width, canvas.height)
+        if px is None:
+            return
+        x0, y0, x1, y1 = px
+        layer = Canvas(x1 - x0, y1 - y0)
+        lt = Affine.translate(-x0, -y0)
+        self.node(g, lt @ it, layer)
+        rect = Path.polygon([(x, y), (x + w, y), (x + w, y + h), (x, y + h)])
+        rc = path_coverage(rect, layer.width, layer.height, 'nonzero', True,
+                           tolerance=self.tol, transform=lt @ t)
+        if rc is None:
+            return
+        layer.data *= rc.full(layer.width, layer.height)[..., None]
+        canvas.composite(layer.data, x0, y0, n.opacity)

@@ -1,0 +1,41 @@
+"""The resolved render tree: the contract between the parser and the renderer.
+
+The parser (:mod:`raster.parser`) turns an SVG document into a :class:`Tree`;
+the renderer (:mod:`raster.renderer`) draws one.  Neither knows the other:
+everything either needs is here, fully resolved and typed.
+
+Guarantees of a tree built by the parser:
+
+* **Nothing to parse.** Colours are straight-alpha RGBA float tuples in
+  [0, 1], lengths are user units, transforms are :class:`~raster.geometry.
+  transform.Affine`, closed sets are enums (:class:`BlendMode`,
+  :class:`MaskType`, :class:`SpreadMethod`, :class:`PaintItem`, the filter
+  enums), geometry is an immutable :class:`~raster.geometry.path.Path`.
+* **Nothing relative.** CSS, inheritance, ``use``/``symbol``/nested ``svg``,
+  ``switch``, ``display``/``visibility``, percentages, ``em``, viewBoxes,
+  ``currentColor`` and every ``objectBoundingBox`` unit (gradients,
+  patterns, clip paths, masks, filters) are resolved: paints and effects
+  are in the user space of the node that uses them.
+* **Coordinates.** A :class:`Group`'s ``transform`` maps its children's
+  coordinates to its parent's; the root group maps the document's user
+  space to *document pixels* (the natural size ``width x height`` in CSS
+  px).  A :class:`PathNode`'s path, paints, clip path and mask are in its
+  parent group's coordinates.
+* Groups that change nothing are dropped; a group with only a transform
+  costs the renderer nothing.
+
+Modules: :mod:`.nodes` (Tree, Group, PathNode, ImageNode), :mod:`.paint`
+(paints, Fill, Stroke), :mod:`.effects` (ClipPath, Mask, BlendMode),
+:mod:`.filter` (one class per filter primitive kind).
+"""
+
+from .paint import (RGBA, SolidPaint, GradientStop, LinearGradient, RadialGradient, Pattern,
+                    Paint, SpreadMethod, Fill, FillRule, Stroke, PaintItem, DEFAULT_PAINT_ORDER)
+from .effects import BlendMode, MaskType, ClipPath, Mask
+from .nodes import Node, Group, PathNode, ImageNode, Tree, walk
+from . import filter
+
+__all__ = ['RGBA', 'SolidPaint', 'GradientStop', 'LinearGradient', 'RadialGradient', 'Pattern',
+           'Paint', 'SpreadMethod', 'Fill', 'FillRule', 'Stroke', 'PaintItem', 'DEFAULT_PAINT_ORDER',
+           'BlendMode', 'MaskType', 'ClipPath', 'Mask', 'Node', 'Group', 'PathNode',
+           'ImageNode', 'Tree', 'walk', 'filter']

@@ -1,0 +1,136 @@
+"""Paints of the render tree: solid colours, gradients, patterns, and how a
+path uses them (:class:`Fill`, :class:`Stroke`).
+
+Every paint is in the user space of the node it paints (the parser has
+applied ``objectBoundingBox`` units, ``gradientTransform`` and
+``patternTransform``): the renderer maps it to device pixels with the
+node's CTM alone.
+"""
+
+import enum
+from dataclasses import dataclass
+from typing import Optional, Tuple, Union
+
+from ..stroke import StrokeStyle
+from ..path import FillRule
+from ..transform import IDENTITY, Affine
+
+__all__ = ['RGBA', 'SolidPaint', 'GradientStop', 'LinearGradient', 'RadialGradient', 'Pattern',
+           'Paint', 'SpreadMethod', 'Fill', 'Stroke', 'PaintItem', 'DEFAULT_PAINT_ORDER',
+           'FillRule']
+
+#: Straight-alpha colour, four floats in [0, 1].
+RGBA = Tuple[float, float, float, float]
+
+
+class SpreadMethod(str, enum.Enum):
+    """How a gradient continues outside [0, 1] (``spreadMethod``)."""
+    PAD = 'pad'
+    REFLECT = 'reflect'
+    REPEAT = 'repeat'
+
+
+class PaintItem(str, enum.Enum):
+    """One item of ``paint-order``."""
+    FILL = 'fill'
+    STROKE = 'stroke'
+    MARKERS = 'markers'
+
+
+#: The default ``paint-order``: fill, then stroke, then markers.
+DEFAULT_PAINT_ORDER = (PaintItem.FILL, PaintItem.STROKE, PaintItem.MARKERS)
+
+
+@dataclass(slots=True, frozen=True)
+class SolidPaint:
+    """A solid colour."""
+    color: RGBA
+
+
+@dataclass(slots=True, frozen=True)
+class GradientStop:
+    """A gradient stop: ``offset`` in [0, 1] (non-decreasing along a
+    gradient's stops), ``color`` with ``stop-opacity`` folded into alpha."""
+    offset: float
+    color: RGBA
+
+
+@dataclass(slots=True, frozen=True)
+class LinearGradient:
+    """A linear gradient from (x1, y1) at offset 0 to (x2, y2) at offset 1,
+    in the gradient space that ``transform`` maps to the painted node's
+    user space.  At least two stops."""
+    x1: float
+    y1: float
+    x2: float
+    y2: float
+    stops: Tuple[GradientStop, ...]
+    transform: Affine = IDENTITY
+    spread: SpreadMethod = SpreadMethod.PAD
+    id: str = ''
+
+
+@dataclass(slots=True, frozen=True)
+class RadialGradient:
+    """A two-point conical gradient: the focal circle (fx, fy, fr) at offset
+    0 to the end circle (cx, cy, r) at offset 1, in the gradient space that
+    ``transform`` maps to the painted node's user space."""
+    cx: float
+    cy: float
+    r: float
+    fx: float
+    fy: float
+    stops: Tuple[GradientStop, ...]
+    fr: float = 0.0
+    transform: Affine = IDENTITY
+    spread: SpreadMethod = SpreadMethod.PAD
+    id: str = ''
+
+
+@dataclass(slots=True, frozen=True)
+class Pattern:
+    """A pattern tile: the rectangle ``rect`` (x, y, w, h) of the tile space
+    that ``transform`` maps to the painted node's user space, repeated
+    without gaps; ``root`` is the tile's content and ``content_transform``
+    maps it to tile space (viewBox and ``patternContentUnits`` applied)."""
+    rect: Tuple[float, float, float, float]
+    root: 'object'          # a raster.tree.nodes.Group
+    transform: Affine = IDENTITY
+    content_transform: Affine = IDENTITY
+    id: str = ''
+
+
+Paint = Union[SolidPaint, LinearGradient, RadialGradient, Pattern]
+
+
+@dataclass(slots=True)
+class Fill:
+    """How a path is filled: ``paint`` with ``opacity`` (fill-opacity) and
+    the fill ``rule``."""
+    paint: Paint
+    opacity: float = 1.0
+    rule: FillRule = FillRule.NONZERO
+
+
+@dataclass(slots=True)
+class Stroke:
+    """How a path is stroked: ``paint`` with ``opacity`` (stroke-opacity)
+    along the outline of ``style`` (the geometry kernel's stroke style:
+    width, join, cap, miter limit, dashes, all in the path's user units).
+
+    >>> Stroke.of(SolidPaint((0, 0, 0, 1)), width=2, cap='round').style.cap
+    'round'
+    """
+    paint: Paint
+    style: StrokeStyle = StrokeStyle()
+    opacity: float = 1.0
+
+    @classmethod
+    def of(cls, paint, opacity=1.0, **style):
+        """A Stroke of ``paint`` whose style is ``StrokeStyle(**style)``."""
+        return cls(paint, StrokeStyle(**style), opacity)
+
+    @property
+    def width(self) -> float:
+        """The stroke width (``style.width``)."""
+        return self.style.width
