@@ -29,7 +29,6 @@ from raster.parser.imageload import (ImageError, ImageSource, decode_raster, fet
 from raster.tree import Group, ImageNode, walk
 from raster.testing import compare_images
 
-HERE = os.path.dirname(os.path.abspath(__file__))
 from _shared import SUITE_ROOT as SUITE, SUITE_TESTS
 RED, BLUE, GREEN = (255, 0, 0, 255), (0, 0, 255, 255), (0, 128, 0, 255)
 

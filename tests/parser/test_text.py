@@ -16,7 +16,6 @@ from raster.parser.text import collapse_whitespace
 from raster.tree import PathNode, walk
 from raster.testing import compare_images
 
-HERE = os.path.dirname(__file__)
 from _shared import SUITE_FONTS as FONTS, SUITE_ROOT as SUITE
 NS = 'xmlns="http://www.w3.org/2000/svg"'
 

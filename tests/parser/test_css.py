@@ -15,7 +15,6 @@ from raster.parser.properties import (PRESENTATION_ATTRIBUTES, PROPERTIES, SHORT
                                    initial_value, is_inherited)
 
 SVG = 'http://www.w3.org/2000/svg'
-HERE = os.path.dirname(__file__)
 from _shared import CORPUS, SUITE_TESTS as SUITE
 
 
