@@ -33,4 +33,19 @@ def test_golden(name):
         os.makedirs(FAILURES, exist_ok=True)
         Image.fromarray(diff_strip(expected, actual, result)).save(
             os.path.join(FAILURES, name + '.png'))
-    assert result.passed, '%s: %s (strip in tests/_failures/golden/)' % (name, result.reason)
+    assert result.passed, '%s: %s, SSIM %s (strip in tests/_failures/golden/)' % (
+        name, result.reason, _ssim(expected, actual))
+
+
+def _ssim(expected, actual):
+    """Structural similarity of the two images over white (scikit-image),
+    as a second opinion in failure reports; 'n/a' for different sizes."""
+    from skimage.metrics import structural_similarity
+    from raster.testing import over_white
+    if expected.shape != actual.shape:
+        return 'n/a'
+    a, b = over_white(expected), over_white(actual)
+    win = min(7, min(a.shape[:2]) // 2 * 2 - 1)
+    if win < 3:
+        return 'n/a'
+    return '%.4f' % structural_similarity(a, b, channel_axis=-1, data_range=255, win_size=win)
