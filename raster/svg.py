@@ -19,11 +19,21 @@ Output sizes are in device pixels; the document's natural size is its
 """
 
 import os
+from typing import BinaryIO, Optional, Sequence, Tuple, Union
+
+import numpy as np
 
 from .errors import SVGError
 from .parser import Options, build_tree, load_document
 from .parser.values import CURRENT_COLOR, parse_color
 from .renderer import DEFAULT_TOLERANCE, render_tree
+from .tree import Tree
+
+#: What :func:`load_svg` and :func:`render` read: a path, the bytes, or a
+#: binary file object.
+Source = Union[str, 'os.PathLike[str]', bytes, BinaryIO]
+#: A background: a CSS colour string or 3 or 4 floats in [0, 1].
+Background = Union[None, str, Sequence[float]]
 
 __all__ = ['load_svg', 'render', 'render_image', 'render_tree', 'background_color']
 
@@ -36,7 +46,9 @@ def _source_and_base(source):
     return source, None
 
 
-def load_svg(source, *, dpi=96, font_dirs=(), resources_dir=None, base_dir=None, **options):
+def load_svg(source: Source, *, dpi: float = 96, font_dirs: Sequence[str] = (),
+             resources_dir: Optional[str] = None, base_dir: Optional[str] = None,
+             **options) -> Tree:
     """Load and resolve an SVG document.
 
     Parameters
@@ -77,7 +89,7 @@ def load_svg(source, *, dpi=96, font_dirs=(), resources_dir=None, base_dir=None,
     return build_tree(root, opts)
 
 
-def background_color(bg):
+def background_color(bg: Background) -> Optional[Tuple[float, float, float, float]]:
     """A background given as a CSS colour string or 3 or 4 floats in [0, 1]
     as straight RGBA floats (None stays None).
 
@@ -104,8 +116,11 @@ def background_color(bg):
     return c
 
 
-def render(source, width=None, height=None, *, zoom=None, dpi=96, background=None, id=None,
-           font_dirs=(), resources_dir=None, premultiplied=False, tolerance=DEFAULT_TOLERANCE):
+def render(source: Source, width: Optional[int] = None, height: Optional[int] = None, *,
+           zoom: Optional[float] = None, dpi: float = 96, background: Background = None,
+           id: Optional[str] = None, font_dirs: Sequence[str] = (),
+           resources_dir: Optional[str] = None, premultiplied: bool = False,
+           tolerance: float = DEFAULT_TOLERANCE) -> np.ndarray:
     """Render an SVG document to an RGBA array.
 
     Parameters
@@ -157,7 +172,8 @@ def render(source, width=None, height=None, *, zoom=None, dpi=96, background=Non
     return canvas.to_rgba8(premultiplied=bool(premultiplied))
 
 
-def render_image(source, width=None, height=None, **kwargs):
+def render_image(source: Source, width: Optional[int] = None, height: Optional[int] = None,
+                 **kwargs) -> 'PIL.Image.Image':  # noqa: F821
     """:func:`render` as a straight-alpha RGBA :class:`PIL.Image.Image`
     (same arguments; ``premultiplied`` is not accepted)."""
     from PIL import Image

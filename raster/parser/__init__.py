@@ -30,8 +30,10 @@ import contextlib
 import dataclasses
 import gc
 import math
+from typing import Optional
 
 from ..errors import SVGError
+from ..tree import Tree
 from .context import Cache, Options
 from .css import declared_styles
 from .document import load_document
@@ -51,13 +53,14 @@ CONVERTERS = dict({name: convert_shape for name in SHAPES},
                   use=convert_use, text=convert_text, image=convert_image)
 
 
-def parse(source, options=None):
+def parse(source, options: Optional[Options] = None) -> Tree:
     """Load an SVG document (see :func:`~raster.parser.document.load_document`
     for the accepted sources) and resolve it into a Tree."""
     return build_tree(load_document(source), options)
 
 
-def build_tree(root, options=None, image_cache=None, **fields):
+def build_tree(root, options: Optional[Options] = None, image_cache: Optional[dict] = None,
+               **fields) -> Tree:
     """Resolve a loaded SVG document into a render :class:`~raster.tree.Tree`.
 
     Parameters

@@ -19,7 +19,7 @@ unpainted.  Inside a ``clipPath`` a shape is filled black with its
 import math
 
 from ..errors import RasterError
-from ..stroke import StrokeStyle
+from ..stroke import CAPS, JOINS, StrokeStyle
 from ..svgpath import (circle_path, ellipse_path, line_path, parse_path, parse_paths,
                        polyline_path, rect_path)
 from ..tree import Fill, FillRule, Group, PathNode, SolidPaint, Stroke
@@ -43,8 +43,6 @@ _PATH = _P + 'path'
 _GEOMETRY_ATTRS = {'rect': ('x', 'y', 'width', 'height', 'rx', 'ry'), 'circle': ('cx', 'cy', 'r'),
                    'ellipse': ('cx', 'cy', 'rx', 'ry'), 'line': ('x1', 'y1', 'x2', 'y2'),
                    'polyline': ('points',), 'polygon': ('points',)}
-_JOINS = frozenset(['miter', 'miter-clip', 'round', 'bevel', 'arcs'])
-_CAPS = frozenset(['butt', 'round', 'square'])
 # arcs are re-flattened for marker placement with a tolerance so large that
 # only the "at most 90 degrees per piece" rule splits them (as resvg does)
 _PLACEMENT_TOL = 1e9
@@ -392,7 +390,7 @@ def _compute_stroke_params(inh, ctx):
         v = parse_length(do, 'other', ctx)
         if v is not None:
             off = v
-    style = StrokeStyle(width=w, join=join if join in _JOINS else 'miter',
-                        cap=cap if cap in _CAPS else 'butt', miterlimit=ml, dash=dash,
+    style = StrokeStyle(width=w, join=join if join in JOINS else 'miter',
+                        cap=cap if cap in CAPS else 'butt', miterlimit=ml, dash=dash,
                         dash_offset=off)
     return style, opacity(inh.get('stroke-opacity'))

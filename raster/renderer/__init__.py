@@ -21,6 +21,7 @@ tree, the geometry kernel and the pixel layer; never the parser.
 """
 
 import math
+from typing import Optional, Tuple
 
 from .. import _malloc, limits
 from ..errors import CanvasError, SVGError
@@ -45,7 +46,9 @@ def _positive(name, v):
     return f
 
 
-def output_size(doc_width, doc_height, width=None, height=None, zoom=None):
+def output_size(doc_width: float, doc_height: float, width: Optional[int] = None,
+                height: Optional[int] = None,
+                zoom: Optional[float] = None) -> Tuple[int, int, float, float]:
     """Output size in pixels and the document-to-device scale.
 
     Parameters
@@ -111,8 +114,10 @@ def output_size(doc_width, doc_height, width=None, height=None, zoom=None):
     return w, h, w / dw, h / dh
 
 
-def render_tree(tree, width=None, height=None, zoom=None, background=None, node_id=None,
-                tolerance=DEFAULT_TOLERANCE):
+def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] = None,
+                zoom: Optional[float] = None,
+                background: Optional[Tuple[float, float, float, float]] = None,
+                node_id: Optional[str] = None, tolerance: float = DEFAULT_TOLERANCE) -> Canvas:
     """Render a resolved tree.
 
     Parameters
@@ -156,7 +161,7 @@ def render_tree(tree, width=None, height=None, zoom=None, background=None, node_
     return canvas
 
 
-def find_node(tree, node_id):
+def find_node(tree: Tree, node_id: str):
     """The node with ``node_id`` and the transform of its ancestors (root
     transform included) mapping its coordinates to document px.
 
