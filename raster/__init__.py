@@ -13,13 +13,13 @@ Names are imported lazily so that ``import raster`` stays fast.
 
 from .errors import (RasterError, PathError, TransformError, CanvasError,  # noqa: F401
                      LimitError, SVGError)
-from .path import Path, PathBuilder, TransformPen, RecordingPen  # noqa: F401
-from .transform import Affine  # noqa: F401
+from .geometry.path import Path, PathBuilder, TransformPen, RecordingPen  # noqa: F401
+from .geometry.transform import Affine  # noqa: F401
 
 __version__ = '0.1.0'
 
 _LAZY = {
-    'parse_path': 'raster.svgpath',
+    'parse_path': 'raster.geometry.pathdata',
     'StrokeStyle': 'raster.stroke',
     'coverage': 'raster.scan',
     'path_coverage': 'raster.scan',
@@ -47,7 +47,7 @@ def __dir__():
 # `flatten` and `bbox` name both a public function and its submodule.  Bind
 # the functions now: importing a submodule binds the package attribute to the
 # module, which would otherwise shadow the lazy name (raster.flatten(path)
-# failing after `from raster.flatten import ...`).  Both modules need only
+# failing after `from raster.geometry.flattening import ...`).  Both modules need only
 # numpy.
-from .flatten import flatten, Polylines  # noqa: E402,F401
-from .bbox import bbox  # noqa: E402,F401
+from .geometry.flattening import flatten, Polylines  # noqa: E402,F401
+from .geometry.bounds import bbox  # noqa: E402,F401

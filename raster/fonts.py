@@ -490,9 +490,9 @@ class Font:
         return Shaped(gid, cluster, pos, ordered)
 
     def outline(self, gid):
-        """The outline of glyph ``gid`` as a :class:`~raster.path.Path` in
+        """The outline of glyph ``gid`` as a :class:`~raster.geometry.path.Path` in
         font units (y up)."""
-        from .path import Path
+        from .geometry.path import Path
         verbs, points, _ = self._atlas.gather(np.array([gid], np.int64))
         return Path(verbs, points, _checked=True)
 
@@ -518,7 +518,7 @@ class Font:
     def _draw_glyph(self, gid):
         """(verbs, points) of one glyph drawn through fontTools (empty
         arrays for a glyph that cannot be drawn)."""
-        from .path import Path, PathBuilder
+        from .geometry.path import Path, PathBuilder
         from fontTools.pens.recordingPen import DecomposingRecordingPen
         try:
             name = self.glyph_order[gid]

@@ -318,32 +318,32 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
 
 def path_coverage(path, width, height, fill_rule='nonzero', antialias=True, clip=None,
                   tolerance=0.25, transform=None):
-    """Coverage of a :class:`~raster.path.Path` filled on a canvas.
+    """Coverage of a :class:`~raster.geometry.path.Path` filled on a canvas.
 
-    The path is flattened with :func:`raster.flatten.flatten` (every contour
+    The path is flattened with :func:`raster.geometry.flattening.flatten` (every contour
     closed) and scan converted with :func:`coverage`.
 
     Parameters
     ----------
-    path : raster.path.Path
+    path : raster.geometry.path.Path
     width, height, fill_rule, antialias, clip
         As for :func:`coverage`.
     tolerance : float
         Largest distance in device pixels between a curve and its flattened
         polyline (default 0.25); the scan conversion itself is exact.
-    transform : raster.transform.Affine or None
+    transform : raster.geometry.transform.Affine or None
         User space to device space.
 
     Returns
     -------
     Mask or None
 
-    >>> from raster.path import Path
+    >>> from raster.geometry.path import Path
     >>> m = path_coverage(Path.polygon([(1, 1), (3, 1), (3, 2)]), 4, 4)
     >>> m.box, float(m.data.sum())
     ((1, 1, 3, 2), 1.0)
     """
-    from .flatten import flatten
+    from .geometry.flattening import flatten
     edges = flatten(path, tolerance=tolerance, transform=transform).edges(close_all=True)
     return coverage(edges, width, height, fill_rule=fill_rule, antialias=antialias, clip=clip)
 

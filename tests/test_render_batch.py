@@ -6,10 +6,10 @@ import pytest
 
 import importlib
 render_mod = importlib.import_module("raster.svg.render")
-from raster.path import Path
+from raster.geometry.path import Path
 from raster.svg.tree import Fill, Group, PathNode, SolidPaint, Stroke, Tree
 from raster.svg.render import render_tree
-from raster.transform import Affine
+from raster.geometry.transform import Affine
 from _geometry import kappa_circle as circle
 
 

@@ -11,7 +11,7 @@ from PIL import Image
 import raster
 from raster.errors import RasterError
 from raster.svg import filters as F
-from raster.transform import Affine
+from raster.geometry.transform import Affine
 from raster.testing import compare_images
 
 from _shared import SUITE_ROOT as SUITE

@@ -25,8 +25,8 @@ import math
 import numpy as np
 
 from ..errors import LimitError
-from ..path import PathBuilder
-from ._base import CurveError, CurveMixin, as_params, as_points, as_scalar, shape_out
+from ..geometry.path import PathBuilder
+from .base import CurveError, CurveMixin, as_params, as_points, as_scalar, shape_out
 
 # Gauss-Legendre nodes and weights on [0, 1] (16 points) for arc lengths.
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
@@ -389,8 +389,8 @@ class Bezier(CurveMixin):
     # -- geometry ------------------------------------------------------------
     def hull(self):
         """Convex hull of the (x, y) control points, (H, 2) float64
-        (:func:`raster.hull.convex_hull`)."""
-        from ..hull import convex_hull
+        (:func:`raster.geometry.hull.convex_hull`)."""
+        from ..geometry.hull import convex_hull
         return convex_hull(self.ctrl[:, :2])
 
     def to_beziers(self):
@@ -698,8 +698,8 @@ class PiecewiseBezier(CurveMixin):
     def flatten(self, tolerance=0.25):
         """Polyline through the curve within ``tolerance`` (device units):
         (K, D) float64, first and last points exact (via
-        :func:`raster.flatten.flatten_beziers`)."""
-        from ..flatten import flatten_beziers
+        :func:`raster.geometry.flattening.flatten_beziers`)."""
+        from ..geometry.flattening import flatten_beziers
         tol = as_scalar(tolerance, 'tolerance', 0.0)
         if tol <= 0:
             raise CurveError('tolerance must be positive')
@@ -715,7 +715,7 @@ class PiecewiseBezier(CurveMixin):
         return pts[keep]
 
     def to_path(self, tolerance=0.25):
-        """A :class:`raster.path.Path` of the (x, y) projection: one contour
+        """A :class:`raster.geometry.path.Path` of the (x, y) projection: one contour
         of lines, quadratics or cubics for degrees 1-3 (exact); higher
         degrees as cubics within ``tolerance`` (see :meth:`to_cubics`)."""
         b = PathBuilder()

@@ -31,7 +31,7 @@ zeros, uniform interior knots, ``p + 1`` ones; the curve then starts at
 
 import numpy as np
 
-from ._base import MAX_CURVE_COORD, CurveError, CurveMixin, as_params, as_points, shape_out
+from .base import MAX_CURVE_COORD, CurveError, CurveMixin, as_params, as_points, shape_out
 from .bezier import PiecewiseBezier, _check_degree
 
 

@@ -65,10 +65,10 @@ import warnings
 
 from .. import limits
 from ..errors import RasterError, RasterWarning, SVGError, TransformError
-from ..bbox import bbox as exact_bbox
-from ..svgpath import (circle_path, ellipse_path, line_path, parse_path, parse_paths,
-                       polyline_path, rect_path)
-from ..transform import IDENTITY, Affine
+from ..geometry.bounds import bbox as exact_bbox
+from ..geometry.pathdata import (circle_path, ellipse_path, line_path, parse_path, parse_paths,
+                                 polyline_path, rect_path)
+from ..geometry.transform import IDENTITY, Affine
 from .css import declared_styles
 from .document import chain_attr
 from .properties import INHERITED, PROPERTIES

@@ -56,7 +56,7 @@ from typing import Optional, Tuple
 import numpy as np
 
 from ..errors import RasterError
-from ..transform import Affine
+from ..geometry.transform import Affine
 from .document import chain_attr
 
 __all__ = ['FilterError', 'Filter', 'Primitive', 'resolve_filter_property', 'filter_box',

@@ -76,7 +76,7 @@ import numpy as np
 
 from .. import limits
 from ..errors import RasterError
-from ..svgpath import rect_path
+from ..geometry.pathdata import rect_path
 from .tree import ImageNode, PathNode
 from .values import parse_length, parse_preserve_aspect_ratio, viewbox_transform
 

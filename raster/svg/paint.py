@@ -20,9 +20,9 @@ import numpy as np
 from PIL import Image
 
 from ..errors import RasterError
-from ..path import Path
+from ..geometry.path import Path
 from ..scan import path_coverage
-from ..transform import Affine
+from ..geometry.transform import Affine
 from .tree import LinearGradient
 
 __all__ = ['gradient_colors', 'draw_pixels', 'sample', 'user_bbox', 'resample_window']
@@ -49,7 +49,7 @@ def user_bbox(path):
     """Bounding box (x, y, w, h) of a path in its own units, for
     objectBoundingBox paints."""
     try:
-        from ..bbox import bbox as exact_bbox
+        from ..geometry.bounds import bbox as exact_bbox
         x0, y0, x1, y1 = exact_bbox(path)
     except (ImportError, RasterError, TypeError, ValueError):
         x0, y0, x1, y1 = path.control_box()

@@ -46,7 +46,7 @@ Paints: solid colours and linear and radial gradients (pad, reflect and
 repeat spreads; ``objectBoundingBox`` units) and patterns (a tile raster
 at device resolution, sampled with wrapping).
 
->>> from raster.path import Path
+>>> from raster.geometry.path import Path
 >>> from raster.svg.tree import Tree, Group, PathNode, Fill, SolidPaint
 >>> sq = Path.polygon([(2, 2), (8, 2), (8, 8), (2, 8)])
 >>> tree = Tree(10, 10, Group(children=[PathNode(path=sq, fill=Fill(SolidPaint((1, 0, 0, 1))))]))
@@ -63,11 +63,11 @@ import numpy as np
 from .. import _malloc, limits
 from ..canvas import Canvas
 from ..errors import CanvasError, LimitError, RasterError, RasterWarning, SVGError
-from ..flatten import flatten, flatten_joined
-from ..path import CLOSE, LINE, MOVE, Path
+from ..geometry.flattening import flatten, flatten_joined
+from ..geometry.path import CLOSE, LINE, MOVE, Path
 from ..scan import Mask, coverage, coverage_batch, path_coverage
-from ..stroke import StrokeStyle, hairline_scale, stroke as stroke_outline, stroke_many
-from ..transform import IDENTITY, Affine
+from ..geometry.stroking import StrokeStyle, hairline_scale, stroke as stroke_outline, stroke_many
+from ..geometry.transform import IDENTITY, Affine
 from .paint import draw_pixels, gradient_colors, sample, user_bbox
 from .tree import (Group, ImageNode, LinearGradient, PathNode, Pattern, RadialGradient,
                    SolidPaint, Tree)

@@ -53,8 +53,8 @@ import numpy as np
 from .. import limits
 from ..errors import RasterError
 from ..fonts import Font, FontDB, FontError, cached, parse_font_family
-from ..path import Path
-from ..transform import Affine
+from ..geometry.path import Path
+from ..geometry.transform import Affine
 from .tree import PathNode
 from .values import parse_length, parse_length_list, parse_number_list
 
@@ -634,7 +634,7 @@ def _fallback_font(db, ch, font, cache={}):
 def _text_path_geometry(b, tp_el, ctx):
     """(edges (E, 2, 2), cumulative start lengths (E,), start offset) of
     the path a textPath follows, or None when it has no usable path."""
-    from ..flatten import flatten
+    from ..geometry.flattening import flatten
     from .values import parse_transform
     # the SVG 2 ``path`` attribute is not used (resvg ignores it too)
     href = tp_el.get('{http://www.w3.org/1999/xlink}href') or tp_el.get('href')

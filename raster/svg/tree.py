@@ -22,8 +22,8 @@ from typing import Optional, Tuple, Union
 
 import numpy as np
 
-from ..path import Path
-from ..transform import IDENTITY, Affine
+from ..geometry.path import Path
+from ..geometry.transform import IDENTITY, Affine
 
 RGBA = Tuple[float, float, float, float]
 

@@ -12,7 +12,7 @@ transformed curve, not the transformed box).
 
 import numpy as np
 
-from .errors import PathError
+from ..errors import PathError
 
 __all__ = ['bbox', 'bezier_bbox', 'segment_bounds', 'segment_extrema',
            'quadratic_roots', 'BoundsPen']
@@ -71,7 +71,7 @@ def segment_extrema(ctrl, degree):
     Parameters
     ----------
     ctrl : (S, 4, D) float64 ndarray
-        Control points as in :class:`raster.path.Segments` (a segment of
+        Control points as in :class:`raster.geometry.path.Segments` (a segment of
         degree ``k`` uses ``ctrl[:, :k+1]``).
     degree : (S,) int ndarray
         1, 2 or 3.
@@ -113,7 +113,7 @@ def segment_bounds(ctrl, degree):
     Parameters
     ----------
     ctrl : (S, 4, D) float64 ndarray
-        As in :class:`raster.path.Segments`.
+        As in :class:`raster.geometry.path.Segments`.
     degree : (S,) int ndarray
         1, 2 or 3.
 
@@ -226,13 +226,13 @@ def bbox(path, transform=None, stroke=None, tolerance=0.25):
 
     Parameters
     ----------
-    path : raster.path.Path
-    transform : raster.transform.Affine or None, optional
+    path : raster.geometry.path.Path
+    transform : raster.geometry.transform.Affine or None, optional
         Applied to the control points first: the result is the exact box of
         the transformed path (not the transformed box).
     stroke : StrokeStyle, dict or None, optional
         When given, the box of the *stroke* instead of the fill: the path is
-        stroked with :func:`raster.stroke.stroke` (a dict is passed as
+        stroked with :func:`raster.geometry.stroking.stroke` (a dict is passed as
         keyword arguments, anything else as the style) in device space and
         the exact box of that outline is returned.  The outline itself is
         within ``tolerance`` of the true stroke, so this box is too.  A
@@ -254,14 +254,14 @@ def bbox(path, transform=None, stroke=None, tolerance=0.25):
 
     Examples
     --------
-    >>> from raster.path import PathBuilder
+    >>> from raster.geometry.path import PathBuilder
     >>> b = PathBuilder(); b.moveTo((0, 0)); b.curveTo((0, 4), (4, 4), (4, 0))
     >>> bbox(b.path())
     (0.0, 0.0, 4.0, 3.0)
     """
     from .transform import as_affine
     if stroke is not None:
-        from .stroke import stroke as _stroke
+        from .stroking import stroke as _stroke
         if isinstance(stroke, dict):
             outline = _stroke(path, transform=transform, tolerance=tolerance, **stroke)
         else:
@@ -269,7 +269,7 @@ def bbox(path, transform=None, stroke=None, tolerance=0.25):
         if not outline.is_empty:
             return bbox(outline)
     if not callable(getattr(path, 'segments', None)):
-        raise PathError('bbox needs a raster.path.Path, got %s' % type(path).__name__)
+        raise PathError('bbox needs a raster.Path, got %s' % type(path).__name__)
     seg = path.segments()
     t = as_affine(transform)
     ctrl = seg.ctrl

@@ -11,7 +11,7 @@ same polygon runs clockwise.
 
 import numpy as np
 
-from .errors import PathError
+from ..errors import PathError
 
 __all__ = ['convex_hull']
 

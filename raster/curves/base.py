@@ -170,7 +170,7 @@ class CurveMixin:
         return self.to_beziers().flatten(tolerance)
 
     def to_path(self, tolerance=0.25):
-        """A :class:`raster.path.Path` (x, y only); see
+        """A :class:`raster.geometry.path.Path` (x, y only); see
         :meth:`PiecewiseBezier.to_path`."""
         return self.to_beziers().to_path(tolerance)
 

@@ -1,6 +1,6 @@
 """Stroke outlines: offsets, joins, caps and dashes.
 
-:func:`stroke` turns a :class:`~raster.path.Path` and a :class:`StrokeStyle`
+:func:`stroke` turns a :class:`~raster.geometry.path.Path` and a :class:`StrokeStyle`
 into a new path of closed polygons (``MOVE``/``LINE``/``CLOSE`` only) whose
 **nonzero** fill is the stroked region.
 
@@ -86,7 +86,7 @@ flattened within ``tolerance / 4``.
 
 Coordinates are float64, x right and y down, as everywhere in raster.
 
->>> from raster.path import Path
+>>> from raster.geometry.path import Path
 >>> out = stroke(Path.polygon([(0, 0), (10, 0)], closed=False), width=2)
 >>> out.verbs.tolist()                       # one rectangle: M L L L Z
 [0, 1, 1, 1, 4]
@@ -100,8 +100,8 @@ from typing import NamedTuple, Optional, Tuple
 
 import numpy as np
 
-from .errors import LimitError, RasterError
-from .limits import MAX_COORD, MAX_FLATTEN_POINTS
+from ..errors import LimitError, RasterError
+from ..limits import MAX_COORD, MAX_FLATTEN_POINTS
 from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
 from .transform import Affine, apply_each, as_affine
 
@@ -119,7 +119,7 @@ _EPS_REL = 1e-12
 class StrokeError(RasterError, ValueError):
     """Invalid stroke parameters: negative or non-finite width, unknown join
     or cap, miter limit below 1, non-finite dash values or tolerance, a path
-    argument that is not a :class:`~raster.path.Path`."""
+    argument that is not a :class:`~raster.geometry.path.Path`."""
 
 
 # ---------------------------------------------------------------------------
@@ -170,7 +170,7 @@ class StrokeStyle:
     >>> StrokeStyle(miterlimit=0.5)
     Traceback (most recent call last):
     ...
-    raster.stroke.StrokeError: miterlimit must be >= 1, got 0.5
+    raster.geometry.stroking.StrokeError: miterlimit must be >= 1, got 0.5
     """
 
     width: float = 1.0
@@ -277,7 +277,7 @@ def hairline_scale(style, transform=None):
         (device width >= 1 px, or zero: a zero width or a singular transform
         draws nothing).
 
-    >>> from raster.transform import Affine
+    >>> from raster.geometry.transform import Affine
     >>> hairline_scale(StrokeStyle(width=0.5), Affine.scale(1.5))
     0.75
     >>> hairline_scale(StrokeStyle(width=2.0)) is None
@@ -380,7 +380,7 @@ def _refine_ends(ctrl, points, counts, r, tol, ends=None):
     Parameters
     ----------
     ctrl : (M, k+1, 2) float64 ndarray
-    points, counts : as returned by :func:`raster.flatten.flatten_beziers`.
+    points, counts : as returned by :func:`raster.geometry.flattening.flatten_beziers`.
     r : float
     tol : float or (M,) float64 ndarray
     ends : (M, 2) bool ndarray or None
@@ -452,7 +452,7 @@ def _refine_ends(ctrl, points, counts, r, tol, ends=None):
 
 def _path_lines(path, tol, r=0.0):
     """Flatten every segment of ``path`` within ``tol`` (user units) with
-    :func:`raster.flatten.flatten_beziers`, keeping track of which vertices
+    :func:`raster.geometry.flattening.flatten_beziers`, keeping track of which vertices
     lie inside a curve (smooth joins).  ``tol`` is a float or a (C,) array,
     one tolerance per contour (``MOVE``) of ``path``.
 
@@ -465,7 +465,7 @@ def _path_lines(path, tol, r=0.0):
                       np.zeros(0, bool), np.zeros((0, 2))), np.zeros(0, bool)
     if not np.any((verbs == QUAD) | (verbs == CUBIC)):
         return _polygon_lines(verbs, path.points)
-    from .flatten import flatten_beziers
+    from .flattening import flatten_beziers
 
     seg = path.segments()
     C = len(seg.contour_start)
@@ -684,7 +684,7 @@ def _unit(v):
 # ---------------------------------------------------------------------------
 
 def _as_lines(polylines):
-    """Accept a :class:`raster.flatten.Polylines`-like object (``points``,
+    """Accept a :class:`raster.geometry.flattening.Polylines`-like object (``points``,
     ``starts``, ``closed``), a :class:`DashedLines` or an internal _Lines."""
     if isinstance(polylines, _Lines):
         return polylines
@@ -809,7 +809,7 @@ def dash_polylines(polylines, dash, offset=0.0):
     polylines : Polylines-like
         Any object with ``points`` ((N, 2) float64), ``starts`` ((K,) int64,
         first vertex of each polyline, ``starts[0] == 0``) and ``closed``
-        ((K,) bool), e.g. :class:`raster.flatten.Polylines`, in user units.
+        ((K,) bool), e.g. :class:`raster.geometry.flattening.Polylines`, in user units.
     dash : sequence of float
         SVG dash array (see :func:`dash_pattern`).
     offset : float
@@ -1223,7 +1223,7 @@ def stroke(path, style=None, *, transform=None, tolerance=0.25, **style_kwargs):
     A closed 10 x 10 square stroked 2 wide gives two loops, the outer and
     the inner edge of the stroke:
 
-    >>> from raster.path import Path
+    >>> from raster.geometry.path import Path
     >>> sq = Path.polygon([(0, 0), (10, 0), (10, 10), (0, 10)])
     >>> out = stroke(sq, width=2)
     >>> int((out.verbs == 0).sum()), out.control_box()
@@ -1294,7 +1294,7 @@ def _geometry(path, style, tol_u, cpath=None, npaths=1):
 
 
 def _affine(t):
-    """:func:`~raster.transform.as_affine`, with a StrokeError (not a numpy
+    """:func:`~raster.geometry.transform.as_affine`, with a StrokeError (not a numpy
     error) for something that is not a transform."""
     try:
         return as_affine(t)
@@ -1335,7 +1335,7 @@ def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
     path's own transform and split back per path.  Each result is the
     outline :func:`stroke` gives for that path alone: identical for solid
     strokes when the paths' transforms have the same largest scale
-    (:meth:`~raster.transform.Affine.max_scale`); otherwise, and for dashes
+    (:meth:`~raster.geometry.transform.Affine.max_scale`); otherwise, and for dashes
     (whose arc lengths are summed over all paths in float64), within a
     rounding error far below ``tolerance``.  Repeated paths (equal verbs
     and points) whose transforms have the same largest scale share one
@@ -1350,7 +1350,7 @@ def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
         The stroke of every path (None: the default ``StrokeStyle()``).
     transforms : None, Affine or sequence of Affine
         User space to device space: one for all paths, or one per path
-        (each anything :func:`raster.transform.as_affine` accepts).
+        (each anything :func:`raster.geometry.transform.as_affine` accepts).
     tolerance : float
         Largest distance, in device pixels, between each outline and its
         exact stroke.
@@ -1373,7 +1373,7 @@ def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
 
     Examples
     --------
-    >>> from raster.path import Path
+    >>> from raster.geometry.path import Path
     >>> a = Path.polygon([(0, 0), (10, 0)], closed=False)
     >>> b = Path.polygon([(0, 0), (10, 0), (10, 10), (0, 10)])
     >>> outs = stroke_many([a, b], StrokeStyle(width=2))
@@ -1453,7 +1453,7 @@ def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
 
 
 def _max_scales(m):
-    """(K,) :meth:`~raster.transform.Affine.max_scale` of transforms ``m``
+    """(K,) :meth:`~raster.geometry.transform.Affine.max_scale` of transforms ``m``
     ((K, 6) float64, rows ``a b c d e f``), computed once per distinct linear
     part (bit for bit the method's value)."""
     if len(m) == 0:

@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-from .errors import TransformError
+from ..errors import TransformError
 
 
 class Affine:

@@ -42,7 +42,7 @@ import sys
 
 import numpy as np
 
-from .errors import LimitError, PathError
+from ..errors import LimitError, PathError
 from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
 
 __all__ = ['parse_path', 'parse_paths', 'arc_to_cubics', 'parse_points', 'rect_path',
@@ -129,7 +129,7 @@ def _check_tolerance(tolerance):
 
 # -- parse_path ------------------------------------------------------------------------
 def parse_path(d, tolerance=0.01, strict=True):
-    """Parse SVG path data into a :class:`~raster.path.Path`.
+    """Parse SVG path data into a :class:`~raster.geometry.path.Path`.
 
     Parameters
     ----------

@@ -1,4 +1,4 @@
-"""The path model (raster.path) and affine transforms (raster.transform):
+"""The path model (raster.geometry.path) and affine transforms (raster.geometry.transform):
 the builder's guarantees, segment arrays, pens, transform algebra."""
 
 import math
@@ -10,9 +10,9 @@ from hypothesis import strategies as st
 
 from raster import parse_path
 from raster.errors import PathError, TransformError
-from raster.path import (CLOSE, CUBIC, LINE, MOVE, QUAD, Path, PathBuilder, RecordingPen,
-                         TransformPen)
-from raster.transform import IDENTITY, Affine, as_affine
+from raster.geometry.path import (CLOSE, CUBIC, LINE, MOVE, QUAD, Path, PathBuilder, RecordingPen,
+                                  TransformPen)
+from raster.geometry.transform import IDENTITY, Affine, as_affine
 
 
 # -- builder guarantees --------------------------------------------------------

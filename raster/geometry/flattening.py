@@ -4,7 +4,7 @@ Two entry points:
 
 * :func:`flatten_beziers` -- ``S`` Bezier curves of one degree ``n >= 1``
   (any dimension ``D``) to polylines, vectorized over all curves;
-* :func:`flatten` -- a :class:`~raster.path.Path` (optionally transformed to
+* :func:`flatten` -- a :class:`~raster.geometry.path.Path` (optionally transformed to
   device space) to :class:`Polylines`.
 
 The guarantee
@@ -70,10 +70,10 @@ import math
 
 import numpy as np
 
-from .errors import PathError, LimitError
-from . import limits
+from ..errors import PathError, LimitError
+from .. import limits
 from .transform import apply_each, as_affine
-from .bbox import quadratic_roots
+from .bounds import quadratic_roots
 
 __all__ = ['flatten', 'flatten_many', 'flatten_joined', 'flatten_beziers', 'Polylines',
            'DEFAULT_TOLERANCE']
@@ -228,7 +228,7 @@ def _bernstein_max(c):
         return np.minimum(lo, v), np.maximum(hi, v)
     c3 = c[3]
     # derivative / 3 = A t**2 + B t + C; both roots by the cancellation-free
-    # formula (as :func:`raster.bbox.quadratic_roots`), evaluated together.
+    # formula (as :func:`raster.geometry.bounds.quadratic_roots`), evaluated together.
     # Roots that are NaN, infinite or outside (0, 1) are replaced by t = 0.
     qa = c3 - c0 + 3.0 * (c1 - c2)
     qb = 2.0 * (c0 - 2.0 * c1 + c2)
@@ -672,7 +672,7 @@ class Polylines:
         return Polylines(self.points[src], starts, self.closed[idx])
 
     def to_path(self):
-        """The polylines as a :class:`~raster.path.Path` of line segments
+        """The polylines as a :class:`~raster.geometry.path.Path` of line segments
         (``M L .. L`` plus ``Z`` for the closed ones).
 
         >>> Polylines([[0, 0], [1, 0], [1, 1]], [0], [True]).to_path().to_svg()
@@ -740,11 +740,11 @@ def flatten(path, tolerance=DEFAULT_TOLERANCE, transform=None):
 
     Parameters
     ----------
-    path : raster.path.Path
+    path : raster.geometry.path.Path
     tolerance : float, optional
         Largest Hausdorff distance between each curve and its polyline, in
         device pixels (the units after ``transform``); default 0.25.
-    transform : raster.transform.Affine or None, optional
+    transform : raster.geometry.transform.Affine or None, optional
         Applied to the control points first (user to device space).
 
     Returns
@@ -769,14 +769,14 @@ def flatten(path, tolerance=DEFAULT_TOLERANCE, transform=None):
 
     Examples
     --------
-    >>> from raster.path import Path
+    >>> from raster.geometry.path import Path
     >>> pl = flatten(Path.polygon([[0, 0], [4, 0], [4, 3]]), transform=(2, 0, 0, 2, 0, 0))
     >>> pl.points.tolist(), pl.starts.tolist(), pl.closed.tolist()
     ([[0.0, 0.0], [8.0, 0.0], [8.0, 6.0]], [0], [True])
     """
     tol = _check_tolerance(tolerance)
     if not callable(getattr(path, 'segments', None)):
-        raise PathError('flatten needs a raster.path.Path, got %s' % type(path).__name__)
+        raise PathError('flatten needs a raster.Path, got %s' % type(path).__name__)
     seg = path.segments()
     t = as_affine(transform)
     ctrl = seg.ctrl
@@ -849,7 +849,7 @@ def flatten_joined(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
 
     Parameters
     ----------
-    paths : sequence of raster.path.Path
+    paths : sequence of raster.geometry.path.Path
     transforms : sequence of Affine (or None entries), or None, optional
         One transform per path (user to device space); None: identity.
     tolerance : float, optional
@@ -867,7 +867,7 @@ def flatten_joined(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
     ------
     As :func:`flatten_many`.
 
-    >>> from raster.path import Path
+    >>> from raster.geometry.path import Path
     >>> sq = Path.polygon([[0, 0], [1, 0], [1, 1], [0, 1]])
     >>> pl, first = flatten_joined([sq, Path.empty(), sq], [None, None, (2, 0, 0, 2, 5, 0)])
     >>> first.tolist(), pl.starts.tolist(), pl.points[4:].tolist()
@@ -885,7 +885,7 @@ def flatten_joined(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
                         % (n, len(transforms)))
     for p in paths:
         if not (hasattr(p, 'verbs') and callable(getattr(p, 'segments', None))):
-            raise PathError('flatten_many needs raster.path.Path objects, got %s'
+            raise PathError('flatten_many needs raster.Path objects, got %s'
                             % type(p).__name__)
     if n == 0:
         return Polylines(np.zeros((0, 2)), [], []), np.zeros(1, np.int64)
@@ -928,7 +928,7 @@ def flatten_many(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
 
     Parameters
     ----------
-    paths : sequence of raster.path.Path
+    paths : sequence of raster.geometry.path.Path
     transforms : sequence of Affine (or None entries), or None, optional
         One transform per path (user to device space); None: identity.
     tolerance : float, optional
@@ -953,7 +953,7 @@ def flatten_many(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
 
     Examples
     --------
-    >>> from raster.path import Path
+    >>> from raster.geometry.path import Path
     >>> sq = Path.polygon([[0, 0], [1, 0], [1, 1], [0, 1]])
     >>> a, b = flatten_many([sq, sq], [None, (2, 0, 0, 2, 5, 0)])
     >>> b.points.tolist()

@@ -1,4 +1,4 @@
-"""Tests of raster.svgpath: SVG path data, arcs and basic shapes."""
+"""Tests of raster.geometry.pathdata: SVG path data, arcs and basic shapes."""
 
 import math
 
@@ -8,12 +8,14 @@ import svgelements
 from hypothesis import HealthCheck, assume, given, settings, strategies as st
 
 import raster
-from raster import svgpath
+from raster.geometry import pathdata as svgpath
 from raster.errors import LimitError, PathError, RasterError
-from raster.path import CLOSE, CUBIC, LINE, MOVE, Path, PathBuilder
-from raster.svgpath import (_arc_batch, _build_loop, _build_vector, _lex, arc_to_cubics,
-                            circle_path, ellipse_path, line_path, parse_path,
-                            parse_points, polyline_path, rect_path)
+from raster.geometry.path import CLOSE, CUBIC, LINE, MOVE, Path, PathBuilder
+from raster.geometry.pathdata import (_arc_batch, _build_loop, _build_vector, _lex, arc_to_cubics,
+                                      circle_path, ellipse_path, line_path, parse_path,
+                                      parse_points, polyline_path, rect_path)
+
+from _shared import CORPUS
 
 SETTINGS = settings(max_examples=150, deadline=None,
                     suppress_health_check=[HealthCheck.too_slow])
@@ -502,7 +504,7 @@ def test_end_points_match_svgelements(d):
 def test_end_points_match_svgelements_on_corpus_sample():
     import lxml.etree as ET
     from pathlib import Path as FsPath
-    f = FsPath(__file__).resolve().parents[1].parent / 'shared/corpus/tiger.svg'
+    f = FsPath(CORPUS) / 'tiger.svg'
     if not f.exists():
         pytest.fail('corpus file missing: %s' % f)
     ds = [e.get('d') for e in ET.parse(str(f)).iter() if e.get('d')]

@@ -44,7 +44,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .errors import PathError
+from ..errors import PathError
 from .transform import as_affine
 
 MOVE, LINE, QUAD, CUBIC, CLOSE = 0, 1, 2, 3, 4
@@ -181,7 +181,7 @@ class Path:
     # -- transformations -----------------------------------------------------
     def transform(self, t):
         """Return the path with every point mapped by the affine ``t``
-        (an :class:`~raster.transform.Affine`, 6 numbers or a 2x3 matrix)."""
+        (an :class:`~raster.geometry.transform.Affine`, 6 numbers or a 2x3 matrix)."""
         t = as_affine(t)
         if t.is_identity:
             return self

@@ -9,11 +9,11 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 import raster
-from raster.bbox import (BoundsPen, bbox, bezier_bbox, quadratic_roots,
-                         segment_bounds, segment_extrema)
+from raster.geometry.bounds import (BoundsPen, bbox, bezier_bbox, quadratic_roots,
+                                   segment_bounds, segment_extrema)
 from raster.errors import PathError
-from raster.path import Path, PathBuilder, RecordingPen
-from raster.transform import Affine
+from raster.geometry.path import Path, PathBuilder, RecordingPen
+from raster.geometry.transform import Affine
 
 
 def bez_eval(ctrl, t):
@@ -292,7 +292,7 @@ def test_stroke_box():
     # zero width draws nothing: the fill box
     assert bbox(ln, stroke={'width': 0}) == (0, 0, 10, 0)
     # a style object works as well as a dict
-    from raster.stroke import StrokeStyle
+    from raster.geometry.stroking import StrokeStyle
     b = bbox(ln, stroke=StrokeStyle(width=4, cap='square'), tolerance=0.01)
     assert b == pytest.approx((-2, -2, 12, 2), abs=0.01)
 
@@ -322,11 +322,11 @@ def test_bounds_pen_truetype_quadratics():
 
 
 def test_public_name():
-    # the function, not the submodule, even after `from raster.bbox import`
+    # the function, not the submodule, even after `from raster.geometry.bounds import`
     assert raster.bbox is bbox
     import subprocess
     import sys
-    code = ('import raster.bbox; from raster.bbox import bbox; '
+    code = ('import raster.geometry.bounds; from raster.geometry.bounds import bbox; '
             'import raster; assert raster.bbox is bbox')
     subprocess.run([sys.executable, '-c', code], check=True)
 
@@ -344,7 +344,7 @@ def test_consistent_with_flattening(segs, tol):
     # flattened vertices are curve points: inside the exact box; the
     # polyline is within tol of the curve: its box is within tol of the
     # exact box
-    from raster.flatten import flatten
+    from raster.geometry.flattening import flatten
     b = PathBuilder()
     b.moveTo((0, 0))
     for deg, pts in segs:

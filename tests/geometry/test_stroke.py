@@ -13,10 +13,10 @@ from hypothesis import given, settings, strategies as st
 from scipy.spatial import cKDTree
 
 from raster.errors import LimitError, RasterError
-from raster.path import CLOSE, LINE, MOVE, Path, PathBuilder
-from raster.stroke import (StrokeError, StrokeStyle, dash_pattern, dash_polylines,
-                           DashedLines, hairline_scale, stroke)
-from raster.transform import Affine
+from raster.geometry.path import CLOSE, LINE, MOVE, Path, PathBuilder
+from raster.geometry.stroking import (StrokeError, StrokeStyle, dash_pattern, dash_polylines,
+                                     DashedLines, hairline_scale, stroke)
+from raster.geometry.transform import Affine
 
 
 # -- helpers -------------------------------------------------------------------
@@ -206,7 +206,7 @@ def test_round_cap_line_area_within_tolerance(tol):
 @pytest.mark.parametrize('tol', [1e-3, 0.05, 0.25, 1.0, 100.0])
 @pytest.mark.parametrize('sweep', [0.3, -np.pi, 2 * np.pi])
 def test_arc_polygonization_within_tolerance(r, tol, sweep):
-    from raster.stroke import _arcs
+    from raster.geometry.stroking import _arcs
     pts, cnt = _arcs(np.array([[3.0, 4.0]]), np.array([[0.6 * r, 0.8 * r]]), np.array([sweep]), tol)
     rad = np.hypot(*(pts - (3, 4)).T)
     mid = np.hypot(*((pts[1:] + pts[:-1]) / 2 - (3, 4)).T)
@@ -637,7 +637,7 @@ def test_odd_dash_array_is_repeated():
 
 
 def test_dash_polylines_accepts_flatten_polylines():
-    from raster.flatten import flatten
+    from raster.geometry.flattening import flatten
     pl = flatten(parse('M 0 0 L 10 0 L 10 10 Z M 20 0 L 30 0'))
     pieces = list(dash_polylines(pl, [5, 2]))
     assert [p.tolist() for p, c in pieces][:2] == [[[0, 0], [5, 0]], [[7, 0], [10, 0], [10, 2]]]
