@@ -49,6 +49,7 @@ import numpy as np
 
 from . import limits
 from .errors import CanvasError, LimitError, PathError
+from .geometry.flattening import flatten
 
 __all__ = ['Mask', 'coverage', 'coverage_many', 'coverage_batch', 'path_coverage', 'check_canvas_size', 'SUBSCANLINES']
 
@@ -295,9 +296,7 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
     True
     """
     width, height = check_canvas_size(width, height)
-    if fill_rule not in ('nonzero', 'evenodd'):
-        raise PathError("fill_rule must be 'nonzero' or 'evenodd', got %r" % (fill_rule,))
-    evenodd = fill_rule == 'evenodd'
+    evenodd = _is_evenodd(fill_rule)
     e = _check_edges(edges)
     if len(e) == 0:
         return None
@@ -343,7 +342,6 @@ def path_coverage(path, width, height, fill_rule='nonzero', antialias=True, clip
     >>> m.box, float(m.data.sum())
     ((1, 1, 3, 2), 1.0)
     """
-    from .geometry.flattening import flatten
     edges = flatten(path, tolerance=tolerance, transform=transform).edges(close_all=True)
     return coverage(edges, width, height, fill_rule=fill_rule, antialias=antialias, clip=clip)
 
@@ -1132,11 +1130,16 @@ def _per_shape(value, n, name, kinds):
     return vals
 
 
+def _is_evenodd(rule):
+    """True for the even-odd rule, False for nonzero."""
+    if rule not in ('nonzero', 'evenodd'):
+        raise PathError("fill_rule must be 'nonzero' or 'evenodd', got %r" % (rule,))
+    return rule == 'evenodd'
+
+
 def _rules_evenodd(rules):
-    for r in set(rules):
-        if r not in ('nonzero', 'evenodd'):
-            raise PathError("fill_rule must be 'nonzero' or 'evenodd', got %r" % (r,))
-    return np.array([r == 'evenodd' for r in rules], bool)
+    eo = {r: _is_evenodd(r) for r in set(rules)}
+    return np.array([eo[r] for r in rules], bool)
 
 
 def coverage_many(edge_arrays, width, height, fill_rules='nonzero', antialias=True, clip=None,

@@ -8,7 +8,8 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from raster.errors import CanvasError, SVGError
-from raster.geometry.path import Path, PathBuilder
+from raster.geometry.path import Path
+from raster.geometry.pens import PathBuilder
 from raster.geometry.transform import Affine
 from raster.svg.render import output_size, render_tree
 from raster.svg import paint as paint_mod

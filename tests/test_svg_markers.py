@@ -591,7 +591,7 @@ _PT = hs.tuples(hs.integers(0, 4), hs.integers(0, 4))    # small grid: many coin
 @settings(max_examples=200, deadline=None)
 @given(_PT, hs.lists(hs.tuples(_CMD, _PT, _PT, _PT), min_size=1, max_size=12))
 def test_vectorized_angles_match_per_vertex_rules(p0, cmds):
-    from raster.geometry.path import PathBuilder
+    from raster.geometry.pens import PathBuilder
     b = PathBuilder()
     b.moveTo(p0)
     segs = [('M', None, None, tuple(map(float, p0)))]

@@ -25,7 +25,7 @@ import math
 import numpy as np
 
 from ..errors import LimitError
-from ..geometry.path import PathBuilder
+from ..geometry.pens import PathBuilder
 from .base import CurveError, CurveMixin, as_params, as_points, as_scalar, shape_out
 
 # Gauss-Legendre nodes and weights on [0, 1] (16 points) for arc lengths.

@@ -18,7 +18,8 @@ import os
 import numpy as np
 
 from ..geometry.hull import convex_hull
-from ..geometry.path import Path, PathBuilder, TransformPen
+from ..geometry.path import Path
+from ..geometry.pens import PathBuilder, TransformPen
 from ..geometry.pathdata import circle_path
 from ..geometry.transform import Affine
 from .base import CurveError

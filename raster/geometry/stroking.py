@@ -96,14 +96,16 @@ Coordinates are float64, x right and y down, as everywhere in raster.
 
 import dataclasses
 import math
-from typing import NamedTuple, Optional, Tuple
+from typing import Any, List, NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
 
 from ..errors import LimitError, RasterError
 from ..limits import MAX_COORD, MAX_FLATTEN_POINTS
+from .bezier import evaluate
+from .flattening import flatten_beziers
 from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
-from .transform import Affine, apply_each, as_affine
+from .transform import Affine, AffineLike, apply_each, as_affine
 
 __all__ = ['StrokeStyle', 'Stroke', 'StrokeError', 'stroke', 'stroke_many', 'dash_polylines',
            'dash_pattern', 'hairline_scale', 'DashedLines']
@@ -214,7 +216,7 @@ _STYLE_FIELDS = frozenset(f.name for f in dataclasses.fields(StrokeStyle))
 Stroke = StrokeStyle
 
 
-def dash_pattern(dash):
+def dash_pattern(dash: Optional[Sequence[float]]) -> Optional[np.ndarray]:
     """The effective dash pattern of an SVG dash array, or None for solid.
 
     Follows SVG: an odd-length array is repeated to even length; an empty
@@ -254,7 +256,7 @@ def dash_pattern(dash):
     return d
 
 
-def hairline_scale(style, transform=None):
+def hairline_scale(style: 'StrokeStyle', transform: AffineLike = None) -> Optional[float]:
     """Coverage factor for a stroke thinner than one device pixel.
 
     A stroke whose device width ``style.width * transform.mean_scale()`` is
@@ -352,16 +354,6 @@ def _check_size(n, what):
                          % (n, what, MAX_FLATTEN_POINTS))
 
 
-def _bezier_at(ctrl, t):
-    """Points of Bezier curves ``ctrl`` (M, k+1, 2) at parameters ``t`` (M,)
-    (de Casteljau)."""
-    q = ctrl.copy()
-    tt = t[:, None]
-    for k in range(ctrl.shape[1] - 1, 0, -1):
-        q = q[:, :k] + tt[:, None] * (q[:, 1:k + 1] - q[:, :k])
-    return q[:, 0]
-
-
 def _refine_ends(ctrl, points, counts, r, tol, ends=None):
     """Refine the flattening of curves near their ends for a pen of
     half-width ``r``, so that butt and square caps and miter or bevel joins
@@ -420,7 +412,7 @@ def _refine_ends(ctrl, points, counts, r, tol, ends=None):
         for _ in range(60):                          # a parameter short of q1
             if len(todo) == 0:
                 break
-            v = _bezier_at(ctrl[todo], t if side == 0 else 1.0 - t) - q0[todo]
+            v = evaluate(ctrl[todo], t if side == 0 else 1.0 - t) - q0[todo]
             ok = np.hypot(v[:, 0], v[:, 1]) < c1[todo]
             ta[todo[ok]] = t[ok]
             todo, t = todo[~ok], 0.5 * t[~ok]
@@ -434,7 +426,7 @@ def _refine_ends(ctrl, points, counts, r, tol, ends=None):
         if side == 0:
             j = J[cid] - 1 - j                        # increasing parameter
         tt = ta[cid] * rho[cid] ** (-j.astype(np.float64))
-        pts = _bezier_at(ctrl[cid], tt if side == 0 else 1.0 - tt)
+        pts = evaluate(ctrl[cid], tt if side == 0 else 1.0 - tt)
         sides.append((J, pts))
     (J0, p0), (J1, p1) = sides
     new_counts = counts + J0 + J1
@@ -465,7 +457,6 @@ def _path_lines(path, tol, r=0.0):
                       np.zeros(0, bool), np.zeros((0, 2))), np.zeros(0, bool)
     if not np.any((verbs == QUAD) | (verbs == CUBIC)):
         return _polygon_lines(verbs, path.points)
-    from .flattening import flatten_beziers
 
     seg = path.segments()
     C = len(seg.contour_start)
@@ -801,7 +792,8 @@ def _dash(lines, pattern, offset):
     return _Lines(out, dstarts, dcounts, whole, sm, tangent), dc
 
 
-def dash_polylines(polylines, dash, offset=0.0):
+def dash_polylines(polylines: Any, dash: Optional[Sequence[float]],
+                   offset: float = 0.0) -> DashedLines:
     """Cut polylines into dashes.
 
     Parameters
@@ -1183,7 +1175,8 @@ def _emit_verbs(counts):
 # front door
 # ---------------------------------------------------------------------------
 
-def stroke(path, style=None, *, transform=None, tolerance=0.25, **style_kwargs):
+def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: AffineLike = None,
+           tolerance: float = 0.25, **style_kwargs: Any) -> Path:
     """Outline of the stroke of ``path``, to be filled with the nonzero rule.
 
     Parameters
@@ -1327,7 +1320,9 @@ def _check_device(pts):
         raise LimitError('stroke outline coordinates exceed MAX_COORD %g' % MAX_COORD)
 
 
-def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
+def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
+                transforms: Optional[Sequence[AffineLike]] = None,
+                tolerance: float = 0.25) -> List[Path]:
     """Stroke many paths with one style in one vectorized pass.
 
     The paths are concatenated (contours numbered by the path they come

@@ -12,7 +12,7 @@ from raster.geometry.bounds import bezier_bbox
 from raster.curves import (Bezier, PiecewiseBezier, bernstein, bernstein_matrix, CurveError,
                            convex_hull)
 from raster.errors import RasterError
-from raster.geometry.path import RecordingPen
+from raster.geometry.pens import RecordingPen
 
 # The cubic used for the hand-worked answers:
 #   P = (0,0), (1,2), (3,2), (4,0)

@@ -7,7 +7,7 @@ import pytest
 from raster.curves import (Bezier, Hermite, CardinalSpline, CatmullRom, KochanekBartels,
                            BSpline, BetaSpline, NaturalSpline, FunctionSpline, PiecewiseBezier,
                            CurveError)
-from raster.geometry.path import RecordingPen
+from raster.geometry.pens import RecordingPen
 from raster.geometry.pathdata import parse_path
 
 R = np.random.default_rng(20261122)

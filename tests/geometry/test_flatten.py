@@ -12,7 +12,8 @@ import raster
 from raster import limits
 from raster.errors import LimitError, PathError
 from raster.geometry.flattening import Polylines, flatten, flatten_beziers
-from raster.geometry.path import Path, PathBuilder
+from raster.geometry.path import Path
+from raster.geometry.pens import PathBuilder
 from raster.geometry.transform import Affine
 
 K_CIRCLE = 0.5522847498
@@ -409,8 +410,11 @@ def test_flatten_path_structure():
 
 
 def test_flatten_public_name():
-    # the function, not the submodule, even after `from raster.geometry.flattening import`
+    """raster.flatten is the function; no module of that name shadows it
+    (the function lives in raster.geometry.flattening)."""
+    import importlib.util
     assert raster.flatten is flatten and raster.Polylines is Polylines
+    assert importlib.util.find_spec('raster.flatten') is None
     import subprocess
     import sys
     code = ('import raster.geometry.flattening; from raster.geometry.flattening import flatten; '
@@ -509,36 +513,7 @@ def test_to_path_round_trip():
 
 
 # -- fast paths -----------------------------------------------------------------
-
-@pytest.mark.parametrize('n', range(1, 9))
-def test_blossom_tables_match_term_by_term(n):
-    # the index-table blossom (few pieces) equals the term-by-term one, and
-    # keeps the end points exact at t = 0 and t = 1
-    fl = importlib.import_module('raster.geometry.flattening')
-    rng = np.random.default_rng(n)
-    m = 50
-    P = rng.normal(0, 100, (n + 1, 2, m))
-    a = rng.uniform(0, 1, m)
-    b = np.where(np.arange(m) % 3 == 0, 1.0, a + rng.uniform(0, 1, m) * (1 - a))
-    a[::5] = 0.0
-    Q = fl._blossom(P, a, b)
-    R = fl._blossom_loops(P, a, b)
-    assert np.abs(Q - R).max() <= 1e-12 * np.abs(P).max()
-    one = b == 1.0
-    assert np.array_equal(Q[n][:, one], P[n][:, one])
-    zero = a == 0.0
-    assert np.array_equal(Q[0][:, zero], P[0][:, zero])
-
-
-def test_bernstein_max_of_known_cubics():
-    fl = importlib.import_module('raster.geometry.flattening')
-    # (0, 1, 1, 0): 3 t (1 - t), maximum 3/4 at t = 1/2
-    # (0, -1, 1, 0): 3 t (1 - t) (1 - 2 t), extrema -+sqrt(3)/6 at t = 1/2 -+ sqrt(3)/6
-    c = np.array([[0.0, 0.0], [1.0, -1.0], [1.0, 1.0], [0.0, 0.0]])
-    lo, hi = fl._bernstein_max(c)
-    assert lo[0] == 0.0 and abs(hi[0] - 0.75) < 1e-15
-    assert abs(lo[1] + np.sqrt(3) / 6) < 1e-15 and abs(hi[1] - np.sqrt(3) / 6) < 1e-15
-
+# (the blossoms and Bernstein ranges flattening uses: tests/geometry/test_bezier.py)
 
 def test_planar_deviation_bounds_sampled_distance():
     # the planar bound is at least the sampled distance of the curve to its

@@ -10,7 +10,8 @@ from hypothesis import HealthCheck, assume, given, settings, strategies as st
 import raster
 from raster.geometry import pathdata as svgpath
 from raster.errors import LimitError, PathError, RasterError
-from raster.geometry.path import CLOSE, CUBIC, LINE, MOVE, Path, PathBuilder
+from raster.geometry.path import CLOSE, CUBIC, LINE, MOVE, Path
+from raster.geometry.pens import PathBuilder
 from raster.geometry.pathdata import (_arc_batch, _build_loop, _build_vector, _lex, arc_to_cubics,
                                       circle_path, ellipse_path, line_path, parse_path,
                                       parse_points, polyline_path, rect_path)

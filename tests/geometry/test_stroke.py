@@ -13,7 +13,8 @@ from hypothesis import given, settings, strategies as st
 from scipy.spatial import cKDTree
 
 from raster.errors import LimitError, RasterError
-from raster.geometry.path import CLOSE, LINE, MOVE, Path, PathBuilder
+from raster.geometry.path import CLOSE, LINE, MOVE, Path
+from raster.geometry.pens import PathBuilder
 from raster.geometry.stroking import (StrokeError, StrokeStyle, dash_pattern, dash_polylines,
                                      DashedLines, hairline_scale, stroke)
 from raster.geometry.transform import Affine

@@ -6,7 +6,8 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from raster.errors import LimitError, RasterError
-from raster.geometry.path import Path, PathBuilder
+from raster.geometry.path import Path
+from raster.geometry.pens import PathBuilder
 from raster.geometry.stroking import StrokeError, StrokeStyle, stroke, stroke_many
 from raster.geometry.pathdata import parse_path
 from raster.geometry.transform import Affine
