@@ -50,6 +50,7 @@ import numpy as np
 from . import limits
 from .errors import CanvasError, LimitError, PathError
 from .geometry.flattening import flatten
+from .geometry.rules import FillRule
 
 __all__ = ['Mask', 'coverage', 'coverage_many', 'coverage_batch', 'path_coverage', 'check_canvas_size', 'SUBSCANLINES']
 
@@ -226,7 +227,7 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
         changes the winding of the pixels to its right.
     width, height : int
         Canvas size in pixels.
-    fill_rule : {'nonzero', 'evenodd'}
+    fill_rule : FillRule or {'nonzero', 'evenodd'}
     antialias : bool
         True: exact area coverage of every pixel.  False
         (``shape-rendering: crispEdges``): a pixel is 1 when its centre is
@@ -1131,10 +1132,12 @@ def _per_shape(value, n, name, kinds):
 
 
 def _is_evenodd(rule):
-    """True for the even-odd rule, False for nonzero."""
-    if rule not in ('nonzero', 'evenodd'):
+    """True for the even-odd rule, False for nonzero (a
+    :class:`~raster.geometry.rules.FillRule` or its keyword)."""
+    r = FillRule.lookup(rule)
+    if r is None:
         raise PathError("fill_rule must be 'nonzero' or 'evenodd', got %r" % (rule,))
-    return rule == 'evenodd'
+    return r is FillRule.EVENODD
 
 
 def _rules_evenodd(rules):
@@ -1160,7 +1163,7 @@ def coverage_many(edge_arrays, width, height, fill_rules='nonzero', antialias=Tr
         The edges of each shape, device pixels, as for :func:`coverage`.
     width, height : int
         Canvas size in pixels.
-    fill_rules : {'nonzero', 'evenodd'} or sequence of them
+    fill_rules : FillRule, {'nonzero', 'evenodd'} or a sequence of them
         One rule for all shapes, or one per shape.
     antialias : bool or sequence of bool
         One flag for all shapes, or one per shape.

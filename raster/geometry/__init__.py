@@ -6,16 +6,28 @@ under the curve toolkit (:mod:`raster.curves`).
 module                 contents
 =====================  ====================================================
 ``transform``          :class:`Affine` (SVG matrix ``a b c d e f``)
-``path``               :class:`Path` (verbs and points), :class:`Segments`,
-                       the pens (:class:`PathBuilder`, ...)
+``roots``              real roots of quadratics, cubics and of polynomials
+                       of any degree on (0, 1)
+``bezier``             Bernstein bases, de Casteljau, subdivision,
+                       derivatives, power basis, degree elevation, extrema
+                       and exact bounds of Bezier segments of any degree
+``path``               :class:`Path` (verbs and points), :class:`Segments`
+``pens``               the pen protocol: :class:`BasePen`,
+                       :class:`PathBuilder`, :class:`TransformPen`,
+                       :class:`RecordingPen`, :class:`BoundsPen`
+``rules``              :class:`FillRule` (and the str enum base)
 ``pathdata``           SVG path data, arcs and basic shapes to paths
 ``flattening``         adaptive flattening within a tolerance
 ``bounds``             exact bounding boxes of paths
-``stroking``           stroke outlines (joins, caps, dashes)
+``stroking``           stroke outlines (joins, caps, dashes),
+                       :class:`StrokeStyle`, :class:`LineJoin`,
+                       :class:`LineCap`
 ``hull``               convex hull (monotone chain)
 =====================  ====================================================
 
-The kernel imports nothing from the SVG layers or the curve toolkit.  The
-front-door names (``raster.Path``, ``raster.flatten``, ``raster.bbox``, ...)
-are re-exported by :mod:`raster`.
+The kernel imports nothing from the SVG layers or the curve toolkit, and
+this package imports none of its modules (``import raster.geometry.bezier``
+loads only what that module needs).  The front-door names
+(``raster.Path``, ``raster.flatten``, ``raster.bbox``, ``raster.stroke``,
+...) are re-exported by :mod:`raster`.
 """

@@ -105,13 +105,32 @@ from ..limits import MAX_COORD, MAX_FLATTEN_POINTS
 from .bezier import evaluate
 from .flattening import flatten_beziers
 from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
+from .rules import StrChoice
 from .transform import Affine, AffineLike, apply_each, as_affine
 
-__all__ = ['StrokeStyle', 'Stroke', 'StrokeError', 'stroke', 'stroke_many', 'dash_polylines',
-           'dash_pattern', 'hairline_scale', 'DashedLines']
+__all__ = ['StrokeStyle', 'Stroke', 'StrokeError', 'LineJoin', 'LineCap', 'stroke', 'stroke_many',
+           'dash_polylines', 'dash_pattern', 'hairline_scale', 'DashedLines']
 
-JOINS = ('miter', 'miter-clip', 'round', 'bevel', 'arcs')
-CAPS = ('butt', 'round', 'square')
+
+class LineJoin(StrChoice):
+    """SVG ``stroke-linejoin``.  ``ARCS`` (SVG 2) is drawn as ``MITER``, as
+    in browsers; ``MITER_CLIP`` clips an over-long miter at
+    ``miterlimit * width / 2`` from the vertex instead of bevelling it."""
+
+    MITER = 'miter'
+    MITER_CLIP = 'miter-clip'
+    ROUND = 'round'
+    BEVEL = 'bevel'
+    ARCS = 'arcs'
+
+
+class LineCap(StrChoice):
+    """SVG ``stroke-linecap``."""
+
+    BUTT = 'butt'
+    ROUND = 'round'
+    SQUARE = 'square'
+
 
 #: Relative size (of the largest coordinate) below which two consecutive
 #: points are treated as one and a segment has no direction.
@@ -146,12 +165,14 @@ class StrokeStyle:
     ----------
     width : float
         Stroke width in user units, >= 0 (0 draws nothing).
-    join : {'miter', 'miter-clip', 'round', 'bevel', 'arcs'}
-        Line join.  ``'arcs'`` (SVG 2) falls back to ``'miter'``, as in
-        browsers.  ``'miter-clip'`` clips an over-long miter at
+    join : LineJoin or {'miter', 'miter-clip', 'round', 'bevel', 'arcs'}
+        Line join, stored as a :class:`LineJoin` (equal to its keyword).
+        ``'arcs'`` (SVG 2) falls back to ``'miter'``, as in browsers.
+        ``'miter-clip'`` clips an over-long miter at
         ``miterlimit * width / 2`` from the vertex instead of bevelling it.
-    cap : {'butt', 'round', 'square'}
-        Line cap at the ends of open subpaths and of dashes.
+    cap : LineCap or {'butt', 'round', 'square'}
+        Line cap at the ends of open subpaths and of dashes, stored as a
+        :class:`LineCap`.
     miterlimit : float
         Limit of the ratio miter length / width, >= 1.
     dash : sequence of float or None
@@ -167,8 +188,13 @@ class StrokeStyle:
         For a negative or non-finite width, an unknown join or cap, a miter
         limit below 1 or non-finite, non-finite dash values or offset.
 
-    >>> StrokeStyle(width=2, dash=[1, 2, 3]).dash
-    (1.0, 2.0, 3.0)
+    A style is immutable and hashable (a key for batching strokes):
+
+    >>> s = StrokeStyle(width=2, join='round', dash=[1, 2, 3])
+    >>> s.dash, s.join is LineJoin.ROUND, s == StrokeStyle(2, LineJoin.ROUND, dash=(1, 2, 3))
+    ((1.0, 2.0, 3.0), True, True)
+    >>> hash(s) == hash(StrokeStyle(2, 'round', dash=[1.0, 2.0, 3.0]))
+    True
     >>> StrokeStyle(miterlimit=0.5)
     Traceback (most recent call last):
     ...
@@ -176,8 +202,8 @@ class StrokeStyle:
     """
 
     width: float = 1.0
-    join: str = 'miter'
-    cap: str = 'butt'
+    join: LineJoin = LineJoin.MITER
+    cap: LineCap = LineCap.BUTT
     miterlimit: float = 4.0
     dash: Optional[Tuple[float, ...]] = None
     dash_offset: float = 0.0
@@ -186,12 +212,14 @@ class StrokeStyle:
         w = _finite('stroke width', self.width)
         if w < 0:
             raise StrokeError('stroke width must be >= 0, got %r' % (self.width,))
-        if self.join not in JOINS:
+        join = LineJoin.lookup(self.join)
+        if join is None:
             raise StrokeError('unknown line join %r (expected one of %s)'
-                              % (self.join, ', '.join(JOINS)))
-        if self.cap not in CAPS:
+                              % (self.join, ', '.join(LineJoin.values())))
+        cap = LineCap.lookup(self.cap)
+        if cap is None:
             raise StrokeError('unknown line cap %r (expected one of %s)'
-                              % (self.cap, ', '.join(CAPS)))
+                              % (self.cap, ', '.join(LineCap.values())))
         ml = _finite('miterlimit', self.miterlimit)
         if ml < 1:
             raise StrokeError('miterlimit must be >= 1, got %r' % (self.miterlimit,))
@@ -205,6 +233,8 @@ class StrokeStyle:
                 raise StrokeError('dash must be a sequence of numbers, got %r'
                                   % (dash,)) from None
         object.__setattr__(self, 'width', w)
+        object.__setattr__(self, 'join', join)
+        object.__setattr__(self, 'cap', cap)
         object.__setattr__(self, 'miterlimit', ml)
         object.__setattr__(self, 'dash', dash)
         object.__setattr__(self, 'dash_offset', _finite('dash offset', self.dash_offset))

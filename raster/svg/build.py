@@ -68,6 +68,7 @@ from ..errors import RasterError, RasterWarning, SVGError, TransformError
 from ..geometry.bounds import bbox as exact_bbox
 from ..geometry.pathdata import (circle_path, ellipse_path, line_path, parse_path, parse_paths,
                                  polyline_path, rect_path)
+from ..geometry.stroking import LineCap, LineJoin
 from ..geometry.transform import IDENTITY, Affine
 from .css import declared_styles
 from .document import chain_attr
@@ -104,8 +105,6 @@ _GEOMETRY_ATTRS = {'rect': ('x', 'y', 'width', 'height', 'rx', 'ry'), 'circle': 
 
 _FONT_KEYWORDS = {'xx-small': 3 / 5, 'x-small': 3 / 4, 'small': 8 / 9, 'medium': 1.0,
                   'large': 6 / 5, 'x-large': 3 / 2, 'xx-large': 2.0, 'xxx-large': 3.0}
-_JOINS = frozenset(['miter', 'miter-clip', 'round', 'bevel', 'arcs'])
-_CAPS = frozenset(['butt', 'round', 'square'])
 _BLEND = frozenset(['normal', 'multiply', 'screen', 'overlay', 'darken', 'lighten',
                     'color-dodge', 'color-burn', 'hard-light', 'soft-light', 'difference',
                     'exclusion', 'hue', 'saturation', 'color', 'luminosity'])
@@ -1506,8 +1505,9 @@ class _Builder:
             v = parse_length(do, 'other', ctx)
             if v is not None:
                 off = v
-        return (w, _opacity(inh.get('stroke-opacity')), join if join in _JOINS else 'miter',
-                cap if cap in _CAPS else 'butt', ml, dash, off)
+        return (w, _opacity(inh.get('stroke-opacity')),
+                join if LineJoin.lookup(join) is not None else 'miter',
+                cap if LineCap.lookup(cap) is not None else 'butt', ml, dash, off)
 
 
 def _layer_box(nodes, t):

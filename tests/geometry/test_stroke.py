@@ -5,6 +5,7 @@ Regions are checked with an independent nonzero winding-number sampler
 shoelace areas of the emitted polygons.
 """
 
+import dataclasses
 import math
 
 import numpy as np
@@ -15,8 +16,8 @@ from scipy.spatial import cKDTree
 from raster.errors import LimitError, RasterError
 from raster.geometry.path import CLOSE, LINE, MOVE, Path
 from raster.geometry.pens import PathBuilder
-from raster.geometry.stroking import (StrokeError, StrokeStyle, dash_pattern, dash_polylines,
-                                     DashedLines, hairline_scale, stroke)
+from raster.geometry.stroking import (DashedLines, LineCap, LineJoin, StrokeError, StrokeStyle,
+                                     dash_pattern, dash_polylines, hairline_scale, stroke)
 from raster.geometry.transform import Affine
 
 
@@ -142,6 +143,29 @@ def test_bad_arguments_to_stroke():
         stroke(p, colour='red')
     with pytest.raises(StrokeError):
         stroke(p, {'width': 2})
+
+
+def test_joins_and_caps_are_str_enums():
+    """StrokeStyle stores LineJoin / LineCap members; the SVG keywords and
+    the members are interchangeable, and a style is an immutable, hashable
+    value (strokes are batched by style)."""
+    assert LineJoin.values() == ('miter', 'miter-clip', 'round', 'bevel', 'arcs')
+    assert LineCap.values() == ('butt', 'round', 'square')
+    a = StrokeStyle(width=2, join='bevel', cap=LineCap.ROUND)
+    b = StrokeStyle(width=2.0, join=LineJoin.BEVEL, cap='round')
+    assert a.join is LineJoin.BEVEL and a.cap is LineCap.ROUND
+    assert a.join == 'bevel' and '%s/%s' % (a.join, a.cap) == 'bevel/round'
+    assert a == b and hash(a) == hash(b) and len({a, b}) == 1
+    assert StrokeStyle().join is LineJoin.MITER and StrokeStyle().cap is LineCap.BUTT
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        a.width = 3
+    with pytest.raises(StrokeError, match="unknown line join 'pointy' .*miter-clip"):
+        StrokeStyle(join='pointy')
+    with pytest.raises(StrokeError, match='unknown line cap'):
+        StrokeStyle(cap=['butt'])
+    # the same outline either way
+    p = line((0, 0), (10, 0), (10, 10))
+    assert stroke(p, a) == stroke(p, width=2, join='bevel', cap='round')
 
 
 def test_style_and_keyword_override():
