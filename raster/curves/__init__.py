@@ -45,7 +45,7 @@ Errors are :class:`CurveError` (a :class:`raster.errors.RasterError`).
 [0.5, 0.5]
 """
 
-from .base import CurveError
+from .checks import CurveError
 from .bezier import Bezier, PiecewiseBezier, bernstein, bernstein_matrix
 from .hermite import Hermite, HermiteSpline, hermite_blend, hermite_basis_matrix
 from .cardinal import CardinalSpline, CatmullRom, cardinal_matrix

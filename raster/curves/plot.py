@@ -22,7 +22,7 @@ from ..geometry.path import Path
 from ..geometry.pens import PathBuilder, TransformPen
 from ..geometry.pathdata import circle_path
 from ..geometry.transform import Affine
-from .base import CurveError
+from .checks import CurveError
 
 FONT_FILE = os.path.join(os.path.dirname(__file__), 'NotoSans-Regular-ASCII.ttf')
 
