@@ -28,7 +28,7 @@ import tracemalloc
 import numpy as np
 
 from raster.pixels.canvas import Canvas
-from raster.path import Path
+from raster.geometry.path import Path
 from raster.pixels.scan import coverage
 
 W = H = 2000
@@ -77,7 +77,7 @@ def peak_of(fn):
 
 
 def edges_of(path, tolerance=0.25):
-    from raster.flatten import flatten
+    from raster.geometry.flattening import flatten
     return flatten(path, tolerance=tolerance).edges(close_all=True)
 
 
@@ -124,9 +124,9 @@ def bench_polygon(repeats, jitter):
 
 def bench_cubics(repeats):
     try:
-        from raster.flatten import flatten_beziers
+        from raster.geometry.flattening import flatten_beziers
     except ImportError:
-        print('(b) skipped: raster.flatten.flatten_beziers not available')
+        print('(b) skipped: raster.geometry.flattening.flatten_beziers not available')
         return
     rng = np.random.default_rng(0)
     p0 = rng.uniform(0, W, (10_000, 1, 2))
@@ -140,7 +140,7 @@ def bench_cubics(repeats):
 
 def bench_stroke(repeats):
     try:
-        from raster.stroke import stroke
+        from raster.geometry.stroking import stroke
     except ImportError:
         print('(c) skipped: raster.stroke not available yet')
         return

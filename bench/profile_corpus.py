@@ -211,11 +211,11 @@ def cost_model():
     """Print the fixed per-call CPU cost of each stage on a small shape and
     the per-pixel CPU cost on a 2000x2000 one (min of 3 batches)."""
     from raster.pixels.canvas import Canvas
-    from raster.flatten import flatten
-    from raster.path import Path
+    from raster.geometry.flattening import flatten
+    from raster.geometry.path import Path
     from raster.pixels.scan import coverage
-    from raster.stroke import stroke
-    from raster.svgpath import parse_path
+    from raster.geometry.stroking import stroke
+    from raster.geometry.pathdata import parse_path
 
     def cpu(fn, n):
         best = float('inf')

@@ -179,7 +179,7 @@ def drawn_shapes(tree):
     tree's document pixels.  Descends into groups and marker instances (not
     into clip paths, masks or patterns, which are not drawn themselves)."""
     from raster.tree import Group, PathNode
-    from raster.transform import IDENTITY
+    from raster.geometry.transform import IDENTITY
     stack = [(tree.root, IDENTITY)]
     while stack:
         n, t = stack.pop()
@@ -205,7 +205,7 @@ def node_transforms(tree):
     """``{id(node): transform to document px}`` of every node of the tree,
     markers included (the transform of the node's own coordinates)."""
     from raster.tree import Group, PathNode
-    from raster.transform import IDENTITY
+    from raster.geometry.transform import IDENTITY
     out = {}
     stack = [(tree.root, IDENTITY)]
     while stack:

@@ -36,11 +36,11 @@ def shape_box(node, t, with_stroke=False):
     if node.fill is not None or not with_stroke or node.stroke is None:
         boxes.append(_path_box(path, t))
     if with_stroke and node.stroke is not None:
-        from raster.stroke import stroke
+        from raster.geometry.stroking import stroke
         style = node.stroke.style
         box = None
         try:
-            from raster.bbox import bbox as exact
+            from raster.geometry.bounds import bbox as exact
             box = tuple(float(v) for v in exact(path, transform=t, stroke=style,
                                                 tolerance=STROKE_TOLERANCE))
         except (ImportError, TypeError, RasterError, AttributeError):
@@ -57,13 +57,13 @@ def shape_box(node, t, with_stroke=False):
 def _path_box(path, t):
     from raster.errors import RasterError
     try:
-        from raster.bbox import bbox as exact
+        from raster.geometry.bounds import bbox as exact
         return tuple(float(v) for v in exact(path, transform=t))
     except (ImportError, TypeError, AttributeError):
         pass
     except RasterError:
         return None
-    from raster.flatten import flatten
+    from raster.geometry.flattening import flatten
     pts = flatten(path, 1e-6, transform=t).points
     if len(pts) == 0:
         return None

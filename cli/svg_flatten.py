@@ -25,7 +25,7 @@ Formats:
 * ``csv``: ``shape_index,id,polyline_index,point_index,x,y,closed``.
 
 ``--outline-strokes`` replaces each stroke by the polygons of its outline
-(see :func:`raster.stroke.stroke`), emitted as a separate filled shape
+(see :func:`raster.geometry.stroking.stroke`), emitted as a separate filled shape
 (nonzero rule) after the shape's fill.
 """
 
@@ -85,8 +85,8 @@ def collect(tree, tolerance=0.25, pixels=False, outline_strokes=False):
     list of dict
     """
     from raster.errors import RasterError
-    from raster.flatten import flatten
-    from raster.stroke import stroke
+    from raster.geometry.flattening import flatten
+    from raster.geometry.stroking import stroke
     if not (math.isfinite(tolerance) and tolerance > 0):
         raise RasterError('--tolerance must be positive, got %g' % tolerance)
     to_out = None

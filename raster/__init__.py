@@ -5,22 +5,33 @@ The front door (see README.md):
 * :func:`parse_path` -- SVG path data to an immutable :class:`Path`;
 * :func:`flatten` -- a path to polylines within a tolerance in device pixels;
 * :func:`bbox` -- exact bounding box of a path;
+* :func:`stroke` -- the outline of a path's stroke (a :class:`StrokeStyle`);
 * :func:`render` / :func:`render_image` -- an SVG document to an RGBA array or
   a PIL image.
 
-Names are imported lazily so that ``import raster`` stays fast.
+The geometry behind them is the kernel :mod:`raster.geometry`.  Names are
+imported lazily so that ``import raster`` stays fast.
 """
 
 from .errors import (RasterError, PathError, TransformError, CanvasError,  # noqa: F401
                      LimitError, SVGError)
-from .path import Path, PathBuilder, TransformPen, RecordingPen  # noqa: F401
-from .transform import Affine  # noqa: F401
+from .geometry.path import Path  # noqa: F401
+from .geometry.pens import PathBuilder, TransformPen, RecordingPen  # noqa: F401
+from .geometry.transform import Affine  # noqa: F401
 
 __version__ = '0.1.0'
 
 _LAZY = {
-    'parse_path': 'raster.svgpath',
-    'StrokeStyle': 'raster.stroke',
+    'parse_path': 'raster.geometry.pathdata',
+    'flatten': 'raster.geometry.flattening',
+    'Polylines': 'raster.geometry.flattening',
+    'bbox': 'raster.geometry.bounds',
+    'BoundsPen': 'raster.geometry.pens',
+    'stroke': 'raster.geometry.stroking',
+    'StrokeStyle': 'raster.geometry.stroking',
+    'LineJoin': 'raster.geometry.stroking',
+    'LineCap': 'raster.geometry.stroking',
+    'FillRule': 'raster.geometry.rules',
     'coverage': 'raster.pixels.scan',
     'path_coverage': 'raster.pixels.scan',
     'Canvas': 'raster.pixels.canvas',
@@ -42,12 +53,3 @@ def __getattr__(name):
 
 def __dir__():
     return sorted(set(globals()) | set(_LAZY))
-
-
-# `flatten` and `bbox` name both a public function and its submodule.  Bind
-# the functions now: importing a submodule binds the package attribute to the
-# module, which would otherwise shadow the lazy name (raster.flatten(path)
-# failing after `from raster.flatten import ...`).  Both modules need only
-# numpy.
-from .flatten import flatten, Polylines  # noqa: E402,F401
-from .bbox import bbox  # noqa: E402,F401

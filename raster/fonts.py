@@ -34,6 +34,8 @@ from typing import NamedTuple
 import numpy as np
 
 from .errors import RasterError, RasterWarning
+from .geometry.path import Path
+from .geometry.pens import PathBuilder
 
 __all__ = ['FontError', 'FontFace', 'FontDB', 'Font', 'parse_font_family',
            'GENERIC_FAMILIES', 'DEFAULT_FAMILY', 'FONT_EXTENSIONS']
@@ -490,9 +492,8 @@ class Font:
         return Shaped(gid, cluster, pos, ordered)
 
     def outline(self, gid):
-        """The outline of glyph ``gid`` as a :class:`~raster.path.Path` in
+        """The outline of glyph ``gid`` as a :class:`~raster.geometry.path.Path` in
         font units (y up)."""
-        from .path import Path
         verbs, points, _ = self._atlas.gather(np.array([gid], np.int64))
         return Path(verbs, points, _checked=True)
 
@@ -518,22 +519,13 @@ class Font:
     def _draw_glyph(self, gid):
         """(verbs, points) of one glyph drawn through fontTools (empty
         arrays for a glyph that cannot be drawn)."""
-        from .path import Path, PathBuilder
         from fontTools.pens.recordingPen import DecomposingRecordingPen
         try:
             name = self.glyph_order[gid]
-            rec = DecomposingRecordingPen(self.glyph_set)
+            rec = DecomposingRecordingPen(self.glyph_set)     # components drawn in place
             self.glyph_set[name].draw(rec)
-            b = PathBuilder()
-            for op, args in rec.value:
-                if op == 'qCurveTo' and args and args[-1] is None:
-                    # closed contour of only off-curve points
-                    offs = list(args[:-1])
-                    mid = ((offs[-1][0] + offs[0][0]) * 0.5, (offs[-1][1] + offs[0][1]) * 0.5)
-                    b.moveTo(mid)
-                    b.qCurveTo(*offs, mid)
-                    continue
-                getattr(b, op)(*args)
+            b = PathBuilder()           # implied on-curve points: raster.geometry.pens
+            rec.replay(b)
             p = b.path()
         except (KeyError, IndexError, RasterError):
             p = Path.empty()

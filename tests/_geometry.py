@@ -1,6 +1,6 @@
 """Shared test geometry (imported by the test modules as ``_geometry``)."""
 
-from raster.path import PathBuilder
+from raster.geometry.pens import PathBuilder
 
 #: Control-point distance of a quarter-circle cubic: radial error 2.7e-4 r.
 KAPPA = 0.5522847498

@@ -22,10 +22,6 @@ PACKAGES = {'raster': os.path.join(ROOT, 'raster'), 'raster_cli': os.path.join(R
 LAYER_OF = {
     'raster.errors': 'base', 'raster.limits': 'base',
     'raster.geometry': 'geometry',
-    # TEMP until the kernel package lands
-    'raster.path': 'geometry', 'raster.svgpath': 'geometry', 'raster.flatten': 'geometry',
-    'raster.bbox': 'geometry', 'raster.stroke': 'geometry', 'raster.hull': 'geometry',
-    'raster.transform': 'geometry',
     'raster.pixels': 'pixels',
     'raster.tree': 'tree',
     'raster.fonts': 'fonts',

@@ -35,7 +35,7 @@ module                 classes and functions
 ``natural``            :class:`NaturalSpline`, :class:`FunctionSpline`,
                        :func:`solve_tridiagonal`
 ``continuity``         :func:`continuity`, :class:`Joint`
-(``raster.hull``)      :func:`convex_hull` (monotone chain), re-exported
+(``raster.geometry.hull``)      :func:`convex_hull` (monotone chain), re-exported
 =====================  ==============================================
 
 Errors are :class:`CurveError` (a :class:`raster.errors.RasterError`).
@@ -45,7 +45,7 @@ Errors are :class:`CurveError` (a :class:`raster.errors.RasterError`).
 [0.5, 0.5]
 """
 
-from ._base import CurveError
+from .checks import CurveError
 from .bezier import Bezier, PiecewiseBezier, bernstein, bernstein_matrix
 from .hermite import Hermite, HermiteSpline, hermite_blend, hermite_basis_matrix
 from .cardinal import CardinalSpline, CatmullRom, cardinal_matrix
@@ -54,7 +54,7 @@ from .bspline import BSpline, basis_functions, clamped_uniform_knots
 from .beta import BetaSpline, beta_basis_matrix, beta_blend
 from .natural import NaturalSpline, FunctionSpline, solve_tridiagonal
 from .continuity import continuity, Joint, format_joints
-from ..hull import convex_hull   # re-exported: the hull shared with flattening
+from ..geometry.hull import convex_hull   # re-exported: the hull shared with flattening
 
 
 __all__ = ['CurveError', 'Bezier', 'PiecewiseBezier', 'bernstein', 'bernstein_matrix',

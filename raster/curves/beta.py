@@ -32,7 +32,8 @@ and ``beta2 >= 0`` keep ``delta > 0`` and the functions non-negative.
 
 import numpy as np
 
-from ._base import CurveError, CurveMixin, as_params, as_points, as_scalar, shape_out
+from .base import CurveMixin
+from .checks import CurveError, as_params, as_points, as_scalar, shape_out
 from .bezier import PiecewiseBezier, bernstein_matrix
 
 

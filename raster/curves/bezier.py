@@ -20,13 +20,19 @@ one point, shape ``(D,)``) or an array of ``M`` values (returning ``(M, D)``).
 [3.0, 6.0]
 """
 
-import math
-
 import numpy as np
 
 from ..errors import LimitError
-from ..path import PathBuilder
-from ._base import CurveError, CurveMixin, as_params, as_points, as_scalar, shape_out
+from ..geometry import bezier as kb
+from ..geometry.flattening import flatten_beziers
+from ..geometry.hull import convex_hull
+from ..geometry.pens import PathBuilder
+from .base import CurveMixin
+from .checks import MAX_DEGREE, CurveError, as_degree, as_params, as_points, as_scalar, shape_out
+from .continuity import continuity as _continuity
+
+__all__ = ['Bezier', 'PiecewiseBezier', 'bernstein', 'bernstein_matrix', 'MAX_DEGREE',
+           'MAX_ARC_INTERVALS']
 
 # Gauss-Legendre nodes and weights on [0, 1] (16 points) for arc lengths.
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
@@ -36,16 +42,11 @@ _GL_W = 0.5 * _GL_W
 #: Most parameter intervals an arc-length computation may keep active.
 MAX_ARC_INTERVALS = 1 << 22
 
-#: Highest degree accepted (Bernstein recurrences are O(n^2) per parameter).
-MAX_DEGREE = 200
-
 
 def bernstein(n, t):
-    """Bernstein blending functions ``B(n, i)(t)`` for many ``t`` at once.
-
-    Evaluated as the product ``C(n, i) * t**i * (1 - t)**(n - i)``: every
-    factor is non-negative, so there is no cancellation and the relative
-    error is a few ulps times ``n``.
+    """Bernstein blending functions ``B(n, i)(t)`` for many ``t`` at once
+    (:func:`raster.geometry.bezier.bernstein`, with the toolkit's degree
+    limit).
 
     Parameters
     ----------
@@ -63,166 +64,18 @@ def bernstein(n, t):
     >>> bernstein(3, [0.0, 1.0]).tolist()
     [[1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]]
     """
-    n = _check_degree(n)
-    ta = np.asarray(t, dtype=np.float64)
-    scalar = ta.ndim == 0
-    ta = ta.reshape(-1, 1)
-    i = np.arange(n + 1)
-    out = _binomials(n) * np.power(ta, i) * np.power(1.0 - ta, n - i)
-    return out[0] if scalar else out
-
-
-def _binomials(n):
-    return np.array([math.comb(n, k) for k in range(n + 1)], dtype=np.float64)
+    return kb.bernstein(as_degree(n), t)
 
 
 def bernstein_matrix(n):
     """The ``(n+1, n+1)`` matrix ``M`` with ``B(n, i)(t) = sum_k M[k, i] t^k``:
-    power-basis coefficients of the Bernstein polynomials.
+    power-basis coefficients of the Bernstein polynomials
+    (:func:`raster.geometry.bezier.bernstein_matrix`).
 
     >>> bernstein_matrix(2).tolist()
     [[1.0, 0.0, 0.0], [-2.0, 2.0, 0.0], [1.0, -2.0, 1.0]]
     """
-    n = _check_degree(n)
-    m = np.zeros((n + 1, n + 1))
-    for k in range(n + 1):
-        for i in range(k + 1):
-            m[k, i] = math.comb(n, k) * math.comb(k, i) * (-1) ** (k - i)
-    return m
-
-
-def _check_degree(n):
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
-        raise CurveError('degree must be a non-negative integer, got %r' % (n,))
-    if n > MAX_DEGREE:
-        raise CurveError('degree %d exceeds the limit %d' % (n, MAX_DEGREE))
-    return int(n)
-
-
-def _casteljau_all(ctrl, t):
-    """Batched de Casteljau with one parameter per level.
-
-    ctrl : (S, n+1, D); t : (S, n) parameters, level r uses ``t[:, r]``.
-    Returns the (S, D) point of the blossom ``b(t_1, ..., t_n)``.
-    """
-    pts = ctrl.copy()
-    n = ctrl.shape[1] - 1
-    for r in range(n):
-        u = t[:, r][:, None, None]
-        pts = (1.0 - u) * pts[:, :-1] + u * pts[:, 1:]
-    return pts[:, 0]
-
-
-def _subsegment_ctrl(ctrl, u0, u1):
-    """Control points of the pieces ``[u0, u1]`` of the segments ``ctrl``
-    ((S, n+1, D)), by blossoming: ``Q_i = b(u0^(n-i), u1^i)``."""
-    S, n1, D = ctrl.shape
-    n = n1 - 1
-    if n == 0:
-        return ctrl.copy()
-    out = np.empty_like(ctrl)
-    for i in range(n + 1):
-        args = np.empty((S, n))
-        args[:, :n - i] = u0[:, None]
-        args[:, n - i:] = u1[:, None]
-        out[:, i] = _casteljau_all(ctrl, args)
-    # the end points are exact evaluations: keep them exactly at u = 0 / 1
-    out[u0 == 0.0, 0] = ctrl[u0 == 0.0, 0]
-    out[u1 == 1.0, n] = ctrl[u1 == 1.0, n]
-    return out
-
-
-def _elevate_ctrl(ctrl, times=1):
-    """Degree elevation of (S, n+1, D) control arrays."""
-    for _ in range(times):
-        S, n1, D = ctrl.shape
-        n = n1 - 1
-        out = np.empty((S, n1 + 1, D))
-        out[:, 0] = ctrl[:, 0]
-        out[:, -1] = ctrl[:, -1]
-        i = np.arange(1, n1)[None, :, None]
-        a = i / (n + 1.0)
-        out[:, 1:n1] = a * ctrl[:, :-1] + (1.0 - a) * ctrl[:, 1:]
-        ctrl = out
-    return ctrl
-
-
-def _real_roots_unit(coef):
-    """Real roots in the open interval (0, 1) of polynomials in power form.
-
-    coef : (K, m+1) float64, ``coef[:, k]`` multiplies ``u**k``.
-    Returns (roots, owner) 1-D arrays.  Degrees <= 2 are solved in closed
-    form for all rows at once; higher degrees use batched companion-matrix
-    eigenvalues (one LAPACK call for all rows) polished by Newton steps, and
-    ``numpy.roots`` only for rows whose leading coefficient nearly vanishes.
-    """
-    K, m1 = coef.shape
-    m = m1 - 1
-    scale = np.abs(coef).max(axis=1) if m1 else np.zeros(K)
-    live = scale > 0
-    coef = np.where(live[:, None], coef / np.where(live, scale, 1.0)[:, None], 0.0)
-    roots, owner = [], []
-    eps = 1e-12
-    if m >= 3:
-        lead = coef[:, m]
-        batch = live & (np.abs(lead) > 1e-8)
-        rows = np.nonzero(batch)[0]
-        if len(rows):
-            # companion matrices of all well-conditioned rows, one batched eigvals
-            comp = np.zeros((len(rows), m, m))
-            comp[:, 0, :] = -coef[rows, m - 1::-1] / lead[rows, None]
-            comp[:, np.arange(1, m), np.arange(m - 1)] = 1.0
-            ev = np.linalg.eigvals(comp)
-            ok = np.abs(ev.imag) <= 1e-7 * np.maximum(1.0, np.abs(ev.real))
-            r = ev.real[ok]
-            own = np.repeat(rows, m).reshape(-1, m)[ok]
-            near = (r > -1e-6) & (r < 1 + 1e-6)
-            r, own = r[near], own[near]
-            c = coef[own]
-            for _ in range(3):                  # Newton polish
-                val = np.zeros_like(r)
-                der = np.zeros_like(r)
-                for k in range(m, -1, -1):
-                    der = der * r + val
-                    val = val * r + c[:, k]
-                step = np.where(der != 0, val / np.where(der != 0, der, 1.0), 0.0)
-                r = np.where(np.abs(step) < 1e-3, r - step, r)
-            sel = (r > eps) & (r < 1 - eps)
-            roots.append(r[sel])
-            owner.append(own[sel])
-        for k in np.nonzero(live & ~batch)[0].tolist():     # nearly degenerate rows
-            c = coef[k].copy()
-            c[np.abs(c) < 1e-14] = 0.0
-            nz = np.nonzero(c)[0]
-            if len(nz) == 0 or nz[-1] == 0:
-                continue
-            r = np.roots(c[:nz[-1] + 1][::-1])
-            r = r[np.abs(r.imag) <= 1e-9 * np.maximum(1.0, np.abs(r.real))].real
-            r = r[(r > eps) & (r < 1 - eps)]
-            roots.append(r)
-            owner.append(np.full(len(r), k))
-    else:
-        c0 = coef[:, 0]
-        c1 = coef[:, 1] if m >= 1 else np.zeros(K)
-        c2 = coef[:, 2] if m >= 2 else np.zeros(K)
-        quad = np.abs(c2) > 1e-12
-        lin = ~quad & (np.abs(c1) > 1e-14)
-        with np.errstate(divide='ignore', invalid='ignore'):
-            rl = -c0 / c1
-            disc = c1 * c1 - 4 * c2 * c0
-            sq = np.sqrt(np.maximum(disc, 0.0))
-            # numerically stable pair: q = -(b + sign(b) sqrt(disc)) / 2
-            q = -0.5 * (c1 + np.where(c1 >= 0, sq, -sq))
-            r1 = q / c2
-            r2 = np.where(q != 0, c0 / q, -c1 / (2 * c2))
-        okq = quad & (disc >= 0)
-        for cand, ok in ((rl, lin), (r1, okq), (r2, okq)):
-            sel = ok & np.isfinite(cand) & (cand > eps) & (cand < 1 - eps)
-            roots.append(cand[sel])
-            owner.append(np.nonzero(sel)[0])
-    if not roots:
-        return np.zeros(0), np.zeros(0, np.int64)
-    return np.concatenate(roots), np.concatenate(owner).astype(np.int64)
+    return kb.bernstein_matrix(as_degree(n))
 
 
 class Bezier(CurveMixin):
@@ -247,7 +100,7 @@ class Bezier(CurveMixin):
 
     def __init__(self, ctrl):
         c = as_points(ctrl, 1, dims=None)
-        _check_degree(len(c) - 1)
+        as_degree(len(c) - 1)
         c.flags.writeable = False
         object.__setattr__(self, 'ctrl', c)
 
@@ -293,7 +146,7 @@ class Bezier(CurveMixin):
         (D,) or (M, D) float64 ndarray
         """
         ta, scalar = as_params(t, 0.0, 1.0)
-        out = bernstein(self.degree, ta) @ self.ctrl
+        out = kb.bernstein(self.degree, ta) @ self.ctrl
         out[ta == 0.0] = self.ctrl[0]
         out[ta == 1.0] = self.ctrl[-1]
         return shape_out(out, scalar)
@@ -308,14 +161,12 @@ class Bezier(CurveMixin):
         [1.0, 0.75]
         """
         ta, scalar = as_params(t, 0.0, 1.0)
-        pts = np.broadcast_to(self.ctrl, (len(ta),) + self.ctrl.shape)
-        out = _casteljau_all(pts, np.repeat(ta[:, None], self.degree, axis=1))
-        return shape_out(out, scalar)
+        return shape_out(kb.evaluate(self.ctrl, ta), scalar)
 
     def blending(self, t):
         """Blending function values ``B(n, i)(t)``: (n+1,) or (M, n+1)."""
         ta, scalar = as_params(t, 0.0, 1.0)
-        return shape_out(bernstein(self.degree, ta), scalar)
+        return shape_out(kb.bernstein(self.degree, ta), scalar)
 
     def power_coeffs(self):
         """Power-basis coefficients: (n+1, D) float64, row ``k`` multiplies
@@ -324,7 +175,7 @@ class Bezier(CurveMixin):
         >>> Bezier([[0, 0], [1, 2], [2, 0]]).power_coeffs().tolist()
         [[0.0, 0.0], [2.0, 4.0], [0.0, -4.0]]
         """
-        return bernstein_matrix(self.degree) @ self.ctrl
+        return kb.power_coeffs(self.ctrl)
 
     # -- derivatives ---------------------------------------------------------
     def deriv(self, order=1):
@@ -334,8 +185,7 @@ class Bezier(CurveMixin):
             raise CurveError('derivative order must be a non-negative integer')
         c = self.ctrl
         for _ in range(int(order)):
-            n = len(c) - 1
-            c = n * np.diff(c, axis=0) if n > 0 else np.zeros_like(c)
+            c = kb.derivative(c)
         return Bezier(c)
 
     def tangent(self, t):
@@ -346,13 +196,8 @@ class Bezier(CurveMixin):
     def split(self, t=0.5):
         """The two halves ``[0, t]`` and ``[t, 1]`` (de Casteljau)."""
         t = as_scalar(t, 't', 0.0, 1.0)
-        pts = self.ctrl
-        left, right = [pts[0]], [pts[-1]]
-        while len(pts) > 1:
-            pts = (1.0 - t) * pts[:-1] + t * pts[1:]
-            left.append(pts[0])
-            right.append(pts[-1])
-        return Bezier(np.array(left)), Bezier(np.array(right[::-1]))
+        left, right = kb.split(self.ctrl, t)
+        return Bezier(left), Bezier(right)
 
     def subsegment(self, t0, t1):
         """The piece from ``t0`` to ``t1`` reparameterized to [0, 1]
@@ -363,8 +208,7 @@ class Bezier(CurveMixin):
         """
         t0 = as_scalar(t0, 't0', 0.0, 1.0)
         t1 = as_scalar(t1, 't1', 0.0, 1.0)
-        c = _subsegment_ctrl(self.ctrl[None], np.array([t0]), np.array([t1]))[0]
-        return Bezier(c)
+        return Bezier(kb.subsegment(self.ctrl, t0, t1))
 
     def reverse(self):
         """Same curve traversed backwards: ``r(t) = B(1 - t)``."""
@@ -374,8 +218,8 @@ class Bezier(CurveMixin):
         """Same curve as a Bezier of degree ``n + times`` (exact)."""
         if isinstance(times, bool) or not isinstance(times, (int, np.integer)) or times < 0:
             raise CurveError('elevation count must be a non-negative integer')
-        _check_degree(self.degree + int(times))
-        return Bezier(_elevate_ctrl(self.ctrl[None], int(times))[0])
+        as_degree(self.degree + int(times))
+        return Bezier(kb.elevate(self.ctrl, int(times)))
 
     def transform(self, matrix, offset=None):
         """Apply ``p -> matrix @ p + offset`` to the control points (Bezier
@@ -389,8 +233,7 @@ class Bezier(CurveMixin):
     # -- geometry ------------------------------------------------------------
     def hull(self):
         """Convex hull of the (x, y) control points, (H, 2) float64
-        (:func:`raster.hull.convex_hull`)."""
-        from ..hull import convex_hull
+        (:func:`raster.geometry.hull.convex_hull`)."""
         return convex_hull(self.ctrl[:, :2])
 
     def to_beziers(self):
@@ -443,7 +286,7 @@ class PiecewiseBezier(CurveMixin):
                              % (c.shape,))
         if not np.all(np.isfinite(c)):
             raise CurveError('Bezier control points must be finite')
-        _check_degree(c.shape[1] - 1)
+        as_degree(c.shape[1] - 1)
         if breaks is None:
             b = np.arange(c.shape[0] + 1, dtype=np.float64)
         else:
@@ -471,7 +314,7 @@ class PiecewiseBezier(CurveMixin):
         if not cs:
             raise CurveError('need at least one Bezier segment')
         n = max(len(c) for c in cs) - 1
-        out = [_elevate_ctrl(c[None], n - (len(c) - 1))[0] for c in cs]
+        out = [kb.elevate(c, n - (len(c) - 1)) for c in cs]
         return cls(np.stack(out), breaks)
 
     # -- container -----------------------------------------------------------
@@ -517,7 +360,7 @@ class PiecewiseBezier(CurveMixin):
         """Point(s) at global parameter(s) ``t``: (D,) or (M, D) float64.
         At a joint the later segment is used."""
         idx, u, scalar = self._locate(t)
-        out = np.einsum('mi,mid->md', bernstein(self.degree, u), self.ctrl[idx])
+        out = np.einsum('mi,mid->md', kb.bernstein(self.degree, u), self.ctrl[idx])
         return shape_out(out, scalar)
 
     __call__ = eval
@@ -530,8 +373,7 @@ class PiecewiseBezier(CurveMixin):
         c = self.ctrl
         h = np.diff(self.breaks)[:, None, None]
         for _ in range(int(order)):
-            n = c.shape[1] - 1
-            c = n * np.diff(c, axis=1) / h if n > 0 else np.zeros_like(c)
+            c = kb.derivative(c) / h if c.shape[1] > 1 else np.zeros_like(c)
         return PiecewiseBezier(c, self.breaks)
 
     def tangent(self, t):
@@ -553,7 +395,7 @@ class PiecewiseBezier(CurveMixin):
         h = b[segs + 1] - b[segs]
         u0 = np.clip((np.maximum(b[segs], t0) - b[segs]) / h, 0.0, 1.0)
         u1 = np.clip((np.minimum(b[segs + 1], t1) - b[segs]) / h, 0.0, 1.0)
-        c = _subsegment_ctrl(self.ctrl[segs], u0, u1)
+        c = kb.subsegment(self.ctrl[segs], u0, u1)
         nb = np.concatenate([[t0], b[segs[1:]], [t1]])
         return PiecewiseBezier(c, nb)
 
@@ -564,27 +406,30 @@ class PiecewiseBezier(CurveMixin):
         return PiecewiseBezier(self.ctrl[::-1, ::-1], (lo + hi) - self.breaks[::-1])
 
     def elevate(self, times=1):
-        return PiecewiseBezier(_elevate_ctrl(self.ctrl, int(times)), self.breaks)
+        if isinstance(times, bool) or not isinstance(times, (int, np.integer)) or times < 0:
+            raise CurveError('elevation count must be a non-negative integer')
+        as_degree(self.degree + int(times))
+        return PiecewiseBezier(kb.elevate(self.ctrl, int(times)), self.breaks)
 
     # -- geometry ------------------------------------------------------------
     def extrema(self):
         """Sorted global parameters inside segments where some coordinate of
-        the curve has a zero derivative, (K,) float64."""
-        n, S, D = self.degree, len(self), self.dim
-        if n < 2:
+        the curve has a zero derivative, (K,) float64
+        (:func:`raster.geometry.bezier.extrema` of every segment)."""
+        if self.degree < 2:
             return np.zeros(0)
-        d = n * np.diff(self.ctrl, axis=1)                      # (S, n, D)
-        coef = np.einsum('ki,sid->sdk', bernstein_matrix(n - 1), d).reshape(S * D, n)
-        r, owner = _real_roots_unit(coef)
-        seg = owner // D
-        t = self.breaks[seg] + r * (self.breaks[seg + 1] - self.breaks[seg])
+        u = kb.extrema(self.ctrl)                               # (S, D, n-1)
+        seg = np.broadcast_to(np.arange(len(self))[:, None, None], u.shape)
+        ok = ~np.isnan(u)
+        s, r = seg[ok], u[ok]
+        t = self.breaks[s] + r * (self.breaks[s + 1] - self.breaks[s])
         return np.unique(t)
 
     def bounding_box(self):
-        """Exact bounding box ``(lo, hi)``: (D,) float64 each."""
-        t = np.concatenate([self.breaks, self.extrema()])
-        p = np.concatenate([self.ctrl[:, 0], self.ctrl[-1:, -1], self.eval(t)])
-        return p.min(axis=0), p.max(axis=0)
+        """Exact bounding box ``(lo, hi)``: (D,) float64 each
+        (:func:`raster.geometry.bezier.bounds` of every segment)."""
+        lo, hi = kb.bounds(self.ctrl)
+        return lo.min(axis=0), hi.max(axis=0)
 
     def arc_length(self, tolerance=1e-9):
         """Total arc length to an absolute ``tolerance`` (adaptive
@@ -607,11 +452,11 @@ class PiecewiseBezier(CurveMixin):
         tol = as_scalar(tolerance, 'tolerance', 0.0)
         if tol <= 0:
             raise CurveError('tolerance must be positive')
-        dc = self.degree * np.diff(self.ctrl, axis=1) if self.degree else None
-        if dc is None:
+        if self.degree == 0:
             return 0.0
+        dc = kb.derivative(self.ctrl)
         n1 = self.degree - 1
-        pcoef = np.einsum('ki,sid->skd', bernstein_matrix(n1), dc) if n1 <= 8 else None
+        pcoef = kb.power_coeffs(dc) if n1 <= 8 else None
 
         def gl(seg, a, b):
             u = a[:, None] + (b - a)[:, None] * _GL_X[None, :]         # (K, 16)
@@ -622,7 +467,7 @@ class PiecewiseBezier(CurveMixin):
                     v *= u[:, :, None]
                     v += c[:, k][:, None, :]
             else:
-                B = bernstein(n1, u.reshape(-1)).reshape(u.shape + (n1 + 1,))
+                B = kb.bernstein(n1, u.reshape(-1)).reshape(u.shape + (n1 + 1,))
                 v = np.einsum('kgi,kid->kgd', B, dc[seg])
             speed = np.sqrt(np.einsum('kgd,kgd->kg', v, v))
             return (speed @ _GL_W) * (b - a)
@@ -670,17 +515,17 @@ class PiecewiseBezier(CurveMixin):
             raise CurveError('tolerance must be positive')
         n = self.degree
         if n <= 3:
-            return _elevate_ctrl(self.ctrl, 3 - n)
+            return kb.elevate(self.ctrl, 3 - n)
         seg = np.arange(len(self))
         u0, u1 = np.zeros(len(self)), np.ones(len(self))
         done_seg, done_u, done_c = [], [], []
         for level in range(48):
-            piece = _subsegment_ctrl(self.ctrl[seg], u0, u1)
+            piece = kb.subsegment(self.ctrl[seg], u0, u1)
             cub = np.empty(piece.shape[:1] + (4,) + piece.shape[2:])
             cub[:, 0], cub[:, 3] = piece[:, 0], piece[:, -1]
             cub[:, 1] = piece[:, 0] + (n / 3.0) * (piece[:, 1] - piece[:, 0])
             cub[:, 2] = piece[:, -1] - (n / 3.0) * (piece[:, -1] - piece[:, -2])
-            err = np.linalg.norm(piece - _elevate_ctrl(cub, n - 3), axis=2).max(axis=1)
+            err = np.linalg.norm(piece - kb.elevate(cub, n - 3), axis=2).max(axis=1)
             ok = err <= tol
             if level == 47:
                 ok[:] = True
@@ -698,8 +543,7 @@ class PiecewiseBezier(CurveMixin):
     def flatten(self, tolerance=0.25):
         """Polyline through the curve within ``tolerance`` (device units):
         (K, D) float64, first and last points exact (via
-        :func:`raster.flatten.flatten_beziers`)."""
-        from ..flatten import flatten_beziers
+        :func:`raster.geometry.flattening.flatten_beziers`)."""
         tol = as_scalar(tolerance, 'tolerance', 0.0)
         if tol <= 0:
             raise CurveError('tolerance must be positive')
@@ -715,7 +559,7 @@ class PiecewiseBezier(CurveMixin):
         return pts[keep]
 
     def to_path(self, tolerance=0.25):
-        """A :class:`raster.path.Path` of the (x, y) projection: one contour
+        """A :class:`raster.geometry.path.Path` of the (x, y) projection: one contour
         of lines, quadratics or cubics for degrees 1-3 (exact); higher
         degrees as cubics within ``tolerance`` (see :meth:`to_cubics`)."""
         b = PathBuilder()
@@ -750,5 +594,5 @@ class PiecewiseBezier(CurveMixin):
         pen.endPath()
 
     def continuity(self, tolerance=1e-9):
-        from .continuity import continuity
-        return continuity(self, tolerance)
+        """Continuity at each joint; see :func:`raster.curves.continuity.continuity`."""
+        return _continuity(self, tolerance)

@@ -31,8 +31,9 @@ zeros, uniform interior knots, ``p + 1`` ones; the curve then starts at
 
 import numpy as np
 
-from ._base import MAX_CURVE_COORD, CurveError, CurveMixin, as_params, as_points, shape_out
-from .bezier import PiecewiseBezier, _check_degree
+from .base import CurveMixin
+from .bezier import PiecewiseBezier
+from .checks import MAX_CURVE_COORD, CurveError, as_degree, as_params, as_points, shape_out
 
 
 def clamped_uniform_knots(n_points, degree, lo=0.0, hi=1.0):
@@ -90,7 +91,7 @@ class BSpline(CurveMixin):
     """
 
     def __init__(self, points, degree=3, knots=None, closed=False):
-        p = _check_degree(degree)
+        p = as_degree(degree)
         pts = as_points(points, 1, dims=None)
         N = len(pts)
         if N < p + 1:

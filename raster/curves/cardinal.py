@@ -23,7 +23,7 @@ End handling (``ends``):
 
 import numpy as np
 
-from ._base import CurveError, as_params, as_points, as_scalar, shape_out
+from .checks import CurveError, as_params, as_points, as_scalar, shape_out
 from .hermite import HERMITE_MATRIX, HermiteSpline
 
 ENDS = ('duplicate', 'interior', 'closed')

@@ -24,7 +24,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._base import as_scalar
+from .checks import as_scalar
 
 
 class Joint(NamedTuple):

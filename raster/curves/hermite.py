@@ -21,7 +21,8 @@ with tangents computed from neighbouring points.
 
 import numpy as np
 
-from ._base import CurveError, CurveMixin, as_params, as_points, shape_out
+from .base import CurveMixin
+from .checks import CurveError, as_params, as_points, shape_out
 from .bezier import Bezier, PiecewiseBezier
 
 #: Hermite basis matrix; rows multiply t^3, t^2, t, 1, columns P0, P1, T0, T1.

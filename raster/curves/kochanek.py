@@ -22,7 +22,7 @@ handling are those of :mod:`raster.curves.cardinal`.
 """
 
 
-from ._base import as_points, per_key
+from .checks import as_points, per_key
 from .cardinal import neighbours
 from .hermite import HermiteSpline
 

@@ -24,7 +24,8 @@ a spline of a parameter ``t in [0, 1]`` chosen by ``parameterization``:
 
 import numpy as np
 
-from ._base import CurveError, CurveMixin, as_params, as_points, shape_out
+from .base import CurveMixin
+from .checks import CurveError, as_params, as_points, shape_out
 from .bezier import PiecewiseBezier
 
 PARAMETERIZATIONS = ('uniform', 'chord', 'centripetal')

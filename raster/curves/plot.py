@@ -2,8 +2,8 @@
 the convex hull of the control points, rings at the joints between
 segments, and labelled sample points.
 
-PNG output goes through raster's core (:func:`raster.stroke.stroke`,
-:func:`raster.flatten.flatten`, :func:`raster.pixels.scan.coverage`,
+PNG output goes through raster's core (:func:`raster.geometry.stroking.stroke`,
+:func:`raster.geometry.flattening.flatten`, :func:`raster.pixels.scan.coverage`,
 :class:`raster.pixels.canvas.Canvas`); SVG output is written as text with the same
 geometry (labels as glyph outlines, so the file needs no font).  Labels are
 set in Noto Sans (SIL Open Font License, ``NotoSans-LICENSE-OFL.txt``),
@@ -17,11 +17,12 @@ import os
 
 import numpy as np
 
-from ..hull import convex_hull
-from ..path import Path, PathBuilder, TransformPen
-from ..svgpath import circle_path
-from ..transform import Affine
-from ._base import CurveError
+from ..geometry.hull import convex_hull
+from ..geometry.path import Path
+from ..geometry.pens import PathBuilder, TransformPen
+from ..geometry.pathdata import circle_path
+from ..geometry.transform import Affine
+from .checks import CurveError
 
 FONT_FILE = os.path.join(os.path.dirname(__file__), 'NotoSans-Regular-ASCII.ttf')
 
@@ -53,7 +54,7 @@ def _font():
 
 
 def text_path(text, x, y, size=12.0):
-    """Glyph outlines of ``text`` as a :class:`~raster.path.Path` in device
+    """Glyph outlines of ``text`` as a :class:`~raster.geometry.path.Path` in device
     space (y down), baseline starting at ``(x, y)``, ``size`` px per em.
 
     >>> p = text_path('t=1', 0, 20)
@@ -181,9 +182,9 @@ class Plot:
 
     def canvas(self):
         from ..pixels.canvas import Canvas
-        from ..flatten import flatten
+        from ..geometry.flattening import flatten
         from ..pixels.scan import coverage
-        from ..stroke import stroke
+        from ..geometry.stroking import stroke
         c = Canvas(self.width, self.height, background=COLORS['background'])
         for kind, path, st in self.layers:
             if path.is_empty:

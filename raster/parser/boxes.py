@@ -3,9 +3,9 @@ and document sizes (exact boxes of the paths, :func:`raster.bbox`)."""
 
 import math
 
-from ..bbox import bbox as exact_bbox
+from ..geometry.bounds import bbox as exact_bbox
 from ..errors import RasterError
-from ..transform import IDENTITY
+from ..geometry.transform import IDENTITY
 from ..tree import Group, PathNode, walk
 
 __all__ = ['nodes_box', 'object_box', 'layer_box', 'content_box', 'walk_all']

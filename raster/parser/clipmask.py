@@ -8,7 +8,7 @@ recursive reference is ignored (one warning), as resvg does; a clip path
 or mask that leaves nothing visible is :data:`EMPTY`.
 """
 
-from ..transform import IDENTITY, Affine
+from ..geometry.transform import IDENTITY, Affine
 from ..tree import ClipPath, Group, Mask, MaskType
 from .boxes import object_box
 from .context import SVG_NS, State

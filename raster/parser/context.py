@@ -18,7 +18,7 @@ from typing import Optional, Tuple
 
 from .. import limits
 from ..errors import RasterWarning, TransformError
-from ..transform import Affine
+from ..geometry.transform import Affine
 
 __all__ = ['Options', 'State', 'Cache', 'SVG_NS', 'XLINK_HREF', 'NO_OWN']
 

@@ -10,7 +10,7 @@ when something needs one.
 
 import dataclasses
 
-from ..svgpath import rect_path
+from ..geometry.pathdata import rect_path
 from ..tree import BlendMode, ClipPath, Fill, Group, PathNode, SolidPaint
 from .clipmask import EMPTY, build_mask, clip_property, cut_masks
 from .filters import resolve_filter_property

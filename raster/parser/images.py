@@ -22,7 +22,7 @@ import math
 import numpy as np
 
 from ..errors import RasterError
-from ..svgpath import rect_path
+from ..geometry.pathdata import rect_path
 from ..tree import ImageNode, PathNode
 from .context import XLINK_HREF
 from .effects import effects, emit

@@ -48,7 +48,7 @@ on screen (SVG's rotate).  Bad input to the functions here raises
 :class:`~raster.errors.PathError`; nothing in a document raises: invalid
 marker references, sizes or attributes just draw no marker (as resvg).
 
->>> from raster.svgpath import parse_path
+>>> from raster.geometry.pathdata import parse_path
 >>> mv = marker_vertices(parse_path('M 0 0 L 10 0 L 10 10'))
 >>> mv.points.tolist(), mv.angles.tolist()
 ([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]], [0.0, 45.0, 90.0])
@@ -63,9 +63,9 @@ from typing import NamedTuple
 import numpy as np
 
 from ..errors import PathError, RasterError
-from ..path import CLOSE, CUBIC, MOVE, QUAD, Path
-from ..transform import Affine
-from ..bbox import bbox as exact_bbox
+from ..geometry.path import CLOSE, CUBIC, MOVE, QUAD, Path
+from ..geometry.transform import Affine
+from ..geometry.bounds import bbox as exact_bbox
 from ..tree import FillRule, Group, PathNode, SolidPaint
 from .convert import convert_children
 from .effects import clip_rect
@@ -269,7 +269,7 @@ def marker_vertices(path):
     A closed triangle: the closing vertex is the end, and the last corner's
     angle bisects its edge and the closing edge.
 
-    >>> from raster.svgpath import parse_path
+    >>> from raster.geometry.pathdata import parse_path
     >>> mv = marker_vertices(parse_path('M 0 0 L 10 0 L 10 10 Z'))
     >>> mv.points[mv.end].tolist(), mv.mid.tolist(), round(float(mv.angles[2]), 6)
     ([0.0, 0.0], [1, 2], 157.5)

@@ -23,9 +23,9 @@ import dataclasses
 from dataclasses import dataclass
 from typing import Optional, Tuple
 
-from ..bbox import bbox as exact_bbox
+from ..geometry.bounds import bbox as exact_bbox
 from ..errors import RasterError
-from ..transform import IDENTITY, Affine
+from ..geometry.transform import IDENTITY, Affine
 from ..tree import (GradientStop, Group, LinearGradient, Pattern, RadialGradient, SolidPaint,
                     SpreadMethod)
 from .context import SVG_NS, State

@@ -4,7 +4,7 @@ Geometry: lengths in user units, SVG's prefix-on-error rule for path data,
 arcs converted to cubics :data:`ARC_SAFETY` times finer than the
 tolerance divided by the element's scale.  Path data without arcs is
 parsed for the whole document in one vectorized pass
-(:func:`raster.svgpath.parse_paths`) and shared by every element with the
+(:func:`raster.geometry.pathdata.parse_paths`) and shared by every element with the
 same ``d`` (paths are immutable), as are basic shapes with the same
 attributes.  What a computed style says about painting (paints that do
 not depend on the shape, stroke parameters, paint order, antialiasing)
@@ -19,8 +19,8 @@ unpainted.  Inside a ``clipPath`` a shape is filled black with its
 import math
 
 from ..errors import RasterError
-from ..stroke import CAPS, JOINS, StrokeStyle
-from ..svgpath import (circle_path, ellipse_path, line_path, parse_path, parse_paths,
+from ..geometry.stroking import LineCap, LineJoin, StrokeStyle
+from ..geometry.pathdata import (circle_path, ellipse_path, line_path, parse_path, parse_paths,
                        polyline_path, rect_path)
 from ..tree import Fill, FillRule, Group, PathNode, SolidPaint, Stroke
 from .context import SVG_NS
@@ -46,6 +46,8 @@ _GEOMETRY_ATTRS = {'rect': ('x', 'y', 'width', 'height', 'rx', 'ry'), 'circle': 
 # arcs are re-flattened for marker placement with a tolerance so large that
 # only the "at most 90 degrees per piece" rule splits them (as resvg does)
 _PLACEMENT_TOL = 1e9
+_JOINS = frozenset(m.value for m in LineJoin)
+_CAPS = frozenset(m.value for m in LineCap)
 
 
 def convert_shape(el, state, cache, parent):
@@ -390,7 +392,7 @@ def _compute_stroke_params(inh, ctx):
         v = parse_length(do, 'other', ctx)
         if v is not None:
             off = v
-    style = StrokeStyle(width=w, join=join if join in JOINS else 'miter',
-                        cap=cap if cap in CAPS else 'butt', miterlimit=ml, dash=dash,
+    style = StrokeStyle(width=w, join=join if join in _JOINS else LineJoin.MITER,
+                        cap=cap if cap in _CAPS else LineCap.BUTT, miterlimit=ml, dash=dash,
                         dash_offset=off)
     return style, opacity(inh.get('stroke-opacity'))

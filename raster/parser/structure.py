@@ -12,8 +12,8 @@ detection and the use depth limit.
 import math
 
 from ..errors import RasterError, SVGError
-from ..svgpath import rect_path
-from ..transform import IDENTITY, Affine
+from ..geometry.pathdata import rect_path
+from ..geometry.transform import IDENTITY, Affine
 from ..tree import Fill, Group, PathNode, SolidPaint, Tree
 from .boxes import content_box, layer_box, walk_all
 from .context import State

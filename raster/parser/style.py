@@ -8,7 +8,7 @@ elements with the same declarations under the same parent style, so they
 must never be modified.  ``inherit`` takes the parent's computed value.
 """
 
-from ..transform import IDENTITY, Affine
+from ..geometry.transform import IDENTITY, Affine
 from .context import NO_OWN, SVG_NS
 from .properties import INHERITED, PROPERTIES
 from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length, parse_number,

@@ -51,10 +51,10 @@ import numpy as np
 
 from .. import limits
 from ..errors import RasterError
-from ..flatten import flatten
+from ..geometry.flattening import flatten
 from ..fonts import Font, FontDB, FontError, cached, parse_font_family
-from ..path import Path
-from ..transform import Affine
+from ..geometry.path import Path
+from ..geometry.transform import Affine
 from ..tree import PathNode
 from .effects import wrap
 from .shapes import fill_and_stroke, geometry

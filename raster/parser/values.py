@@ -23,7 +23,7 @@ import re
 from typing import NamedTuple, Optional
 
 from ..errors import SVGError
-from ..transform import Affine
+from ..geometry.transform import Affine
 
 __all__ = [
     'ValueSyntaxError', 'CURRENT_COLOR', 'Paint', 'PAINT_NONE',

@@ -55,7 +55,7 @@ def lighting(alpha, light, color, surface, k, exponent, specular, t=None):
     surface, k, exponent : float
         surfaceScale, diffuse/specular constant, specular exponent.
     specular : bool
-    t : raster.transform.Affine or None
+    t : raster.geometry.transform.Affine or None
         User space to pixels for light positions (None: identity).
 
     Returns

@@ -11,7 +11,7 @@ __all__ = ['hairline_edges', 'hairline_outline']
 
 def hairline_edges(pl, cap, join, miterlimit):
     """Outline edges of a 1 device pixel wide stroke along device-space
-    polylines ``pl`` (:class:`raster.flatten.Polylines`), for hairlines:
+    polylines ``pl`` (:class:`raster.geometry.flattening.Polylines`), for hairlines:
     :func:`hairline_outline` with one cap, join and miter limit.
 
     Returns
@@ -28,7 +28,7 @@ def hairline_edges(pl, cap, join, miterlimit):
 
 def hairline_outline(pl, capped, mitered, miterlimit):
     """Outline edges of 1 device pixel wide strokes along device-space
-    polylines ``pl`` (:class:`raster.flatten.Polylines`), for hairlines.
+    polylines ``pl`` (:class:`raster.geometry.flattening.Polylines`), for hairlines.
 
     The stroke of a polyline is the union of a 1 px wide rectangle per
     segment, a bevel triangle at each vertex between two segments (plus the
@@ -46,7 +46,7 @@ def hairline_outline(pl, capped, mitered, miterlimit):
 
     Parameters
     ----------
-    pl : raster.flatten.Polylines
+    pl : raster.geometry.flattening.Polylines
         K polylines, device pixels.
     capped, mitered : (K,) bool ndarray
     miterlimit : (K,) float64 ndarray

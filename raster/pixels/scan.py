@@ -49,7 +49,8 @@ import numpy as np
 
 from .. import limits
 from ..errors import CanvasError, LimitError, PathError
-from ..flatten import flatten
+from ..geometry.flattening import flatten
+from ..geometry.rules import FillRule
 
 __all__ = ['Mask', 'coverage', 'coverage_many', 'coverage_batch', 'path_coverage', 'check_canvas_size', 'SUBSCANLINES']
 
@@ -226,7 +227,7 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
         changes the winding of the pixels to its right.
     width, height : int
         Canvas size in pixels.
-    fill_rule : {'nonzero', 'evenodd'}
+    fill_rule : FillRule or {'nonzero', 'evenodd'}
     antialias : bool
         True: exact area coverage of every pixel.  False
         (``shape-rendering: crispEdges``): a pixel is 1 when its centre is
@@ -296,9 +297,7 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
     True
     """
     width, height = check_canvas_size(width, height)
-    if fill_rule not in ('nonzero', 'evenodd'):
-        raise PathError("fill_rule must be 'nonzero' or 'evenodd', got %r" % (fill_rule,))
-    evenodd = fill_rule == 'evenodd'
+    evenodd = _is_evenodd(fill_rule)
     e = _check_edges(edges)
     if len(e) == 0:
         return None
@@ -319,27 +318,27 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
 
 def path_coverage(path, width, height, fill_rule='nonzero', antialias=True, clip=None,
                   tolerance=0.25, transform=None):
-    """Coverage of a :class:`~raster.path.Path` filled on a canvas.
+    """Coverage of a :class:`~raster.geometry.path.Path` filled on a canvas.
 
-    The path is flattened with :func:`raster.flatten.flatten` (every contour
+    The path is flattened with :func:`raster.geometry.flattening.flatten` (every contour
     closed) and scan converted with :func:`coverage`.
 
     Parameters
     ----------
-    path : raster.path.Path
+    path : raster.geometry.path.Path
     width, height, fill_rule, antialias, clip
         As for :func:`coverage`.
     tolerance : float
         Largest distance in device pixels between a curve and its flattened
         polyline (default 0.25); the scan conversion itself is exact.
-    transform : raster.transform.Affine or None
+    transform : raster.geometry.transform.Affine or None
         User space to device space.
 
     Returns
     -------
     Mask or None
 
-    >>> from raster.path import Path
+    >>> from raster.geometry.path import Path
     >>> m = path_coverage(Path.polygon([(1, 1), (3, 1), (3, 2)]), 4, 4)
     >>> m.box, float(m.data.sum())
     ((1, 1, 3, 2), 1.0)
@@ -1132,11 +1131,18 @@ def _per_shape(value, n, name, kinds):
     return vals
 
 
+def _is_evenodd(rule):
+    """True for the even-odd rule, False for nonzero (a
+    :class:`~raster.geometry.rules.FillRule` or its keyword)."""
+    r = FillRule.lookup(rule)
+    if r is None:
+        raise PathError("fill_rule must be 'nonzero' or 'evenodd', got %r" % (rule,))
+    return r is FillRule.EVENODD
+
+
 def _rules_evenodd(rules):
-    for r in set(rules):
-        if r not in ('nonzero', 'evenodd'):
-            raise PathError("fill_rule must be 'nonzero' or 'evenodd', got %r" % (r,))
-    return np.array([r == 'evenodd' for r in rules], bool)
+    eo = {r: _is_evenodd(r) for r in set(rules)}
+    return np.array([eo[r] for r in rules], bool)
 
 
 def coverage_many(edge_arrays, width, height, fill_rules='nonzero', antialias=True, clip=None,
@@ -1157,7 +1163,7 @@ def coverage_many(edge_arrays, width, height, fill_rules='nonzero', antialias=Tr
         The edges of each shape, device pixels, as for :func:`coverage`.
     width, height : int
         Canvas size in pixels.
-    fill_rules : {'nonzero', 'evenodd'} or sequence of them
+    fill_rules : FillRule, {'nonzero', 'evenodd'} or a sequence of them
         One rule for all shapes, or one per shape.
     antialias : bool or sequence of bool
         One flag for all shapes, or one per shape.

@@ -11,7 +11,7 @@ many paths at once), :mod:`.bounds` (device boxes of nodes),
 :mod:`.filters` (filter primitives on a layer).  The renderer imports the
 tree, the geometry kernel and the pixel layer; never the parser.
 
->>> from raster.path import Path
+>>> from raster.geometry.path import Path
 >>> from raster.tree import Tree, Group, PathNode, Fill, SolidPaint
 >>> sq = Path.polygon([(2, 2), (8, 2), (8, 8), (2, 8)])
 >>> tree = Tree(10, 10, Group(children=[PathNode(path=sq, fill=Fill(SolidPaint((1, 0, 0, 1))))]))
@@ -26,7 +26,7 @@ from typing import Optional, Tuple
 from .. import _malloc, limits
 from ..errors import CanvasError, SVGError
 from ..pixels.canvas import Canvas
-from ..transform import IDENTITY, Affine
+from ..geometry.transform import IDENTITY, Affine
 from ..tree import Group, Tree
 from .draw import Renderer
 

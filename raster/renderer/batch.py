@@ -8,11 +8,11 @@ one canvas (not inside layered groups), and the first request for a
 queued node computes the masks of a whole batch of queued nodes at once:
 
 * fills and undashed hairlines are flattened together
-  (:func:`raster.flatten.flatten_joined`), the hairlines outlined in one
+  (:func:`raster.geometry.flattening.flatten_joined`), the hairlines outlined in one
   pass (:func:`raster.pixels.hairline.hairline_outline`) and every mask
   scan converted in one :func:`raster.pixels.scan.coverage_batch` call
   (hairlines with ``exact=False``);
-* other strokes are outlined with one :func:`raster.stroke.stroke_many`
+* other strokes are outlined with one :func:`raster.geometry.stroking.stroke_many`
   call per stroke style, flattened together and scan converted in one
   batch.
 
@@ -26,10 +26,10 @@ whose batch failed) is drawn on its own.
 import numpy as np
 
 from ..errors import RasterError
-from ..flatten import flatten, flatten_joined
+from ..geometry.flattening import flatten, flatten_joined
 from ..pixels.hairline import hairline_edges, hairline_outline
 from ..pixels.scan import coverage, coverage_batch, path_coverage
-from ..stroke import StrokeStyle, hairline_scale, stroke as stroke_outline, stroke_many
+from ..geometry.stroking import StrokeStyle, hairline_scale, stroke as stroke_outline, stroke_many
 from ..tree import Group, PathNode
 from .bounds import clip_rect, device_area, stroke_reach
 
@@ -251,8 +251,8 @@ class Masks:
     def _flush_strokes(self, key, canvas):
         """Outline queued strokes for ``canvas`` in document order, up to
         and including ``key`` and then while the batch has room: one
-        :func:`raster.stroke.stroke_many` call per stroke style, then one
-        :func:`raster.flatten.flatten_joined` and one
+        :func:`raster.geometry.stroking.stroke_many` call per stroke style, then one
+        :func:`raster.geometry.flattening.flatten_joined` and one
         :func:`raster.pixels.scan.coverage_batch` call for all outlines."""
         items = self._take(self._stroke_pending, key, canvas, BATCH_VERBS // 4)
         if not items:

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from ..path import CLOSE, LINE, MOVE
+from ..geometry.path import CLOSE, LINE, MOVE
 from ..tree import Group, ImageNode, PathNode
 from .filters import filter_box
 

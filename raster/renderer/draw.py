@@ -25,12 +25,12 @@ import numpy as np
 
 from .. import limits
 from ..errors import LimitError, RasterError, RasterWarning
-from ..path import Path
+from ..geometry.path import Path
 from ..pixels.canvas import Canvas
 from ..pixels.compositing import blend_layer
 from ..pixels.scan import path_coverage
 from ..pixels.views import ClipRect
-from ..transform import Affine
+from ..geometry.transform import Affine
 from ..tree import (Group, ImageNode, LinearGradient, MaskType, PaintItem, PathNode, Pattern,
                     RadialGradient, SolidPaint)
 from .batch import Masks

@@ -22,7 +22,7 @@ from ..errors import RasterError
 from ..pixels import compositing
 from ..pixels import effects as fx
 from ..pixels.effects import FilterImage
-from ..transform import Affine
+from ..geometry.transform import Affine
 from ..tree import filter as F
 
 __all__ = ['apply_filters', 'filter_box', 'filter_pixel_box']
@@ -91,7 +91,7 @@ def apply_filters(filters, data, t, tolerance=None, draw=None):
     filters : sequence of raster.tree.filter.Filter
     data : (H, W, 4) float32 ndarray
         Premultiplied sRGB layer holding the element's rendering.
-    t : raster.transform.Affine
+    t : raster.geometry.transform.Affine
         The element's user space to layer pixels.
     tolerance : float or None
         Passed to the blurs (None: the specification's box blurs, as

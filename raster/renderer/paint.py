@@ -20,9 +20,9 @@ import numpy as np
 from PIL import Image
 
 from ..errors import RasterError
-from ..path import Path
+from ..geometry.path import Path
 from ..pixels.scan import path_coverage
-from ..transform import Affine
+from ..geometry.transform import Affine
 from ..tree import LinearGradient
 
 __all__ = ['gradient_colors', 'draw_pixels', 'sample', 'resample_window']

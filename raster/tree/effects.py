@@ -1,15 +1,15 @@
 """Group effects of the render tree: clip paths, masks and blend modes."""
 
-import enum
+from ..geometry.rules import StrChoice
 from dataclasses import dataclass
 from typing import Optional, Tuple
 
-from ..transform import IDENTITY, Affine
+from ..geometry.transform import IDENTITY, Affine
 
 __all__ = ['BlendMode', 'MaskType', 'ClipPath', 'Mask']
 
 
-class BlendMode(str, enum.Enum):
+class BlendMode(StrChoice):
     """``mix-blend-mode`` (and ``feBlend`` ``mode``): the 16 blend modes of
     Compositing and Blending Level 1."""
     NORMAL = 'normal'
@@ -30,7 +30,7 @@ class BlendMode(str, enum.Enum):
     LUMINOSITY = 'luminosity'
 
 
-class MaskType(str, enum.Enum):
+class MaskType(StrChoice):
     """``mask-type``: the mask value is the content's luminance times its
     alpha, or its alpha alone."""
     LUMINANCE = 'luminance'

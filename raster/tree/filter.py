@@ -12,7 +12,7 @@ a lighting primitive without a light, an unsupported kind) is a
 The renderer dispatches on the primitive's class.
 """
 
-import enum
+from ..geometry.rules import StrChoice
 from dataclasses import dataclass, field
 from typing import Optional, Tuple, Union
 
@@ -35,7 +35,7 @@ Rect = Tuple[Optional[float], Optional[float], Optional[float], Optional[float]]
 TRANSPARENT = (0.0, 0.0, 0.0, 0.0)
 
 
-class Source(str, enum.Enum):
+class Source(StrChoice):
     """The filter's own inputs, and the previous primitive's result."""
     GRAPHIC = 'SourceGraphic'
     ALPHA = 'SourceAlpha'
@@ -94,7 +94,7 @@ class Merge(Primitive):
     """feMerge: the inputs composited in order (source-over)."""
 
 
-class CompositeOperator(str, enum.Enum):
+class CompositeOperator(StrChoice):
     """feComposite ``operator``."""
     OVER = 'over'
     IN = 'in'
@@ -159,7 +159,7 @@ class ComponentTransfer(Primitive):
     funcs: dict = field(default_factory=dict)
 
 
-class MorphologyOperator(str, enum.Enum):
+class MorphologyOperator(StrChoice):
     ERODE = 'erode'
     DILATE = 'dilate'
 
@@ -186,7 +186,7 @@ class Image(Primitive):
     shift: Tuple[float, float] = (0.0, 0.0)
 
 
-class EdgeMode(str, enum.Enum):
+class EdgeMode(StrChoice):
     DUPLICATE = 'duplicate'
     WRAP = 'wrap'
     NONE = 'none'

@@ -7,8 +7,8 @@ from typing import Iterator, List, Optional, Tuple
 
 import numpy as np
 
-from ..path import Path
-from ..transform import IDENTITY, Affine
+from ..geometry.path import Path
+from ..geometry.transform import IDENTITY, Affine
 from .effects import BlendMode, ClipPath, Mask
 from .paint import DEFAULT_PAINT_ORDER, Fill, PaintItem, Stroke
 

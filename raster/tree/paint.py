@@ -7,13 +7,13 @@ applied ``objectBoundingBox`` units, ``gradientTransform`` and
 node's CTM alone.
 """
 
-import enum
+from ..geometry.rules import StrChoice
 from dataclasses import dataclass
 from typing import Optional, Tuple, Union
 
-from ..stroke import StrokeStyle
-from ..path import FillRule
-from ..transform import IDENTITY, Affine
+from ..geometry.stroking import StrokeStyle
+from ..geometry.rules import FillRule
+from ..geometry.transform import IDENTITY, Affine
 
 __all__ = ['RGBA', 'SolidPaint', 'GradientStop', 'LinearGradient', 'RadialGradient', 'Pattern',
            'Paint', 'SpreadMethod', 'Fill', 'Stroke', 'PaintItem', 'DEFAULT_PAINT_ORDER',
@@ -23,14 +23,14 @@ __all__ = ['RGBA', 'SolidPaint', 'GradientStop', 'LinearGradient', 'RadialGradie
 RGBA = Tuple[float, float, float, float]
 
 
-class SpreadMethod(str, enum.Enum):
+class SpreadMethod(StrChoice):
     """How a gradient continues outside [0, 1] (``spreadMethod``)."""
     PAD = 'pad'
     REFLECT = 'reflect'
     REPEAT = 'repeat'
 
 
-class PaintItem(str, enum.Enum):
+class PaintItem(StrChoice):
     """One item of ``paint-order``."""
     FILL = 'fill'
     STROKE = 'stroke'
@@ -118,8 +118,8 @@ class Stroke:
     along the outline of ``style`` (the geometry kernel's stroke style:
     width, join, cap, miter limit, dashes, all in the path's user units).
 
-    >>> Stroke.of(SolidPaint((0, 0, 0, 1)), width=2, cap='round').style.cap
-    'round'
+    >>> Stroke.of(SolidPaint((0, 0, 0, 1)), width=2, cap='round').style.cap == 'round'
+    True
     """
     paint: Paint
     style: StrokeStyle = StrokeStyle()

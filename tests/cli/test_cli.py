@@ -66,7 +66,7 @@ def one_error_line(err, prog):
 
 def _circle_tree(with_fill=False, transform=None):
     from raster.tree import Fill, Group, PathNode, SolidPaint, Stroke, Tree
-    from raster.transform import Affine
+    from raster.geometry.transform import Affine
     from _geometry import kappa_circle
     black = SolidPaint((0, 0, 0, 1))
     node = PathNode(id='c', path=kappa_circle(50.0, 50.0, 10.0), stroke=Stroke.of(black, width=4),
@@ -79,7 +79,7 @@ def test_boxes_on_resolved_tree():
     """Circle r = 10 at (50, 50), stroke width 4: fill box [40, 40, 60, 60],
     stroke box [38, 38, 62, 62]; a root scale (viewBox) does not change user
     units."""
-    from raster.transform import Affine
+    from raster.geometry.transform import Affine
     for t in (None, Affine.scale(3)):
         res = svg_bbox.boxes(_circle_tree(transform=t))
         assert res['document'] == pytest.approx([40, 40, 60, 60], abs=1e-6)
@@ -88,7 +88,7 @@ def test_boxes_on_resolved_tree():
 
 
 def test_collect_on_resolved_tree():
-    from raster.transform import Affine
+    from raster.geometry.transform import Affine
     (s,) = svg_flatten.collect(_circle_tree(with_fill=True, transform=Affine.scale(2)), 0.05)
     assert s['id'] == 'c' and s['fill'] == '#000000' and s['stroke_width'] == 4
     pts = np.array(s['polylines'][0]['points'])

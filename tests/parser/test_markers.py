@@ -13,15 +13,15 @@ from hypothesis import assume, given, settings, strategies as hs
 
 import raster
 from raster.errors import RasterWarning
-from raster.path import Path
+from raster.geometry.path import Path
 from raster.parser import build_tree
 from raster.parser.document import load_document
 from raster.parser.markers import (MARKABLE, context_paint, marker_transform, marker_vertices,
                                 parse_orient)
 from raster.tree import Group, LinearGradient, Pattern, PathNode, SolidPaint, walk
-from raster.svgpath import parse_path
+from raster.geometry.pathdata import parse_path
 from raster.testing import compare_images
-from raster.transform import Affine
+from raster.geometry.transform import Affine
 
 from _shared import SUITE_TESTS as SUITE
 BLUE = (0.0, 0.0, 1.0, 1.0)
@@ -594,7 +594,7 @@ _PT = hs.tuples(hs.integers(0, 4), hs.integers(0, 4))    # small grid: many coin
 @settings(max_examples=200, deadline=None)
 @given(_PT, hs.lists(hs.tuples(_CMD, _PT, _PT, _PT), min_size=1, max_size=12))
 def test_vectorized_angles_match_per_vertex_rules(p0, cmds):
-    from raster.path import PathBuilder
+    from raster.geometry.pens import PathBuilder
     b = PathBuilder()
     b.moveTo(p0)
     segs = [('M', None, None, tuple(map(float, p0)))]

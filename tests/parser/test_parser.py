@@ -16,7 +16,7 @@ from raster.errors import RasterWarning, SVGError
 from raster.parser import build_tree
 from raster.parser.document import load_document
 from raster.tree import ClipPath, Group, PathNode, SolidPaint, walk
-from raster.transform import Affine
+from raster.geometry.transform import Affine
 
 from _shared import SUITE_TESTS as SUITE
 GREEN = (0.0, 128 / 255, 0.0, 1.0)
@@ -721,7 +721,7 @@ def test_identical_path_data_share_one_path():
 
 
 def test_many_paths_batch_parsed_like_one_by_one():
-    from raster.svgpath import parse_path
+    from raster.geometry.pathdata import parse_path
     rng = np.random.default_rng(11)
     ds = ['M%d,%d' % tuple(rng.integers(0, 90, 2)) +
           ''.join('l%d,%d' % tuple(rng.integers(-5, 6, 2)) for _ in range(5)) + 'z'

@@ -7,10 +7,10 @@ import pytest
 from hypothesis import given, settings, strategies as st
 from PIL import Image
 
-from raster.bbox import bbox
+from raster.geometry.bounds import bbox
 from raster.errors import RasterWarning
 from raster.fonts import Font, FontDB
-from raster.path import Path
+from raster.geometry.path import Path
 from raster.svg import load_svg, render
 from raster.parser.text import collapse_whitespace
 from raster.tree import PathNode, walk

@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from raster.errors import RasterError, SVGError
-from raster.transform import Affine
+from raster.geometry.transform import Affine
 from raster.parser import values as V
 from raster.parser.values import (
     CURRENT_COLOR, PAINT_NONE, LengthContext, Paint, parse_angle, parse_color,

@@ -147,6 +147,20 @@ def test_self_intersecting_and_overlapping_match_supersampling(name, rule):
     assert got.min() >= 0 and got.max() <= 1
 
 
+def test_fill_rules_as_enum_or_keyword():
+    from raster.geometry.rules import FillRule
+    for rule in FillRule:
+        a = coverage(STAR, 40, 40, fill_rule=rule)
+        b = coverage(STAR, 40, 40, fill_rule=rule.value)
+        assert a.box == b.box and np.array_equal(a.data, b.data)
+    m = scan.coverage_many([STAR, STAR], 40, 40, fill_rules=[FillRule.EVENODD, 'nonzero'])
+    assert np.array_equal(m[0].data, coverage(STAR, 40, 40, fill_rule='evenodd').data)
+    with pytest.raises(PathError, match="fill_rule must be 'nonzero' or 'evenodd'"):
+        coverage(STAR, 40, 40, fill_rule='odd')
+    with pytest.raises(PathError):
+        coverage(STAR, 40, 40, fill_rule=['nonzero'])
+
+
 def test_pentagram_area_is_exact():
     # the {5/2} star's outline is a 10-gon alternating between the
     # circumradius r and the inner radius ri: area 5 r ri sin(36 deg)

@@ -18,7 +18,7 @@ from raster.pixels import compositing as C
 from raster.pixels import effects as F
 from raster.renderer.filters import apply_filters
 from raster.tree import filter as T
-from raster.transform import Affine
+from raster.geometry.transform import Affine
 from raster.testing import compare_images
 
 from _shared import SUITE_ROOT as SUITE

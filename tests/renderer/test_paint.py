@@ -15,13 +15,13 @@ import pytest
 from hypothesis import given, settings, strategies as hs
 
 from raster.pixels.canvas import Canvas
-from raster.path import Path
+from raster.geometry.path import Path
 from raster.pixels.scan import Mask
 from raster.renderer import paint
 from raster.renderer.paint import (color_lut, draw_pixels, gradient_colors, resample_window, sample,
                               stop_colors)
 from raster.tree import GradientStop, ImageNode, LinearGradient, RadialGradient
-from raster.transform import Affine
+from raster.geometry.transform import Affine
 
 LEVEL = 1.0 / 255.0
 SQUARE = Path.polygon([(0, 0), (10, 0), (10, 10), (0, 10)])

@@ -8,8 +8,9 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from raster.errors import CanvasError, SVGError
-from raster.path import Path, PathBuilder
-from raster.transform import Affine
+from raster.geometry.path import Path
+from raster.geometry.pens import PathBuilder
+from raster.geometry.transform import Affine
 from raster.renderer import output_size, render_tree
 from raster.renderer import paint as paint_mod
 from raster.tree import (ClipPath, Fill, GradientStop, Group, ImageNode, LinearGradient, Mask,
@@ -19,7 +20,7 @@ from _geometry import kappa_circle as circle
 import raster.renderer as renderer_pkg
 from raster.renderer import batch as batch_mod, draw as draw_mod
 from raster.pixels.hairline import hairline_edges
-from raster.flatten import flatten
+from raster.geometry.flattening import flatten
 
 RED = SolidPaint((1.0, 0.0, 0.0, 1.0))
 BLUE = SolidPaint((0.0, 0.0, 1.0, 1.0))
@@ -217,9 +218,9 @@ def test_hairline_matches_general_stroker_on_convex_polygons(seed, join):
     """Invariance: on a convex polygon (no spikes) the hairline outline
     (union of segment rectangles and join triangles) covers exactly what the
     general stroker's 1 px wide outline covers."""
-    from raster.hull import convex_hull
+    from raster.geometry.hull import convex_hull
     from raster.pixels.scan import coverage, path_coverage
-    from raster.stroke import StrokeStyle, stroke as stroke_outline
+    from raster.geometry.stroking import StrokeStyle, stroke as stroke_outline
     rng = np.random.default_rng(seed)
     pts = np.asarray(convex_hull(rng.uniform(3, 37, (12, 2))))
     path = Path.polygon(pts)

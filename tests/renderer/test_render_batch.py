@@ -6,10 +6,10 @@ import pytest
 
 import importlib
 from raster.renderer import batch as batch_mod
-from raster.path import Path
+from raster.geometry.path import Path
 from raster.tree import Fill, Group, PathNode, SolidPaint, Stroke, Tree
 from raster.renderer import render_tree
-from raster.transform import Affine
+from raster.geometry.transform import Affine
 from _geometry import kappa_circle as circle
 
 

@@ -8,8 +8,8 @@ import pytest
 
 from raster.parser import build_tree
 from raster.parser.document import load_document
-from raster.stroke import StrokeStyle
-from raster.transform import Affine
+from raster.geometry.stroking import StrokeStyle
+from raster.geometry.transform import Affine
 from raster.tree import (BlendMode, Fill, FillRule, Group, LinearGradient, MaskType, PaintItem,
                          PathNode, Pattern, RadialGradient, SolidPaint, SpreadMethod, Stroke,
                          walk)

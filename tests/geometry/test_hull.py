@@ -1,4 +1,4 @@
-"""Tests of raster.hull.convex_hull."""
+"""Tests of raster.geometry.hull.convex_hull."""
 
 import numpy as np
 import pytest
@@ -6,7 +6,7 @@ from hypothesis import given, settings, strategies as st
 from scipy.spatial import ConvexHull
 
 from raster.errors import PathError
-from raster.hull import convex_hull
+from raster.geometry.hull import convex_hull
 
 
 def signed_area(H):
@@ -119,7 +119,7 @@ def test_bad_input(bad):
 
 
 def test_sequential_fallback_agrees(monkeypatch):
-    import raster.hull as hull
+    import raster.geometry.hull as hull
     rng = np.random.default_rng(3)
     P = rng.normal(size=(3000, 2))
     H = convex_hull(P)

@@ -7,8 +7,8 @@ import pytest
 from raster.curves import (Bezier, Hermite, CardinalSpline, CatmullRom, KochanekBartels,
                            BSpline, BetaSpline, NaturalSpline, FunctionSpline, PiecewiseBezier,
                            CurveError)
-from raster.path import RecordingPen
-from raster.svgpath import parse_path
+from raster.geometry.pens import RecordingPen
+from raster.geometry.pathdata import parse_path
 
 R = np.random.default_rng(20261122)
 P5 = R.normal(size=(5, 2)) * 20

@@ -10,8 +10,9 @@ same polygon runs clockwise.
 """
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from .errors import PathError
+from ..errors import PathError
 
 __all__ = ['convex_hull']
 
@@ -73,7 +74,7 @@ def _half_chain(P):
     return np.array(out, dtype=np.float64)
 
 
-def convex_hull(points):
+def convex_hull(points: ArrayLike) -> np.ndarray:
     """Convex hull of 2-D points.
 
     Parameters

@@ -6,7 +6,7 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from raster.errors import PathError
-from raster.svgpath import parse_path, parse_paths
+from raster.geometry.pathdata import parse_path, parse_paths
 
 _ARGS = {'M': 2, 'L': 2, 'H': 1, 'V': 1, 'C': 6, 'S': 4, 'Q': 4, 'T': 2, 'A': 7, 'Z': 0}
 
@@ -116,7 +116,7 @@ def test_bad_input_raises_path_error():
 def test_batch_of_long_data_equals_one_by_one(ds):
     # enough data for the vectorized lexer (when no string needs the
     # regular expression one): same paths either way
-    from raster import svgpath
+    from raster.geometry import pathdata as svgpath
     k = svgpath.FAST_LEX_CHARS // max(1, sum(map(len, ds))) + 1
     ds = (ds * k)[:200]
     got = parse_paths(ds, 0.1)
@@ -127,7 +127,7 @@ def test_batch_of_long_data_equals_one_by_one(ds):
 @settings(max_examples=80, deadline=None)
 @given(st.lists(data_strings(), max_size=12), st.integers(1, 60), st.integers(1, 80))
 def test_lexing_in_chunks_changes_nothing(ds, chunk, fast_from):
-    from raster import svgpath
+    from raster.geometry import pathdata as svgpath
     d = '|'.join(ds)
     nums, kinds = svgpath._split(svgpath._mark(d))
     want = np.array(nums, np.float64) if nums else np.zeros(0)

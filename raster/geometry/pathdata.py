@@ -40,9 +40,12 @@ import math
 import re
 import sys
 
-import numpy as np
+from typing import List, Optional, Sequence
 
-from .errors import LimitError, PathError
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..errors import LimitError, PathError
 from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
 
 __all__ = ['parse_path', 'parse_paths', 'arc_to_cubics', 'parse_points', 'rect_path',
@@ -128,8 +131,8 @@ def _check_tolerance(tolerance):
 
 
 # -- parse_path ------------------------------------------------------------------------
-def parse_path(d, tolerance=0.01, strict=True):
-    """Parse SVG path data into a :class:`~raster.path.Path`.
+def parse_path(d: str, tolerance: float = 0.01, strict: bool = True) -> Path:
+    """Parse SVG path data into a :class:`~raster.geometry.path.Path`.
 
     Parameters
     ----------
@@ -204,7 +207,7 @@ def parse_path(d, tolerance=0.01, strict=True):
     return _build(kinds[:end], vals[:kinds.count(b'#', 0, end)].tolist(), tol)
 
 
-def parse_paths(ds, tolerance=0.01):
+def parse_paths(ds: Sequence[str], tolerance: float = 0.01) -> List[Path]:
     """Parse many path data strings at once, as SVG renders them.
 
     The result equals ``[parse_path(d, tolerance, strict=False) for d in
@@ -1084,7 +1087,8 @@ def _finite(name, *vals):
     return out
 
 
-def arc_to_cubics(p0, rx, ry, phi_deg, large_arc, sweep, p1, tolerance=0.01):
+def arc_to_cubics(p0: ArrayLike, rx: float, ry: float, phi_deg: float, large_arc: bool,
+                  sweep: bool, p1: ArrayLike, tolerance: float = 0.01) -> np.ndarray:
     """Cubic Beziers of an SVG elliptical arc given in endpoint form.
 
     Follows the SVG implementation notes: negative radii use their absolute
@@ -1180,7 +1184,8 @@ def _auto_radii(rx, ry):
     return _finite('radii', rx, ry)
 
 
-def rect_path(x, y, w, h, rx=None, ry=None, tolerance=0.01):
+def rect_path(x: float, y: float, w: float, h: float, rx: Optional[float] = None,
+              ry: Optional[float] = None, tolerance: float = 0.01) -> Path:
     """Path of an SVG ``<rect>`` (SVG 2 equivalent path).
 
     Square corners: ``M x,y H x+w V y+h H x Z`` (the closing edge is drawn
@@ -1238,7 +1243,8 @@ def rect_path(x, y, w, h, rx=None, ry=None, tolerance=0.01):
     return Path(verbs, pts, _checked=True)
 
 
-def ellipse_path(cx, cy, rx=None, ry=None, tolerance=0.01):
+def ellipse_path(cx: float, cy: float, rx: Optional[float] = None, ry: Optional[float] = None,
+                 tolerance: float = 0.01) -> Path:
     """Path of an SVG ``<ellipse>``: starts at ``(cx+rx, cy)``, four quarter
     arcs in the positive-angle direction (clockwise on screen, through
     ``(cx, cy+ry)`` first), then ``Z``.
@@ -1275,7 +1281,7 @@ def ellipse_path(cx, cy, rx=None, ry=None, tolerance=0.01):
     return Path(verbs, pts, _checked=True)
 
 
-def circle_path(cx, cy, r, tolerance=0.01):
+def circle_path(cx: float, cy: float, r: float, tolerance: float = 0.01) -> Path:
     """Path of an SVG ``<circle>``: :func:`ellipse_path` with ``rx = ry = r``
     (empty for ``r <= 0``).
 
@@ -1288,7 +1294,7 @@ def circle_path(cx, cy, r, tolerance=0.01):
     return ellipse_path(cx, cy, r, r, tolerance)
 
 
-def line_path(x1, y1, x2, y2, tolerance=0.01):
+def line_path(x1: float, y1: float, x2: float, y2: float, tolerance: float = 0.01) -> Path:
     """Path of an SVG ``<line>``: ``M x1,y1 L x2,y2`` (kept when of zero
     length, for caps).  ``tolerance`` is accepted for uniformity.
 
@@ -1302,7 +1308,7 @@ def line_path(x1, y1, x2, y2, tolerance=0.01):
     return Path(np.array([MOVE, LINE], np.uint8), pts, _checked=True)
 
 
-def parse_points(s):
+def parse_points(s: str) -> np.ndarray:
     """Parse an SVG ``points`` attribute.
 
     Parameters
@@ -1333,7 +1339,7 @@ def parse_points(s):
     return vals[:len(vals) // 2 * 2].reshape(-1, 2)
 
 
-def polyline_path(points, closed=False, tolerance=0.01):
+def polyline_path(points: ArrayLike, closed: bool = False, tolerance: float = 0.01) -> Path:
     """Path of an SVG ``<polyline>`` (``closed=True``: ``<polygon>``):
     ``M`` to the first point, ``L`` to the others, ``Z`` when closed.
 

@@ -1,4 +1,4 @@
-"""Tests of raster.flatten.flatten_many: equal to per-path flatten."""
+"""Tests of raster.geometry.flattening.flatten_many: equal to per-path flatten."""
 
 import numpy as np
 import pytest
@@ -6,9 +6,9 @@ from hypothesis import given, settings, strategies as st, HealthCheck
 
 from raster import parse_path
 from raster.errors import PathError, TransformError
-from raster.flatten import flatten, flatten_many
-from raster.path import Path
-from raster.transform import Affine
+from raster.geometry.flattening import flatten, flatten_many
+from raster.geometry.path import Path
+from raster.geometry.transform import Affine
 
 
 def same(a, b):
@@ -103,7 +103,7 @@ def test_errors():
 
 @pytest.mark.parametrize('seed', range(4))
 def test_joined_ranges_hold_each_paths_polylines(seed):
-    from raster.flatten import flatten_joined
+    from raster.geometry.flattening import flatten_joined
     rng = np.random.default_rng(50 + seed)
     paths = [random_path(rng) for _ in range(30)]
     ts = [random_affine(rng) for _ in paths]

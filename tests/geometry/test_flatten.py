@@ -11,9 +11,10 @@ from hypothesis import given, settings, strategies as st, HealthCheck
 import raster
 from raster import limits
 from raster.errors import LimitError, PathError
-from raster.flatten import Polylines, flatten, flatten_beziers
-from raster.path import Path, PathBuilder
-from raster.transform import Affine
+from raster.geometry.flattening import Polylines, flatten, flatten_beziers
+from raster.geometry.path import Path
+from raster.geometry.pens import PathBuilder
+from raster.geometry.transform import Affine
 
 K_CIRCLE = 0.5522847498
 
@@ -303,7 +304,7 @@ def test_circle(tol):
 
 
 def test_svg_arcs():
-    from raster.svgpath import parse_path
+    from raster.geometry.pathdata import parse_path
     p = parse_path('M 0 0 A 60 30 30 1 1 80 40 Z', tolerance=1e-4)
     seg = p.segments()
     ctrl = seg.ctrl[seg.degree == 3]
@@ -409,11 +410,14 @@ def test_flatten_path_structure():
 
 
 def test_flatten_public_name():
-    # the function, not the submodule, even after `from raster.flatten import`
+    """raster.flatten is the function; no module of that name shadows it
+    (the function lives in raster.geometry.flattening)."""
+    import importlib.util
     assert raster.flatten is flatten and raster.Polylines is Polylines
+    assert importlib.util.find_spec('raster.flatten') is None
     import subprocess
     import sys
-    code = ('import raster.flatten; from raster.flatten import flatten; '
+    code = ('import raster.geometry.flattening; from raster.geometry.flattening import flatten; '
             'import raster; assert raster.flatten is flatten')
     subprocess.run([sys.executable, '-c', code], check=True)
 
@@ -509,42 +513,13 @@ def test_to_path_round_trip():
 
 
 # -- fast paths -----------------------------------------------------------------
-
-@pytest.mark.parametrize('n', range(1, 9))
-def test_blossom_tables_match_term_by_term(n):
-    # the index-table blossom (few pieces) equals the term-by-term one, and
-    # keeps the end points exact at t = 0 and t = 1
-    fl = importlib.import_module('raster.flatten')
-    rng = np.random.default_rng(n)
-    m = 50
-    P = rng.normal(0, 100, (n + 1, 2, m))
-    a = rng.uniform(0, 1, m)
-    b = np.where(np.arange(m) % 3 == 0, 1.0, a + rng.uniform(0, 1, m) * (1 - a))
-    a[::5] = 0.0
-    Q = fl._blossom(P, a, b)
-    R = fl._blossom_loops(P, a, b)
-    assert np.abs(Q - R).max() <= 1e-12 * np.abs(P).max()
-    one = b == 1.0
-    assert np.array_equal(Q[n][:, one], P[n][:, one])
-    zero = a == 0.0
-    assert np.array_equal(Q[0][:, zero], P[0][:, zero])
-
-
-def test_bernstein_max_of_known_cubics():
-    fl = importlib.import_module('raster.flatten')
-    # (0, 1, 1, 0): 3 t (1 - t), maximum 3/4 at t = 1/2
-    # (0, -1, 1, 0): 3 t (1 - t) (1 - 2 t), extrema -+sqrt(3)/6 at t = 1/2 -+ sqrt(3)/6
-    c = np.array([[0.0, 0.0], [1.0, -1.0], [1.0, 1.0], [0.0, 0.0]])
-    lo, hi = fl._bernstein_max(c)
-    assert lo[0] == 0.0 and abs(hi[0] - 0.75) < 1e-15
-    assert abs(lo[1] + np.sqrt(3) / 6) < 1e-15 and abs(hi[1] - np.sqrt(3) / 6) < 1e-15
-
+# (the blossoms and Bernstein ranges flattening uses: tests/geometry/test_bezier.py)
 
 def test_planar_deviation_bounds_sampled_distance():
     # the planar bound is at least the sampled distance of the curve to its
     # chord segment, and within rounding of it for curves that stay over
     # the chord (exact bound)
-    fl = importlib.import_module('raster.flatten')
+    fl = importlib.import_module('raster.geometry.flattening')
     rng = np.random.default_rng(8)
     for n in (2, 3):
         P = rng.normal(0, 10, (n + 1, 2, 200))

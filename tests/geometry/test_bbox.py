@@ -1,5 +1,7 @@
-"""Tests of raster.bbox: exact boxes against dense sampling, analytic
-shapes, the convex-hull property, transforms, degenerate cases, BoundsPen."""
+"""Tests of raster.geometry.bounds (raster.bbox) and of the segment bounds
+of raster.geometry.bezier: exact boxes against dense sampling, analytic
+shapes, the convex-hull property, transforms, degenerate cases, BoundsPen.
+The root solvers have their own tests (test_roots.py)."""
 
 import math
 from math import comb
@@ -9,11 +11,12 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 import raster
-from raster.bbox import (BoundsPen, bbox, bezier_bbox, quadratic_roots,
-                         segment_bounds, segment_extrema)
 from raster.errors import PathError
-from raster.path import Path, PathBuilder, RecordingPen
-from raster.transform import Affine
+from raster.geometry.bezier import segment_bounds, segment_extrema
+from raster.geometry.bounds import bbox, bezier_bbox
+from raster.geometry.path import Path
+from raster.geometry.pens import BoundsPen, PathBuilder, RecordingPen
+from raster.geometry.transform import Affine
 
 
 def bez_eval(ctrl, t):
@@ -46,39 +49,6 @@ def path_of(ctrl):
     else:
         b.curveTo(ctrl[1], ctrl[2], ctrl[3])
     return b.path()
-
-
-# -- quadratic_roots -------------------------------------------------------------
-def test_quadratic_roots_cases():
-    r = quadratic_roots([1, 0, 1, 1, 0, 1e-300], [-3, 2, 0, 2, 0, 1], [2, -1, 1, 1, 1, -0.5])
-    assert sorted(r[0].tolist()) == [1, 2]
-    assert np.isnan(r[1, 0]) and r[1, 1] == 0.5           # linear
-    assert np.all(np.isnan(r[2]))                          # no real root
-    assert r[3].tolist() == [-1, -1]                       # double root
-    assert np.all(np.isnan(r[4]))                          # constant
-    assert r[5, 1] == pytest.approx(0.5)                   # a ~ 0: linear root kept
-
-
-def test_quadratic_roots_no_cancellation():
-    # x^2 - 1e8 x + 1 = 0: small root 1e-8 suffers cancellation in the
-    # textbook formula
-    r = quadratic_roots(1.0, -1e8, 1.0)
-    assert min(r) == pytest.approx(1e-8, rel=1e-14)
-    assert max(r) == pytest.approx(1e8, rel=1e-14)
-
-
-@settings(max_examples=150, deadline=None)
-@given(st.integers(-1000, 1000), st.integers(-1000, 1000), st.integers(-1000, 1000))
-def test_quadratic_roots_are_roots(a, b, c):
-    a, b, c = a / 7.0, b / 3.0, float(c)
-    r = quadratic_roots(a, b, c)
-    disc = b * b - 4 * a * c
-    # number of real roots: 2 (counted twice for a double root) or none
-    if a != 0:
-        assert np.isnan(r).sum() == (2 if disc < 0 else 0)
-    for x in r[~np.isnan(r)]:
-        scale = abs(a) * x * x + abs(b * x) + abs(c)
-        assert abs(a * x * x + b * x + c) <= 1e-9 * max(scale, 1e-300) + 1e-300
 
 
 # -- exact boxes against sampling ------------------------------------------------------
@@ -292,7 +262,7 @@ def test_stroke_box():
     # zero width draws nothing: the fill box
     assert bbox(ln, stroke={'width': 0}) == (0, 0, 10, 0)
     # a style object works as well as a dict
-    from raster.stroke import StrokeStyle
+    from raster.geometry.stroking import StrokeStyle
     b = bbox(ln, stroke=StrokeStyle(width=4, cap='square'), tolerance=0.01)
     assert b == pytest.approx((-2, -2, 12, 2), abs=0.01)
 
@@ -318,15 +288,24 @@ def test_bounds_pen_truetype_quadratics():
     with pytest.raises(PathError):
         BoundsPen().lineTo((1, 1))
     with pytest.raises(PathError):
-        pen.curveTo((1, 1), (2, 2))
+        pen.curveTo()
+    # curveTo with two points is a quadratic (fontTools' pen protocol)
+    a, b = BoundsPen(), BoundsPen()
+    for q, call in ((a, 'curveTo'), (b, 'qCurveTo')):
+        q.moveTo((0, 0))
+        getattr(q, call)((5, -8), (10, 0))
+    assert a.bounds == b.bounds == (0.0, -4.0, 10.0, 0.0)
 
 
 def test_public_name():
-    # the function, not the submodule, even after `from raster.bbox import`
+    """raster.bbox is the function; no module of that name shadows it
+    (the function lives in raster.geometry.bounds)."""
+    import importlib.util
     assert raster.bbox is bbox
+    assert importlib.util.find_spec('raster.bbox') is None
     import subprocess
     import sys
-    code = ('import raster.bbox; from raster.bbox import bbox; '
+    code = ('import raster.geometry.bounds; from raster.geometry.bounds import bbox; '
             'import raster; assert raster.bbox is bbox')
     subprocess.run([sys.executable, '-c', code], check=True)
 
@@ -344,7 +323,7 @@ def test_consistent_with_flattening(segs, tol):
     # flattened vertices are curve points: inside the exact box; the
     # polyline is within tol of the curve: its box is within tol of the
     # exact box
-    from raster.flatten import flatten
+    from raster.geometry.flattening import flatten
     b = PathBuilder()
     b.moveTo((0, 0))
     for deg, pts in segs:

@@ -5,6 +5,7 @@ Regions are checked with an independent nonzero winding-number sampler
 shoelace areas of the emitted polygons.
 """
 
+import dataclasses
 import math
 
 import numpy as np
@@ -13,10 +14,11 @@ from hypothesis import given, settings, strategies as st
 from scipy.spatial import cKDTree
 
 from raster.errors import LimitError, RasterError
-from raster.path import CLOSE, LINE, MOVE, Path, PathBuilder
-from raster.stroke import (StrokeError, StrokeStyle, dash_pattern, dash_polylines,
-                           DashedLines, hairline_scale, stroke)
-from raster.transform import Affine
+from raster.geometry.path import CLOSE, LINE, MOVE, Path
+from raster.geometry.pens import PathBuilder
+from raster.geometry.stroking import (DashedLines, LineCap, LineJoin, StrokeError, StrokeStyle,
+                                     dash_pattern, dash_polylines, hairline_scale, stroke)
+from raster.geometry.transform import Affine
 
 
 # -- helpers -------------------------------------------------------------------
@@ -143,6 +145,29 @@ def test_bad_arguments_to_stroke():
         stroke(p, {'width': 2})
 
 
+def test_joins_and_caps_are_str_enums():
+    """StrokeStyle stores LineJoin / LineCap members; the SVG keywords and
+    the members are interchangeable, and a style is an immutable, hashable
+    value (strokes are batched by style)."""
+    assert LineJoin.values() == ('miter', 'miter-clip', 'round', 'bevel', 'arcs')
+    assert LineCap.values() == ('butt', 'round', 'square')
+    a = StrokeStyle(width=2, join='bevel', cap=LineCap.ROUND)
+    b = StrokeStyle(width=2.0, join=LineJoin.BEVEL, cap='round')
+    assert a.join is LineJoin.BEVEL and a.cap is LineCap.ROUND
+    assert a.join == 'bevel' and '%s/%s' % (a.join, a.cap) == 'bevel/round'
+    assert a == b and hash(a) == hash(b) and len({a, b}) == 1
+    assert StrokeStyle().join is LineJoin.MITER and StrokeStyle().cap is LineCap.BUTT
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        a.width = 3
+    with pytest.raises(StrokeError, match="unknown line join 'pointy' .*miter-clip"):
+        StrokeStyle(join='pointy')
+    with pytest.raises(StrokeError, match='unknown line cap'):
+        StrokeStyle(cap=['butt'])
+    # the same outline either way
+    p = line((0, 0), (10, 0), (10, 10))
+    assert stroke(p, a) == stroke(p, width=2, join='bevel', cap='round')
+
+
 def test_style_and_keyword_override():
     s = StrokeStyle(width=4, cap='square')
     a = stroke(line((0, 0), (10, 0)), s, width=2)
@@ -206,7 +231,7 @@ def test_round_cap_line_area_within_tolerance(tol):
 @pytest.mark.parametrize('tol', [1e-3, 0.05, 0.25, 1.0, 100.0])
 @pytest.mark.parametrize('sweep', [0.3, -np.pi, 2 * np.pi])
 def test_arc_polygonization_within_tolerance(r, tol, sweep):
-    from raster.stroke import _arcs
+    from raster.geometry.stroking import _arcs
     pts, cnt = _arcs(np.array([[3.0, 4.0]]), np.array([[0.6 * r, 0.8 * r]]), np.array([sweep]), tol)
     rad = np.hypot(*(pts - (3, 4)).T)
     mid = np.hypot(*((pts[1:] + pts[:-1]) / 2 - (3, 4)).T)
@@ -637,7 +662,7 @@ def test_odd_dash_array_is_repeated():
 
 
 def test_dash_polylines_accepts_flatten_polylines():
-    from raster.flatten import flatten
+    from raster.geometry.flattening import flatten
     pl = flatten(parse('M 0 0 L 10 0 L 10 10 Z M 20 0 L 30 0'))
     pieces = list(dash_polylines(pl, [5, 2]))
     assert [p.tolist() for p, c in pieces][:2] == [[[0, 0], [5, 0]], [[7, 0], [10, 0], [10, 2]]]

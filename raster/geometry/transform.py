@@ -14,10 +14,16 @@ then ``A`` (so ``transform="translate(..) scale(..)"`` is
 """
 
 import math
+from typing import Optional, Sequence, Union
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from .errors import TransformError
+from ..errors import TransformError
+
+#: What :func:`as_affine` accepts: an :class:`Affine`, six numbers
+#: ``a b c d e f``, a 2x3 or 3x3 matrix, or None (the identity).
+AffineLike = Union['Affine', Sequence[float], np.ndarray, None]
 
 
 class Affine:
@@ -25,7 +31,8 @@ class Affine:
 
     __slots__ = ('a', 'b', 'c', 'd', 'e', 'f', '_hash')
 
-    def __init__(self, a=1.0, b=0.0, c=0.0, d=1.0, e=0.0, f=0.0):
+    def __init__(self, a: float = 1.0, b: float = 0.0, c: float = 0.0, d: float = 1.0,
+                 e: float = 0.0, f: float = 0.0) -> None:
         vals = tuple(float(v) for v in (a, b, c, d, e, f))
         if not all(math.isfinite(v) for v in vals):
             raise TransformError('transform has non-finite values: %r' % (vals,))
@@ -42,19 +49,19 @@ class Affine:
 
     # -- constructors -----------------------------------------------------
     @classmethod
-    def identity(cls):
+    def identity(cls) -> 'Affine':
         return cls()
 
     @classmethod
-    def translate(cls, tx, ty=0.0):
+    def translate(cls, tx: float, ty: float = 0.0) -> 'Affine':
         return cls(1, 0, 0, 1, tx, ty)
 
     @classmethod
-    def scale(cls, sx, sy=None):
+    def scale(cls, sx: float, sy: Optional[float] = None) -> 'Affine':
         return cls(sx, 0, 0, sx if sy is None else sy, 0, 0)
 
     @classmethod
-    def rotate(cls, degrees, cx=0.0, cy=0.0):
+    def rotate(cls, degrees: float, cx: float = 0.0, cy: float = 0.0) -> 'Affine':
         r = math.radians(degrees)
         co, si = math.cos(r), math.sin(r)
         # snap tiny values so 90-degree rotations are exact
@@ -66,15 +73,15 @@ class Affine:
         return rot
 
     @classmethod
-    def skew_x(cls, degrees):
+    def skew_x(cls, degrees: float) -> 'Affine':
         return cls(1, 0, math.tan(math.radians(degrees)), 1, 0, 0)
 
     @classmethod
-    def skew_y(cls, degrees):
+    def skew_y(cls, degrees: float) -> 'Affine':
         return cls(1, math.tan(math.radians(degrees)), 0, 1, 0, 0)
 
     @classmethod
-    def from_matrix(cls, m):
+    def from_matrix(cls, m: ArrayLike) -> 'Affine':
         """From a (2, 3) or (3, 3) array ``[[a, c, e], [b, d, f]]``."""
         m = np.asarray(m, dtype=np.float64)
         return cls(m[0, 0], m[1, 0], m[0, 1], m[1, 1], m[0, 2], m[1, 2])
@@ -99,7 +106,7 @@ class Affine:
         object.__setattr__(t, '_hash', hash(vals))
         return t
 
-    def inverse(self):
+    def inverse(self) -> 'Affine':
         det = self.determinant
         if det == 0 or not math.isfinite(1.0 / det):
             raise TransformError('transform is not invertible')
@@ -109,23 +116,23 @@ class Affine:
 
     # -- properties --------------------------------------------------------
     @property
-    def determinant(self):
+    def determinant(self) -> float:
         return self.a * self.d - self.b * self.c
 
     @property
-    def matrix(self):
+    def matrix(self) -> np.ndarray:
         """(2, 3) float64 ndarray ``[[a, c, e], [b, d, f]]``."""
         return np.array([[self.a, self.c, self.e], [self.b, self.d, self.f]])
 
     @property
-    def is_identity(self):
+    def is_identity(self) -> bool:
         return (self.a, self.b, self.c, self.d, self.e, self.f) == (1, 0, 0, 1, 0, 0)
 
     @property
-    def is_translation(self):
+    def is_translation(self) -> bool:
         return (self.a, self.b, self.c, self.d) == (1, 0, 0, 1)
 
-    def max_scale(self):
+    def max_scale(self) -> float:
         """Largest singular value: the most any length can grow."""
         a, b, c, d = self.a, self.b, self.c, self.d
         # (|q| + |r|) / 2 with q, r the conformal and anti-conformal parts:
@@ -133,19 +140,19 @@ class Affine:
         # singular values are close)
         return 0.5 * (math.hypot(a + d, c - b) + math.hypot(a - d, b + c))
 
-    def min_scale(self):
+    def min_scale(self) -> float:
         """Smallest singular value: the least any length can grow
         (|det| / max_scale, which stays accurate for nearly singular
         transforms)."""
         big = self.max_scale()
         return abs(self.determinant) / big if big > 0 else 0.0
 
-    def mean_scale(self):
+    def mean_scale(self) -> float:
         """sqrt(|det|): the factor a stroke width scales by on average."""
         return math.sqrt(abs(self.determinant))
 
     # -- application -------------------------------------------------------
-    def apply(self, points):
+    def apply(self, points: ArrayLike) -> np.ndarray:
         """Transform points.
 
         Parameters
@@ -163,7 +170,7 @@ class Affine:
         out[..., 1] = self.b * x + self.d * y + self.f
         return out
 
-    def apply_vector(self, vectors):
+    def apply_vector(self, vectors: ArrayLike) -> np.ndarray:
         """Transform direction vectors (no translation)."""
         p = np.asarray(vectors, dtype=np.float64)
         x, y = p[..., 0], p[..., 1]
@@ -195,7 +202,7 @@ class Affine:
 IDENTITY = Affine()
 
 
-def as_affine(t):
+def as_affine(t: AffineLike) -> Affine:
     """Accept None, an :class:`Affine`, 6 numbers (a..f) or a (2,3)/(3,3) array."""
     if t is None:
         return IDENTITY
@@ -212,7 +219,7 @@ def as_affine(t):
     raise TransformError('cannot interpret %r as an affine transform' % (t,))
 
 
-def apply_each(m, pts):
+def apply_each(m: np.ndarray, pts: np.ndarray) -> np.ndarray:
     """Map each item of ``pts`` by its own affine transform.
 
     Parameters

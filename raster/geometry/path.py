@@ -1,5 +1,4 @@
-"""The path model: an immutable list of verbs and points, and the pens that
-make and consume it.
+"""The path model: an immutable list of verbs and points.
 
 Coordinates are float64 user units (x right, y down, as in SVG).
 
@@ -15,8 +14,8 @@ verb       value  points
 ``CLOSE``  4      0: closes the contour back to its first point
 =========  =====  =====================================================
 
-Guarantees of a :class:`Path` (enforced by :class:`PathBuilder` and by
-:meth:`Path.from_arrays`):
+Guarantees of a :class:`Path` (enforced by
+:class:`~raster.geometry.pens.PathBuilder` and by :meth:`Path.from_arrays`):
 
 * every point is finite;
 * every contour starts with ``MOVE``; a drawing verb after ``CLOSE`` follows a
@@ -27,36 +26,24 @@ Guarantees of a :class:`Path` (enforced by :class:`PathBuilder` and by
 A contour may consist of a lone ``MOVE`` (or ``MOVE CLOSE``): it draws no
 fill, but ``MOVE CLOSE`` and zero-length segments still get stroke caps.
 
-The pen protocol (after fontTools) is the one sink for everything that makes
-Bezier segments: ``moveTo(pt)``, ``lineTo(pt)``, ``qCurveTo(*pts)``,
-``curveTo(*pts)``, ``closePath()``, ``endPath()``.  :meth:`Path.draw` replays a
-path into any pen; :class:`TransformPen` and :class:`RecordingPen` wrap or
-record.
+The pens that make and consume paths are in :mod:`raster.geometry.pens`;
+:meth:`Path.draw` replays a path into any pen.
 
->>> b = PathBuilder()
->>> b.moveTo((0, 0)); b.lineTo((10, 0)); b.curveTo((10, 5), (5, 10), (0, 10)); b.closePath()
->>> p = b.path()
->>> p.verbs.tolist(), p.points.shape
-([0, 1, 3, 4], (5, 2))
+>>> p = Path.from_arrays([MOVE, LINE, CUBIC, CLOSE],
+...                      [[0, 0], [10, 0], [10, 5], [5, 10], [0, 10]])
+>>> p.to_svg()
+'M 0 0 L 10 0 C 10 5 5 10 0 10 Z'
 """
 
-import enum
-from typing import NamedTuple
+from typing import Any, Iterable, NamedTuple, Optional, Tuple
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from .errors import PathError
-from .transform import as_affine
+from ..errors import PathError
+from .transform import AffineLike, as_affine
 
 MOVE, LINE, QUAD, CUBIC, CLOSE = 0, 1, 2, 3, 4
-
-
-class FillRule(str, enum.Enum):
-    """Which points a closed path covers: ``NONZERO`` (winding number not
-    0) or ``EVENODD`` (odd winding number).  Equal to its string value, so
-    ``'evenodd'`` is accepted wherever a rule is."""
-    NONZERO = 'nonzero'
-    EVENODD = 'evenodd'
 VERB_NAMES = ('M', 'L', 'Q', 'C', 'Z')
 _NPTS = np.array([1, 1, 2, 3, 0], dtype=np.int64)
 
@@ -91,7 +78,7 @@ class Segments(NamedTuple):
     contour_nseg: np.ndarray
 
     @property
-    def end(self):
+    def end(self) -> np.ndarray:
         """(S, 2) end points."""
         return self.ctrl[:, 3]
 
@@ -110,7 +97,7 @@ class Path:
 
     __slots__ = ('verbs', 'points', '_segments', '_cbox')
 
-    def __init__(self, verbs, points, _checked=False):
+    def __init__(self, verbs: np.ndarray, points: np.ndarray, _checked: bool = False) -> None:
         if not _checked:
             verbs, points = _validate(verbs, points)
         verbs.flags.writeable = False
@@ -124,17 +111,17 @@ class Path:
         raise AttributeError('Path is immutable')
 
     @classmethod
-    def from_arrays(cls, verbs, points):
+    def from_arrays(cls, verbs: ArrayLike, points: ArrayLike) -> 'Path':
         """Validated construction from verb and point arrays (raises
         :class:`~raster.errors.PathError`)."""
         return cls(verbs, points)
 
     @classmethod
-    def empty(cls):
+    def empty(cls) -> 'Path':
         return cls(np.zeros(0, np.uint8), np.zeros((0, 2)), _checked=True)
 
     @classmethod
-    def polygon(cls, points, closed=True):
+    def polygon(cls, points: ArrayLike, closed: bool = True) -> 'Path':
         """Path of one polyline contour through ``points`` ((N, 2))."""
         pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
         if len(pts) == 0:
@@ -146,7 +133,7 @@ class Path:
         return cls(verbs, pts.copy())
 
     @classmethod
-    def concat(cls, paths):
+    def concat(cls, paths: Iterable['Path']) -> 'Path':
         paths = [p for p in paths if len(p.verbs)]
         if not paths:
             return cls.empty()
@@ -158,7 +145,7 @@ class Path:
         return len(self.verbs)
 
     @property
-    def is_empty(self):
+    def is_empty(self) -> bool:
         """True when the path has no drawing segment."""
         return not np.any((self.verbs >= LINE) & (self.verbs <= CUBIC))
 
@@ -171,13 +158,13 @@ class Path:
     def __repr__(self):
         return 'Path(%r)' % self.to_svg(precision=6)[:200]
 
-    def segments(self):
+    def segments(self) -> Segments:
         """All drawing segments as arrays: see :class:`Segments`.  Cached."""
         if self._segments is None:
-            object.__setattr__(self, '_segments', _segments(self.verbs, self.points))
+            object.__setattr__(self, '_segments', segment_arrays(self.verbs, self.points))
         return self._segments
 
-    def control_box(self):
+    def control_box(self) -> Tuple[float, float, float, float]:
         """(xmin, ymin, xmax, ymax) of all points (a bound, not exact)."""
         if self._cbox is None:
             if len(self.points) == 0:
@@ -188,9 +175,9 @@ class Path:
         return self._cbox
 
     # -- transformations -----------------------------------------------------
-    def transform(self, t):
+    def transform(self, t: AffineLike) -> 'Path':
         """Return the path with every point mapped by the affine ``t``
-        (an :class:`~raster.transform.Affine`, 6 numbers or a 2x3 matrix)."""
+        (an :class:`~raster.geometry.transform.Affine`, 6 numbers or a 2x3 matrix)."""
         t = as_affine(t)
         if t.is_identity:
             return self
@@ -199,7 +186,7 @@ class Path:
             raise PathError('transformed path has non-finite coordinates')
         return Path(self.verbs.copy(), pts, _checked=True)
 
-    def draw(self, pen):
+    def draw(self, pen: Any) -> None:
         """Replay the path into a pen."""
         pts = self.points
         i = 0
@@ -215,7 +202,7 @@ class Path:
             else:
                 pen.closePath()
 
-    def to_svg(self, precision=None):
+    def to_svg(self, precision: Optional[int] = None) -> str:
         """SVG path data with absolute commands (``M L Q C Z``).
 
         ``precision`` rounds to that many decimals (``None``: shortest exact
@@ -255,7 +242,21 @@ def _validate(verbs, points):
     return verbs.copy(), points.copy()
 
 
-def _segments(verbs, points):
+def segment_arrays(verbs: np.ndarray, points: np.ndarray) -> Segments:
+    """The :class:`Segments` of verb and point arrays (see
+    :meth:`Path.segments`, which caches them).
+
+    Parameters
+    ----------
+    verbs : (V,) uint8 ndarray
+    points : (P, 2) float64 ndarray
+        A valid path (as :class:`Path` guarantees); several paths
+        concatenated are valid too (every path starts with a move).
+
+    Returns
+    -------
+    Segments
+    """
     npts = _NPTS[verbs]
     off = np.cumsum(npts) - npts                 # index of the verb's first point
     contour = np.cumsum(verbs == MOVE) - 1
@@ -285,170 +286,3 @@ def _segments(verbs, points):
         has = last_seg >= 0
         cend[has] = ctrl[last_seg[has], 3]
     return Segments(ctrl, dv, seg_contour, cstart, cend, closed, nseg)
-
-
-class PathBuilder:
-    """A pen that builds an immutable :class:`Path`.
-
-    Raises :class:`~raster.errors.PathError` for non-finite coordinates and
-    for drawing with no current point.  After ``closePath`` a drawing call
-    starts a new contour at the closed contour's first point (SVG rule).
-    """
-
-    def __init__(self):
-        self._verbs = []
-        self._pts = []
-        self._start = None      # first point of the current contour
-        self._open = False      # a contour is in progress (not closed)
-
-    # -- pen protocol ----------------------------------------------------------
-    def moveTo(self, pt):
-        p = _pt(pt)
-        self._verbs.append(MOVE)
-        self._pts.append(p)
-        self._start = p
-        self._open = True
-
-    def lineTo(self, pt):
-        self._need_current()
-        self._verbs.append(LINE)
-        self._pts.append(_pt(pt))
-
-    def qCurveTo(self, *pts):
-        """Quadratic curve(s); with more than one off-curve point the on-curve
-        points between them are implied at midpoints (TrueType rule).  A
-        ``None`` last point (closed all-off-curve contour) is not supported."""
-        if len(pts) < 1 or pts[-1] is None:
-            raise PathError('qCurveTo needs an on-curve end point')
-        self._need_current()
-        pts = [_pt(p) for p in pts]
-        if len(pts) == 1:
-            self._verbs.append(LINE)
-            self._pts.append(pts[0])
-            return
-        offs, end = pts[:-1], pts[-1]
-        for i, c in enumerate(offs):
-            if i + 1 < len(offs):
-                n = offs[i + 1]
-                on = ((c[0] + n[0]) * 0.5, (c[1] + n[1]) * 0.5)
-            else:
-                on = end
-            self._verbs.append(QUAD)
-            self._pts.extend((c, on))
-
-    def curveTo(self, *pts):
-        """Cubic curve(s): 3 points per cubic (a multiple of 3 is accepted)."""
-        if len(pts) == 0 or len(pts) % 3:
-            raise PathError('curveTo takes a multiple of 3 points, got %d' % len(pts))
-        self._need_current()
-        pts = [_pt(p) for p in pts]
-        for i in range(0, len(pts), 3):
-            self._verbs.append(CUBIC)
-            self._pts.extend(pts[i:i + 3])
-
-    def closePath(self):
-        if self._start is None:
-            raise PathError('closePath with no current contour')
-        if self._open:
-            self._verbs.append(CLOSE)
-            self._open = False
-
-    def endPath(self):
-        """End an open contour; the next drawing call needs a ``moveTo``."""
-        self._start = None
-        self._open = False
-
-    def addComponent(self, glyphName, transformation):  # fontTools pen API
-        raise PathError('components are not supported by PathBuilder')
-
-    # -- helpers ---------------------------------------------------------------
-    @property
-    def current_point(self):
-        if not self._pts:
-            return None
-        if not self._open:
-            return self._start
-        return self._pts[-1]
-
-    def _need_current(self):
-        if self._start is None:
-            raise PathError('drawing command with no current point (missing move)')
-        if not self._open:
-            # drawing after closePath: implicit move to the contour start
-            self.moveTo(self._start)
-
-    def path(self):
-        """The :class:`Path` built so far."""
-        verbs = np.array(self._verbs, dtype=np.uint8)
-        pts = np.array(self._pts, dtype=np.float64).reshape(-1, 2)
-        return Path(verbs, pts, _checked=True)
-
-
-def _pt(p):
-    try:
-        x, y = float(p[0]), float(p[1])
-    except (TypeError, ValueError, IndexError):
-        raise PathError('point must be two numbers, got %r' % (p,)) from None
-    if not (np.isfinite(x) and np.isfinite(y)):
-        raise PathError('non-finite coordinate (%r, %r)' % (x, y))
-    return (x, y)
-
-
-class TransformPen:
-    """Pen that maps every point through an affine transform and forwards to
-    another pen."""
-
-    def __init__(self, out, transform):
-        self.out = out
-        self.t = as_affine(transform)
-
-    def _m(self, pts):
-        return [tuple(q) for q in self.t.apply(np.asarray(pts, dtype=np.float64)).tolist()]
-
-    def moveTo(self, pt):
-        self.out.moveTo(self._m([pt])[0])
-
-    def lineTo(self, pt):
-        self.out.lineTo(self._m([pt])[0])
-
-    def qCurveTo(self, *pts):
-        self.out.qCurveTo(*self._m(pts))
-
-    def curveTo(self, *pts):
-        self.out.curveTo(*self._m(pts))
-
-    def closePath(self):
-        self.out.closePath()
-
-    def endPath(self):
-        self.out.endPath()
-
-
-class RecordingPen:
-    """Pen that records calls as ``(name, args)`` tuples in ``self.value``;
-    :meth:`replay` sends them to another pen."""
-
-    def __init__(self):
-        self.value = []
-
-    def moveTo(self, pt):
-        self.value.append(('moveTo', (tuple(pt),)))
-
-    def lineTo(self, pt):
-        self.value.append(('lineTo', (tuple(pt),)))
-
-    def qCurveTo(self, *pts):
-        self.value.append(('qCurveTo', tuple(tuple(p) for p in pts)))
-
-    def curveTo(self, *pts):
-        self.value.append(('curveTo', tuple(tuple(p) for p in pts)))
-
-    def closePath(self):
-        self.value.append(('closePath', ()))
-
-    def endPath(self):
-        self.value.append(('endPath', ()))
-
-    def replay(self, pen):
-        for name, args in self.value:
-            getattr(pen, name)(*args)

@@ -1,6 +1,6 @@
 """Stroke outlines: offsets, joins, caps and dashes.
 
-:func:`stroke` turns a :class:`~raster.path.Path` and a :class:`StrokeStyle`
+:func:`stroke` turns a :class:`~raster.geometry.path.Path` and a :class:`StrokeStyle`
 into a new path of closed polygons (``MOVE``/``LINE``/``CLOSE`` only) whose
 **nonzero** fill is the stroked region.
 
@@ -86,7 +86,7 @@ flattened within ``tolerance / 4``.
 
 Coordinates are float64, x right and y down, as everywhere in raster.
 
->>> from raster.path import Path
+>>> from raster.geometry.path import Path
 >>> out = stroke(Path.polygon([(0, 0), (10, 0)], closed=False), width=2)
 >>> out.verbs.tolist()                       # one rectangle: M L L L Z
 [0, 1, 1, 1, 4]
@@ -96,20 +96,41 @@ Coordinates are float64, x right and y down, as everywhere in raster.
 
 import dataclasses
 import math
-from typing import NamedTuple, Optional, Tuple
+from typing import Any, List, NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .errors import LimitError, RasterError
-from .limits import MAX_COORD, MAX_FLATTEN_POINTS
+from ..errors import LimitError, RasterError
+from ..limits import MAX_COORD, MAX_FLATTEN_POINTS
+from .bezier import evaluate
+from .flattening import flatten_beziers
 from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
-from .transform import Affine, apply_each, as_affine
+from .rules import StrChoice
+from .transform import Affine, AffineLike, apply_each, as_affine
 
-__all__ = ['StrokeStyle', 'Stroke', 'StrokeError', 'stroke', 'stroke_many', 'dash_polylines',
-           'dash_pattern', 'hairline_scale', 'DashedLines']
+__all__ = ['StrokeStyle', 'Stroke', 'StrokeError', 'LineJoin', 'LineCap', 'stroke', 'stroke_many',
+           'dash_polylines', 'dash_pattern', 'hairline_scale', 'DashedLines']
 
-JOINS = ('miter', 'miter-clip', 'round', 'bevel', 'arcs')
-CAPS = ('butt', 'round', 'square')
+
+class LineJoin(StrChoice):
+    """SVG ``stroke-linejoin``.  ``ARCS`` (SVG 2) is drawn as ``MITER``, as
+    in browsers; ``MITER_CLIP`` clips an over-long miter at
+    ``miterlimit * width / 2`` from the vertex instead of bevelling it."""
+
+    MITER = 'miter'
+    MITER_CLIP = 'miter-clip'
+    ROUND = 'round'
+    BEVEL = 'bevel'
+    ARCS = 'arcs'
+
+
+class LineCap(StrChoice):
+    """SVG ``stroke-linecap``."""
+
+    BUTT = 'butt'
+    ROUND = 'round'
+    SQUARE = 'square'
+
 
 #: Relative size (of the largest coordinate) below which two consecutive
 #: points are treated as one and a segment has no direction.
@@ -119,7 +140,7 @@ _EPS_REL = 1e-12
 class StrokeError(RasterError, ValueError):
     """Invalid stroke parameters: negative or non-finite width, unknown join
     or cap, miter limit below 1, non-finite dash values or tolerance, a path
-    argument that is not a :class:`~raster.path.Path`."""
+    argument that is not a :class:`~raster.geometry.path.Path`."""
 
 
 # ---------------------------------------------------------------------------
@@ -144,12 +165,14 @@ class StrokeStyle:
     ----------
     width : float
         Stroke width in user units, >= 0 (0 draws nothing).
-    join : {'miter', 'miter-clip', 'round', 'bevel', 'arcs'}
-        Line join.  ``'arcs'`` (SVG 2) falls back to ``'miter'``, as in
-        browsers.  ``'miter-clip'`` clips an over-long miter at
+    join : LineJoin or {'miter', 'miter-clip', 'round', 'bevel', 'arcs'}
+        Line join, stored as a :class:`LineJoin` (equal to its keyword).
+        ``'arcs'`` (SVG 2) falls back to ``'miter'``, as in browsers.
+        ``'miter-clip'`` clips an over-long miter at
         ``miterlimit * width / 2`` from the vertex instead of bevelling it.
-    cap : {'butt', 'round', 'square'}
-        Line cap at the ends of open subpaths and of dashes.
+    cap : LineCap or {'butt', 'round', 'square'}
+        Line cap at the ends of open subpaths and of dashes, stored as a
+        :class:`LineCap`.
     miterlimit : float
         Limit of the ratio miter length / width, >= 1.
     dash : sequence of float or None
@@ -165,17 +188,22 @@ class StrokeStyle:
         For a negative or non-finite width, an unknown join or cap, a miter
         limit below 1 or non-finite, non-finite dash values or offset.
 
-    >>> StrokeStyle(width=2, dash=[1, 2, 3]).dash
-    (1.0, 2.0, 3.0)
+    A style is immutable and hashable (a key for batching strokes):
+
+    >>> s = StrokeStyle(width=2, join='round', dash=[1, 2, 3])
+    >>> s.dash, s.join is LineJoin.ROUND, s == StrokeStyle(2, LineJoin.ROUND, dash=(1, 2, 3))
+    ((1.0, 2.0, 3.0), True, True)
+    >>> hash(s) == hash(StrokeStyle(2, 'round', dash=[1.0, 2.0, 3.0]))
+    True
     >>> StrokeStyle(miterlimit=0.5)
     Traceback (most recent call last):
     ...
-    raster.stroke.StrokeError: miterlimit must be >= 1, got 0.5
+    raster.geometry.stroking.StrokeError: miterlimit must be >= 1, got 0.5
     """
 
     width: float = 1.0
-    join: str = 'miter'
-    cap: str = 'butt'
+    join: LineJoin = LineJoin.MITER
+    cap: LineCap = LineCap.BUTT
     miterlimit: float = 4.0
     dash: Optional[Tuple[float, ...]] = None
     dash_offset: float = 0.0
@@ -184,12 +212,14 @@ class StrokeStyle:
         w = _finite('stroke width', self.width)
         if w < 0:
             raise StrokeError('stroke width must be >= 0, got %r' % (self.width,))
-        if self.join not in JOINS:
+        join = LineJoin.lookup(self.join)
+        if join is None:
             raise StrokeError('unknown line join %r (expected one of %s)'
-                              % (self.join, ', '.join(JOINS)))
-        if self.cap not in CAPS:
+                              % (self.join, ', '.join(LineJoin.values())))
+        cap = LineCap.lookup(self.cap)
+        if cap is None:
             raise StrokeError('unknown line cap %r (expected one of %s)'
-                              % (self.cap, ', '.join(CAPS)))
+                              % (self.cap, ', '.join(LineCap.values())))
         ml = _finite('miterlimit', self.miterlimit)
         if ml < 1:
             raise StrokeError('miterlimit must be >= 1, got %r' % (self.miterlimit,))
@@ -203,6 +233,8 @@ class StrokeStyle:
                 raise StrokeError('dash must be a sequence of numbers, got %r'
                                   % (dash,)) from None
         object.__setattr__(self, 'width', w)
+        object.__setattr__(self, 'join', join)
+        object.__setattr__(self, 'cap', cap)
         object.__setattr__(self, 'miterlimit', ml)
         object.__setattr__(self, 'dash', dash)
         object.__setattr__(self, 'dash_offset', _finite('dash offset', self.dash_offset))
@@ -214,7 +246,7 @@ _STYLE_FIELDS = frozenset(f.name for f in dataclasses.fields(StrokeStyle))
 Stroke = StrokeStyle
 
 
-def dash_pattern(dash):
+def dash_pattern(dash: Optional[Sequence[float]]) -> Optional[np.ndarray]:
     """The effective dash pattern of an SVG dash array, or None for solid.
 
     Follows SVG: an odd-length array is repeated to even length; an empty
@@ -254,7 +286,7 @@ def dash_pattern(dash):
     return d
 
 
-def hairline_scale(style, transform=None):
+def hairline_scale(style: 'StrokeStyle', transform: AffineLike = None) -> Optional[float]:
     """Coverage factor for a stroke thinner than one device pixel.
 
     A stroke whose device width ``style.width * transform.mean_scale()`` is
@@ -277,7 +309,7 @@ def hairline_scale(style, transform=None):
         (device width >= 1 px, or zero: a zero width or a singular transform
         draws nothing).
 
-    >>> from raster.transform import Affine
+    >>> from raster.geometry.transform import Affine
     >>> hairline_scale(StrokeStyle(width=0.5), Affine.scale(1.5))
     0.75
     >>> hairline_scale(StrokeStyle(width=2.0)) is None
@@ -352,16 +384,6 @@ def _check_size(n, what):
                          % (n, what, MAX_FLATTEN_POINTS))
 
 
-def _bezier_at(ctrl, t):
-    """Points of Bezier curves ``ctrl`` (M, k+1, 2) at parameters ``t`` (M,)
-    (de Casteljau)."""
-    q = ctrl.copy()
-    tt = t[:, None]
-    for k in range(ctrl.shape[1] - 1, 0, -1):
-        q = q[:, :k] + tt[:, None] * (q[:, 1:k + 1] - q[:, :k])
-    return q[:, 0]
-
-
 def _refine_ends(ctrl, points, counts, r, tol, ends=None):
     """Refine the flattening of curves near their ends for a pen of
     half-width ``r``, so that butt and square caps and miter or bevel joins
@@ -380,7 +402,7 @@ def _refine_ends(ctrl, points, counts, r, tol, ends=None):
     Parameters
     ----------
     ctrl : (M, k+1, 2) float64 ndarray
-    points, counts : as returned by :func:`raster.flatten.flatten_beziers`.
+    points, counts : as returned by :func:`raster.geometry.flattening.flatten_beziers`.
     r : float
     tol : float or (M,) float64 ndarray
     ends : (M, 2) bool ndarray or None
@@ -420,7 +442,7 @@ def _refine_ends(ctrl, points, counts, r, tol, ends=None):
         for _ in range(60):                          # a parameter short of q1
             if len(todo) == 0:
                 break
-            v = _bezier_at(ctrl[todo], t if side == 0 else 1.0 - t) - q0[todo]
+            v = evaluate(ctrl[todo], t if side == 0 else 1.0 - t) - q0[todo]
             ok = np.hypot(v[:, 0], v[:, 1]) < c1[todo]
             ta[todo[ok]] = t[ok]
             todo, t = todo[~ok], 0.5 * t[~ok]
@@ -434,7 +456,7 @@ def _refine_ends(ctrl, points, counts, r, tol, ends=None):
         if side == 0:
             j = J[cid] - 1 - j                        # increasing parameter
         tt = ta[cid] * rho[cid] ** (-j.astype(np.float64))
-        pts = _bezier_at(ctrl[cid], tt if side == 0 else 1.0 - tt)
+        pts = evaluate(ctrl[cid], tt if side == 0 else 1.0 - tt)
         sides.append((J, pts))
     (J0, p0), (J1, p1) = sides
     new_counts = counts + J0 + J1
@@ -452,7 +474,7 @@ def _refine_ends(ctrl, points, counts, r, tol, ends=None):
 
 def _path_lines(path, tol, r=0.0):
     """Flatten every segment of ``path`` within ``tol`` (user units) with
-    :func:`raster.flatten.flatten_beziers`, keeping track of which vertices
+    :func:`raster.geometry.flattening.flatten_beziers`, keeping track of which vertices
     lie inside a curve (smooth joins).  ``tol`` is a float or a (C,) array,
     one tolerance per contour (``MOVE``) of ``path``.
 
@@ -465,7 +487,6 @@ def _path_lines(path, tol, r=0.0):
                       np.zeros(0, bool), np.zeros((0, 2))), np.zeros(0, bool)
     if not np.any((verbs == QUAD) | (verbs == CUBIC)):
         return _polygon_lines(verbs, path.points)
-    from .flatten import flatten_beziers
 
     seg = path.segments()
     C = len(seg.contour_start)
@@ -684,7 +705,7 @@ def _unit(v):
 # ---------------------------------------------------------------------------
 
 def _as_lines(polylines):
-    """Accept a :class:`raster.flatten.Polylines`-like object (``points``,
+    """Accept a :class:`raster.geometry.flattening.Polylines`-like object (``points``,
     ``starts``, ``closed``), a :class:`DashedLines` or an internal _Lines."""
     if isinstance(polylines, _Lines):
         return polylines
@@ -801,7 +822,8 @@ def _dash(lines, pattern, offset):
     return _Lines(out, dstarts, dcounts, whole, sm, tangent), dc
 
 
-def dash_polylines(polylines, dash, offset=0.0):
+def dash_polylines(polylines: Any, dash: Optional[Sequence[float]],
+                   offset: float = 0.0) -> DashedLines:
     """Cut polylines into dashes.
 
     Parameters
@@ -809,7 +831,7 @@ def dash_polylines(polylines, dash, offset=0.0):
     polylines : Polylines-like
         Any object with ``points`` ((N, 2) float64), ``starts`` ((K,) int64,
         first vertex of each polyline, ``starts[0] == 0``) and ``closed``
-        ((K,) bool), e.g. :class:`raster.flatten.Polylines`, in user units.
+        ((K,) bool), e.g. :class:`raster.geometry.flattening.Polylines`, in user units.
     dash : sequence of float
         SVG dash array (see :func:`dash_pattern`).
     offset : float
@@ -1183,7 +1205,8 @@ def _emit_verbs(counts):
 # front door
 # ---------------------------------------------------------------------------
 
-def stroke(path, style=None, *, transform=None, tolerance=0.25, **style_kwargs):
+def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: AffineLike = None,
+           tolerance: float = 0.25, **style_kwargs: Any) -> Path:
     """Outline of the stroke of ``path``, to be filled with the nonzero rule.
 
     Parameters
@@ -1223,7 +1246,7 @@ def stroke(path, style=None, *, transform=None, tolerance=0.25, **style_kwargs):
     A closed 10 x 10 square stroked 2 wide gives two loops, the outer and
     the inner edge of the stroke:
 
-    >>> from raster.path import Path
+    >>> from raster.geometry.path import Path
     >>> sq = Path.polygon([(0, 0), (10, 0), (10, 10), (0, 10)])
     >>> out = stroke(sq, width=2)
     >>> int((out.verbs == 0).sum()), out.control_box()
@@ -1294,7 +1317,7 @@ def _geometry(path, style, tol_u, cpath=None, npaths=1):
 
 
 def _affine(t):
-    """:func:`~raster.transform.as_affine`, with a StrokeError (not a numpy
+    """:func:`~raster.geometry.transform.as_affine`, with a StrokeError (not a numpy
     error) for something that is not a transform."""
     try:
         return as_affine(t)
@@ -1327,7 +1350,9 @@ def _check_device(pts):
         raise LimitError('stroke outline coordinates exceed MAX_COORD %g' % MAX_COORD)
 
 
-def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
+def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
+                transforms: Optional[Sequence[AffineLike]] = None,
+                tolerance: float = 0.25) -> List[Path]:
     """Stroke many paths with one style in one vectorized pass.
 
     The paths are concatenated (contours numbered by the path they come
@@ -1335,7 +1360,7 @@ def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
     path's own transform and split back per path.  Each result is the
     outline :func:`stroke` gives for that path alone: identical for solid
     strokes when the paths' transforms have the same largest scale
-    (:meth:`~raster.transform.Affine.max_scale`); otherwise, and for dashes
+    (:meth:`~raster.geometry.transform.Affine.max_scale`); otherwise, and for dashes
     (whose arc lengths are summed over all paths in float64), within a
     rounding error far below ``tolerance``.  Repeated paths (equal verbs
     and points) whose transforms have the same largest scale share one
@@ -1350,7 +1375,7 @@ def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
         The stroke of every path (None: the default ``StrokeStyle()``).
     transforms : None, Affine or sequence of Affine
         User space to device space: one for all paths, or one per path
-        (each anything :func:`raster.transform.as_affine` accepts).
+        (each anything :func:`raster.geometry.transform.as_affine` accepts).
     tolerance : float
         Largest distance, in device pixels, between each outline and its
         exact stroke.
@@ -1373,7 +1398,7 @@ def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
 
     Examples
     --------
-    >>> from raster.path import Path
+    >>> from raster.geometry.path import Path
     >>> a = Path.polygon([(0, 0), (10, 0)], closed=False)
     >>> b = Path.polygon([(0, 0), (10, 0), (10, 10), (0, 10)])
     >>> outs = stroke_many([a, b], StrokeStyle(width=2))
@@ -1453,7 +1478,7 @@ def stroke_many(paths, style=None, *, transforms=None, tolerance=0.25):
 
 
 def _max_scales(m):
-    """(K,) :meth:`~raster.transform.Affine.max_scale` of transforms ``m``
+    """(K,) :meth:`~raster.geometry.transform.Affine.max_scale` of transforms ``m``
     ((K, 6) float64, rows ``a b c d e f``), computed once per distinct linear
     part (bit for bit the method's value)."""
     if len(m) == 0:

@@ -1,4 +1,4 @@
-"""Tests of raster.stroke.stroke_many: batch stroking gives, path by path, the
+"""Tests of raster.geometry.stroking.stroke_many: batch stroking gives, path by path, the
 outline stroke() gives for each path alone."""
 
 import numpy as np
@@ -6,10 +6,11 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from raster.errors import LimitError, RasterError
-from raster.path import Path, PathBuilder
-from raster.stroke import StrokeError, StrokeStyle, stroke, stroke_many
-from raster.svgpath import parse_path
-from raster.transform import Affine
+from raster.geometry.path import Path
+from raster.geometry.pens import PathBuilder
+from raster.geometry.stroking import StrokeError, StrokeStyle, stroke, stroke_many
+from raster.geometry.pathdata import parse_path
+from raster.geometry.transform import Affine
 
 
 def random_path(rng, kind=None):
@@ -218,7 +219,7 @@ def test_round_caps_in_batch_honour_tolerance(tol):
 def no_sharing(monkeypatch):
     """Disable the grouping of repeated paths (the general path: every path
     gets its own user-space outline)."""
-    import raster.stroke as S
+    import raster.geometry.stroking as S
 
     def distinct(paths, use, scales):
         return use, np.arange(len(use))
@@ -290,7 +291,7 @@ def test_repeated_circle_outline_is_translated_exactly():
 
 
 def test_distinct_groups_by_content_and_scale():
-    from raster.stroke import _distinct
+    from raster.geometry.stroking import _distinct
     a = parse_path('M0 0 L10 0')
     a2 = parse_path('M0 0 L10 0')
     b = parse_path('M0 0 L10 1')
@@ -305,7 +306,7 @@ def test_distinct_groups_by_content_and_scale():
 
 
 def test_max_scales_are_the_methods_values():
-    from raster.stroke import _max_scales
+    from raster.geometry.stroking import _max_scales
     rng = np.random.default_rng(4)
     ts = [Affine(*rng.uniform(-3, 3, 6)) for _ in range(50)]
     ts += [Affine.rotate(float(a)) @ Affine.scale(1.7) for a in rng.uniform(0, 360, 20)]

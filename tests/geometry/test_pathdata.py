@@ -1,4 +1,4 @@
-"""Tests of raster.svgpath: SVG path data, arcs and basic shapes."""
+"""Tests of raster.geometry.pathdata: SVG path data, arcs and basic shapes."""
 
 import math
 
@@ -8,12 +8,15 @@ import svgelements
 from hypothesis import HealthCheck, assume, given, settings, strategies as st
 
 import raster
-from raster import svgpath
+from raster.geometry import pathdata as svgpath
 from raster.errors import LimitError, PathError, RasterError
-from raster.path import CLOSE, CUBIC, LINE, MOVE, Path, PathBuilder
-from raster.svgpath import (_arc_batch, _build_loop, _build_vector, _lex, arc_to_cubics,
-                            circle_path, ellipse_path, line_path, parse_path,
-                            parse_points, polyline_path, rect_path)
+from raster.geometry.path import CLOSE, CUBIC, LINE, MOVE, Path
+from raster.geometry.pens import PathBuilder
+from raster.geometry.pathdata import (_arc_batch, _build_loop, _build_vector, _lex, arc_to_cubics,
+                                      circle_path, ellipse_path, line_path, parse_path,
+                                      parse_points, polyline_path, rect_path)
+
+from _shared import CORPUS
 
 SETTINGS = settings(max_examples=150, deadline=None,
                     suppress_health_check=[HealthCheck.too_slow])
@@ -410,12 +413,20 @@ _CMD_ARGS = {'M': 2, 'L': 2, 'H': 1, 'V': 1, 'C': 6, 'S': 4, 'Q': 4, 'T': 2, 'A'
 
 
 @st.composite
-def path_strings(draw, arcs=True):
+def path_strings(draw, arcs=True, svgelements_reflections=False):
+    """Path data of every command.  With ``svgelements_reflections`` an S
+    never follows a Q or T and a T never follows a C or S: svgelements
+    reflects the control point of a Bezier of the other degree there, where
+    SVG reflects none (tested on its own below)."""
     letters = 'MLHVCSQTZ' + ('A' if arcs else '')
     n = draw(st.integers(1, 25))
     parts = ['M %d %d' % (draw(st.integers(-50, 50)), draw(st.integers(-50, 50)))]
+    prev = 'M'
     for _ in range(n):
         c = draw(st.sampled_from(letters))
+        if svgelements_reflections and (c == 'S' and prev in 'QT' or c == 'T' and prev in 'CS'):
+            c = 'L'
+        prev = c
         if draw(st.booleans()):
             c = c.lower()
         k = _CMD_ARGS[c.upper()]
@@ -502,7 +513,7 @@ def test_end_points_match_svgelements(d):
 def test_end_points_match_svgelements_on_corpus_sample():
     import lxml.etree as ET
     from pathlib import Path as FsPath
-    f = FsPath(__file__).resolve().parents[1].parent / 'shared/corpus/tiger.svg'
+    f = FsPath(CORPUS) / 'tiger.svg'
     if not f.exists():
         pytest.fail('corpus file missing: %s' % f)
     ds = [e.get('d') for e in ET.parse(str(f)).iter() if e.get('d')]
@@ -511,6 +522,111 @@ def test_end_points_match_svgelements_on_corpus_sample():
         ends = _our_ends(parse_path(d))
         theirs = np.array([e for _, e in _svgelements_ends(d)])
         assert ends.shape == theirs.shape and np.allclose(ends, theirs, atol=1e-9)
+
+
+# -- svgelements as the oracle of the geometry ------------------------------------------------
+#: Arcs are converted within this tolerance (path units) in the comparison.
+ORACLE_TOL = 0.01
+#: svgelements keeps arc centres to about 1e-7; lines and Beziers agree to rounding.
+ORACLE_EXACT = 1e-9
+
+
+def _dense(ctrl, n=400):
+    """(n, 2) points on one Bezier segment (ctrl (k+1, 2))."""
+    t = np.linspace(0, 1, n)
+    k = len(ctrl) - 1
+    return sum(math.comb(k, i) * ((1 - t) ** (k - i) * t ** i)[:, None] * ctrl[i]
+               for i in range(k + 1))
+
+
+def _max_gap(a, b):
+    """Largest distance from a point of ``a`` to the polyline of samples ``b``
+    (its vertices: the caller samples ``b`` densely and adds the spacing)."""
+    d = np.hypot(a[:, None, 0] - b[None, :, 0], a[:, None, 1] - b[None, :, 1])
+    return float(d.min(axis=1).max())
+
+
+def assert_geometry_matches_svgelements(d, tol=ORACLE_TOL):
+    """Walk svgelements' segments of ``d`` and ours side by side: every line
+    and Bezier has the same control points (to ``ORACLE_EXACT`` relative),
+    every arc is the chain of our cubics up to its end point, within ``tol``
+    of svgelements' arc in both directions (sampled on both sides, the
+    sampling spacing added to the allowance)."""
+    ours = parse_path(d, tolerance=tol).segments()
+    ctrl, deg = ours.ctrl, ours.degree
+    scale = max(1.0, float(np.abs(ours.ctrl).max()) if len(ctrl) else 1.0)
+    i = 0
+    for seg in svgelements.Path(d):
+        if isinstance(seg, (svgelements.Move, svgelements.Close)):
+            continue
+        if isinstance(seg, svgelements.Arc) and seg.start == seg.end:
+            continue                              # SVG omits it; svgelements keeps it
+        if isinstance(seg, svgelements.Arc):
+            start = i
+            end = np.array([seg.end.x, seg.end.y])
+            while not np.allclose(ctrl[i, 3], end, rtol=0, atol=1e-6 * scale):
+                assert deg[i] == 3, (d, i)
+                i += 1
+            assert deg[i] == 3
+            i += 1
+            theirs = seg.npoint(np.linspace(0, 1, 2000))
+            mine = np.concatenate([_dense(ctrl[j]) for j in range(start, i)])
+            spacing = max(np.hypot(*np.diff(theirs, axis=0).T).max(),
+                          np.hypot(*np.diff(mine, axis=0).T).max())
+            allow = tol + spacing + 1e-6 * scale
+            assert _max_gap(mine[::7], theirs) <= allow, d
+            assert _max_gap(theirs[::7], mine) <= allow, d
+            continue
+        if isinstance(seg, svgelements.Line):
+            want = [seg.start, seg.end]
+        elif isinstance(seg, svgelements.QuadraticBezier):
+            want = [seg.start, seg.control, seg.end]
+        else:
+            want = [seg.start, seg.control1, seg.control2, seg.end]
+        want = np.array([[q.x, q.y] for q in want])
+        k = len(want) - 1
+        assert deg[i] == k, (d, i, type(seg).__name__)
+        assert np.allclose(ctrl[i, :k + 1], want, rtol=0, atol=ORACLE_EXACT * scale), (d, i)
+        i += 1
+    assert i == len(ctrl), d                       # nothing left over on our side
+
+
+@FEWER
+@given(path_strings(svgelements_reflections=True))
+def test_geometry_matches_svgelements(d):
+    assert_geometry_matches_svgelements(d)
+
+
+@pytest.mark.parametrize('d', [
+    # compact syntax: signs and dots as separators, exponents, packed arc flags
+    'M.5.5-.5-.5l1e1-1E1h-2.5v.25z',
+    'M0 0a10 10 0 0110 10a5 5 0 1 0-5 5A20 10 30 1 1 40 40',
+    'm10,10 c10,0 20,10 20,20 s-10,20-20,20 q-10-10-10-20 t10-20 Z m5 5 l5 0',
+    # reflections: chains, and after commands that have no control point
+    'M0 0 C 5 5 10 10 20 0 S 30 10 40 0 S 50 -5 60 0 L 70 0 S 80 10 90 0',
+    'M0 0 Q 10 10 20 0 T 40 0 T 60 0 H 70 T 80 5 t 10 0',
+    # arcs: tiny radii scaled up, rotated, large, negative rotation, huge sweep
+    'M 10 20 A 1 1 0 0 1 50 60 A 30 15 -45 1 0 90 20 a 100 20 170 0 1 -40 -10',
+    'M 0 0 A 50 50 0 1 1 0.001 0 Z',
+])
+def test_geometry_matches_svgelements_on_varied_data(d):
+    assert_geometry_matches_svgelements(d)
+
+
+def test_reflection_after_a_bezier_of_the_other_degree():
+    """SVG reflects only the control point of its own kind of Bezier: T
+    after a cubic and S after a quadratic start with a control point on the
+    current point (svgelements reflects the other kind's, so it is not the
+    oracle here)."""
+    seg = parse_path('M0 0 S 10 10 20 0 T 30 10 Q 40 20 50 10 S 60 0 70 10').segments()
+    assert seg.ctrl[1, :3].tolist() == [[20, 0], [20, 0], [30, 10]]             # T after S
+    assert seg.ctrl[3, :4].tolist() == [[50, 10], [50, 10], [60, 0], [70, 10]]  # S after Q
+
+
+@pytest.mark.parametrize('tol', [1.0, 0.1, 0.001])
+def test_arc_tolerance_holds_against_svgelements(tol):
+    """The stated arc tolerance, checked with svgelements' own ellipse."""
+    assert_geometry_matches_svgelements('M 0 0 A 200 80 25 1 1 150 40 A 60 90 -70 0 0 10 100', tol)
 
 
 # -- round trip --------------------------------------------------------------------------------

@@ -1,12 +1,6 @@
-"""Shared helpers of the curve toolkit: the error type, input checking and the
-mixin that gives every curve family the common vocabulary by way of its
-Bezier segments.
-
-Every curve object implements ``eval(t)`` and ``to_beziers()`` (a
-:class:`~raster.curves.bezier.PiecewiseBezier`); :class:`CurveMixin` derives
-``extrema``, ``bounding_box``, ``flatten``, ``to_path``, ``to_svg``, ``draw``
-and ``continuity`` from the Bezier form.
-"""
+"""Input checking of the curve toolkit: its error type and the validators
+every curve family uses (no curve maths here, so that every module of
+:mod:`raster.curves` can import it)."""
 
 import numpy as np
 
@@ -120,74 +114,14 @@ def shape_out(values, scalar):
     return values[0] if scalar else values
 
 
-class CurveMixin:
-    """The shared vocabulary, derived from :meth:`to_beziers`.
+#: Highest Bezier degree accepted (Bernstein recurrences are O(n^2) per parameter).
+MAX_DEGREE = 200
 
-    Subclasses provide ``eval(t)``, ``to_beziers()`` and ``domain``.
-    """
 
-    __slots__ = ()
-
-    @property
-    def dim(self):
-        """Dimension D of the curve's points (2 or 3)."""
-        return self.to_beziers().dim
-
-    def deriv(self, order=1):
-        """Derivative (hodograph) with respect to the curve's parameter, as a
-        :class:`~raster.curves.bezier.PiecewiseBezier`."""
-        return self.to_beziers().deriv(order)
-
-    def tangent(self, t):
-        """First derivative at ``t``: (D,) or (M, D) float64."""
-        return self.to_beziers().tangent(t)
-
-    def slope(self, t):
-        """dy/dx = y'(t) / x'(t) (``+-inf`` where x' = 0, ``nan`` where both
-        vanish): float or (M,) float64.  Needs D >= 2."""
-        if self.dim < 2:
-            raise CurveError('slope needs a curve of dimension >= 2')
-        d = np.atleast_2d(self.tangent(t))
-        with np.errstate(divide='ignore', invalid='ignore'):
-            s = d[:, 1] / d[:, 0]
-        return float(s[0]) if np.ndim(t) == 0 else s
-
-    def subsegment(self, t0, t1):
-        """The piece between parameters ``t0`` and ``t1`` (PiecewiseBezier)."""
-        return self.to_beziers().subsegment(t0, t1)
-
-    def extrema(self):
-        """Parameters (sorted (K,) float64) where some coordinate has a local
-        extremum inside the domain."""
-        return self.to_beziers().extrema()
-
-    def bounding_box(self):
-        """Exact bounding box ``(lo, hi)``, two (D,) float64 arrays."""
-        return self.to_beziers().bounding_box()
-
-    def flatten(self, tolerance=0.25):
-        """Polyline within ``tolerance`` of the curve: (K, D) float64."""
-        return self.to_beziers().flatten(tolerance)
-
-    def to_path(self, tolerance=0.25):
-        """A :class:`raster.path.Path` (x, y only); see
-        :meth:`PiecewiseBezier.to_path`."""
-        return self.to_beziers().to_path(tolerance)
-
-    def to_svg(self, tolerance=0.25, precision=None):
-        """SVG path data of :meth:`to_path`."""
-        return self.to_path(tolerance).to_svg(precision)
-
-    def draw(self, pen, tolerance=0.25):
-        """Send the curve to a pen (fontTools protocol)."""
-        self.to_beziers().draw(pen, tolerance)
-
-    def continuity(self, tolerance=1e-9):
-        """Continuity at each joint; see :func:`raster.curves.continuity.continuity`."""
-        from .continuity import continuity
-        closed = bool(getattr(self, 'closed', False)) or getattr(self, 'ends', None) == 'closed'
-        return continuity(self.to_beziers(), tolerance, closed=closed)
-
-    def control_points(self):
-        """The points that define the curve ((N, D) float64)."""
-        return self.points.copy()
+def as_degree(n):
+    """A polynomial degree: an int in ``0 .. MAX_DEGREE`` or :class:`CurveError`."""
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
+        raise CurveError('degree must be a non-negative integer, got %r' % (n,))
+    if n > MAX_DEGREE:
+        raise CurveError('degree %d exceeds the limit %d' % (n, MAX_DEGREE))
+    return int(n)

@@ -4,7 +4,7 @@ Two entry points:
 
 * :func:`flatten_beziers` -- ``S`` Bezier curves of one degree ``n >= 1``
   (any dimension ``D``) to polylines, vectorized over all curves;
-* :func:`flatten` -- a :class:`~raster.path.Path` (optionally transformed to
+* :func:`flatten` -- a :class:`~raster.geometry.path.Path` (optionally transformed to
   device space) to :class:`Polylines`.
 
 The guarantee
@@ -68,12 +68,16 @@ subdivision always terminates.
 
 import math
 
-import numpy as np
+from typing import List, Optional, Sequence, Tuple, Union
 
-from .errors import PathError, LimitError
-from . import limits
-from .transform import apply_each, as_affine
-from .bbox import quadratic_roots
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..errors import PathError, LimitError
+from .. import limits
+from .bezier import bernstein, bernstein_range, blossom_pieces, derivative
+from .path import CLOSE, LINE, MOVE, Path, segment_arrays
+from .transform import AffineLike, apply_each, as_affine
 
 __all__ = ['flatten', 'flatten_many', 'flatten_joined', 'flatten_beziers', 'Polylines',
            'DEFAULT_TOLERANCE']
@@ -102,149 +106,6 @@ def _check_tolerance(tolerance):
     return tol
 
 
-# binomial coefficients C(n, k) for the degrees used by blossoming
-_COMB = [[math.comb(n, k) for k in range(n + 1)] for n in range(64)]
-
-
-def _blossom(P, a, b):
-    """Control points of the pieces ``[a, b]`` of the curves ``P``.
-
-    Layout: arrays of pieces are "transposed", control point index first,
-    then coordinate, then piece, so that every row is contiguous.
-
-    Parameters
-    ----------
-    P : (n+1, D, m) float64 ndarray
-        Control points of the curve each piece belongs to.
-    a, b : (m,) float64 ndarray
-        Parameter interval of each piece.
-
-    Returns
-    -------
-    (n+1, D, m) float64 ndarray
-        ``Q_i`` is the blossom ``P(a, .., a, b, .., b)`` with ``n - i``
-        copies of ``a``; ``Q_0 = P(a)`` and ``Q_n = P(b)``.
-    """
-    n1, D, m = P.shape
-    n = n1 - 1
-    # The blossom with n-i arguments a and i arguments b is a convex
-    # combination of the P_j: the weights are the convolution of the
-    # Bernstein weights of degree n-i at a and of degree i at b.  They are
-    # exact at t = 0 and t = 1 (Q_n = P_n exactly when b = 1).
-    if n > _TABLE_DEGREE or m > _TABLE_PIECES:
-        return _blossom_loops(P, a, b)
-    ii, jj, rr, kk, coef, S = _blossom_table(n)
-    X = np.empty((n1, 4, m))
-    X[0] = 1.0
-    X[1:, 0] = a
-    X[1:, 1] = 1.0 - a
-    X[1:, 2] = b
-    X[1:, 3] = 1.0 - b
-    pw = np.cumprod(X, axis=0)                # pw[p, :] = a**p, (1-a)**p, b**p, (1-b)**p
-    T = pw[rr, 0] * pw[n - ii - rr, 1]
-    T *= pw[kk, 2]
-    T *= pw[ii - kk, 3]
-    T *= coef[:, None]
-    W = (S @ T).reshape(n1, n1, 1, m)         # W[i, j]: weight of P_j in Q_i
-    return (W * P[None]).sum(axis=1)
-
-
-def _blossom_loops(P, a, b):
-    """:func:`_blossom` for high degrees, term by term (the tables of
-    :func:`_blossom_table` grow like n**5)."""
-    n1, D, m = P.shape
-    n = n1 - 1
-    one = np.ones(m)
-    pa, qa, pb, qb = [one], [one], [one], [one]      # powers of a, 1-a, b, 1-b
-    for _ in range(n):
-        pa.append(pa[-1] * a)
-        qa.append(qa[-1] * (1.0 - a))
-        pb.append(pb[-1] * b)
-        qb.append(qb[-1] * (1.0 - b))
-    W = np.zeros((n1, n1, m))                         # W[i, j]: weight of P_j in Q_i
-    for i in range(n1):
-        wb = [_COMB[i][k] * pb[k] * qb[i - k] for k in range(i + 1)]
-        for r in range(n - i + 1):
-            wa = _COMB[n - i][r] * pa[r] * qa[n - i - r]
-            for k in range(i + 1):
-                W[i, r + k] += wa * wb[k]
-    Q = np.empty((n1, D, m))
-    for i in range(n1):
-        Q[i] = W[i, 0] * P[0]
-        for j in range(1, n1):
-            Q[i] += W[i, j] * P[j]
-    return Q
-
-
-# Highest degree, and most pieces, for which the blossom weights are
-# computed from index tables (fewer numpy calls; the term-by-term loops are
-# faster for many pieces).
-_TABLE_DEGREE = 8
-_TABLE_PIECES = 256
-_BLOSSOM_TABLES = {}
-
-
-def _blossom_table(n):
-    """Index tables of the blossom weights of degree ``n``: one term per
-    (i, r, k) with weight C(n-i, r) C(i, k) a**r (1-a)**(n-i-r) b**k
-    (1-b)**(i-k) added to W[i, r + k]; ``S`` sums the terms into W."""
-    tab = _BLOSSOM_TABLES.get(n)
-    if tab is None:
-        terms = [(i, r + k, r, k, _COMB[n - i][r] * _COMB[i][k])
-                 for i in range(n + 1) for r in range(n - i + 1) for k in range(i + 1)]
-        ii, jj, rr, kk, coef = (np.array(v) for v in zip(*terms))
-        S = np.zeros(((n + 1) ** 2, len(terms)))
-        S[ii * (n + 1) + jj, np.arange(len(terms))] = 1.0
-        tab = (ii, jj, rr, kk, coef.astype(np.float64), S)
-        _BLOSSOM_TABLES[n] = tab
-    return tab
-
-
-def _bernstein_max(c):
-    """Exact minimum and maximum over ``t`` in [0, 1] of Bernstein
-    polynomials of degree 2 or 3.
-
-    Parameters
-    ----------
-    c : (n+1, m) float64 ndarray, n in (2, 3)
-        Coefficients, one polynomial per column.
-
-    Returns
-    -------
-    lo, hi : (m,) float64 ndarray
-    """
-    n = len(c) - 1
-    c0, c1, c2 = c[0], c[1], c[2]
-    lo = np.minimum(c0, c[n])
-    hi = np.maximum(c0, c[n])
-    if n == 2:
-        # derivative / 2 = (c1 - c0) + t (c0 - 2 c1 + c2): one root
-        den = c0 - 2.0 * c1 + c2
-        with np.errstate(all='ignore'):
-            t = np.where(den != 0, (c0 - c1) / den, 0.0)
-        t = np.where((t > 0.0) & (t < 1.0), t, 0.0)   # t = 0 is a candidate anyway
-        s = 1.0 - t
-        v = s * s * c0 + 2.0 * s * t * c1 + t * t * c2
-        return np.minimum(lo, v), np.maximum(hi, v)
-    c3 = c[3]
-    # derivative / 3 = A t**2 + B t + C; both roots by the cancellation-free
-    # formula (as :func:`raster.bbox.quadratic_roots`), evaluated together.
-    # Roots that are NaN, infinite or outside (0, 1) are replaced by t = 0.
-    qa = c3 - c0 + 3.0 * (c1 - c2)
-    qb = 2.0 * (c0 - 2.0 * c1 + c2)
-    qc = c1 - c0
-    t = np.empty((2, len(c0)))
-    with np.errstate(all='ignore'):
-        sq = np.sqrt(qb * qb - 4.0 * qa * qc)
-        q = -0.5 * (qb + np.where(qb >= 0, sq, -sq))
-        np.divide(q, qa, out=t[0])
-        np.divide(qc, q, out=t[1])
-    t[~((t > 0.0) & (t < 1.0))] = 0.0
-    s = 1.0 - t
-    v = s * s * s * c0 + 3.0 * s * t * (s * c1 + t * c2) + t * t * t * c3
-    return np.minimum(lo, v.min(axis=0)), np.maximum(hi, v.max(axis=0))
-
-
 def _deviation(Q):
     """Rigorous bound of the Hausdorff distance between Bezier pieces and
     their chord segments.
@@ -252,8 +113,8 @@ def _deviation(Q):
     Parameters
     ----------
     Q : (n+1, D, m) float64 ndarray
-        Control points of ``m`` pieces (transposed layout, see
-        :func:`_blossom`).
+        Control points of ``m`` pieces (the point-major layout of
+        :func:`~raster.geometry.bezier.blossom_pieces`).
 
     Returns
     -------
@@ -312,7 +173,7 @@ def _deviation_planar(Q):
         c[1:n, :m] = (dx * ry - dy * rx) / L
         c[1:n, m:] = u
         c[n, m:] = 1.0
-        lo, hi = _bernstein_max(c)
+        lo, hi = bernstein_range(c, normalize=False)     # |c| < 1e150: exact as is
         perp = np.maximum(-lo[:m], hi[:m])
         ulo, uhi = lo[m:], hi[m:]
     else:
@@ -331,22 +192,14 @@ _G = 32
 _SG = (np.arange(_G) + 0.5) / _G
 
 
-def _bernstein_basis(n, s):
-    """(len(s), n+1) matrix of the degree-n Bernstein polynomials at s."""
-    from math import comb
-    i = np.arange(n + 1)
-    return (np.array([comb(n, k) for k in i], dtype=np.float64)
-            * s[:, None] ** i * (1.0 - s[:, None]) ** (n - i))
-
-
 _SAMPLE_BASES = {}
 
 
 def _sample_basis(n):
-    """:func:`_bernstein_basis` of degree ``n`` at the samples ``_SG`` (cached)."""
+    """Bernstein basis of degree ``n`` at the samples ``_SG`` (cached)."""
     B = _SAMPLE_BASES.get(n)
     if B is None:
-        B = _SAMPLE_BASES[n] = _bernstein_basis(n, _SG)
+        B = _SAMPLE_BASES[n] = bernstein(n, _SG)
     return B
 
 
@@ -383,8 +236,8 @@ def _plan_split(Q, e, tol):
     k_uni = np.maximum(np.ceil(np.sqrt(e / tol)), 2.0)
     if n < 2:
         return k_uni, None
-    d1 = n * np.diff(Q, axis=0)                       # (n, D, m)
-    d2 = (n - 1) * np.diff(d1, axis=0)                # (n-1, D, m)
+    d1 = derivative(Q, axis=0)                        # (n, D, m)
+    d2 = derivative(d1, axis=0)                       # (n-1, D, m)
     v = np.tensordot(_sample_basis(n - 1), d1, axes=1)   # (_G, D, m): B'
     w = np.tensordot(_sample_basis(n - 2), d2, axes=1)   # (_G, D, m): B''
     vv = (v * v).sum(axis=1)
@@ -459,7 +312,8 @@ def _split_points(k, cdf):
     return rep, s_end
 
 
-def flatten_beziers(ctrl, tolerance=DEFAULT_TOLERANCE):
+def flatten_beziers(ctrl: ArrayLike,
+                    tolerance: float = DEFAULT_TOLERANCE) -> Tuple[np.ndarray, np.ndarray]:
     """Flatten Bezier curves of one degree into polylines.
 
     Parameters
@@ -537,7 +391,7 @@ def flatten_beziers(ctrl, tolerance=DEFAULT_TOLERANCE):
             c = cur[lo:lo + _CHUNK]
             ca, cb = a[lo:lo + _CHUNK], b[lo:lo + _CHUNK]
             # first round: the pieces are the whole curves (Q = P exactly)
-            Q = PT[:, :, c] if rnd == 0 else _blossom(PT[:, :, c], ca, cb)
+            Q = PT[:, :, c] if rnd == 0 else blossom_pieces(PT[:, :, c], ca, cb)
             e = _deviation(Q)
             ok = (e <= np.maximum(tol, floor[c])) | (rnd == _MAX_ROUNDS)
             if np.any(ok):
@@ -624,7 +478,7 @@ class Polylines:
 
     __slots__ = ('points', 'starts', 'closed')
 
-    def __init__(self, points, starts, closed):
+    def __init__(self, points: ArrayLike, starts: ArrayLike, closed: ArrayLike) -> None:
         self.points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
         self.starts = np.asarray(starts, dtype=np.int64).reshape(-1)
         self.closed = np.asarray(closed, dtype=bool).reshape(-1)
@@ -632,12 +486,12 @@ class Polylines:
             raise PathError('starts and closed must have the same length')
 
     @property
-    def ends(self):
+    def ends(self) -> np.ndarray:
         """(K,) int64: one past the last vertex index of each polyline."""
         return np.append(self.starts[1:], len(self.points)).astype(np.int64)
 
     @property
-    def sizes(self):
+    def sizes(self) -> np.ndarray:
         """(K,) int64: number of vertices of each polyline."""
         return self.ends - self.starts
 
@@ -656,7 +510,7 @@ class Polylines:
     def __repr__(self):
         return 'Polylines(%d polylines, %d points)' % (len(self), len(self.points))
 
-    def take(self, idx):
+    def take(self, idx: ArrayLike) -> 'Polylines':
         """The polylines ``idx`` ((M,) int array, in the order given) as a
         new :class:`Polylines`.
 
@@ -671,14 +525,13 @@ class Polylines:
         src = np.repeat(self.starts[idx] - starts, sizes) + np.arange(int(sizes.sum()))
         return Polylines(self.points[src], starts, self.closed[idx])
 
-    def to_path(self):
-        """The polylines as a :class:`~raster.path.Path` of line segments
+    def to_path(self) -> Path:
+        """The polylines as a :class:`~raster.geometry.path.Path` of line segments
         (``M L .. L`` plus ``Z`` for the closed ones).
 
         >>> Polylines([[0, 0], [1, 0], [1, 1]], [0], [True]).to_path().to_svg()
         'M 0 0 L 1 0 L 1 1 Z'
         """
-        from .path import Path, MOVE, LINE, CLOSE
         K, N = len(self.starts), len(self.points)
         if K == 0:
             return Path.empty()
@@ -689,7 +542,8 @@ class Polylines:
         verbs[(self.ends + ncl)[self.closed]] = CLOSE
         return Path(verbs, self.points.copy(), _checked=True)
 
-    def edges(self, close_all=True, owners=False):
+    def edges(self, close_all: bool = True,
+              owners: bool = False) -> Union[np.ndarray, Tuple[np.ndarray, np.ndarray]]:
         """Line segments of all polylines.
 
         Parameters
@@ -735,16 +589,17 @@ class Polylines:
         return out
 
 
-def flatten(path, tolerance=DEFAULT_TOLERANCE, transform=None):
+def flatten(path: Path, tolerance: float = DEFAULT_TOLERANCE,
+            transform: AffineLike = None) -> Polylines:
     """Flatten a path into polylines.
 
     Parameters
     ----------
-    path : raster.path.Path
+    path : raster.geometry.path.Path
     tolerance : float, optional
         Largest Hausdorff distance between each curve and its polyline, in
         device pixels (the units after ``transform``); default 0.25.
-    transform : raster.transform.Affine or None, optional
+    transform : raster.geometry.transform.Affine or None, optional
         Applied to the control points first (user to device space).
 
     Returns
@@ -769,14 +624,14 @@ def flatten(path, tolerance=DEFAULT_TOLERANCE, transform=None):
 
     Examples
     --------
-    >>> from raster.path import Path
+    >>> from raster.geometry.path import Path
     >>> pl = flatten(Path.polygon([[0, 0], [4, 0], [4, 3]]), transform=(2, 0, 0, 2, 0, 0))
     >>> pl.points.tolist(), pl.starts.tolist(), pl.closed.tolist()
     ([[0.0, 0.0], [8.0, 0.0], [8.0, 6.0]], [0], [True])
     """
     tol = _check_tolerance(tolerance)
     if not callable(getattr(path, 'segments', None)):
-        raise PathError('flatten needs a raster.path.Path, got %s' % type(path).__name__)
+        raise PathError('flatten needs a raster.Path, got %s' % type(path).__name__)
     seg = path.segments()
     t = as_affine(transform)
     ctrl = seg.ctrl
@@ -839,7 +694,8 @@ def _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol):
     return out, starts, keep_c, item_n
 
 
-def flatten_joined(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
+def flatten_joined(paths: Sequence[Path], transforms: Optional[Sequence[AffineLike]] = None,
+                   tolerance: float = DEFAULT_TOLERANCE) -> Tuple[Polylines, np.ndarray]:
     """Flatten many paths at once into one :class:`Polylines`.
 
     The verbs and points of all paths are read as one array (every path
@@ -849,7 +705,7 @@ def flatten_joined(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
 
     Parameters
     ----------
-    paths : sequence of raster.path.Path
+    paths : sequence of raster.geometry.path.Path
     transforms : sequence of Affine (or None entries), or None, optional
         One transform per path (user to device space); None: identity.
     tolerance : float, optional
@@ -867,13 +723,12 @@ def flatten_joined(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
     ------
     As :func:`flatten_many`.
 
-    >>> from raster.path import Path
+    >>> from raster.geometry.path import Path
     >>> sq = Path.polygon([[0, 0], [1, 0], [1, 1], [0, 1]])
     >>> pl, first = flatten_joined([sq, Path.empty(), sq], [None, None, (2, 0, 0, 2, 5, 0)])
     >>> first.tolist(), pl.starts.tolist(), pl.points[4:].tolist()
     ([0, 1, 1, 2], [0, 4], [[5.0, 0.0], [7.0, 0.0], [7.0, 2.0], [5.0, 2.0]])
     """
-    from .path import MOVE, _segments
     tol = _check_tolerance(tolerance)
     paths = list(paths)
     n = len(paths)
@@ -885,7 +740,7 @@ def flatten_joined(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
                         % (n, len(transforms)))
     for p in paths:
         if not (hasattr(p, 'verbs') and callable(getattr(p, 'segments', None))):
-            raise PathError('flatten_many needs raster.path.Path objects, got %s'
+            raise PathError('flatten_many needs raster.Path objects, got %s'
                             % type(p).__name__)
     if n == 0:
         return Polylines(np.zeros((0, 2)), [], []), np.zeros(1, np.int64)
@@ -894,7 +749,7 @@ def flatten_joined(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
         return Polylines(np.zeros((0, 2)), [], []), np.zeros(n + 1, np.int64)
     verbs = np.concatenate([p.verbs for p in paths])
     points = np.concatenate([p.points for p in paths])
-    seg = _segments(verbs, points)
+    seg = segment_arrays(verbs, points)
     ctrl, cstart = seg.ctrl, seg.contour_start
     nc = np.bincount(np.repeat(np.arange(n), nverb)[verbs == MOVE], minlength=n)
     aff = [as_affine(t) for t in transforms]
@@ -921,14 +776,15 @@ def flatten_joined(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
     return Polylines(out, starts, seg.contour_closed[keep_c]), first
 
 
-def flatten_many(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
+def flatten_many(paths: Sequence[Path], transforms: Optional[Sequence[AffineLike]] = None,
+                 tolerance: float = DEFAULT_TOLERANCE) -> List[Polylines]:
     """Flatten many paths at once: one :func:`flatten_beziers` call per
     degree for all their curves, so a document of thousands of small paths
     does not pay the fixed cost of a flatten call per path.
 
     Parameters
     ----------
-    paths : sequence of raster.path.Path
+    paths : sequence of raster.geometry.path.Path
     transforms : sequence of Affine (or None entries), or None, optional
         One transform per path (user to device space); None: identity.
     tolerance : float, optional
@@ -953,7 +809,7 @@ def flatten_many(paths, transforms=None, tolerance=DEFAULT_TOLERANCE):
 
     Examples
     --------
-    >>> from raster.path import Path
+    >>> from raster.geometry.path import Path
     >>> sq = Path.polygon([[0, 0], [1, 0], [1, 1], [0, 1]])
     >>> a, b = flatten_many([sq, sq], [None, (2, 0, 0, 2, 5, 0)])
     >>> b.points.tolist()

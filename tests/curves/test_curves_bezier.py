@@ -8,11 +8,11 @@ import pytest
 from hypothesis import given, settings, strategies as st
 from scipy.spatial import ConvexHull
 
-from raster.bbox import bezier_bbox
+from raster.geometry.bounds import bezier_bbox
 from raster.curves import (Bezier, PiecewiseBezier, bernstein, bernstein_matrix, CurveError,
                            convex_hull)
 from raster.errors import RasterError
-from raster.path import RecordingPen
+from raster.geometry.pens import RecordingPen
 
 # The cubic used for the hand-worked answers:
 #   P = (0,0), (1,2), (3,2), (4,0)
