@@ -43,6 +43,9 @@ module                 classes and functions
 ``surface``            :class:`BezierSurface`, :class:`RationalBezierSurface`,
                        :class:`BSplineSurface`, :class:`NURBSSurface`,
                        :class:`HermitePatch`, :class:`CoonsPatch`
+``explain``            :func:`explain` (worked solutions)
+``plot``, ``axes``,    plots of curves (axes, labels, blending panel) and
+``surfaceplot``        of surfaces (shaded, wireframe, control net)
 (``raster.hull``)      :func:`convex_hull` (monotone chain), re-exported
 =====================  ==============================================
 
@@ -73,6 +76,7 @@ from .nurbs import NURBS
 from .conics import ConicArc, conic, conic_kind, circle_arc, ellipse_arc, circle, ellipse
 from .surface import (BezierSurface, RationalBezierSurface, BSplineSurface, NURBSSurface,
                       HermitePatch, CoonsPatch)
+from .explain import explain
 from ..hull import convex_hull   # re-exported: the hull shared with flattening
 
 
@@ -84,4 +88,4 @@ __all__ = ['CurveError', 'Bezier', 'PiecewiseBezier', 'bernstein', 'bernstein_ma
            'format_joints', 'convex_hull', 'RationalBezier', 'PiecewiseRational', 'NURBS',
            'ConicArc', 'conic', 'conic_kind', 'circle_arc', 'ellipse_arc', 'circle', 'ellipse',
            'BezierSurface', 'RationalBezierSurface', 'BSplineSurface', 'NURBSSurface',
-           'HermitePatch', 'CoonsPatch']
+           'HermitePatch', 'CoonsPatch', 'explain']
