@@ -40,7 +40,7 @@ from ._base import MAX_CURVE_POINTS, CurveError, as_points, as_scalar
 from .bezier import Bezier
 from .bspline import BSpline, basis_functions
 from .nurbs import NURBS
-from .rational import RationalBezier, check_weights, rational_derivatives
+from .rational import RationalBezier, check_weights
 
 __all__ = ['BezierSurface', 'RationalBezierSurface', 'BSplineSurface', 'NURBSSurface',
            'HermitePatch', 'CoonsPatch', 'basis_derivatives', 'as_net']
