@@ -139,10 +139,10 @@ class Panel:
         (the grid first, to be drawn under everything)."""
         left, top, w, h = self.rect
         right, bottom = left + w, top + h
-        xt = nice_ticks(*self.xlim, target=max(2, int(target * w / max(w, h) + 0.5)))
-        yt = nice_ticks(*self.ylim, target=max(2, int(target * h / max(w, h) + 0.5)))
-        xs = nice_step(self.xlim[1] - self.xlim[0], max(2, int(target * w / max(w, h) + 0.5)))
-        ys = nice_step(self.ylim[1] - self.ylim[0], max(2, int(target * h / max(w, h) + 0.5)))
+        xt = nice_ticks(*self.xlim, target=max(4, int(target * w / max(w, h) + 0.5)))
+        yt = nice_ticks(*self.ylim, target=max(4, int(target * h / max(w, h) + 0.5)))
+        xs = nice_step(self.xlim[1] - self.xlim[0], max(4, int(target * w / max(w, h) + 0.5)))
+        ys = nice_step(self.ylim[1] - self.ylim[0], max(4, int(target * h / max(w, h) + 0.5)))
         T = self.transform
         grid, zero, ticks = [], [], []
         for v in xt:

@@ -347,9 +347,14 @@ class Plot:
         requests = []                   # (anchor, [(text, size, colour)], prefer, kind)
         if labels:
             names = _control_names(curve, len(ctrl))
-            for k, ((x, y), p) in enumerate(zip(cp, ctrl)):
+            seen = {}
+            for k, p in enumerate(ctrl):            # coinciding points share a label
+                seen.setdefault(tuple(np.round(p, 12)), []).append(k)
+            for ks in seen.values():
+                (x, y), p = cp[ks[0]], ctrl[ks[0]]
                 prefer = (1 if x >= centre[0] else -1, 1 if y >= centre[1] else -1)
-                requests.append(((x, y), [('%s %s' % (names[k], _fmt_pt(p)), fs,
+                requests.append(((x, y), [('%s %s' % ('='.join(names[k] for k in ks),
+                                                      _fmt_pt(p)), fs,
                                            COLORS['control_label'])], prefer, 'control'))
         if joints:
             jl = _joint_list(curve)
