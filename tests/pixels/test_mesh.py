@@ -342,7 +342,10 @@ def test_bicubic_reproduces_a_linear_ramp():
 def test_tolerance_is_honoured(seed, tol):
     # colours encode the parameters: r = u, g = v exactly (bilinear); every
     # painted pixel must show a patch point within `tol` of its centre, and
-    # every centre deeper than `tol` inside the patch must be painted
+    # every centre deeper than `tol` inside the boundary must be painted
+    # (the boundary has winding number 1, so the patch covers its inside;
+    # it may also bulge out of it near sharp corners -- painting there is
+    # right, and the first check covers it)
     rng = np.random.default_rng(seed)
     s = 40.0
     base = np.array([[0, 0], [1, 0], [2, 0], [3, 0], [3, 1], [3, 2], [3, 3], [2, 3], [1, 3],
@@ -374,9 +377,8 @@ def test_tolerance_is_honoured(seed, tol):
         q[:, None, 0] < a[:, 0] + (q[:, None, 1] - a[:, 1]) * d[:, 0] / np.where(d[:, 1] == 0, 1, d[:, 1]))
     inside = cross.sum(1) % 2 == 1
     deep = (inside & (dist > tol + 0.02)).reshape(W, W)
-    far = (~inside & (dist > tol + 0.02)).reshape(W, W)
     assert painted[deep].all()
-    assert not painted[far].any()
+    assert deep.sum() > 300
 
 
 def test_zoomed_in_mesh_work_is_bounded():
