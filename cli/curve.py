@@ -35,7 +35,6 @@ parameter instead (use ``--joints`` for the report).
 Usage and input errors print one line on stderr and exit with status 2.
 """
 
-import argparse
 import json
 import math
 import os
@@ -44,50 +43,15 @@ import sys
 
 import numpy as np
 
+from raster_cli.curve_args import (UsageError, Parser as _Parser, number as _number,
+                                   parse_numbers, parse_points, plot_size)
+from raster_cli.curve_surface import run_surface
+
+__all__ = ['main', 'build_parser', 'build_curve', 'parse_numbers', 'parse_points', 'UsageError',
+           'FAMILIES']
+
 FAMILIES = ('bezier', 'hermite', 'cardinal', 'catmull-rom', 'kochanek-bartels', 'bspline',
             'beta', 'natural', 'rational-bezier', 'nurbs', 'arc', 'surface')
-
-
-class UsageError(Exception):
-    """Bad command-line input (exit status 2)."""
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        raise UsageError(message)
-
-
-def _number(text, what):
-    try:
-        v = float(text)
-    except ValueError:
-        raise UsageError('cannot parse %s %r as a number' % (what, text)) from None
-    if not math.isfinite(v):
-        raise UsageError('%s must be finite, got %r' % (what, text))
-    return v
-
-
-def parse_numbers(text, what='value'):
-    """'0,0.25,1' -> [0.0, 0.25, 1.0]."""
-    parts = [p for p in re.split(r'[,\s]+', text.strip()) if p]
-    if not parts:
-        raise UsageError('no %s given' % what)
-    return [_number(p, what) for p in parts]
-
-
-def parse_points(text, what='points'):
-    """'1,1 2,3 4,3' -> (N, D) float64 array (D the same for every point)."""
-    groups = [g for g in re.split(r'[\s;]+', text.strip()) if g]
-    if not groups:
-        raise UsageError('no %s given' % what)
-    pts = []
-    for g in groups:
-        coords = [c for c in g.split(',') if c != '']
-        pts.append([_number(c, 'coordinate') for c in coords])
-    dims = {len(p) for p in pts}
-    if len(dims) != 1:
-        raise UsageError('all %s must have the same number of coordinates' % what)
-    return np.array(pts, dtype=np.float64)
 
 
 def _per_key(text, what):
@@ -522,13 +486,6 @@ def to_json(args, curve, res):
                               for k, v in obj.items()) + '\n}'
 
 
-def plot_size(args):
-    size = _number(args.size, 'size')
-    if size != int(size) or not 100 <= size <= 4000:
-        raise UsageError('--size must be an integer between 100 and 4000')
-    return int(size)
-
-
 def _no_surface_options(args):
     if args.view != 'perspective' or args.azimuth != '-60' or args.elevation != '30':
         raise UsageError('--view, --azimuth and --elevation apply to surface only')
@@ -549,7 +506,6 @@ def main(argv=None):
     try:
         args = parser.parse_args(argv)
         if args.family == 'surface':
-            from raster_cli.curve_surface import run_surface
             run_surface(args, sys.stdout)
             return 0
         _no_surface_options(args)

@@ -17,7 +17,7 @@ import re
 
 import numpy as np
 
-from raster_cli.curve import UsageError, _number, parse_numbers, parse_points, plot_size
+from raster_cli.curve_args import UsageError, number, parse_numbers, parse_points, plot_size
 
 #: Largest JSON net file read (bytes).
 MAX_NET_FILE = 16 << 20
@@ -153,8 +153,8 @@ def run_surface(args, out):
         tangents = (d[:, 1, 0], d[:, 0, 1])
     if args.plot:
         from raster.curves.surfaceplot import plot_surface
-        az = _number(args.azimuth, 'azimuth')
-        el = _number(args.elevation, 'elevation')
+        az = number(args.azimuth, 'azimuth')
+        el = number(args.elevation, 'elevation')
         plot_surface(surface, args.plot, params=uv, width=plot_size(args), view=args.view,
                      azimuth=az, elevation=el, title=args.title)
     if args.json:
