@@ -32,7 +32,7 @@ AXIS_COLORS = {
 }
 
 
-def nice_step(span, target=6):
+def nice_step(span: float, target: int = 6) -> float:
     """A step of 1, 2 or 5 times a power of ten giving about ``target``
     intervals over ``span`` (> 0)."""
     if not span > 0 or not math.isfinite(span):
@@ -45,7 +45,7 @@ def nice_step(span, target=6):
     return 10.0 * mag
 
 
-def nice_ticks(lo, hi, target=6):
+def nice_ticks(lo: float, hi: float, target: int = 6) -> np.ndarray:
     """Tick values: multiples of :func:`nice_step` inside ``[lo, hi]``,
     (K,) float64 (rounded to the step's decimals, so 0.30000000000000004
     becomes 0.3)."""
@@ -59,7 +59,7 @@ def nice_ticks(lo, hi, target=6):
     return np.round(np.arange(k0, k1 + 1) * step, digits) + 0.0
 
 
-def tick_text(v, step):
+def tick_text(v: float, step: float) -> str:
     """Label of tick ``v``: as many decimals as the step needs."""
     if abs(v) < step * 1e-9:
         return '0'

@@ -24,8 +24,10 @@ Angles are in radians, measured from the +x axis towards +y.
 """
 
 import math
+from typing import Union
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._base import CurveError, as_points, as_scalar
 from .rational import PiecewiseRational, RationalBezier
@@ -35,7 +37,7 @@ __all__ = ['ConicArc', 'conic', 'conic_kind', 'circle_arc', 'ellipse_arc', 'circ
 TWO_PI = 2.0 * math.pi
 
 
-def conic(p0, p1, p2, w=1.0):
+def conic(p0: ArrayLike, p1: ArrayLike, p2: ArrayLike, w: float = 1.0) -> RationalBezier:
     """The rational quadratic ``P0, P1, P2`` with weights ``1, w, 1``.
 
     >>> conic([0, 0], [1, 2], [2, 0]).eval(0.5).tolist()      # w = 1: a parabola
@@ -48,7 +50,7 @@ def conic(p0, p1, p2, w=1.0):
                           [1.0, w, 1.0])
 
 
-def conic_kind(w):
+def conic_kind(w: Union[float, RationalBezier]) -> str:
     """``'ellipse'``, ``'parabola'`` or ``'hyperbola'`` for the middle weight
     ``w`` of a rational quadratic in standard form (end weights 1), or for a
     degree-2 :class:`RationalBezier` (its shape factor ``w1^2 / (w0 w2)``)."""
@@ -159,25 +161,27 @@ class ConicArc(PiecewiseRational):
         return self.eval(self.param_at_angle(angle))
 
 
-def circle_arc(center, radius, start=0.0, sweep=TWO_PI):
+def circle_arc(center: ArrayLike, radius: float, start: float = 0.0,
+               sweep: float = TWO_PI) -> 'ConicArc':
     """Arc of the circle ``|x - center| = radius`` from angle ``start``
     through the signed angle ``sweep`` (radians, ``0 < |sweep| <= 2 pi``):
     a :class:`ConicArc`."""
     return ConicArc(center, radius, radius, 0.0, start, sweep)
 
 
-def ellipse_arc(center, rx, ry, rotation=0.0, start=0.0, sweep=TWO_PI):
+def ellipse_arc(center: ArrayLike, rx: float, ry: float, rotation: float = 0.0,
+                start: float = 0.0, sweep: float = TWO_PI) -> 'ConicArc':
     """Arc of an ellipse with semi-axes ``rx, ry`` rotated by ``rotation``,
     between parametric angles ``start`` and ``start + sweep``: a
     :class:`ConicArc`."""
     return ConicArc(center, rx, ry, rotation, start, sweep)
 
 
-def circle(center, radius):
+def circle(center: ArrayLike, radius: float) -> 'ConicArc':
     """The full circle (4 quarter arcs, closed)."""
     return circle_arc(center, radius, 0.0, TWO_PI)
 
 
-def ellipse(center, rx, ry, rotation=0.0):
+def ellipse(center: ArrayLike, rx: float, ry: float, rotation: float = 0.0) -> 'ConicArc':
     """The full ellipse (4 quarter arcs, closed)."""
     return ellipse_arc(center, rx, ry, rotation, 0.0, TWO_PI)

@@ -31,6 +31,7 @@ True
 """
 
 import math
+from typing import Sequence
 
 import numpy as np
 
@@ -41,7 +42,7 @@ __all__ = ['explain', 'Doc', 'FORMATS']
 FORMATS = ('plain', 'markdown', 'latex')
 
 
-def num(v, digits=6):
+def num(v: float, digits: int = 6) -> str:
     """A number for the reader: up to ``digits`` significant digits, no
     trailing zeros, no ``-0``."""
     v = float(v)
@@ -380,8 +381,10 @@ def _hermite(doc, curve, ts, derive=True):
     doc.eq(M('P(t) = a3 t^3 + a2 t^2 + a1 t + a0', 'P(t) = a_3 t^3 + a_2 t^2 + a_1 t + a_0'),
            M("P'(t) = 3 a3 t^2 + 2 a2 t + a1", "P'(t) = 3 a_3 t^2 + 2 a_2 t + a_1"))
     doc.p('The four end conditions (end points and end tangents):')
-    doc.eq(M('P(0) = a0', 'P(0) = a_0'), M('P(1) = a3 + a2 + a1 + a0', 'P(1) = a_3 + a_2 + a_1 + a_0'),
-           M("P'(0) = a1", "P'(0) = a_1"), M("P'(1) = 3 a3 + 2 a2 + a1", "P'(1) = 3a_3 + 2a_2 + a_1"))
+    doc.eq(M('P(0) = a0', 'P(0) = a_0'),
+           M('P(1) = a3 + a2 + a1 + a0', 'P(1) = a_3 + a_2 + a_1 + a_0'),
+           M("P'(0) = a1", "P'(0) = a_1"),
+           M("P'(1) = 3 a3 + 2 a2 + a1", "P'(1) = 3a_3 + 2a_2 + a_1"))
     doc.p('In matrix form ', M("[P(0) P(1) P'(0) P'(1)]^T = C [a3 a2 a1 a0]^T",
                               "[P(0)\\;P(1)\\;P'(0)\\;P'(1)]^T = C\\,[a_3\\;a_2\\;a_1\\;a_0]^T"),
           ' with')
@@ -415,7 +418,8 @@ def _hermite_segments(doc, curve, ts, ax):
         coef = (HERMITE_MATRIX @ g)[::-1]
         title = 'With the given data' if S == 1 else 'Segment %d (t in [%d, %d])' % (s, s, s + 1)
         doc.h(title)
-        doc.p('P(0) = %s, P(1) = %s, P\'(0) = %s, P\'(1) = %s.' % (_pt(p0), _pt(p1), _pt(t0), _pt(t1)))
+        doc.p("P(0) = %s, P(1) = %s, P'(0) = %s, P'(1) = %s."
+              % (_pt(p0), _pt(p1), _pt(t0), _pt(t1)))
         var = 't' if S == 1 else 'u'
         if S > 1:
             doc.p('Local parameter u = %s.' % ('t' if s == 0 else 't - %d' % s))
@@ -632,7 +636,8 @@ def _tangent_rule(doc, curve):
                  "\\tfrac{(1-T)(1-B)(1-C)}{2}(P_{i+1} - P_i)"))
     else:
         doc.p('Cardinal tangents at key P_i with tension c = %s: ' % num(curve.tension),
-              M('T_i = (1 - c) (P_{i+1} - P_{i-1}) / 2', 'T_i = (1-c)\\,\\frac{P_{i+1} - P_{i-1}}{2}'),
+              M('T_i = (1 - c) (P_{i+1} - P_{i-1}) / 2',
+                'T_i = (1-c)\\,\\frac{P_{i+1} - P_{i-1}}{2}'),
               ' (c = 0: Catmull-Rom).')
     doc.p('Ends: %s.' % {'duplicate': 'the missing neighbours of the end keys are the end keys',
                          'interior': 'the first and last points only steer the end tangents',
@@ -664,7 +669,8 @@ def _continuity(doc, curve, tolerance=1e-9):
                       M("A''(%s) = %s,  B''(%s) = %s" % (num(j.t), _pt(a2), num(j.t), _pt(b2)))]
         cs = 'C%d' % j.C if j.C >= 0 else 'not C0'
         gs = 'G%d' % j.G if j.G >= 0 else 'not G0'
-        lines.append(M('joint %d at t = %s: %s, %s (gap %s, tangent angle %s deg, curvature jump %s)'
+        lines.append(M('joint %d at t = %s: %s, %s (gap %s, tangent angle %s deg, '
+                       'curvature jump %s)'
                        % (j.index, num(j.t), cs, gs, num(j.gap), num(np.degrees(j.angle)),
                           num(j.curvature_jump))))
         doc.eq(*lines)
@@ -686,7 +692,8 @@ def _joint_derivs(curve, k):
     return en[k], st[(k + 1) % S]
 
 
-def explain(curve, params=(), fmt='plain', tangent=False, continuity=True):
+def explain(curve, params: Sequence[float] = (), fmt: str = 'plain', tangent: bool = False,
+            continuity: bool = True) -> str:
     """The worked solution for ``curve`` at the parameters ``params``.
 
     Parameters

@@ -89,7 +89,7 @@ def _square(cx, cy, r):
     return Path.polygon([(cx - r, cy - r), (cx + r, cy - r), (cx + r, cy + r), (cx - r, cy + r)])
 
 
-def fmt_number(v):
+def fmt_number(v: float) -> str:
     """A coordinate for a label: 4 significant digits, short exponents."""
     return ('%.4g' % v).replace('e+0', 'e').replace('e-0', 'e-')
 
@@ -102,7 +102,7 @@ PALETTE = [(0.12, 0.35, 0.75), (0.85, 0.35, 0.05), (0.15, 0.6, 0.25), (0.75, 0.1
            (0.45, 0.3, 0.7), (0.0, 0.55, 0.6), (0.6, 0.45, 0.1), (0.35, 0.35, 0.35)]
 
 
-def blend_functions(curve, samples=241):
+def blend_functions(curve, samples: int = 241) -> dict:
     """The blending functions of a curve's family, sampled for plotting.
 
     Returns
@@ -179,7 +179,7 @@ def _overlap(a, b):
     return w * h if w > 0 and h > 0 else 0.0
 
 
-def place_label(anchor, w, h, taken, bounds, prefer=(1, -1)):
+def place_label(anchor, w: float, h: float, taken: list, bounds, prefer=(1, -1)):
     """Top-left corner of a ``w x h`` label box near ``anchor`` that overlaps
     the boxes in ``taken`` least (greedy; the box is then appended).
 
@@ -490,7 +490,7 @@ class Plot:
         return layers_to_svg(self.width, self.height, self.layers)
 
 
-def layers_to_svg(width, height, layers):
+def layers_to_svg(width: int, height: int, layers: list) -> str:
     """Plot layers ``(kind, Path, style)`` as an SVG document (str): fills
     and strokes with the styles' colours, dashes, joins and caps."""
     def rgb(col):
@@ -536,8 +536,8 @@ def _joint_list(curve):
         return np.zeros((0, 2)), []
     if not js:
         return np.zeros((0, 2)), []
-    pos = np.atleast_2d(curve.eval(np.array([j.t for j in js]) if not getattr(curve, 'closed', False)
-                                   else np.array([min(j.t, curve.domain[1]) for j in js])))[:, :2]
+    ts = np.array([min(j.t, curve.domain[1]) for j in js])
+    pos = np.atleast_2d(curve.eval(ts))[:, :2]
     labels = []
     for j in js:
         c = 'C%d' % j.C if j.C >= 0 else 'gap'

@@ -35,8 +35,10 @@ True
 """
 
 import math
+from typing import Sequence, Tuple
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._base import CurveError, as_params, as_points, as_scalar, shape_out
 from .bezier import Bezier, PiecewiseBezier
@@ -52,7 +54,7 @@ MAX_WEIGHT_RATIO = 1e12
 MAX_APPROX_PIECES = 1 << 20
 
 
-def check_weights(w, shape, name='weights'):
+def check_weights(w: ArrayLike, shape: Tuple[int, ...], name: str = 'weights') -> np.ndarray:
     """Validate positive weights: a scalar or an array of ``shape``; returns
     a float64 array of ``shape``.
 
@@ -80,7 +82,7 @@ def check_weights(w, shape, name='weights'):
     return a
 
 
-def bernstein_product(f, g):
+def bernstein_product(f: ArrayLike, g: ArrayLike) -> np.ndarray:
     """Product of polynomials given by Bernstein coefficients, in Bernstein
     form: ``c_k = sum_{i+j=k} C(a,i) C(b,j) / C(a+b,k) f_i g_j``.
 
@@ -143,7 +145,7 @@ def _pieces(h, u0, u1):
     return left
 
 
-def rational_derivatives(hd, D):
+def rational_derivatives(hd: Sequence[np.ndarray], D: int) -> np.ndarray:
     """Derivatives of a rational curve (or of a surface along one
     direction) from those of its homogeneous form, by Leibniz's rule.
 
@@ -352,7 +354,8 @@ class PiecewiseRational:
         n, D = self.degree, self.dim
         h = self._h.ctrl
         A, w = h[..., :D], h[..., D:]
-        return bernstein_product(n * np.diff(A, axis=1), w) - bernstein_product(A, n * np.diff(w, axis=1))
+        return (bernstein_product(n * np.diff(A, axis=1), w)
+                - bernstein_product(A, n * np.diff(w, axis=1)))
 
     def extrema(self):
         """Sorted global parameters inside segments where some coordinate has

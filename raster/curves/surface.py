@@ -32,8 +32,10 @@ usually 3-D (normals need ``D = 3``).
 """
 
 import math
+from typing import Optional
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..geometry import patches
 from ._base import MAX_CURVE_POINTS, CurveError, as_points, as_scalar
@@ -46,7 +48,8 @@ __all__ = ['BezierSurface', 'RationalBezierSurface', 'BSplineSurface', 'NURBSSur
            'HermitePatch', 'CoonsPatch', 'basis_derivatives', 'as_net']
 
 
-def as_net(net, min_u=1, min_v=1, name='control net'):
+def as_net(net: ArrayLike, min_u: int = 1, min_v: int = 1,
+           name: str = 'control net') -> np.ndarray:
     """Validate a control net: (Nu, Nv, D) float64 copy, finite, D >= 1."""
     try:
         a = np.array(net, dtype=np.float64)
@@ -93,7 +96,8 @@ def _pair(value, name):
     return value, value
 
 
-def basis_derivatives(knots, degree, t, order=0, span=None):
+def basis_derivatives(knots: ArrayLike, degree: int, t: ArrayLike, order: int = 0,
+                      span: Optional[np.ndarray] = None) -> np.ndarray:
     """Derivatives of the B-spline basis functions.
 
     ``N'_{i,p} = p / (u_{i+p} - u_i) N_{i,p-1} - p / (u_{i+p+1} - u_{i+1})

@@ -40,7 +40,7 @@ SURFACE_COLORS = {
 }
 
 
-def camera(center, radius, azimuth, elevation, perspective):
+def camera(center, radius: float, azimuth: float, elevation: float, perspective: bool):
     """A view: a function mapping (N, 3) points to ((N, 2) screen points,
     (N,) depths), and the unit vectors (right, up, forward)."""
     a, e = math.radians(azimuth), math.radians(elevation)
@@ -297,7 +297,8 @@ def _bar(a, b, w):
     return Path.polygon([a - e + n, b + e + n, b + e - n, a - e - n])
 
 
-def plot_surface(surface, filename, params=None, width=640, **options):
+def plot_surface(surface, filename, params=None, width: int = 640,
+                 **options) -> 'SurfacePlot':
     """Draw ``surface`` to ``filename`` (``.png`` or ``.svg``) and return the
     :class:`SurfacePlot`; ``options`` as for :class:`SurfacePlot`."""
     ext = os.path.splitext(str(filename))[1].lower()

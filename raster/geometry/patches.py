@@ -44,8 +44,10 @@ patch.
 """
 
 import math
+from typing import Optional, Tuple
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import LimitError, RasterError
 
@@ -89,7 +91,7 @@ def _params(t, name):
     return np.clip(a, 0.0, 1.0)
 
 
-def as_nets(net, name='control net'):
+def as_nets(net: ArrayLike, name: str = 'control net') -> Tuple[np.ndarray, bool]:
     """Validate control nets: returns ``((P, m+1, n+1, D) float64, batched)``
     where ``batched`` tells whether the input had the batch axis."""
     try:
@@ -109,7 +111,7 @@ def as_nets(net, name='control net'):
     return a, batched
 
 
-def bernstein_basis(n, t, order=0):
+def bernstein_basis(n: int, t: ArrayLike, order: int = 0) -> np.ndarray:
     """Bernstein polynomials of degree ``n`` or their derivatives.
 
     ``d^k/dt^k B_{n,i}(t) = n!/(n-k)! sum_j (-1)^(k-j) C(k, j) B_{n-k, i-j}(t)``.
@@ -147,7 +149,8 @@ def bernstein_basis(n, t, order=0):
     return out * (math.factorial(n) / math.factorial(m))
 
 
-def tensor_eval(net, u, v, du=0, dv=0):
+def tensor_eval(net: ArrayLike, u: ArrayLike, v: ArrayLike, du: int = 0,
+                dv: int = 0) -> np.ndarray:
     """Points (or partial derivatives) of tensor-product Bezier patches.
 
     Parameters
@@ -195,7 +198,8 @@ def tensor_eval(net, u, v, du=0, dv=0):
     return np.einsum('pki,pkj,pijd->pkd', bu, bv, c)
 
 
-def tensor_points(net, idx, u, v, du=0, dv=0):
+def tensor_points(net: ArrayLike, idx: ArrayLike, u: ArrayLike, v: ArrayLike, du: int = 0,
+                  dv: int = 0) -> np.ndarray:
     """Points of patch ``idx[k]`` at ``(u[k], v[k])``: one point per entry.
 
     Parameters
@@ -233,7 +237,8 @@ def tensor_points(net, idx, u, v, du=0, dv=0):
     return np.einsum('ki,kid->kd', bu, rows)
 
 
-def tensor_grid(net, us, vs, du=0, dv=0):
+def tensor_grid(net: ArrayLike, us: ArrayLike, vs: ArrayLike, du: int = 0,
+                dv: int = 0) -> np.ndarray:
     """Patches evaluated on the grid ``us x vs``.
 
     Parameters
@@ -264,7 +269,7 @@ def tensor_grid(net, us, vs, du=0, dv=0):
     return np.einsum('ai,bj,pijd->pabd', bu, bv, c)
 
 
-def bilinear_net(corners):
+def bilinear_net(corners: ArrayLike) -> np.ndarray:
     """The degree-(1, 1) net of the bilinear patch through four corners.
 
     Parameters
@@ -289,7 +294,8 @@ def bilinear_net(corners):
     return np.stack([np.stack([c[:, 0], c[:, 2]], 1), np.stack([c[:, 1], c[:, 3]], 1)], 1)
 
 
-def hermite_net(points, du, dv, twist=None):
+def hermite_net(points: ArrayLike, du: ArrayLike, dv: ArrayLike,
+                twist: Optional[ArrayLike] = None) -> np.ndarray:
     """The bicubic net of Hermite patches from corner values, first partials
     and twists.
 
@@ -359,7 +365,8 @@ def _curves(a, name):
     return c
 
 
-def coons_net(top, bottom, left, right, tolerance=1e-9):
+def coons_net(top: ArrayLike, bottom: ArrayLike, left: ArrayLike, right: ArrayLike,
+              tolerance: float = 1e-9) -> np.ndarray:
     """The tensor-product net of the bilinearly blended Coons patch of four
     Bezier boundary curves of one degree ``n``.
 
@@ -424,7 +431,7 @@ def coons_net(top, bottom, left, right, tolerance=1e-9):
     return net
 
 
-def mesh_patch_nets(boundary):
+def mesh_patch_nets(boundary: ArrayLike) -> np.ndarray:
     """Bicubic tensor nets of SVG 2 mesh patches given by their boundary.
 
     Parameters
@@ -481,7 +488,8 @@ def _casteljau_split(c, t, axis):
     return np.moveaxis(left, 1, axis), np.moveaxis(right, 1, axis)
 
 
-def split_patches(net, t=0.5, direction='u'):
+def split_patches(net: ArrayLike, t: ArrayLike = 0.5,
+                  direction: str = 'u') -> Tuple[np.ndarray, np.ndarray]:
     """Split patches at a parameter value (de Casteljau), exactly.
 
     Parameters
@@ -507,7 +515,8 @@ def split_patches(net, t=0.5, direction='u'):
     return _casteljau_split(c, ta, 1 if direction == 'u' else 2)
 
 
-def subpatches(net, u0, u1, v0, v1):
+def subpatches(net: ArrayLike, u0: ArrayLike, u1: ArrayLike, v0: ArrayLike,
+               v1: ArrayLike) -> np.ndarray:
     """The parts of patches over parameter rectangles, each reparameterized
     to ``[0, 1]^2`` (exact).
 
@@ -539,7 +548,7 @@ def subpatches(net, u0, u1, v0, v1):
     return c
 
 
-def derivative_bounds(net):
+def derivative_bounds(net: ArrayLike) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Bounds on the second partial derivatives of patches.
 
     Returns
@@ -567,7 +576,7 @@ def derivative_bounds(net):
     return A, B, C
 
 
-def linearization_error(net, nu, nv):
+def linearization_error(net: ArrayLike, nu: ArrayLike, nv: ArrayLike) -> np.ndarray:
     """Bound on the distance between patches and their triangulations on a
     uniform ``nu x nv`` grid (each grid cell split along the diagonal from
     its ``(u0, v0)`` corner to its ``(u1, v1)`` corner, the triangles
@@ -589,7 +598,8 @@ def linearization_error(net, nu, nv):
     return A / (8 * nu * nu) + B / (8 * nv * nv) + C / (4 * nu * nv)
 
 
-def grid_counts(net, tolerance, max_count=4096):
+def grid_counts(net: ArrayLike, tolerance: float,
+                max_count: int = 4096) -> Tuple[np.ndarray, np.ndarray]:
     """Grid sizes ``(nu, nv)`` per patch whose triangulation is within
     ``tolerance`` of the patch (:func:`linearization_error`).
 
@@ -639,7 +649,7 @@ def grid_counts(net, tolerance, max_count=4096):
     return nu.astype(np.int64), nv.astype(np.int64)
 
 
-def net_bounds(net):
+def net_bounds(net: ArrayLike) -> Tuple[np.ndarray, np.ndarray]:
     """Axis-aligned boxes of the control nets (which contain the patches).
 
     Returns

@@ -71,8 +71,10 @@ the colour is the bicubic Hermite interpolant of the corner colours with
 """
 
 import math
+from typing import Optional, Tuple
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import LimitError, RasterError
 from ..geometry import patches as P
@@ -129,7 +131,8 @@ def _shape(shape, n):
     return rows, cols
 
 
-def corner_grid(patches, colors, shape):
+def corner_grid(patches: ArrayLike, colors: ArrayLike,
+                shape: Tuple[int, int]) -> Tuple[np.ndarray, np.ndarray]:
     """The mesh corners and their colours as grids.
 
     Parameters
@@ -160,7 +163,7 @@ def corner_grid(patches, colors, shape):
     return pts, col
 
 
-def bicubic_slopes(points, values):
+def bicubic_slopes(points: ArrayLike, values: ArrayLike) -> np.ndarray:
     """Monotone colour derivatives along lines of mesh corners (SVG 2).
 
     Parameters
@@ -202,7 +205,8 @@ def bicubic_slopes(points, values):
     return d
 
 
-def color_nets(patches, colors, interpolation='bilinear', shape=None):
+def color_nets(patches: ArrayLike, colors: ArrayLike, interpolation: str = 'bilinear',
+               shape: Optional[Tuple[int, int]] = None) -> np.ndarray:
     """Colour patches in the unit square as tensor-product Bezier nets in
     RGBA space.
 
@@ -262,7 +266,7 @@ def _window(window):
     return x0, y0, w, h
 
 
-def mesh_cells(nets, tolerance, window):
+def mesh_cells(nets: ArrayLike, tolerance: float, window: Tuple[int, int, int, int]):
     """Cut patches into pieces small enough to grid, dropping pieces outside
     the window.
 
@@ -370,8 +374,9 @@ def _seg_closest(px, py, ax, ay, bx, by):
     return ex * ex + ey * ey, s
 
 
-def mesh_gradient(patches, colors, window, interpolation='bilinear', shape=None,
-                  tolerance=0.1):
+def mesh_gradient(patches: ArrayLike, colors: ArrayLike, window: Tuple[int, int, int, int],
+                  interpolation: str = 'bilinear', shape: Optional[Tuple[int, int]] = None,
+                  tolerance: float = 0.1) -> np.ndarray:
     """Paint a mesh gradient: premultiplied colours at the pixel centres of a
     window.
 
@@ -437,7 +442,8 @@ def mesh_gradient(patches, colors, window, interpolation='bilinear', shape=None,
     bp = np.zeros(h * w, np.int64)
     X, Y = xy[:, 0], xy[:, 1]
     tx, ty = X[tri], Y[tri]                                                   # (T, 3)
-    area = (tx[:, 1] - tx[:, 0]) * (ty[:, 2] - ty[:, 0]) - (ty[:, 1] - ty[:, 0]) * (tx[:, 2] - tx[:, 0])
+    area = ((tx[:, 1] - tx[:, 0]) * (ty[:, 2] - ty[:, 0])
+            - (ty[:, 1] - ty[:, 0]) * (tx[:, 2] - tx[:, 0]))
     # columns / rows of the centres within `half` of each triangle's box
     c0 = np.maximum(np.ceil(tx.min(1) - half - 0.5 - x0), 0)
     c1 = np.minimum(np.floor(tx.max(1) + half - 0.5 - x0), w - 1)
