@@ -35,8 +35,25 @@ module                 classes and functions
 ``natural``            :class:`NaturalSpline`, :class:`FunctionSpline`,
                        :func:`solve_tridiagonal`
 ``continuity``         :func:`continuity`, :class:`Joint`
-(``raster.geometry.hull``)      :func:`convex_hull` (monotone chain), re-exported
+``rational``           :class:`RationalBezier`, :class:`PiecewiseRational`
+``nurbs``              :class:`NURBS`
+``conics``             :func:`conic`, :func:`conic_kind`, :func:`circle_arc`,
+                       :func:`ellipse_arc`, :func:`circle`, :func:`ellipse`,
+                       :class:`ConicArc`
+``surface``            :class:`BezierSurface`, :class:`RationalBezierSurface`,
+                       :class:`BSplineSurface`, :class:`NURBSSurface`,
+                       :class:`HermitePatch`, :class:`CoonsPatch`
+``explain``            :func:`explain` (worked solutions)
+``plot``, ``axes``,    plots of curves (axes, labels, blending panel) and
+``surfaceplot``        of surfaces (shaded, wireframe, control net)
+(``raster.geometry.hull``) :func:`convex_hull` (monotone chain), re-exported
 =====================  ==============================================
+
+Rational curves (rational Bezier, NURBS, conic arcs) share the vocabulary
+except that ``to_beziers()`` is exact only for equal weights; otherwise
+``to_beziers(tolerance)`` gives cubics within the tolerance, and
+``flatten``, ``to_path``, ``bounding_box`` (exact) and ``continuity`` work
+on the rational form directly.
 
 Errors are :class:`CurveError` (a :class:`raster.errors.RasterError`).
 
@@ -54,6 +71,12 @@ from .bspline import BSpline, basis_functions, clamped_uniform_knots
 from .beta import BetaSpline, beta_basis_matrix, beta_blend
 from .natural import NaturalSpline, FunctionSpline, solve_tridiagonal
 from .continuity import continuity, Joint, format_joints
+from .rational import RationalBezier, PiecewiseRational
+from .nurbs import NURBS
+from .conics import ConicArc, conic, conic_kind, circle_arc, ellipse_arc, circle, ellipse
+from .surface import (BezierSurface, RationalBezierSurface, BSplineSurface, NURBSSurface,
+                      HermitePatch, CoonsPatch)
+from .explain import explain
 from ..geometry.hull import convex_hull   # re-exported: the hull shared with flattening
 
 
@@ -62,4 +85,7 @@ __all__ = ['CurveError', 'Bezier', 'PiecewiseBezier', 'bernstein', 'bernstein_ma
            'CardinalSpline', 'CatmullRom', 'cardinal_matrix', 'KochanekBartels', 'BSpline', 'basis_functions',
            'clamped_uniform_knots', 'BetaSpline', 'beta_basis_matrix', 'beta_blend',
            'NaturalSpline', 'FunctionSpline', 'solve_tridiagonal', 'continuity', 'Joint',
-           'format_joints', 'convex_hull']
+           'format_joints', 'convex_hull', 'RationalBezier', 'PiecewiseRational', 'NURBS',
+           'ConicArc', 'conic', 'conic_kind', 'circle_arc', 'ellipse_arc', 'circle', 'ellipse',
+           'BezierSurface', 'RationalBezierSurface', 'BSplineSurface', 'NURBSSurface',
+           'HermitePatch', 'CoonsPatch', 'explain']

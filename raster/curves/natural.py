@@ -181,7 +181,10 @@ class FunctionSpline(CurveMixin):
         if np.any(np.diff(xs) <= 0):
             raise CurveError('x values must be strictly increasing')
         self.points = pts
-        self._c = _Cubic(xs, pts[:, 1:], _end_pair(end_slopes, 1, 'end slopes'))
+        ends = _end_pair(end_slopes, 1, 'end slopes')
+        #: None (natural ends) or the clamped end slopes (y'(x0), y'(xN)).
+        self.end_slopes = None if ends is None else (float(ends[0][0]), float(ends[1][0]))
+        self._c = _Cubic(xs, pts[:, 1:], ends)
 
     @property
     def domain(self):
@@ -253,7 +256,10 @@ class NaturalSpline(CurveMixin):
         self.points = p
         self.parameterization = parameterization
         self.params = parameterize(p, parameterization)
-        self._c = _Cubic(self.params, p, _end_pair(end_tangents, p.shape[1], 'end tangents'))
+        ends = _end_pair(end_tangents, p.shape[1], 'end tangents')
+        #: None (natural ends) or the clamped end derivatives, (2, D) float64.
+        self.end_tangents = None if ends is None else np.stack(ends)
+        self._c = _Cubic(self.params, p, ends)
 
     domain = (0.0, 1.0)
 

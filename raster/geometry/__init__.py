@@ -23,6 +23,8 @@ module                 contents
                        :class:`StrokeStyle`, :class:`LineJoin`,
                        :class:`LineCap`
 ``hull``               convex hull (monotone chain)
+``patches``            tensor-product Bezier and Coons patches: evaluation,
+                       partial derivatives, subdivision, error bounds
 =====================  ====================================================
 
 The kernel imports nothing from the SVG layers or the curve toolkit, and

@@ -41,9 +41,10 @@ def test_pixels_of_points_curve_and_background():
 
 def test_hull_layer_is_drawn():
     # control polygon of the cubic: hull is the triangle (1,1), (6,4), (2,3);
-    # its centroid (3, 8/3) lies off the curve and off the labels
+    # its centroid (3, 8/3) lies off the curve and off the labels (no axes:
+    # the grid line x = 3 would cross it)
     b = Bezier(CUBIC)
-    plot = Plot(b, params=[])
+    plot = Plot(b, params=[], axes=False, labels=False)
     img = plot.render().astype(int)
     c = pixel(img, device(plot, [3.0, 8.0 / 3.0]))
     hull_rgb = np.array(COLORS['hull'][:3]) * COLORS['hull'][3] + (1 - COLORS['hull'][3])
