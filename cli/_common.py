@@ -26,6 +26,7 @@ import tempfile
 import zlib
 
 from raster.errors import RasterError, SVGError
+from raster.sources import local_path, read_file
 
 #: Largest decompressed .svgz document accepted (bytes).
 MAX_SVG_BYTES = 256 * 1024 * 1024
@@ -94,16 +95,15 @@ def read_source(path):
 
     Raises
     ------
-    OSError
-        The file cannot be read.
+    raster.errors.RasterIOError
+        The file cannot be read, or ``path`` is a URL other than ``file:``.
     SVGError
         Corrupt gzip data or a document beyond :data:`MAX_SVG_BYTES`.
     """
     if path == '-':
         data = sys.stdin.buffer.read()
     else:
-        with open(path, 'rb') as f:
-            data = f.read()
+        data = read_file(path, MAX_SVG_BYTES)     # file: URLs read, other URLs refused
     if data[:2] == b'\x1f\x8b':
         try:
             with gzip.GzipFile(fileobj=io.BytesIO(data)) as g:
@@ -119,7 +119,7 @@ def base_dir_of(path):
     """Directory against which a document's relative references resolve."""
     if path == '-':
         return os.getcwd()
-    return os.path.dirname(os.path.abspath(path))
+    return os.path.dirname(os.path.abspath(local_path(path)))
 
 
 def write_output(path, data):

@@ -44,9 +44,9 @@ def _body(args):
         raise UsageError('--zoom cannot be combined with --width/--height')
     if not (math.isfinite(args.dpi) and args.dpi > 0):
         raise CanvasError('--dpi must be positive and finite, got %g' % args.dpi)
-    from raster.svg import _background, load_svg
+    from raster.svg import load_svg, parse_background
     from raster.svg.render import render_tree
-    bg = _background(args.background)            # a bad colour fails before any work
+    bg = parse_background(args.background)            # a bad colour fails before any work
     data = read_source(args.input)
     tree = load_svg(data, dpi=args.dpi, font_dirs=args.font_dir,
                     resources_dir=args.allow_dir, base_dir=base_dir_of(args.input))

@@ -21,7 +21,10 @@ function; the renderer *module* of the same name is
 render_tree`` works as usual).
 """
 
+import math
 import os
+
+from ..sources import local_path
 
 try:
     # Import the renderer module first: loading a submodule binds its name on
@@ -31,13 +34,15 @@ try:
 except ImportError:          # pragma: no cover - a dependency is missing
     _render_module = None
 
-__all__ = ['render', 'render_image', 'load_svg', 'render_tree']
+__all__ = ['render', 'render_image', 'load_svg', 'render_tree', 'parse_background']
 
 
 def _source_and_base(source):
     """(source for load_document, base directory or None)."""
+    if isinstance(source, str) and source.lstrip().startswith('<'):
+        return source, None                     # the document as XML text
     if isinstance(source, (str, os.PathLike)):
-        path = os.fspath(source)
+        path = local_path(source)               # file: URLs; other URLs refused
         return path, os.path.dirname(os.path.abspath(path))
     return source, None
 
@@ -68,19 +73,42 @@ def load_svg(source, *, dpi=96, font_dirs=(), resources_dir=None, base_dir=None,
     Raises
     ------
     raster.errors.SVGError
-        Unreadable XML, not an SVG document, invalid size.
-    OSError
-        The file cannot be read.
+        Unreadable XML, not an SVG document, invalid size or ``dpi``.
+    raster.errors.RasterIOError
+        The file cannot be read, or ``source`` is a URL other than
+        ``file:`` (also an :class:`OSError`).
     """
     from .build import build_tree
     from .document import load_document
+    from ..errors import SVGError
+    try:
+        d = float(dpi)
+    except (TypeError, ValueError):
+        d = math.nan
+    if not (math.isfinite(d) and d > 0):
+        raise SVGError('dpi must be a positive number, got %r' % (dpi,))
+    dpi = d
+    if isinstance(font_dirs, (str, os.PathLike)):
+        font_dirs = (font_dirs,)                 # one directory, not its characters
     src, sbase = _source_and_base(source)
     root = load_document(src)
     return build_tree(root, base_dir=base_dir if base_dir is not None else sbase, dpi=dpi,
                       font_dirs=tuple(font_dirs or ()), resources_dir=resources_dir, **opts)
 
 
-def _background(bg):
+def parse_background(bg):
+    """Straight RGBA floats in [0, 1] of a background: a CSS colour string
+    (``'white'``, ``'#ff000080'``), 3 or 4 floats in [0, 1], or None
+    (transparent, returned as None).
+
+    Raises
+    ------
+    raster.errors.SVGError
+        Anything else.
+
+    >>> parse_background('red'), parse_background((0, 0, 1))
+    ((1.0, 0.0, 0.0, 1.0), (0.0, 0.0, 1.0, 1.0))
+    """
     if bg is None:
         return None
     from ..errors import SVGError
@@ -149,7 +177,7 @@ def render(source, width=None, height=None, *, zoom=None, dpi=96, background=Non
     """
     from .render import render_tree
     _rebind()
-    bg = _background(background)
+    bg = parse_background(background)
     tree = load_svg(source, dpi=dpi, font_dirs=font_dirs, resources_dir=resources_dir)
     canvas = render_tree(tree, width=width, height=height, zoom=zoom, background=bg,
                          node_id=id, tolerance=tolerance)
