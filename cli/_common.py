@@ -41,6 +41,14 @@ class Parser(argparse.ArgumentParser):
     message; :func:`run` turns that into a return value."""
 
 
+def add_version(parser):
+    """Give ``parser`` a ``--version`` option printing ``<prog> <version>``
+    (the version of the installed ``raster`` package)."""
+    from raster import __version__
+    parser.add_argument('--version', action='version',
+                        version='%s %s' % (parser.prog, __version__))
+
+
 def _one_line(msg):
     msg = ' '.join(str(msg).split())
     return msg or 'unknown error'

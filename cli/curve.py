@@ -32,6 +32,8 @@ import sys
 
 import numpy as np
 
+from ._common import add_version
+
 FAMILIES = ('bezier', 'hermite', 'cardinal', 'catmull-rom', 'kochanek-bartels', 'bspline',
             'beta', 'natural')
 
@@ -122,6 +124,7 @@ def build_parser():
                    help='natural (parametric): parameterization (default chord)')
     s.add_argument('--end-tangents', help='natural: clamped end tangents "a b" (slopes with '
                    '--function, vectors "tx0,ty0 tx1,ty1" otherwise)')
+    add_version(p)
     return p
 
 

@@ -12,7 +12,7 @@ Names are imported lazily so that ``import raster`` stays fast.
 """
 
 from .errors import (RasterError, PathError, TransformError, CanvasError,  # noqa: F401
-                     LimitError, SVGError)
+                     LimitError, SVGError, FormatError, RasterIOError)
 from .path import Path, PathBuilder, TransformPen, RecordingPen  # noqa: F401
 from .transform import Affine  # noqa: F401
 

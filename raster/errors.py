@@ -38,6 +38,11 @@ class SVGError(RasterError):
     """The document cannot be rendered: unreadable XML, not SVG, invalid size."""
 
 
+class FormatError(RasterError, ValueError):
+    """An output format that raster cannot write (an unknown name or file
+    extension), or an encoder option the format does not take."""
+
+
 class RasterIOError(RasterError, OSError):
     """A document source that cannot be read: a missing, unreadable or
     non-regular file, a failing file object, or a URL (``http:``,
