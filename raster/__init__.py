@@ -6,7 +6,13 @@ The front door (see README.md):
 * :func:`flatten` -- a path to polylines within a tolerance in device pixels;
 * :func:`bbox` -- exact bounding box of a path;
 * :func:`render` / :func:`render_image` -- an SVG document to an RGBA array or
-  a PIL image.
+  a PIL image;
+* :func:`svg2png` -- CairoSVG's ``svg2png`` (PNG bytes or a file), see
+  :mod:`raster.compat`.
+
+The Pillow plugin (``Image.open('x.svg')``) is :mod:`raster.pillow`; it is
+registered by ``raster.pillow.register()`` or ``import raster.pillow.auto``,
+never by ``import raster``.
 
 Names are imported lazily so that ``import raster`` stays fast.
 """
@@ -27,6 +33,7 @@ _LAZY = {
     'render': 'raster.svg',
     'render_image': 'raster.svg',
     'load_svg': 'raster.svg',
+    'svg2png': 'raster.compat',
 }
 
 
