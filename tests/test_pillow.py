@@ -24,17 +24,11 @@ INCH = b'<svg ' + NS + b' width="1in" height="0.5in"><circle cx="48" cy="24" r="
 
 
 @pytest.fixture
-def registered():
-    """The plugin registered for one test; Pillow's tables restored after."""
-    Image.init()
-    saved = (dict(Image.OPEN), list(Image.ID), dict(Image.EXTENSION), dict(Image.MIME))
+def registered(pillow_registry):
+    """The plugin registered (with its built-in options) for one test."""
     raster.pillow.register()
     yield
-    raster.pillow.register()                 # the built-in options again
-    Image.OPEN.clear(); Image.OPEN.update(saved[0])
-    Image.ID[:] = saved[1]
-    Image.EXTENSION.clear(); Image.EXTENSION.update(saved[2])
-    Image.MIME.clear(); Image.MIME.update(saved[3])
+    raster.pillow.register()
 
 
 def pixels(im):
