@@ -26,7 +26,11 @@ class Affine:
     __slots__ = ('a', 'b', 'c', 'd', 'e', 'f', '_hash')
 
     def __init__(self, a=1.0, b=0.0, c=0.0, d=1.0, e=0.0, f=0.0):
-        vals = tuple(float(v) for v in (a, b, c, d, e, f))
+        try:
+            vals = tuple(float(v) for v in (a, b, c, d, e, f))
+        except (TypeError, ValueError):
+            raise TransformError('transform values must be numbers, got %r'
+                                 % ((a, b, c, d, e, f),)) from None
         if not all(math.isfinite(v) for v in vals):
             raise TransformError('transform has non-finite values: %r' % (vals,))
         object.__setattr__(self, 'a', vals[0])
