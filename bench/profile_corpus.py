@@ -124,7 +124,7 @@ def stage_times(path, width, repeat, cpu=False):
 
     from raster.pixels.canvas import DEFAULT_COMPRESS_LEVEL
     from raster.pixels.png import encode_png
-    from raster.svg import _source_and_base, load_svg  # noqa: F401
+    from raster.svg import load_svg  # noqa: F401
     from raster.parser import build_tree
     from raster.parser.document import load_document
     from raster.renderer import render_tree

@@ -26,6 +26,7 @@ import tempfile
 import zlib
 
 from raster.errors import RasterError, SVGError
+from raster.sources import local_path, read_file
 
 #: Largest decompressed .svgz document accepted (bytes).
 MAX_SVG_BYTES = 256 * 1024 * 1024
@@ -38,6 +39,14 @@ class UsageError(Exception):
 class Parser(argparse.ArgumentParser):
     """ArgumentParser that raises :class:`SystemExit` (2) with its usual
     message; :func:`run` turns that into a return value."""
+
+
+def add_version(parser):
+    """Give ``parser`` a ``--version`` option printing ``<prog> <version>``
+    (the version of the installed ``raster`` package)."""
+    from raster import __version__
+    parser.add_argument('--version', action='version',
+                        version='%s %s' % (parser.prog, __version__))
 
 
 def _one_line(msg):
@@ -94,16 +103,15 @@ def read_source(path):
 
     Raises
     ------
-    OSError
-        The file cannot be read.
+    raster.errors.RasterIOError
+        The file cannot be read, or ``path`` is a URL other than ``file:``.
     SVGError
         Corrupt gzip data or a document beyond :data:`MAX_SVG_BYTES`.
     """
     if path == '-':
         data = sys.stdin.buffer.read()
     else:
-        with open(path, 'rb') as f:
-            data = f.read()
+        data = read_file(path, MAX_SVG_BYTES)     # file: URLs read, other URLs refused
     if data[:2] == b'\x1f\x8b':
         try:
             with gzip.GzipFile(fileobj=io.BytesIO(data)) as g:
@@ -119,7 +127,7 @@ def base_dir_of(path):
     """Directory against which a document's relative references resolve."""
     if path == '-':
         return os.getcwd()
-    return os.path.dirname(os.path.abspath(path))
+    return os.path.dirname(os.path.abspath(local_path(path)))
 
 
 def write_output(path, data):

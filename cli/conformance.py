@@ -34,6 +34,8 @@ from multiprocessing import connection as mpconn
 
 import numpy as np
 
+from ._common import add_version
+
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEFAULT_SUITE = os.path.normpath(os.path.join(REPO_ROOT, '..', 'shared', 'resvg-suite'))
 DEFAULT_RATCHET = os.path.join(REPO_ROOT, 'tests', 'conformance_ratchet.json')
@@ -430,6 +432,7 @@ def build_parser():
     ap.add_argument('--mem-limit-mb', type=int, default=4096,
                     help='address-space limit per worker (0: none; default %(default)s)')
     ap.add_argument('--no-features', action='store_true', help='print the per-area table only')
+    add_version(ap)
     return ap
 
 

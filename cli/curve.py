@@ -49,6 +49,7 @@ from raster_cli.curve_surface import run_surface
 
 __all__ = ['main', 'build_parser', 'build_curve', 'parse_numbers', 'parse_points', 'UsageError',
            'FAMILIES']
+from ._common import add_version
 
 FAMILIES = ('bezier', 'hermite', 'cardinal', 'catmull-rom', 'kochanek-bartels', 'bspline',
             'beta', 'natural', 'rational-bezier', 'nurbs', 'arc', 'surface')
@@ -122,6 +123,7 @@ def build_parser():
                    help='natural (parametric): parameterization (default chord)')
     s.add_argument('--end-tangents', help='natural: clamped end tangents "a b" (slopes with '
                    '--function, vectors "tx0,ty0 tx1,ty1" otherwise)')
+    add_version(p)
     return p
 
 

@@ -16,7 +16,7 @@ stroke outlines (joins, caps, dashes).  ``--id`` reports only that element
 import json
 import sys
 
-from ._common import (Parser, base_dir_of, drawn_shapes, node_transforms, read_source, run,
+from ._common import (Parser, add_version, base_dir_of, drawn_shapes, node_transforms, read_source, run,
                       subtree_shapes, user_to_doc, write_text)
 
 PROG = 'svg-bbox'
@@ -116,6 +116,7 @@ def build_parser():
     ap.add_argument('--id', metavar='ID', help='report only this element')
     ap.add_argument('--stroke', action='store_true', help='include stroke outlines')
     ap.add_argument('-o', '--output', default='-', help='output file (default: stdout)')
+    add_version(ap)
     return ap
 
 

@@ -36,7 +36,7 @@ import json
 import math
 import sys
 
-from ._common import (Parser, base_dir_of, drawn_shapes, hex_color, read_source, run,
+from ._common import (Parser, add_version, base_dir_of, drawn_shapes, hex_color, read_source, run,
                       user_to_doc, write_text)
 
 PROG = 'svg-flatten'
@@ -55,6 +55,7 @@ def build_parser():
     ap.add_argument('--outline-strokes', action='store_true',
                     help='replace strokes by their outline polygons')
     ap.add_argument('--dpi', type=float, default=96.0, help=argparse.SUPPRESS)
+    add_version(ap)
     return ap
 
 

@@ -7,14 +7,20 @@ The front door (see README.md):
 * :func:`bbox` -- exact bounding box of a path;
 * :func:`stroke` -- the outline of a path's stroke (a :class:`StrokeStyle`);
 * :func:`render` / :func:`render_image` -- an SVG document to an RGBA array or
-  a PIL image.
+  a PIL image;
+* :func:`svg2png` -- CairoSVG's ``svg2png`` (PNG bytes or a file), see
+  :mod:`raster.compat`.
+
+The Pillow plugin (``Image.open('x.svg')``) is :mod:`raster.pillow`; it is
+registered by ``raster.pillow.register()`` or ``import raster.pillow.auto``,
+never by ``import raster``.
 
 The geometry behind them is the kernel :mod:`raster.geometry`.  Names are
 imported lazily so that ``import raster`` stays fast.
 """
 
 from .errors import (RasterError, PathError, TransformError, CanvasError,  # noqa: F401
-                     LimitError, SVGError)
+                     LimitError, SVGError, FormatError, RasterIOError)
 from .geometry.path import Path  # noqa: F401
 from .geometry.pens import PathBuilder, TransformPen, RecordingPen  # noqa: F401
 from .geometry.transform import Affine  # noqa: F401
@@ -38,6 +44,7 @@ _LAZY = {
     'render': 'raster.svg',
     'render_image': 'raster.svg',
     'load_svg': 'raster.svg',
+    'svg2png': 'raster.compat',
 }
 
 

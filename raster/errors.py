@@ -3,6 +3,10 @@
 Every error the library raises on bad input derives from :class:`RasterError`,
 so callers can catch one type.  The command-line tools turn these into a
 one-line message and a non-zero exit status.
+
+A document that cannot be read (a missing or unreadable file, a URL, which
+raster never fetches) raises :class:`RasterIOError`, which is also an
+:class:`OSError`, so code written as ``except OSError`` keeps working.
 """
 
 
@@ -32,6 +36,21 @@ class LimitError(RasterError):
 
 class SVGError(RasterError):
     """The document cannot be rendered: unreadable XML, not SVG, invalid size."""
+
+
+class FormatError(RasterError, ValueError):
+    """An output format that raster cannot write (an unknown name or file
+    extension), or an encoder option the format does not take."""
+
+
+class RasterIOError(RasterError, OSError):
+    """A document source that cannot be read: a missing, unreadable or
+    non-regular file, a failing file object, or a URL (``http:``,
+    ``data:`` ...; only local paths and ``file:`` URLs are read).
+
+    Raised with ``(errno, strerror, filename)`` when an operating-system
+    error is behind it, so ``errno``, ``strerror`` and ``filename`` are set
+    as on the :class:`OSError` it replaces; ``str()`` is one line."""
 
 
 class RasterWarning(UserWarning):

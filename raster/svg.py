@@ -8,8 +8,10 @@ resolved :class:`raster.tree.Tree`) and the renderer
 * :func:`render` -- an SVG source to an ``(H, W, 4) uint8`` RGBA array;
 * :func:`render_image` -- the same as a :class:`PIL.Image.Image`.
 
-A *source* is a file path (``str`` or :class:`os.PathLike`; ``.svgz`` gzip
-files are accepted), the document as ``bytes``, or a binary file object.
+A *source* is a file path (``str`` or :class:`os.PathLike`, or a ``file:``
+URL; ``.svgz`` gzip files are accepted), the document as ``bytes`` or as
+XML text, or a binary file object.  Other URLs are refused: raster never
+fetches from the network.
 Relative references (images) resolve against the file's directory; files
 are only read from inside ``resources_dir`` when it is given (and from the
 document's own directory).
@@ -18,6 +20,8 @@ Output sizes are in device pixels; the document's natural size is its
 ``width``/``height`` in CSS px (96 per inch at ``dpi=96``).
 """
 
+import math
+import math
 import os
 from typing import BinaryIO, Optional, Sequence, Tuple, Union
 
@@ -27,6 +31,7 @@ from .errors import SVGError
 from .parser import Options, build_tree, load_document
 from .parser.values import CURRENT_COLOR, parse_color
 from .renderer import DEFAULT_TOLERANCE, render_tree
+from .sources import local_path
 from .tree import Tree
 
 #: What :func:`load_svg` and :func:`render` read: a path, the bytes, or a
@@ -35,13 +40,15 @@ Source = Union[str, 'os.PathLike[str]', bytes, BinaryIO]
 #: A background: a CSS colour string or 3 or 4 floats in [0, 1].
 Background = Union[None, str, Sequence[float]]
 
-__all__ = ['load_svg', 'render', 'render_image', 'render_tree', 'background_color']
+__all__ = ['load_svg', 'render', 'render_image', 'render_tree', 'parse_background']
 
 
 def _source_and_base(source):
     """(source for load_document, base directory or None)."""
+    if isinstance(source, str) and source.lstrip().startswith('<'):
+        return source, None                     # the document as XML text
     if isinstance(source, (str, os.PathLike)):
-        path = os.fspath(source)
+        path = local_path(source)               # file: URLs; other URLs refused
         return path, os.path.dirname(os.path.abspath(path))
     return source, None
 
@@ -76,27 +83,40 @@ def load_svg(source: Source, *, dpi: float = 96, font_dirs: Sequence[str] = (),
     Raises
     ------
     raster.errors.SVGError
-        Unreadable XML, not an SVG document, invalid size.
-    OSError
-        The file cannot be read.
+        Unreadable XML, not an SVG document, invalid size or ``dpi``.
+    raster.errors.RasterIOError
+        The file cannot be read, or ``source`` is a URL other than
+        ``file:`` (also an :class:`OSError`).
     """
+    try:
+        d = float(dpi)
+    except (TypeError, ValueError):
+        d = math.nan
+    if not (math.isfinite(d) and d > 0):
+        raise SVGError('dpi must be a positive number, got %r' % (dpi,))
+    if isinstance(font_dirs, (str, os.PathLike)):
+        font_dirs = (font_dirs,)                 # one directory, not its characters
     src, sbase = _source_and_base(source)
     root = load_document(src)
     if 'languages' in options:
         options['languages'] = tuple(options['languages'])
-    opts = Options(dpi=float(dpi), font_dirs=tuple(font_dirs or ()), resources_dir=resources_dir,
+    opts = Options(dpi=d, font_dirs=tuple(font_dirs or ()), resources_dir=resources_dir,
                    base_dir=base_dir if base_dir is not None else sbase, **options)
     return build_tree(root, opts)
 
 
-def background_color(bg: Background) -> Optional[Tuple[float, float, float, float]]:
-    """A background given as a CSS colour string or 3 or 4 floats in [0, 1]
-    as straight RGBA floats (None stays None).
+def parse_background(bg: Background) -> Optional[Tuple[float, float, float, float]]:
+    """Straight RGBA floats in [0, 1] of a background: a CSS colour string
+    (``'white'``, ``'#ff000080'``), 3 or 4 floats in [0, 1], or None
+    (transparent, returned as None).
 
     Raises
     ------
     raster.errors.SVGError
-        Not a colour.
+        Anything else.
+
+    >>> parse_background('red'), parse_background((0, 0, 1))
+    ((1.0, 0.0, 0.0, 1.0), (0.0, 0.0, 1.0, 1.0))
     """
     if bg is None:
         return None
@@ -165,7 +185,7 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
     >>> img.shape, img[0, 0].tolist(), img[0, 3].tolist()
     ((2, 4, 4), [0, 0, 255, 255], [0, 0, 0, 0])
     """
-    bg = background_color(background)
+    bg = parse_background(background)
     tree = load_svg(source, dpi=dpi, font_dirs=font_dirs, resources_dir=resources_dir)
     canvas = render_tree(tree, width=width, height=height, zoom=zoom, background=bg,
                          node_id=id, tolerance=tolerance)

@@ -1,10 +1,49 @@
-"""Test-suite setup: the helper modules of tests/ (``_shared``,
-``_geometry``) are importable from test files in any sub-folder (the suite
-mirrors the package layout: tests/geometry, tests/parser, ...)."""
+"""Test-suite setup.
+
+* The helper modules of tests/ (``_shared``, ``_geometry``) are importable
+  from test files in any sub-folder (the suite mirrors the package layout:
+  tests/geometry, tests/parser, ...).
+* The ``conformance`` marker names the full resvg-suite run (slow; it
+  starts its own worker processes).  Under pytest-xdist (``-n``) it is
+  moved to the front of the run, so that the longest test overlaps the
+  others instead of finishing alone at the end; serially it stays last.
+* ``pillow_registry``: a fixture restoring Pillow's plugin tables.
+"""
 
 import os
 import sys
 
+import pytest
+
 _HERE = os.path.dirname(os.path.abspath(__file__))
 if _HERE not in sys.path:
     sys.path.insert(0, _HERE)
+
+
+def pytest_configure(config):
+    config.addinivalue_line(
+        'markers', 'conformance: the full resvg-suite conformance ratchet (slow, starts its own '
+        'worker processes; deselect with -m "not conformance")')
+
+
+def pytest_collection_modifyitems(config, items):
+    if getattr(config.option, 'numprocesses', None):
+        # a stable sort: every xdist worker must see the same order
+        items.sort(key=lambda item: item.get_closest_marker('conformance') is None)
+
+
+@pytest.fixture
+def pillow_registry():
+    """Pillow's plugin tables (every plugin loaded first) restored after the
+    test, so that a test registering raster's SVG plugin leaves no trace."""
+    from PIL import Image
+    Image.init()
+    saved = (dict(Image.OPEN), list(Image.ID), dict(Image.SAVE), dict(Image.EXTENSION),
+             dict(Image.MIME))
+    yield
+    for table, old in zip((Image.OPEN, Image.ID, Image.SAVE, Image.EXTENSION, Image.MIME), saved):
+        if isinstance(table, list):
+            table[:] = old
+        else:
+            table.clear()
+            table.update(old)

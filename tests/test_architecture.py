@@ -20,7 +20,7 @@ PACKAGES = {'raster': os.path.join(ROOT, 'raster'), 'raster_cli': os.path.join(R
 
 # layer of a module (by longest matching prefix) -> layers it may import
 LAYER_OF = {
-    'raster.errors': 'base', 'raster.limits': 'base',
+    'raster.errors': 'base', 'raster.limits': 'base', 'raster.sources': 'base',
     'raster.geometry': 'geometry',
     'raster.pixels': 'pixels',
     'raster.tree': 'tree',
@@ -29,7 +29,8 @@ LAYER_OF = {
     'raster.renderer': 'renderer',
     'raster._malloc': 'renderer',
     'raster.curves': 'curves',
-    'raster.svg': 'front', 'raster.testing': 'front', 'raster': 'front',
+    'raster.svg': 'front', 'raster.testing': 'front', 'raster.compat': 'front',
+    'raster.pillow': 'front', 'raster': 'front',
     'raster_cli': 'commands',
 }
 ALLOWED = {

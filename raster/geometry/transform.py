@@ -33,7 +33,11 @@ class Affine:
 
     def __init__(self, a: float = 1.0, b: float = 0.0, c: float = 0.0, d: float = 1.0,
                  e: float = 0.0, f: float = 0.0) -> None:
-        vals = tuple(float(v) for v in (a, b, c, d, e, f))
+        try:
+            vals = tuple(float(v) for v in (a, b, c, d, e, f))
+        except (TypeError, ValueError):
+            raise TransformError('transform values must be numbers, got %r'
+                                 % ((a, b, c, d, e, f),)) from None
         if not all(math.isfinite(v) for v in vals):
             raise TransformError('transform has non-finite values: %r' % (vals,))
         object.__setattr__(self, 'a', vals[0])

@@ -34,6 +34,7 @@ import zlib
 from lxml import etree
 
 from ..errors import SVGError
+from ..sources import read_file, read_stream
 
 __all__ = ['load_document', 'chain_attr', 'SVG_NS', 'XLINK_NS', 'MAX_DOCUMENT_BYTES']
 
@@ -65,7 +66,7 @@ def _read_source(source, max_bytes):
     read = getattr(source, 'read', None)
     if read is None:
         raise SVGError('cannot read an SVG document from %s' % type(source).__name__)
-    data = read(max_bytes + 1)
+    data = read_stream(source, max_bytes)
     if isinstance(data, str):
         data = data.encode('utf-8')
     if not isinstance(data, (bytes, bytearray)):
@@ -76,11 +77,7 @@ def _read_source(source, max_bytes):
 
 
 def _read_file(path, max_bytes):
-    with open(path, 'rb') as f:
-        data = f.read(max_bytes + 1)
-    if len(data) > max_bytes:
-        raise SVGError('document is larger than %d bytes' % max_bytes)
-    return data
+    return read_file(path, max_bytes)      # file: URLs read, other URLs refused
 
 
 def _gunzip(data, max_bytes):
@@ -120,8 +117,9 @@ def load_document(source, *, max_bytes=MAX_DOCUMENT_BYTES):
     raster.errors.SVGError
         XML syntax errors (with the line), entity expansion refused, a root
         that is not ``svg``, a document above ``max_bytes``.
-    OSError
-        A path that cannot be read.
+    raster.errors.RasterIOError
+        A path that cannot be read, or a URL other than ``file:`` (also an
+        :class:`OSError`).
     """
     data = _read_source(source, max_bytes)
     if data[:2] == _GZIP_MAGIC:

@@ -65,6 +65,9 @@ def test_as_affine_accepts_common_spellings_and_refuses_others():
             as_affine(bad)
     with pytest.raises(TransformError):
         Affine(math.nan)
+    for bad in ('a', None, [1, 2]):
+        with pytest.raises(TransformError, match='must be numbers'):
+            Affine(1, bad)
     with pytest.raises(TransformError):
         Affine.scale(0).inverse()
 
