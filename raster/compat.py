@@ -40,6 +40,7 @@ from __future__ import annotations
 import math
 import os
 import re
+from typing import BinaryIO
 
 from .errors import CanvasError, RasterIOError, SVGError
 
@@ -106,9 +107,13 @@ def _output_box(w, h, scale, output_width, output_height):
     return w * s, h * s
 
 
-def svg2png(bytestring=None, *, url=None, file_obj=None, write_to=None, dpi=96,
-            parent_width=None, parent_height=None, scale=1, unsafe=False,
-            background_color=None, output_width=None, output_height=None):
+def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | None = None,
+            file_obj: BinaryIO | None = None,
+            write_to: str | os.PathLike | BinaryIO | None = None, dpi: float = 96,
+            parent_width: float | None = None, parent_height: float | None = None,
+            scale: float = 1, unsafe: bool = False, background_color: str | None = None,
+            output_width: float | None = None,
+            output_height: float | None = None) -> bytes | None:
     """Render an SVG document to PNG, with CairoSVG's ``svg2png`` arguments.
 
     Parameters

@@ -132,7 +132,7 @@ class SvgImageFile(ImageFile.ImageFile):
         self._size = (w, h)
         self.info['dpi'] = (self._svg_dpi * sx, self._svg_dpi * sy)
 
-    def draft(self, mode, size):
+    def draft(self, mode: str | None, size: tuple[int, int] | None):
         """Draw at no less than ``size`` = ``(w, h)``, keeping the natural
         aspect ratio, instead of the current size; ``mode`` is ignored
         (always RGBA).
@@ -167,7 +167,8 @@ class SvgImageFile(ImageFile.ImageFile):
         return super().load()
 
 
-def register(*, dpi=None, font_dirs=None, resources_dir=None, background=None) -> None:
+def register(*, dpi: float | None = None, font_dirs=None, resources_dir: str | None = None,
+             background=None) -> None:
     """Register the SVG plugin with Pillow (``Image.open`` then opens SVG and
     SVGZ); the keywords set the options it opens with, unset ones being the
     built-in defaults.

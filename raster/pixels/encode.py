@@ -34,6 +34,7 @@ from __future__ import annotations
 import io
 import math
 import os
+from typing import Sequence
 
 import numpy as np
 
@@ -102,7 +103,7 @@ def _check_rgba(rgba):
     return a
 
 
-def flatten(rgba, matte=(1.0, 1.0, 1.0)):
+def flatten(rgba: np.ndarray, matte: Sequence[float] = (1.0, 1.0, 1.0)) -> np.ndarray:
     """Composite a straight-alpha image over an opaque colour.
 
     Parameters
@@ -156,8 +157,10 @@ def _dpi_pair(dpi):
     return xy
 
 
-def encode(rgba, format: str = 'png', *, dpi=None, quality: int | None = None,
-           compress_level: int | None = None, matte=(1.0, 1.0, 1.0)) -> bytes:
+def encode(rgba: np.ndarray, format: str = 'png', *,
+           dpi: float | tuple[float, float] | None = None, quality: int | None = None,
+           compress_level: int | None = None,
+           matte: Sequence[float] = (1.0, 1.0, 1.0)) -> bytes:
     """Encode an image as ``format``.
 
     Parameters
