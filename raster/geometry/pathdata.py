@@ -92,11 +92,22 @@ _GROUP = {'M': '##', 'L': '##', 'T': '##', 'H': '#', 'V': '#', 'C': '######',
 _GROUP.update({k.lower(): v for k, v in _GROUP.items()})
 # Possessive repeats (Python 3.11+) accept the same language; they only stop
 # the engine from keeping backtracking state, which made matching a
-# megabyte-long path superlinear.
-_P = b'+' if sys.version_info >= (3, 11) else b''
-_CMD = (rb'(?:[MmLlTt](?:##)+%s|[HhVv]#+%s|[Cc](?:######)+%s|[SsQq](?:####)+%s'
-        rb'|[Aa](?:###[\x00\x01][\x00\x01]##)+%s|[Zz])' % ((_P,) * 5))
-_VALID = re.compile(rb'(?:[Mm](?:##)+' + _P + _CMD + rb'*' + _P + rb')?')
+# megabyte-long path superlinear.  Before 3.11.5 a possessive repeat of a
+# group holding an alternation could match wrongly (CPython gh-106052): those
+# versions use plain repeats.
+POSSESSIVE = sys.version_info >= (3, 11, 5)
+
+
+def validity_regex(possessive=POSSESSIVE):
+    """The regex of valid token strings (see :func:`_is_valid`), with
+    possessive or plain repeats (both accept the same language)."""
+    p = b'+' if possessive else b''
+    cmd = (rb'(?:[MmLlTt](?:##)+%s|[HhVv]#+%s|[Cc](?:######)+%s|[SsQq](?:####)+%s'
+           rb'|[Aa](?:###[\x00\x01][\x00\x01]##)+%s|[Zz])' % ((p,) * 5))
+    return re.compile(rb'(?:[Mm](?:##)+' + p + cmd + rb'*' + p + rb')?')
+
+
+_VALID = validity_regex()
 _CMD_SPAN = re.compile(rb'([MmZzLlHhVvCcSsQqTtAa])([^MmZzLlHhVvCcSsQqTtAa]*)')
 _COMMA_AFTER_BAD = re.compile(rb'(?<![#\x00\x01]),')
 _COMMA_BEFORE_BAD = re.compile(rb',(?![#\x00\x01])')

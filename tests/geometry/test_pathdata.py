@@ -1,6 +1,7 @@
 """Tests of raster.geometry.pathdata: SVG path data, arcs and basic shapes."""
 
 import math
+import sys
 
 import numpy as np
 import pytest
@@ -950,3 +951,17 @@ def test_fast_lexer_is_used_for_long_data_and_agrees(monkeypatch):
 def test_bad_commas_equals_the_regular_expressions(kb):
     want = bool(svgpath._COMMA_AFTER_BAD.search(kb) or svgpath._COMMA_BEFORE_BAD.search(kb))
     assert svgpath._bad_commas(kb) == want
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.text(alphabet='MmLlHhVvCcSsQqTtAaZz#,\x00\x01x', max_size=40))
+def test_validity_regex_agrees_with_its_plain_form(kb):
+    """The token-validity regex uses possessive repeats where the
+    interpreter gets them right (3.11.5+); it must accept exactly what the
+    plain-repeat form accepts (a buggy engine once disagreed: gh-106052)."""
+    from raster.geometry import pathdata
+    data = kb.encode('latin-1')
+    plain = pathdata.validity_regex(possessive=False)
+    assert pathdata._VALID.match(data).end() == plain.match(data).end()
+    if sys.version_info >= (3, 11, 5):
+        assert pathdata.validity_regex(True).match(data).end() == plain.match(data).end()
