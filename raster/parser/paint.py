@@ -10,7 +10,8 @@ never holds objectBoundingBox units.  Context paints (``context-fill``,
 ``context-stroke`` in ``use`` content and markers) stay servers until the
 context element's box is known (see :func:`in_space`).
 
-Gradients: ``href`` inheritance with cycles cut, stop offsets clamped and
+Mesh gradients (SVG 2 ``meshgradient``) are read by :mod:`raster.parser.mesh`
+and resolved like gradients.  Gradients: ``href`` inheritance with cycles cut, stop offsets clamped and
 made monotonic, ``stop-color``/``stop-opacity`` with ``currentColor``,
 ``transform-origin``; a gradient with one stop is that stop's solid
 colour; one without stops paints the fallback colour (else nothing).
@@ -31,6 +32,7 @@ from ..tree import (GradientStop, Group, LinearGradient, Pattern, RadialGradient
 from .context import SVG_NS, State
 from .convert import convert_children
 from .document import chain_attr
+from .mesh import mesh_gradient
 from .refs import href_chain
 from .style import BLACK, doc_style, local_name, number_or_percent, opacity
 from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length, parse_paint,
@@ -40,7 +42,7 @@ from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length, pa
 __all__ = ['paint', 'server_of', 'in_space', 'GradientServer', 'PatternServer', 'UNSUPPORTED']
 
 _P = '{%s}' % SVG_NS
-_PAINT_SERVERS = frozenset(['linearGradient', 'radialGradient', 'pattern'])
+_PAINT_SERVERS = frozenset(['linearGradient', 'radialGradient', 'pattern', 'meshgradient'])
 _SPREADS = {m.value: m for m in SpreadMethod}
 
 #: A paint server that cannot paint (no stops, empty box): use the fallback.
@@ -202,7 +204,13 @@ def server_of(el, name, ctx, cache):
     key = (el, ctx)
     if key in memo:
         return memo[key]
-    r = _pattern(el, ctx, cache) if name == 'pattern' else _gradient(el, name, ctx, cache)
+    if name == 'pattern':
+        r = _pattern(el, ctx, cache)
+    elif name == 'meshgradient':
+        m = mesh_gradient(el, ctx, cache)
+        r = UNSUPPORTED if m is None else GradientServer(*m)
+    else:
+        r = _gradient(el, name, ctx, cache)
     memo[key] = r
     return r
 

@@ -31,12 +31,12 @@ from ..pixels.compositing import blend_layer
 from ..pixels.scan import path_coverage
 from ..pixels.views import ClipRect
 from ..geometry.transform import Affine
-from ..tree import (Group, ImageNode, LinearGradient, MaskType, PaintItem, PathNode, Pattern,
-                    RadialGradient, SolidPaint)
+from ..tree import (Group, ImageNode, LinearGradient, MaskType, MeshGradient, PaintItem, PathNode,
+                    Pattern, RadialGradient, SolidPaint)
 from .batch import Masks
 from .bounds import clip_rect, group_box, pixel_box
 from .filters import apply_filters, filter_box, filter_pixel_box
-from .paint import draw_pixels, gradient_colors, sample
+from .paint import draw_pixels, gradient_colors, mesh_colors, sample
 
 __all__ = ['Renderer']
 
@@ -220,6 +220,8 @@ class Renderer:
             return
         if isinstance(paint, (LinearGradient, RadialGradient)):
             src = gradient_colors(paint, mask, t)
+        elif isinstance(paint, MeshGradient):
+            src = mesh_colors(paint, mask, t, self.tol)
         elif isinstance(paint, Pattern):
             src = self.pattern(paint, mask, t)
         else:

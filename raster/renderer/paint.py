@@ -23,9 +23,10 @@ from ..errors import RasterError
 from ..geometry.path import Path
 from ..pixels.scan import path_coverage
 from ..geometry.transform import Affine
+from ..pixels.mesh import mesh_gradient
 from ..tree import LinearGradient
 
-__all__ = ['gradient_colors', 'draw_pixels', 'sample', 'resample_window']
+__all__ = ['gradient_colors', 'mesh_colors', 'draw_pixels', 'sample', 'resample_window']
 
 _F32 = np.float32
 
@@ -128,6 +129,34 @@ def gradient_colors(paint, mask, t):
     out = np.zeros((h * w, 4), _F32)
     out[flat] = stop_colors(s, offs, cols, np.ravel(cover)[flat])
     return out.reshape(h, w, 4)
+
+
+def mesh_colors(paint, mask, t, tolerance):
+    """Premultiplied colours of a mesh gradient over a coverage mask's
+    window, multiplied by the coverage (None: nothing painted).
+
+    Parameters
+    ----------
+    paint : raster.tree.MeshGradient
+        In the painted node's user space.
+    mask : raster.pixels.scan.Mask
+    t : Affine
+        User units -> device pixels.
+    tolerance : float
+        Device pixels: each painted pixel shows the colour of a mesh point
+        within it of its centre (:func:`raster.pixels.mesh.mesh_gradient`).
+    """
+    cover = np.asarray(mask.data, _F32)
+    h, w = cover.shape
+    if h == 0 or w == 0 or not cover.any():
+        return None
+    m = t @ paint.transform
+    dev = m.apply(np.asarray(paint.patches).reshape(-1, 2)).reshape(-1, 12, 2)
+    col = mesh_gradient(dev, paint.colors, (int(mask.x0), int(mask.y0), w, h),
+                        interpolation=paint.interpolation.value, shape=paint.shape,
+                        tolerance=tolerance)
+    col *= cover[..., None]
+    return col
 
 
 def _solid(color, cover):
