@@ -1,7 +1,7 @@
 """rasterize: render an SVG document to a PNG, JPEG, WebP, TIFF or BMP file.
 
     rasterize in.svg out.png [--width W | --height H | --zoom Z] [--dpi DPI]
-              [--background COLOR] [--font-dir DIR ...] [--id ID] [--allow-dir DIR]
+              [--background COLOR] [--font-dir DIR ...] [--id ID [--id-page]] [--allow-dir DIR]
               [--format FMT] [--quality Q] [--compress-level N]
 
 ``-`` reads the document from stdin or writes the image to stdout.
@@ -46,7 +46,12 @@ def build_parser():
     ap.add_argument('--background', metavar='COLOR', help='background colour (any CSS colour)')
     ap.add_argument('--font-dir', action='append', default=[], metavar='DIR',
                     help='directory of fonts for text (repeatable)')
-    ap.add_argument('--id', metavar='ID', help='render only the element with this id')
+    ap.add_argument('--id', metavar='ID',
+                    help='render only the element with this id, cropped to what it draws '
+                         '(strokes, markers and filters included); --width/--height/--zoom '
+                         'size that box')
+    ap.add_argument('--id-page', action='store_true',
+                    help='with --id: keep the whole page (the other elements hidden)')
     ap.add_argument('--allow-dir', metavar='DIR',
                     help='directory external files (images) may be read from')
     ap.add_argument('--format', choices=FORMAT_CHOICES, type=str.lower,
@@ -99,11 +104,16 @@ def _body(args):
     data = read_source(args.input)
     tree = load_svg(data, dpi=dpi, font_dirs=args.font_dir,
                     resources_dir=args.allow_dir, base_dir=base_dir_of(args.input))
+    crop = args.id is not None and not args.id_page
     canvas = render_tree(tree, width=args.width, height=args.height, zoom=args.zoom,
-                         background=bg, node_id=args.id, tolerance=args.tolerance)
-    # the resolution at which the document keeps its physical size
-    res = None if args.dpi is None else (dpi * canvas.width / tree.width,
-                                         dpi * canvas.height / tree.height)
+                         background=bg, node_id=args.id, tolerance=args.tolerance, crop=crop)
+    res = None
+    if args.dpi is not None:
+        # the resolution at which the document keeps its physical size
+        from raster.renderer import output_geometry
+        sx, sy = output_geometry(tree, args.width, args.height, args.zoom, args.id,
+                                 crop).scale
+        res = (dpi * sx, dpi * sy)
     from raster.pixels.encode import encode
     write_output(args.output, encode(canvas.to_rgba8(), fmt, dpi=res, quality=args.quality,
                                      compress_level=args.compress_level))

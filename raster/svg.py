@@ -140,7 +140,7 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
            zoom: Optional[float] = None, dpi: float = 96, background: Background = None,
            id: Optional[str] = None, font_dirs: Sequence[str] = (),
            resources_dir: Optional[str] = None, premultiplied: bool = False,
-           tolerance: float = DEFAULT_TOLERANCE) -> np.ndarray:
+           tolerance: float = DEFAULT_TOLERANCE, crop: bool = False) -> np.ndarray:
     """Render an SVG document to an RGBA array.
 
     Parameters
@@ -160,6 +160,9 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
     id : str or None
         Render only the element with this id (with its ancestors'
         transforms).
+    crop : bool
+        With ``id``: the image is the element's drawn box (strokes, markers,
+        filters included) rather than the page.
     font_dirs, resources_dir :
         See :func:`load_svg`.
     premultiplied : bool
@@ -188,7 +191,7 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
     bg = parse_background(background)
     tree = load_svg(source, dpi=dpi, font_dirs=font_dirs, resources_dir=resources_dir)
     canvas = render_tree(tree, width=width, height=height, zoom=zoom, background=bg,
-                         node_id=id, tolerance=tolerance)
+                         node_id=id, tolerance=tolerance, crop=crop)
     return canvas.to_rgba8(premultiplied=bool(premultiplied))
 
 
