@@ -81,14 +81,15 @@ def _document(bytestring, file_obj, url):
 def _root_size_against_parent(root, vb, parent_width, parent_height):
     """Resolve percentages of the root's width/height (absent: 100 %)
     against the parent box, in place.  Without a parent size a percentage
-    is CairoSVG's zero, which means the viewBox size when there is one."""
+    (or an absent side) is CairoSVG's zero, which means the viewBox size
+    when there is one (not raster's aspect ratio from the other side)."""
     for i, (attr, parent) in enumerate((('width', parent_width), ('height', parent_height))):
         m = _PERCENT.match(root.get(attr, '100%'))
         if m is None:
             continue
         if parent is not None:
             root.set(attr, repr(float(m.group(1)) * _number('parent_' + attr, parent) / 100.0))
-        elif vb is not None and root.get(attr) is not None:
+        elif vb is not None:
             root.set(attr, repr(vb[2 + i]))
 
 

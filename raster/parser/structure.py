@@ -27,7 +27,8 @@ from .style import (initial_inherited, is_displayed, length, length_context, loc
 from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length,
                      parse_preserve_aspect_ratio, parse_viewbox, viewbox_transform)
 
-__all__ = ['convert_group', 'convert_switch', 'convert_svg', 'convert_use', 'convert_root']
+__all__ = ['convert_group', 'convert_switch', 'convert_svg', 'convert_use', 'convert_root',
+           'document_size']
 
 _SHAPES = frozenset(['rect', 'circle', 'ellipse', 'line', 'polyline', 'polygon', 'path'])
 _CONTAINERS = frozenset(['g', 'a', 'svg', 'switch', 'use'])
@@ -234,8 +235,48 @@ def _rebase_context(kids, move, inh, cfill, cstroke):
 
 # -- the document root ------------------------------------------------------------
 
+def _size_attr(root, name, axis, ctx):
+    """The root's ``width``/``height`` in px: None when absent or ``auto``
+    (SVG 2), :class:`~raster.errors.SVGError` when invalid."""
+    s = root.get(name)
+    if s is None or s.strip() == 'auto':
+        return None
+    v = parse_length(s, axis, ctx)
+    if v is None:
+        raise SVGError('invalid document size: width=%r height=%r'
+                       % (root.get('width'), root.get('height')))
+    return v
+
+
+def document_size(root, vb, ctx):
+    """``(w, h)`` of the root ``svg`` element from its ``width``,
+    ``height`` and viewBox ``vb`` (x, y, w, h or None); an axis is None
+    when it follows the content (no viewBox and no length for it).
+
+    A missing (or ``auto``) side takes the viewBox's aspect ratio from the
+    other side (CSS sizing with an intrinsic ratio: ``width="80"
+    viewBox="0 0 40 20"`` is 80 x 40); both missing: the viewBox size.
+    Percentages resolve against the viewBox size (else 100 x 100)."""
+    w = _size_attr(root, 'width', 'x', ctx)
+    h = _size_attr(root, 'height', 'y', ctx)
+    if vb is not None:
+        if w is None and h is None:
+            w, h = vb[2], vb[3]
+        elif w is None:
+            w = h * vb[2] / vb[3]
+        elif h is None:
+            h = w * vb[3] / vb[2]
+    return w, h
+
+
 def convert_root(root, cache):
-    """The :class:`~raster.tree.Tree` of the root ``svg`` element."""
+    """The :class:`~raster.tree.Tree` of the root ``svg`` element.
+
+    Its size is :func:`document_size`; a side that follows the content
+    (no viewBox and no length) is the far edge of the content's visual
+    bounds, from the user-space origin (the content is not moved; 100 when
+    the content does not reach past 0).  ``display: none`` on the root
+    renders nothing at the document's size."""
     opts = cache.options
     inh0 = initial_inherited(opts.font_size)
     inh, own = style_of(root, inh0, {}, cache)
@@ -244,17 +285,11 @@ def convert_root(root, cache):
     rw, rh = (vb[2], vb[3]) if vb is not None else (100.0, 100.0)
     ctx = LengthContext(font_size=inh['_fs'], width=rw, height=rh, dpi=opts.dpi)
     ws, hs = root.get('width'), root.get('height')
-    auto = ws is None and hs is None and vb is None
-    w = parse_length(ws, 'x', ctx) if ws is not None else None
-    h = parse_length(hs, 'y', ctx) if hs is not None else None
-    if ws is not None and w is None or hs is not None and h is None:
-        raise SVGError('invalid document size: width=%r height=%r' % (ws, hs))
-    if w is None:
-        w = rw
-    if h is None:
-        h = rh
-    if not (w > 0 and h > 0 and math.isfinite(w) and math.isfinite(h)):
-        raise SVGError('invalid document size: width=%r height=%r' % (ws, hs))
+    w, h = document_size(root, vb, ctx)
+    fit_w, fit_h = w is None, h is None
+    for v in (w, h):
+        if v is not None and not (v > 0 and math.isfinite(v)):
+            raise SVGError('invalid document size: width=%r height=%r' % (ws, hs))
     t_root = transform_of(root, own, ctx)
     vbt = IDENTITY
     if vb is not None:
@@ -262,23 +297,25 @@ def convert_root(root, cache):
         vbt = viewbox_transform(vb, par, w, h)
     kids = []
     rt = vbt if t_root is None else t_root @ vbt
-    vw, vh = (vb[2], vb[3]) if vb is not None else (w, h)
+    vw, vh = (vb[2], vb[3]) if vb is not None else (rw if fit_w else w, rh if fit_h else h)
     st = State(inh, own, vw, vh, rt)
-    if t_root is not None and passes_conditions(root, cache):
+    shown = is_displayed(root, cache)
+    if shown and t_root is not None and passes_conditions(root, cache):
         convert_children(root, st, cache, kids)
     e = effects(root, own, st, cache, kids)
     if not e.ok:
         kids = []
-    bg = _root_background(root, rt, w, h) if not auto else None
+    if fit_w or fit_h:
+        box = content_box(Group(transform=rt, children=kids)) if kids else None
+        x1, y1 = (box[2], box[3]) if box is not None else (0.0, 0.0)
+        if fit_w:
+            w = x1 if x1 > 0 and math.isfinite(x1) else 100.0
+        if fit_h:
+            h = y1 if y1 > 0 and math.isfinite(y1) else 100.0
+    bg = _root_background(root, rt, w, h) if shown else None
     if bg is not None:
         kids = [bg] + kids
     group = e.group(root.get('id') or '', rt, kids)
-    if auto and kids:
-        box = content_box(group)
-        if box is not None:
-            x0, y0, x1, y1 = box
-            w, h = x1 - x0, y1 - y0
-            group.transform = Affine.translate(-x0, -y0) @ rt
     if group.id:
         cache.tree_ids.setdefault(group.id, group)
     return Tree(width=float(w), height=float(h), root=group, ids=cache.tree_ids)

@@ -60,11 +60,44 @@ def test_size_from_viewbox_and_percent():
     assert (t.width, t.height) == (15, 10)
 
 
-def test_no_size_uses_content_bounds():
+def test_no_size_reaches_the_content_from_the_origin():
+    # no width, height or viewBox: the far edges of the content, which is
+    # not moved (resvg does the same; the origin stays the viewport's corner)
     t = tree_of('<rect x="10" y="20" width="30" height="40"/>', '')
-    assert (t.width, t.height) == (30, 40)
+    assert (t.width, t.height) == (40, 60)
     n, m = only_path(t)
-    assert box(n, m) == (0, 0, 30, 40)
+    assert box(n, m) == (10, 20, 40, 60)
+    # strokes count: nothing drawn is cut off
+    t = tree_of('<rect x="10" y="20" width="30" height="40" stroke="black" stroke-width="4"/>',
+                'width="auto"')
+    assert (t.width, t.height) == (42, 62)
+    # content left of or above the origin only: the 100 px default
+    t = tree_of('<rect x="-50" y="-50" width="30" height="40"/>', '')
+    assert (t.width, t.height) == (100, 100)
+
+
+@pytest.mark.parametrize('attrs, size', [
+    ('width="80" viewBox="0 0 40 20"', (80, 40)),            # the ratio gives the height
+    ('height="80" viewBox="0 0 40 20"', (160, 80)),
+    ('width="80" height="auto" viewBox="0 0 40 20"', (80, 40)),
+    ('width="auto" height="auto" viewBox="0 0 40 20"', (40, 20)),
+    ('width="50%" viewBox="0 0 40 20"', (20, 10)),            # percent of the viewBox
+    ('width="80" height="50%" viewBox="0 0 40 20"', (80, 10)),
+    ('width="80" viewBox="0 0 40 20" preserveAspectRatio="none"', (80, 40)),
+    ('width="80"', (80, 25)),                  # no viewBox: the other side from the content
+    ('height="auto" width="30"', (30, 25)),
+])
+def test_a_missing_side_follows_the_ratio_or_the_content(attrs, size):
+    t = tree_of('<rect x="5" y="5" width="20" height="20"/>', attrs)
+    assert (t.width, t.height) == pytest.approx(size)
+
+
+def test_display_none_on_the_root_draws_nothing_at_its_size():
+    t = tree_of('<rect width="20" height="20"/>', 'width="50" height="40" display="none"')
+    assert (t.width, t.height) == (50, 40)
+    assert [n for n, _ in walk(t.root) if isinstance(n, PathNode)] == []
+    t = tree_of('<rect width="20" height="20"/>', 'width="50" height="40" style="display: none"')
+    assert [n for n, _ in walk(t.root) if isinstance(n, PathNode)] == []
 
 
 @pytest.mark.parametrize('attrs', ['width="-50" height="10"', 'width="0" height="10"',
