@@ -124,3 +124,134 @@ DOCS = {
 }
 
 EQUIVALENT = {}
+
+
+# --- markers with a viewBox, markers drawing images -----------------------------
+# A polyline with three vertices on y = 60 (marker-start/mid/end, orient 0,
+# stroke-width 4), so every instance is translate(vertex) @ scale @ translate(-ref).
+_MK_PATH = ('<polyline points="40,60 100,60 160,60" fill="none" stroke="#264653" '
+            'stroke-width="4" marker-start="url(#m)" marker-mid="url(#m)" marker-end="url(#m)"/>')
+_MK_PATH2 = _MK_PATH.replace('40,60 100,60 160,60', '40,150 100,150 160,150')
+_VERTS = ((40, 60), (100, 60), (160, 60))
+
+
+def _instances(content, scale, ref, clip=None, verts=_VERTS, cid='c'):
+    """What a marker draws, written out: ``content`` at each vertex under
+    translate(vertex) scale(scale) translate(-ref), clipped to ``clip``
+    (x, y, w, h in content coordinates) when given."""
+    out = ''
+    if clip is not None:
+        out += ('<clipPath id="%s"><rect x="%g" y="%g" width="%g" height="%g"/></clipPath>'
+                % ((cid,) + tuple(clip)))
+    for vx, vy in verts:
+        out += '<g transform="translate(%g %g) scale(%g) translate(%g %g)"%s>%s</g>' % (
+            vx, vy, scale, -ref[0], -ref[1],
+            ' clip-path="url(#%s)"' % cid if clip is not None else '', content)
+    return out
+
+
+_MK_WIDE = ('<rect x="-4" y="2" width="18" height="6" fill="#2a9d8f"/>'
+            '<path d="M0 0 L10 5 L0 10z" fill="#e76f51"/>')
+_MK_WIDER = ('<rect x="-8" y="2" width="26" height="6" fill="#2a9d8f"/>'
+             '<path d="M0 0 L10 5 L0 10z" fill="#e76f51"/>')
+_MK_SQUARE = ('<rect width="10" height="10" fill="#2a9d8f"/><circle cx="5" cy="5" r="4" '
+              'fill="#e76f51"/><rect x="4" y="0" width="2" height="10" fill="#264653"/>')
+_PNG = ('data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAQAAAADCAYAAAC09K7GAAAAKUlEQVR4nGN4'
+        'Zun2/+Ovd/9X3Lrz37V67n8GZM4zS7f/DMicj7/e/QcAllEj4JIVAnkAAAAASUVORK5CYII=')
+
+CASES.update({
+    'marker-viewbox-viewport-clip': (
+        'marker viewBox meet: the clip is the marker viewport, not the viewBox',
+        'viewBox 0 0 10 10 into markerWidth 8 x markerHeight 4 (meet, scale 0.4, centred): '
+        'the viewport spans x -5..15 of the viewBox coordinates, so overflow: hidden clips '
+        'there (SVG 1.1 and 2: a marker clips at the bounds of its viewport).  Top: a bar '
+        'from -4 to 14 is whole; bottom: one from -8 to 18 is cut at -5 and 15.  resvg clips '
+        'at the viewBox (0..10); the reference draws the instances out (golden/equivalent).',
+        '<defs><marker id="m" viewBox="0 0 10 10" markerWidth="8" markerHeight="4" refX="5" '
+        'refY="5">%s</marker><marker id="n" viewBox="0 0 10 10" markerWidth="8" '
+        'markerHeight="4" refX="5" refY="5">%s</marker></defs>%s%s'
+        % (_MK_WIDE, _MK_WIDER, _MK_PATH, _MK_PATH2.replace('#m', '#n'))),
+    'marker-viewbox-slice': (
+        'marker viewBox with slice: the viewport cuts the viewBox',
+        'viewBox 0 0 10 10 into 8 x 4 with xMidYMid slice: scale 0.8, the viewport shows '
+        'the band y 2.5..7.5 of the viewBox; the reference point (5, 5) sits on each vertex.  '
+        'resvg clips at the whole viewBox; the reference draws the instances out.',
+        '<defs><marker id="m" viewBox="0 0 10 10" markerWidth="8" markerHeight="4" refX="5" '
+        'refY="5" preserveAspectRatio="xMidYMid slice">%s</marker></defs>%s'
+        % (_MK_SQUARE, _MK_PATH)),
+    'marker-viewbox-none-and-offset': (
+        'marker viewBox: preserveAspectRatio none, and a viewBox not at the origin',
+        'Top: viewBox 0 0 10 10 stretched into 8 x 4 (none): scale 3.2 x 1.6 of the stroke '
+        'width.  Bottom: viewBox -5 -5 20 20 into 6 x 6 with refX/refY 5: the reference point '
+        'is in viewBox coordinates; the alignment offset cancels out.',
+        '<defs><marker id="m" viewBox="0 0 10 10" markerWidth="8" markerHeight="4" refX="5" '
+        'refY="5" preserveAspectRatio="none">%s</marker><marker id="n" viewBox="-5 -5 20 20" '
+        'markerWidth="6" markerHeight="6" refX="5" refY="5">%s</marker></defs>%s%s'
+        % (_MK_SQUARE, _MK_SQUARE, _MK_PATH, _MK_PATH2.replace('#m', '#n'))),
+    'marker-viewbox-ref-keywords': (
+        'refX/refY keywords resolve against the marker viewBox',
+        'refX="right" refY="center" with viewBox 5 5 10 10: the reference point is (15, 10), '
+        'the right middle of the viewBox (SVG 2).  resvg reads the keywords as 0; the '
+        'reference is the same marker with refX="15" refY="10".',
+        '<defs><marker id="m" viewBox="5 5 10 10" markerWidth="6" markerHeight="6" '
+        'refX="right" refY="center" orient="auto">%s</marker></defs>%s'
+        % (_MK_SQUARE.replace('<rect width', '<rect x="5" y="5" width').replace(
+            'cx="5" cy="5"', 'cx="10" cy="10"').replace('x="4" y="0"', 'x="9" y="5"'),
+           _MK_PATH)),
+    'marker-viewbox-invalid': (
+        'an invalid marker viewBox is ignored, a zero-sized one disables the marker',
+        'Top: viewBox="0 0 10 -10" (negative height) invalidates the attribute (SVG 2): the '
+        'marker is drawn as if it had none.  Bottom: viewBox="0 0 0 10" disables rendering of '
+        'the marker (SVG 1.1 and 2): no markers, only the line.  resvg draws the second as if '
+        'it had no viewBox; the reference leaves it out.',
+        '<defs><marker id="m" viewBox="0 0 10 -10" markerWidth="3" markerHeight="3" '
+        'refX="1.5" refY="1.5"><rect width="3" height="3" fill="#2a9d8f"/></marker><marker '
+        'id="n" viewBox="0 0 0 10" markerWidth="3" markerHeight="3"><rect width="3" height="3" '
+        'fill="#e76f51"/></marker></defs>%s%s' % (_MK_PATH, _MK_PATH2.replace('#m', '#n'))),
+    'marker-image-raster': (
+        'a marker whose content is a raster image',
+        'An image in the marker content is drawn like any content: scaled by the stroke '
+        'width, turned by orient="auto" along a curve, clipped to the viewport (the image '
+        'is larger than markerWidth x markerHeight on the second path).',
+        '<defs><marker id="m" markerWidth="8" markerHeight="6" refX="4" refY="3" '
+        'orient="auto"><image width="8" height="6" preserveAspectRatio="none" href="%s"/>'
+        '</marker><marker id="n" markerWidth="6" markerHeight="6" refX="3" refY="3">'
+        '<image x="-2" y="-2" width="10" height="10" image-rendering="optimizeSpeed" '
+        'href="%s"/></marker></defs><path d="M30 80 C 70 20, 130 140, 170 80" fill="none" '
+        'stroke="#264653" stroke-width="3" marker-start="url(#m)" marker-end="url(#m)"/>%s'
+        % (_PNG, _PNG, _MK_PATH2.replace('#m', '#n'))),
+    'marker-image-svg': (
+        'a marker whose content is an SVG image, in a marker with a viewBox',
+        'The SVG image (viewBox 0 0 10 10, a circle and a bar) fills the 100 x 100 viewBox of '
+        'the marker, mapped into 6 x 6 stroke widths; orient auto-start-reverse.',
+        '<defs><marker id="m" viewBox="0 0 100 100" markerWidth="6" markerHeight="6" refX="50" '
+        'refY="50" orient="auto-start-reverse"><image width="100" height="100" href="%s"/>'
+        '</marker></defs><path d="M40 100 L100 60 L160 100" fill="none" stroke="#264653" '
+        'stroke-width="4" marker-start="url(#m)" marker-mid="url(#m)" marker-end="url(#m)"/>'
+        % svg_uri(_sub('viewBox="0 0 10 10"', '<circle cx="5" cy="5" r="5" fill="#e76f51"/>'
+                       '<rect x="4" y="1" width="2" height="8" fill="#264653"/>'))),
+})
+
+EQUIVALENT.update({
+    'marker-viewbox-viewport-clip': (
+        'equivalent: the marker instances written out',
+        _MK_PATH.replace(' marker-start="url(#m)" marker-mid="url(#m)" marker-end="url(#m)"', '')
+        + _MK_PATH2.replace(' marker-start="url(#m)" marker-mid="url(#m)" marker-end="url(#m)"', '')
+        + _instances(_MK_WIDE, 1.6, (5, 5), (-5, 0, 20, 10), cid='c1')
+        + _instances(_MK_WIDER, 1.6, (5, 5), (-5, 0, 20, 10),
+                     verts=((40, 150), (100, 150), (160, 150)), cid='c2')),
+    'marker-viewbox-slice': (
+        'equivalent: the marker instances written out',
+        _MK_PATH.replace(' marker-start="url(#m)" marker-mid="url(#m)" marker-end="url(#m)"', '')
+        + _instances(_MK_SQUARE, 3.2, (5, 5), (0, 2.5, 10, 5))),
+    'marker-viewbox-invalid': (
+        'equivalent: the first marker without its viewBox, the second left out',
+        '<defs><marker id="m" markerWidth="3" markerHeight="3" refX="1.5" refY="1.5"><rect '
+        'width="3" height="3" fill="#2a9d8f"/></marker></defs>%s%s'
+        % (_MK_PATH, _MK_PATH2.replace(
+            ' marker-start="url(#m)" marker-mid="url(#m)" marker-end="url(#m)"', ''))),
+})
+EQUIVALENT['marker-viewbox-ref-keywords'] = (
+    'equivalent: the reference point as numbers',
+    CASES['marker-viewbox-ref-keywords'][2].replace('refX="right" refY="center"',
+                                                     'refX="15" refY="10"'))

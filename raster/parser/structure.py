@@ -25,7 +25,8 @@ from .refs import href_target, is_recursive
 from .style import (initial_inherited, is_displayed, length, length_context, local_name,
                     passes_conditions, style_of, transform_of)
 from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length,
-                     parse_preserve_aspect_ratio, parse_viewbox, viewbox_transform)
+                     parse_preserve_aspect_ratio, resolve_viewbox, viewbox_transform,
+                     ZERO_VIEWBOX)
 
 __all__ = ['convert_group', 'convert_switch', 'convert_svg', 'convert_use', 'convert_root',
            'document_size']
@@ -103,13 +104,12 @@ def _viewport(el, inh, own, t, state, cache, parent, x, y, w, h, content_el):
     viewBox: nested svg and symbol instances."""
     if not (w > 0 and h > 0):
         return
-    vb_attr = content_el.get('viewBox')
+    vb = resolve_viewbox(content_el.get('viewBox'))
+    if vb is ZERO_VIEWBOX:
+        return
     inner = Affine.translate(x, y)
     vw, vh = w, h
-    if vb_attr is not None:
-        vb = parse_viewbox(vb_attr)
-        if vb is None:
-            return
+    if vb is not None:
         par = parse_preserve_aspect_ratio(content_el.get('preserveAspectRatio', ''))
         inner = viewbox_transform(vb, par, w, h, x, y)
         vw, vh = vb[2], vb[3]
@@ -275,13 +275,15 @@ def convert_root(root, cache):
     Its size is :func:`document_size`; a side that follows the content
     (no viewBox and no length) is the far edge of the content's visual
     bounds, from the user-space origin (the content is not moved; 100 when
-    the content does not reach past 0).  ``display: none`` on the root
-    renders nothing at the document's size."""
+    the content does not reach past 0).  ``display: none`` on the root, or
+    a viewBox with a zero side, renders nothing at the document's size."""
     opts = cache.options
     inh0 = initial_inherited(opts.font_size)
     inh, own = style_of(root, inh0, {}, cache)
-    vb_attr = root.get('viewBox')
-    vb = parse_viewbox(vb_attr) if vb_attr is not None else None
+    vb = resolve_viewbox(root.get('viewBox'))
+    disabled = vb is ZERO_VIEWBOX
+    if disabled:
+        vb = None
     rw, rh = (vb[2], vb[3]) if vb is not None else (100.0, 100.0)
     ctx = LengthContext(font_size=inh['_fs'], width=rw, height=rh, dpi=opts.dpi)
     ws, hs = root.get('width'), root.get('height')
@@ -299,7 +301,7 @@ def convert_root(root, cache):
     rt = vbt if t_root is None else t_root @ vbt
     vw, vh = (vb[2], vb[3]) if vb is not None else (rw if fit_w else w, rh if fit_h else h)
     st = State(inh, own, vw, vh, rt)
-    shown = is_displayed(root, cache)
+    shown = is_displayed(root, cache) and not disabled
     if shown and t_root is not None and passes_conditions(root, cache):
         convert_children(root, st, cache, kids)
     e = effects(root, own, st, cache, kids)

@@ -30,7 +30,8 @@ __all__ = [
     'LengthContext', 'NAMED_COLORS',
     'parse_color', 'parse_paint', 'parse_number', 'parse_number_list',
     'parse_length', 'parse_length_list', 'parse_angle', 'parse_transform',
-    'parse_transform_origin', 'parse_viewbox', 'parse_preserve_aspect_ratio',
+    'parse_transform_origin', 'parse_viewbox', 'resolve_viewbox', 'ZERO_VIEWBOX',
+    'parse_preserve_aspect_ratio',
     'viewbox_transform', 'parse_url', 'DEFAULT_ASPECT_RATIO',
     'parse_opacity', 'parse_font_size', 'FONT_SIZE_KEYWORDS', 'PAINT_CURRENT',
     'DEFAULT_CONTEXT',
@@ -1004,10 +1005,8 @@ def parse_viewbox(s):
     -------
     (float, float, float, float) or None
         ``None`` on a syntax error, a wrong count, or a width or height that
-        is zero or negative.  SVG: a negative size is an error and a zero size
-        disables rendering of the element; resvg renders neither, so the tree
-        builder treats ``None`` from a present ``viewBox`` as "do not render"
-        (and a missing attribute as "no viewBox").
+        is zero or negative (see :func:`resolve_viewbox` for what each
+        means to an element).
 
     >>> parse_viewbox('0,0 100 50'), parse_viewbox('0 0 0 10')
     ((0.0, 0.0, 100.0, 50.0), None)
@@ -1015,6 +1014,37 @@ def parse_viewbox(s):
     v = parse_number_list(s)
     if v is None or len(v) != 4 or v[2] <= 0 or v[3] <= 0:
         return None
+    return tuple(v)
+
+
+#: What :func:`resolve_viewbox` returns for a viewBox with a zero side.
+ZERO_VIEWBOX = 'zero'
+
+
+def resolve_viewbox(s):
+    """What a ``viewBox`` attribute value (or None when absent) does to its
+    element.
+
+    Returns
+    -------
+    (float, float, float, float), None or ZERO_VIEWBOX
+        The box; None when absent or invalid -- a syntax error, a count
+        other than four, a negative width or height: SVG 2 says such a
+        value invalidates the attribute, so the element is drawn as if it
+        had none (resvg does the same); :data:`ZERO_VIEWBOX` when the width
+        or height is zero, which disables rendering of the element (SVG 1.1
+        and 2; resvg draws it as if it had no viewBox).
+
+    >>> resolve_viewbox('0 0 10 5'), resolve_viewbox('0 0 -10 5'), resolve_viewbox('0 0 0 5')
+    ((0.0, 0.0, 10.0, 5.0), None, 'zero')
+    """
+    if s is None:
+        return None
+    v = parse_number_list(s)
+    if v is None or len(v) != 4 or v[2] < 0 or v[3] < 0:
+        return None
+    if v[2] == 0 or v[3] == 0:
+        return ZERO_VIEWBOX
     return tuple(v)
 
 

@@ -896,3 +896,22 @@ def test_conditional_attributes_found_in_one_pass():
                 '<switch><rect systemLanguage="de" width="4" height="4"/>'
                 '<rect id="y" width="5" height="5"/></switch>')
     assert [box(n) for n, _ in paths(t)] == [(0.0, 0.0, 3.0, 3.0), (0.0, 0.0, 5.0, 5.0)]
+
+
+@pytest.mark.parametrize('vb, drawn', [('0 0 10 -10', True), ('0 0 10', True), ('a b c d', True),
+                                       ('0 0 0 10', False), ('0 0 10 0', False)])
+def test_invalid_viewbox_is_ignored_and_a_zero_one_disables(vb, drawn):
+    # SVG 2: an invalid viewBox is as if absent; a zero width or height
+    # disables rendering -- on nested svg, symbol instances and markers alike
+    for body in ('<svg width="50" height="50" viewBox="%s"><rect width="10" height="10"/></svg>',
+                 '<symbol id="s" viewBox="%s"><rect width="10" height="10"/></symbol>'
+                 '<use href="#s" width="50" height="50"/>',
+                 '<marker id="m" viewBox="%s" markerWidth="4" markerHeight="4">'
+                 '<rect width="10" height="10"/></marker>'
+                 '<path d="M20 20 H80" fill="none" stroke="red" marker-end="url(#m)"/>'):
+        t = tree_of(body % vb)
+        nodes = [n for n, _ in walk(t.root)]
+        nodes += [m for n in nodes if isinstance(n, PathNode) and n.markers is not None
+                  for m, _ in walk(n.markers)]
+        filled = [n for n in nodes if isinstance(n, PathNode) and n.fill is not None]
+        assert bool(filled) == drawn, body
