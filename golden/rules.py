@@ -255,3 +255,87 @@ EQUIVALENT['marker-viewbox-ref-keywords'] = (
     'equivalent: the reference point as numbers',
     CASES['marker-viewbox-ref-keywords'][2].replace('refX="right" refY="center"',
                                                      'refX="15" refY="10"'))
+
+
+# --- patterns that cannot paint: the fallback colour ----------------------------
+_P_OBB = ('<pattern id="p" width="0.25" height="0.25"><rect width="10" height="10" '
+          'fill="#264653"/></pattern>')
+_P_USER = ('<pattern id="u" width="20" height="20" patternUnits="userSpaceOnUse"><rect '
+           'width="10" height="10" fill="#264653"/></pattern>')
+_SQ = '<rect x="20" y="20" width="160" height="160" fill="%s"/>'
+
+CASES.update({
+    'pattern-obb-zero-box-fallback': (
+        'objectBoundingBox pattern and gradient on shapes without area: the fallback',
+        'A horizontal and a vertical line have bounding boxes of zero height or width, so '
+        'objectBoundingBox units cannot be resolved and the paint server is unusable: the '
+        'stroke takes the fallback colour of url() (a colour, currentColor), and paints '
+        'nothing without one (the third line).  The same for a gradient (bottom).',
+        '<defs>%s<linearGradient id="g"><stop offset="0" stop-color="red"/><stop offset="1" '
+        'stop-color="blue"/></linearGradient></defs>'
+        '<line x1="20" y1="40" x2="180" y2="40" stroke="url(#p) #2a9d8f" stroke-width="16"/>'
+        '<line x1="40" y1="60" x2="40" y2="140" stroke="url(#p) currentColor" color="#e76f51" '
+        'stroke-width="16"/><line x1="60" y1="80" x2="180" y2="80" stroke="url(#p)" '
+        'stroke-width="16"/><path d="M60 160 H180" stroke="url(#g) #264653" stroke-width="16"/>'
+        '<rect x="80" y="100" width="80" height="30" fill="url(#p) red"/>' % _P_OBB),
+    'pattern-empty-fallback': (
+        'a pattern without content paints the fallback colour',
+        'Left: a pattern element without children; right: one that inherits nothing to draw '
+        'through href (its template has no children either).  Neither can paint, so fill and '
+        'stroke take the fallback colours; the pattern with content (bottom) paints itself.',
+        '<defs><pattern id="e" width="20" height="20" patternUnits="userSpaceOnUse"/>'
+        '<pattern id="f" href="#e" width="30"/>%s</defs>'
+        '<rect x="20" y="20" width="70" height="100" fill="url(#e) #2a9d8f"/>'
+        '<rect x="110" y="20" width="70" height="100" fill="url(#f) #e9c46a" '
+        'stroke="url(#e) #e76f51" stroke-width="6"/>'
+        '<rect x="20" y="140" width="160" height="40" fill="url(#u) red"/>' % _P_USER),
+    'pattern-zero-size-fallback': (
+        'a pattern tile of zero or negative size paints the fallback colour',
+        'width="0", height="-20" and an objectBoundingBox height of 0: the tile is empty '
+        '(SVG: a value of zero disables rendering, a negative one is an error), the paint '
+        'server unusable, the fallback colour is painted.',
+        '<defs><pattern id="a" width="0" height="20" patternUnits="userSpaceOnUse"><rect '
+        'width="10" height="10"/></pattern><pattern id="b" width="20" height="-20" '
+        'patternUnits="userSpaceOnUse"><rect width="10" height="10"/></pattern><pattern id="c" '
+        'width="0.5" height="0"><rect width="10" height="10"/></pattern></defs>'
+        '<rect x="20" y="20" width="50" height="160" fill="url(#a) #2a9d8f"/>'
+        '<rect x="75" y="20" width="50" height="160" fill="url(#b) #e9c46a"/>'
+        '<rect x="130" y="20" width="50" height="160" fill="url(#c) #e76f51"/>'),
+    'pattern-invisible-content-transparent': (
+        'a pattern whose content draws nothing is transparent, not the fallback',
+        'The patterns have content (an empty group; a rectangle with fill none), so they are '
+        'valid and paint a transparent tile: the fallback colour (red) must not show.',
+        '<defs><pattern id="a" width="20" height="20" patternUnits="userSpaceOnUse"><g/>'
+        '</pattern><pattern id="b" width="20" height="20" patternUnits="userSpaceOnUse"><rect '
+        'width="10" height="10" fill="none"/></pattern></defs>'
+        '<rect x="20" y="20" width="160" height="160" fill="#e9c46a"/>'
+        '<rect x="40" y="40" width="50" height="120" fill="url(#a) red"/>'
+        '<rect x="110" y="40" width="50" height="120" fill="url(#b) red"/>'),
+    'pattern-content-obb-zero-box-fallback': (
+        'objectBoundingBox pattern content on a shape without area: the fallback',
+        'The tile is in user space but patternContentUnits="objectBoundingBox": the content '
+        'cannot be placed on a line whose box has zero height, so the pattern cannot paint '
+        'and the fallback colour is used, as for patternUnits.  resvg paints nothing here; '
+        'the reference is the lines stroked with the fallback colour.',
+        '<defs><pattern id="p" width="20" height="20" patternUnits="userSpaceOnUse" '
+        'patternContentUnits="objectBoundingBox"><rect width="0.5" height="0.5" '
+        'fill="#264653"/></pattern></defs>'
+        '<line x1="20" y1="60" x2="180" y2="60" stroke="url(#p) #2a9d8f" stroke-width="20"/>'
+        '<line x1="100" y1="90" x2="100" y2="180" stroke="url(#p) #e76f51" stroke-width="20"/>'),
+    'pattern-zero-viewbox-fallback': (
+        'a pattern with a zero-sized viewBox paints the fallback colour',
+        'viewBox="0 0 0 10" disables rendering of the pattern (SVG 1.1 and 2), which leaves '
+        'the fill to the fallback colour.  resvg ignores the viewBox and tiles the content; '
+        'the reference is the rectangle filled with the fallback colour.',
+        '<defs><pattern id="p" width="20" height="20" patternUnits="userSpaceOnUse" '
+        'viewBox="0 0 0 10"><rect width="10" height="10" fill="#264653"/></pattern></defs>'
+        + _SQ % 'url(#p) #2a9d8f'),
+})
+
+EQUIVALENT.update({
+    'pattern-content-obb-zero-box-fallback': (
+        'equivalent: the fallback colours',
+        '<line x1="20" y1="60" x2="180" y2="60" stroke="#2a9d8f" stroke-width="20"/>'
+        '<line x1="100" y1="90" x2="100" y2="180" stroke="#e76f51" stroke-width="20"/>'),
+    'pattern-zero-viewbox-fallback': ('equivalent: the fallback colour', _SQ % '#2a9d8f'),
+})

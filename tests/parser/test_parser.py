@@ -915,3 +915,33 @@ def test_invalid_viewbox_is_ignored_and_a_zero_one_disables(vb, drawn):
                   for m, _ in walk(n.markers)]
         filled = [n for n in nodes if isinstance(n, PathNode) and n.fill is not None]
         assert bool(filled) == drawn, body
+
+
+@pytest.mark.parametrize('pattern, fallback', [
+    ('<pattern id="p" width="20" height="20" patternUnits="userSpaceOnUse"/>', True),
+    ('<pattern id="q" width="20" height="20" patternUnits="userSpaceOnUse"/>'
+     '<pattern id="p" href="#q" height="30"/>', True),
+    ('<pattern id="p" width="0" height="20"><rect width="5" height="5"/></pattern>', True),
+    ('<pattern id="p" width="10" height="-1"><rect width="5" height="5"/></pattern>', True),
+    ('<pattern id="p" width="10" height="10" viewBox="0 0 10 0"><rect width="5" height="5"/>'
+     '</pattern>', True),
+    # content that draws nothing is a transparent pattern, not a failure
+    ('<pattern id="p" width="10" height="10" patternUnits="userSpaceOnUse"><g/></pattern>',
+     False),
+])
+def test_a_pattern_that_cannot_paint_takes_the_fallback(pattern, fallback):
+    t = tree_of(pattern + '<rect width="50" height="50" fill="url(#p) #00ff00"/>')
+    fills = [n.fill for n, _ in walk(t.root) if isinstance(n, PathNode)]
+    if fallback:
+        assert len(fills) == 1 and fills[0].paint == SolidPaint((0.0, 1.0, 0.0, 1.0))
+    else:
+        assert all(f is None or not isinstance(f.paint, SolidPaint) for f in fills)
+
+
+@pytest.mark.parametrize('units', ['', 'patternUnits="userSpaceOnUse" '
+                                       'patternContentUnits="objectBoundingBox"'])
+def test_object_bounding_box_pattern_on_a_line_takes_the_fallback(units):
+    t = tree_of('<pattern id="p" width="0.5" height="0.5" %s><rect width="5" height="5"/>'
+                '</pattern><path d="M10 10 H90" stroke="url(#p) #0000ff"/>' % units)
+    (n, _), = [(n, m) for n, m in walk(t.root) if isinstance(n, PathNode)]
+    assert n.stroke.paint == SolidPaint((0.0, 0.0, 1.0, 1.0))
