@@ -339,3 +339,86 @@ EQUIVALENT.update({
         '<line x1="100" y1="90" x2="100" y2="180" stroke="#e76f51" stroke-width="20"/>'),
     'pattern-zero-viewbox-fallback': ('equivalent: the fallback colour', _SQ % '#2a9d8f'),
 })
+
+
+# --- what counts in an object bounding box; display none on the root -----------
+_OBB_CLIP = ('<clipPath id="c" clipPathUnits="objectBoundingBox"><circle cx="0.5" cy="0.5" '
+             'r="0.5"/></clipPath>')
+_INNER = '<rect x="50" y="70" width="100" height="100" fill="#e76f51"/>'
+
+
+def _clipped(invisible, inner=_INNER, effect='clip-path="url(#c)"'):
+    return '<defs>%s</defs><g %s>%s%s</g>' % (_OBB_CLIP, effect, invisible, inner)
+
+
+CASES.update({
+    'bbox-invisible-opacity-zero': (
+        'an opacity 0 child still counts in the bounding box of a clipped group',
+        'The group is clipped by a circle in objectBoundingBox units.  Its first child '
+        '(20..180) has opacity 0: it paints nothing but is rendered, and the bounding box is '
+        'geometry whatever the opacity (SVG 2), so the circle is centred on (100, 100) with '
+        'radius 80 and cuts the visible square only at its lower corners.',
+        _clipped('<rect x="20" y="20" width="160" height="160" opacity="0"/>')),
+    'bbox-invisible-no-paint': (
+        'children without fill or stroke count in the bounding box',
+        'Left: fill="none" and no stroke; right: a url() to a missing paint server without '
+        'fallback.  Both paint nothing and both count: each clip circle is the box of the '
+        'invisible outer rectangle.',
+        _clipped('<rect x="10" y="20" width="85" height="160" fill="none"/>',
+                 '<rect x="20" y="60" width="65" height="100" fill="#e76f51"/>')
+        + _clipped('<rect x="105" y="20" width="85" height="160" fill="url(#missing)"/>',
+                   '<rect x="115" y="60" width="65" height="100" fill="#2a9d8f"/>')),
+    'bbox-invisible-group-use-image': (
+        'invisible groups, use instances and images count in the bounding box',
+        'Three clipped groups, each with an invisible first child: a rotated group with '
+        'opacity 0 (its box is that of the rotated square, 29..171), a use with opacity 0, '
+        'and an image with opacity 0 (its box is its viewport).',
+        '<defs>%s<rect id="r" x="120" y="10" width="70" height="70"/></defs>'
+        '<g clip-path="url(#c)"><g opacity="0" transform="rotate(45 100 100)"><rect x="50" '
+        'y="50" width="100" height="100"/></g><rect x="60" y="90" width="80" height="80" '
+        'fill="#e76f51"/></g>'
+        '<g clip-path="url(#c)"><use href="#r" opacity="0"/><rect x="140" y="30" width="50" '
+        'height="50" fill="#2a9d8f"/></g>'
+        '<g clip-path="url(#c)"><image x="10" y="120" width="70" height="70" opacity="0" '
+        'preserveAspectRatio="none" href="%s"/><rect x="10" y="140" width="50" height="50" '
+        'fill="#264653"/></g>' % (_OBB_CLIP, _PNG)),
+    'bbox-image-viewport': (
+        'the bounding box of an image is its viewport, not the drawn picture',
+        'A 4x3 image in a 160x160 viewport (meet: drawn 160x120) inside a group clipped by a '
+        'circle in objectBoundingBox units: the box is the viewport (x, y, width, height; '
+        'SVG 2 "the positioning rectangle is used as the bounding box"), so the circle has '
+        'radius 80 around (100, 100).  resvg uses the drawn 160x120; the reference clips by '
+        'that circle in user space.',
+        _clipped('<image x="20" y="20" width="160" height="160" href="%s"/>' % _PNG, '')),
+    'bbox-invisible-mask-filter': (
+        'invisible children size objectBoundingBox masks and filter regions too',
+        'Left: a mask in objectBoundingBox content units; right: a filter region of exactly '
+        'the box (x=0 y=0 width=1 height=1) with a flood.  The opacity 0 rectangles make the '
+        'boxes 10..95 and 105..190 across.',
+        '<defs><mask id="m" maskContentUnits="objectBoundingBox"><circle cx="0.5" cy="0.5" '
+        'r="0.5" fill="white"/></mask><filter id="f" x="0" y="0" width="1" height="1">'
+        '<feFlood flood-color="#2a9d8f" flood-opacity="0.6"/></filter></defs>'
+        '<g mask="url(#m)"><rect x="10" y="20" width="85" height="160" opacity="0"/><rect '
+        'x="20" y="60" width="65" height="100" fill="#e76f51"/></g>'
+        '<g filter="url(#f)"><rect x="105" y="20" width="85" height="160" opacity="0"/><rect '
+        'x="115" y="60" width="65" height="100" fill="#e76f51"/></g>'),
+})
+
+EQUIVALENT['bbox-image-viewport'] = (
+    'equivalent: the image clipped by the circle of its viewport',
+    '<defs><clipPath id="c"><circle cx="100" cy="100" r="80"/></clipPath></defs>'
+    '<g clip-path="url(#c)"><image x="20" y="20" width="160" height="160" href="%s"/></g>' % _PNG)
+
+DOCS.update({
+    'structure-root-display-none': (
+        '<svg %s width="200" height="100" viewBox="0 0 100 50" display="none" '
+        'style="background-color: #e9c46a">\n  <title>display none on the root element</title>\n'
+        '  <desc>display="none" on the root svg: nothing is rendered, not even the '
+        'background, and the document keeps its size (200x100, transparent).</desc>\n  '
+        '<rect width="100" height="50" fill="#e76f51"/>\n</svg>\n' % NS),
+    'structure-root-display-none-css': (
+        '<svg %s width="120" height="80">\n  <title>display none on the root element from '
+        'a style sheet</title>\n  <desc>The same through CSS (svg { display: none }): a '
+        'transparent 120x80 document.</desc>\n  <style>svg { display: none }</style>\n  '
+        '<rect width="120" height="80" fill="#e76f51"/>\n</svg>\n' % NS),
+})

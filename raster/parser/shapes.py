@@ -10,9 +10,10 @@ attributes.  What a computed style says about painting (paints that do
 not depend on the shape, stroke parameters, paint order, antialiasing)
 is worked out once per style.
 
-An invisible shape (``visibility: hidden``) paints nothing but still
-counts in its parent's object bounding box (resvg), so it is kept
-unpainted.  Inside a ``clipPath`` a shape is filled black with its
+An invisible shape (``visibility: hidden``, ``opacity: 0``, no fill and
+no stroke) paints nothing but still counts in its parent's object bounding
+box (SVG 2: the box is geometry, whatever the paint and opacity; resvg
+agrees), so it is kept unpainted.  Inside a ``clipPath`` a shape is filled black with its
 ``clip-rule``.
 """
 
@@ -84,16 +85,19 @@ def convert_shape(el, state, cache, parent):
         placement = _placement_path(el, name, path, ctx, cache)
         markers = build_markers(el, name, path, placement, inh, ctx, state.sub(transform=t),
                                 cache, fill, stroke)
-    if fill is None and stroke is None and markers is None and not hidden:
-        return
+    # a shape that paints nothing (fill and stroke none, visibility hidden,
+    # opacity 0) is kept unpainted: it counts in its parent's bounding box
     i = el.get('id') or ''
     node = PathNode(id=i, path=path, fill=fill, stroke=stroke, paint_order=order,
                     markers=markers, antialias=antialias)
     e = effects(el, own, state, cache, [node], t) if own else NO_EFFECTS
     if e is not NO_EFFECTS:
-        if not e.ok or e.opacity <= 0.0:
+        if not e.ok:
             return
-        if e.opacity < 1.0 and not e.composited and markers is None \
+        if e.opacity <= 0.0:
+            node = PathNode(path=path)
+            e = NO_EFFECTS
+        elif e.opacity < 1.0 and not e.composited and markers is None \
                 and (fill is None) != (stroke is None):
             # group opacity over one paint: folded into it (the Fill or
             # Stroke was made for this node alone, so it is updated in place)

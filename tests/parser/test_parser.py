@@ -945,3 +945,30 @@ def test_object_bounding_box_pattern_on_a_line_takes_the_fallback(units):
                 '</pattern><path d="M10 10 H90" stroke="url(#p) #0000ff"/>' % units)
     (n, _), = [(n, m) for n, m in walk(t.root) if isinstance(n, PathNode)]
     assert n.stroke.paint == SolidPaint((0.0, 0.0, 1.0, 1.0))
+
+
+@pytest.mark.parametrize('invisible', [
+    '<rect x="0" y="0" width="100" height="80" opacity="0"/>',
+    '<rect x="0" y="0" width="100" height="80" fill="none"/>',
+    '<rect x="0" y="0" width="100" height="80" fill="url(#nothing)"/>',
+    '<rect x="0" y="0" width="100" height="80" visibility="hidden"/>',
+    '<g opacity="0"><rect x="0" y="0" width="100" height="80" fill="blue"/></g>',
+    '<use href="#r" opacity="0"/>',
+    '<image width="100" height="80" opacity="0" preserveAspectRatio="xMinYMin meet" '
+    'href="data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAQAAAADCAYAAAC09K7GAAAAKUlEQVR4nGN4'
+    'Zun2/+Ovd/9X3Lrz37V67n8GZM4zS7f/DMicj7/e/QcAllEj4JIVAnkAAAAASUVORK5CYII="/>',
+])
+def test_invisible_children_count_in_the_object_bounding_box(invisible):
+    # the clip path's objectBoundingBox rectangle scales with the group's box,
+    # which is 0..100 x 0..80 whatever the invisible child paints
+    from raster.parser.boxes import object_box
+    t = tree_of('<defs><rect id="r" width="100" height="80"/><clipPath id="c" '
+                'clipPathUnits="objectBoundingBox"><rect width="1" height="1"/></clipPath></defs>'
+                '<g id="g" clip-path="url(#c)">%s<rect x="40" y="30" width="20" height="20" '
+                'fill="red"/></g>' % invisible)
+    g = t.ids['g']
+    assert object_box(g.children) == pytest.approx((0, 0, 100, 80))
+    cp = g.clip_path
+    (clip_rect_node, m), = [(n, m) for n, m in walk(cp.root, cp.transform)
+                            if isinstance(n, PathNode)]
+    assert box(clip_rect_node, m) == pytest.approx((0, 0, 100, 80))
