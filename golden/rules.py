@@ -422,3 +422,77 @@ DOCS.update({
         'transparent 120x80 document.</desc>\n  <style>svg { display: none }</style>\n  '
         '<rect width="120" height="80" fill="#e76f51"/>\n</svg>\n' % NS),
 })
+
+
+# --- filters ---------------------------------------------------------------------
+_FR = '<rect x="40" y="40" width="100" height="100" fill="#e76f51" filter="%s"/>'
+_DOT = '<circle cx="90" cy="90" r="15" fill="#264653"/>'
+_SHIFT = '<filter id="s"><feOffset dx="20" dy="20"/></filter>'
+
+CASES.update({
+    'filter-list-invalid-url': (
+        'a filter list with an unusable url: left out, the rest applies',
+        'Top left: url(#s) url(#missing) applies the offset and leaves the missing reference '
+        'out; top right: blur(3px) url(#missing) blurs; bottom left: url(#missing) '
+        'grayscale(1) turns grey; bottom right: url(#missing) alone, nothing usable left: '
+        'the element is not rendered (only the dot).',
+        '<defs>%s</defs>' % _SHIFT
+        + '<g transform="translate(-14 -14) scale(0.6)">%s%s</g>' % (_FR % 'url(#s) url(#missing)', _DOT)
+        + '<g transform="translate(86 -14) scale(0.6)">%s%s</g>' % (_FR % 'blur(3px) url(#missing)', _DOT)
+        + '<g transform="translate(-14 86) scale(0.6)">%s%s</g>' % (_FR % 'url(#missing) grayscale(1)', _DOT)
+        + '<g transform="translate(86 86) scale(0.6)">%s%s</g>' % (_FR % 'url(#missing)', _DOT)),
+    'filter-list-syntax-error': (
+        'a filter value with a syntax error is ignored as a whole',
+        'Left: url(#s),url(#s) (filter lists are separated by spaces only); right: url() (no '
+        'reference).  Both values are invalid, so the elements are drawn unfiltered.',
+        '<defs>%s</defs>' % _SHIFT
+        + '<g transform="translate(-20 20) scale(0.6)">%s%s</g>' % (_FR % 'url(#s),url(#s)', _DOT)
+        + '<g transform="translate(80 20) scale(0.6)">%s%s</g>' % (_FR % 'url()', _DOT)),
+    'filter-spotlight-exponent-zero': (
+        'feSpotLight specularExponent 0 is a flat cone',
+        'The spot light points straight down the middle; with specularExponent="0" every '
+        'direction inside the 55 degree cone gets the full light (pow(x, 0) = 1): a disc of '
+        'even light with a hard edge (top).  specularExponent="-2" is invalid and means the '
+        'initial 1, a light fading off the axis (bottom).',
+        '<filter id="a" x="0" y="0" width="1" height="1"><feDiffuseLighting surfaceScale="0">'
+        '<feSpotLight x="100" y="50" z="30" pointsAtX="100" pointsAtY="50" pointsAtZ="0" '
+        'specularExponent="0" limitingConeAngle="55"/></feDiffuseLighting></filter>'
+        '<filter id="b" x="0" y="0" width="1" height="1"><feDiffuseLighting surfaceScale="0">'
+        '<feSpotLight x="100" y="150" z="30" pointsAtX="100" pointsAtY="150" pointsAtZ="0" '
+        'specularExponent="-2" limitingConeAngle="55"/></feDiffuseLighting></filter>'
+        '<rect x="20" y="10" width="160" height="80" filter="url(#a)"/>'
+        '<rect x="20" y="110" width="160" height="80" filter="url(#b)"/>'),
+    'filter-feimage-self-reference': (
+        'feImage that references the filtered element itself',
+        "The rectangle's filter has an feImage of the rectangle: drawing it would never end, "
+        'so the rectangle ignores its filter and is drawn plainly (resvg does the same).  The '
+        "circle's feImage references the rectangle, which is drawn through no filter there "
+        "either, shifted to the circle's filter region.",
+        '<defs><filter id="f"><feImage href="#r"/></filter><filter id="g" x="0" y="0" '
+        'width="1" height="1"><feImage href="#r"/></filter></defs>'
+        '<rect id="r" x="30" y="30" width="60" height="60" fill="#e76f51" filter="url(#f)"/>'
+        '<circle cx="140" cy="140" r="40" fill="#2a9d8f" filter="url(#g)"/>'),
+    'filter-flood-obb-subregion-defaults': (
+        'feFlood subregion in objectBoundingBox primitive units: missing values are the box',
+        'primitiveUnits="objectBoundingBox": an feFlood with only width="0.5" floods the left '
+        'half of the bounding box (x, y, height default to 0, 0, 100 % of the box, as resvg '
+        'does), here under a rotation: the flood is the device box of that half, within the '
+        'filter region.',
+        '<filter id="f" primitiveUnits="objectBoundingBox"><feFlood flood-color="#2a9d8f" '
+        'width="0.5"/></filter><rect x="50" y="50" width="100" height="100" '
+        'filter="url(#f)"/><rect x="50" y="50" width="100" height="100" fill="none" '
+        'stroke="#264653" transform="rotate(20 100 100)"/><rect x="50" y="50" width="100" '
+        'height="100" fill="#e76f51" fill-opacity="0.5" filter="url(#f)" '
+        'transform="rotate(20 100 100)"/>'),
+    'filter-turbulence-transforms': (
+        'feTurbulence under scale, rotation and skew',
+        'Under a scale the noise scales with the element (exact); under rotation and skew the '
+        'filter works on the device axes at the scale of the CTM rows, as blur radii and '
+        "offsets do (resvg's approximation: the noise is not turned).",
+        '<filter id="f" filterUnits="userSpaceOnUse" x="0" y="0" width="60" height="60">'
+        '<feTurbulence baseFrequency="0.06" numOctaves="2" seed="3"/></filter>'
+        '<rect width="60" height="60" filter="url(#f)" transform="translate(15 15) scale(1.3)"/>'
+        '<rect width="60" height="60" filter="url(#f)" transform="translate(130 10) rotate(30)"/>'
+        '<rect width="60" height="60" filter="url(#f)" transform="translate(30 110) skewX(20) '
+        'scale(1.2 1)"/>'),
+})

@@ -9,7 +9,9 @@ primitive's result is limited to its subregion.  Transforms: an
 axis-aligned CTM (scale + translate) is exact.  Under rotation or skew the
 region is the device bounding box of the transformed user-space region;
 blur radii and offsets are scaled by the lengths of the CTM matrix's rows
-(not rotated): an approximation, the one resvg makes.  Colour: results
+(not rotated), and turbulence runs along the device axes at that scale: an
+approximation, the one resvg makes.  ``stitchTiles="stitch"`` tiles the
+turbulence across its primitive subregion (user space).  Colour: results
 carry their colour space; an input is converted to the primitive's space
 (``linear``) on unpremultiplied values, and the final result back to sRGB.
 """
@@ -117,10 +119,11 @@ class _Run:
     transform ``t`` (user space to region pixels), the scales ``sx``,
     ``sy`` of lengths, the blur tolerance, the region's pixel ``shape``
     and the ``draw`` callback."""
-    __slots__ = ('t', 'sx', 'sy', 'tol', 'shape', 'draw')
+    __slots__ = ('t', 'sx', 'sy', 'tol', 'shape', 'draw', 'urect')
 
     def __init__(self, t, sx, sy, tol, shape, draw):
         self.t, self.sx, self.sy, self.tol, self.shape, self.draw = t, sx, sy, tol, shape, draw
+        self.urect = None           # the current primitive's subregion, user space
 
 
 def _apply_one(f, data, t, tol, draw=None):
@@ -157,9 +160,11 @@ def _apply_one(f, data, t, tol, draw=None):
         ins = [get(i) for i in p.inputs]
         if f.region is None:
             sub = full
+            run.urect = None
         else:
             urect = tuple(b if v is None else v for v, b in zip(p.subregion, f.region))
             sub = _pixel_rect(_device_box(urect, rt), rw, rh)
+            run.urect = urect
         lin = p.linear
         imgs = [fx.convert_space(i[0], i[1], lin) for i in ins]
         img = _PRIMITIVES[type(p)](p, imgs, ins, sub, lin, run)
@@ -236,16 +241,29 @@ def _displacement_map(p, imgs, ins, sub, lin, run):
 
 
 def _turbulence(p, imgs, ins, sub, lin, run):
+    t = run.t
+    if t.b == 0 and t.c == 0:
+        m = t                               # scale and translation: exact
+    elif run.sx > 0 and run.sy > 0:
+        # rotated or skewed: the noise runs along the device axes, scaled
+        # by the lengths of the CTM's rows, like the other primitives'
+        # lengths (resvg's approximation); the region is axis-aligned too
+        m = Affine(run.sx, 0.0, 0.0, run.sy, t.e, t.f)
+    else:
+        return None
     try:
-        inv = run.t.inverse()
+        inv = m.inverse()
     except RasterError:
         return None
     shape = run.shape
     jj, ii = np.meshgrid(np.arange(shape[1], dtype=np.float64),
                          np.arange(shape[0], dtype=np.float64))
     pts = inv.apply(np.stack([jj, ii], -1))
+    tile = None
+    if p.stitch and run.urect is not None:
+        tile = run.urect
     col = fx.turbulence(pts[..., 0], pts[..., 1], p.base_frequency, p.num_octaves, p.seed,
-                        p.fractal)
+                        p.fractal, tile)
     return fx.premultiply(col[..., :3], col[..., 3:4])
 
 
