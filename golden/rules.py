@@ -496,3 +496,40 @@ CASES.update({
         '<rect width="60" height="60" filter="url(#f)" transform="translate(30 110) skewX(20) '
         'scale(1.2 1)"/>'),
 })
+
+
+# --- radial gradients: a focal circle not inside the end circle -----------------
+_RS = ('<stop offset="0" stop-color="#e76f51"/><stop offset="0.5" stop-color="#e9c46a"/>'
+       '<stop offset="1" stop-color="#264653"/>')
+
+
+def _radial(attrs, x=20, y=20, w=160, h=160, gid='g'):
+    return ('<defs><radialGradient id="%s" %s>%s</radialGradient></defs><rect x="%g" y="%g" '
+            'width="%g" height="%g" fill="url(#%s)" stroke="#999"/>' % (gid, attrs, _RS, x, y,
+                                                                          w, h, gid))
+
+
+CASES.update({
+    'gradient-radial-focal-outside-cone': (
+        'radial gradient with the focal point outside the end circle: a cone',
+        'fx="1.2" (right of the circle of radius 0.5 around the centre): the circles from the '
+        'focal point to the end circle make a cone; inside it the gradient runs from the '
+        'focal point (red) to the circle and past it (pad: the last colour); outside the cone '
+        'nothing is painted, the grey outline of the rectangle shows through (SVG 2, canvas).  '
+        'No moving of the focal point into the circle (SVG 1.1).',
+        _radial('fx="1.2" fy="0.5"', 20, 20, 160, 75)
+        + _radial('fx="0.5" fy="1.6" r="0.3"', 20, 105, 160, 75, 'h')),
+    'gradient-radial-focal-outside-spread': (
+        'the cone of an outside focal point with reflect and repeat',
+        'Inside the cone the parameter is reflected or repeated as usual; outside it stays '
+        'unpainted whatever the spread method.',
+        _radial('fx="1.3" fy="0.3" r="0.35" spreadMethod="reflect"', 20, 20, 160, 75)
+        + _radial('fx="1.3" fy="0.7" r="0.35" spreadMethod="repeat"', 20, 105, 160, 75, 'h')),
+    'gradient-radial-focal-circle-overlap': (
+        'a focal circle (fr) reaching out of the end circle',
+        'Top: fx="0.9" fr="0.2" with r="0.5": the focal circle crosses the end circle, so the '
+        'gradient is a cone again and the corners beside it stay unpainted.  Bottom: a focal '
+        'circle inside the end circle (fx="0.6" fr="0.2"): the whole rectangle is painted.',
+        _radial('fx="0.9" fy="0.5" fr="0.2"', 20, 20, 160, 75)
+        + _radial('fx="0.6" fy="0.5" fr="0.2"', 20, 105, 160, 75, 'h')),
+})

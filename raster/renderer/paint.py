@@ -123,12 +123,27 @@ def gradient_colors(paint, mask, t):
         s = _radial_param(paint, px, py)
         if s is None:
             return _solid(cols[-1], cover)
+        if s.dtype == np.float64:
+            # outside the cone of a focal circle not inside the end circle
+            outside = np.isnan(s)
+            if outside.any():
+                cover = np.where(outside.reshape(cover.shape) if flat is None else
+                                 _scatter(outside, flat, cover.shape), 0, cover).astype(_F32)
+                s = np.where(outside, 0.0, s)
     s = _spread(s, paint.spread)
     if flat is None:
         return stop_colors(s, offs, cols, cover).astype(_F32, copy=False)
     out = np.zeros((h * w, 4), _F32)
     out[flat] = stop_colors(s, offs, cols, np.ravel(cover)[flat])
     return out.reshape(h, w, 4)
+
+
+def _scatter(values, flat, shape):
+    """(h, w) bool array: ``values`` at the flat indices ``flat``, False
+    elsewhere."""
+    out = np.zeros(shape[0] * shape[1], bool)
+    out[flat] = values
+    return out.reshape(shape)
 
 
 def mesh_colors(paint, mask, t, tolerance):
@@ -352,7 +367,9 @@ def _radial_param(p, px, py):
     Returns
     -------
     (...) float ndarray or None
-        None when the end radius is not positive.
+        None when the end radius is not positive; NaN where the point is on
+        no circle of positive radius (outside the cone that a focal circle
+        not inside the end circle makes: transparent, SVG 2 and canvas).
     """
     cx, cy, r, fx, fy, fr = p.cx, p.cy, p.r, p.fx, p.fy, p.fr
     if r <= 0:
@@ -390,7 +407,10 @@ def _radial_param(p, px, py):
         with np.errstate(divide='ignore', invalid='ignore'):
             s = c / (2.0 * b)
         ok = (fr + s * dr >= 0) & np.isfinite(s)
-        return np.where(ok, s, 0.0)
+        return np.where(ok, s, np.nan)
+    # the focal circle not inside the end circle: the gradient is a cone
+    # touching both circles, and a point on no circle of the cone (or only
+    # on circles of negative radius) is left transparent (NaN)
     disc = b * b - a * c
     sq = np.sqrt(np.maximum(disc, 0.0))
     s1 = (b + sq) / a
@@ -398,7 +418,7 @@ def _radial_param(p, px, py):
     hi = np.maximum(s1, s2)
     lo = np.minimum(s1, s2)
     s = np.where(fr + hi * dr >= 0, hi, lo)
-    return np.where(disc >= 0, s, 0.0)
+    return np.where((disc >= 0) & (fr + s * dr >= 0), s, np.nan)
 
 
 # ---------------------------------------------------------------------------
