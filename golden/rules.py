@@ -533,3 +533,65 @@ CASES.update({
         _radial('fx="0.9" fy="0.5" fr="0.2"', 20, 20, 160, 75)
         + _radial('fx="0.6" fy="0.5" fr="0.2"', 20, 105, 160, 75, 'h')),
 })
+
+
+# --- use that points into another local SVG file (golden/cases/lib/) -------------
+
+CASES.update({
+    'use-external-element': (
+        'use of an element of another local SVG file, styled by that file',
+        'lib/shapes.svg#star takes the fill of its class and the stroke of its id from the '
+        'style sheet of lib/shapes.svg; lib/shapes.svg#bar is filled with that file’s '
+        'gradient #g (orange to yellow), not with the #g of this document (blue); '
+        'lib/shapes.svg#chain uses more.svg#dot in turn (relative to lib/).',
+        '<defs><linearGradient id="g"><stop offset="0" stop-color="blue"/><stop offset="1" '
+        'stop-color="navy"/></linearGradient></defs>'
+        '<use href="lib/shapes.svg#star" x="20" y="20"/>'
+        '<use href="lib/shapes.svg#bar" x="110" y="30"/>'
+        '<rect x="20" y="110" width="60" height="24" fill="url(#g)"/>'
+        '<use href="lib/shapes.svg#chain" x="130" y="120"/>'),
+    'use-external-inherit-symbol-root': (
+        'external use content inherits from the use; symbols and whole files',
+        'lib/shapes.svg#pair has no fill of its own: it inherits the use element’s '
+        '(dark blue).  lib/shapes.svg#sym is a symbol sized by the use (80 x 80); '
+        'lib/shapes.svg without a fragment is the file’s root svg, a viewport of the use’s '
+        'size (60 x 60 here, its viewBox 0 0 60 60).',
+        '<use href="lib/shapes.svg#pair" x="20" y="20" fill="#264653"/>'
+        '<use href="lib/shapes.svg#sym" x="100" y="20" width="80" height="80"/>'
+        '<use href="lib/shapes.svg" x="30" y="110" width="60" height="60"/>'),
+    'use-external-refused': (
+        'external use references that are not followed',
+        'Nothing but the frame is drawn: a file outside the allowed directories '
+        '(../mesh/, above the document’s directory), an id the file does not have, a use '
+        'cycle through two files, a network URL, and a data URI.',
+        '<use href="../mesh/mesh-2x2-lines.svg#m"/>'
+        '<use href="lib/shapes.svg#nothing"/>'
+        '<use href="lib/shapes.svg#loop"/>'
+        '<use href="https://example.com/shapes.svg#star"/>'
+        '<use href="data:image/svg+xml,%3Csvg xmlns=%27http://www.w3.org/2000/svg%27%3E%3Crect '
+        'id=%27r%27 width=%27100%27 height=%27100%27/%3E%3C/svg%3E#r"/>'),
+})
+
+EQUIVALENT.update({
+    'use-external-element': (
+        'equivalent: the used elements copied in',
+        '<defs><linearGradient id="g2"><stop offset="0" stop-color="#e76f51"/><stop offset="1" '
+        'stop-color="#e9c46a"/></linearGradient><linearGradient id="g"><stop offset="0" '
+        'stop-color="blue"/><stop offset="1" stop-color="navy"/></linearGradient></defs>'
+        '<path transform="translate(20 20)" fill="#2a9d8f" stroke="#264653" stroke-width="3" '
+        'd="M30 3 L37 21 L57 21 L41 33 L47 53 L30 41 L13 53 L19 33 L3 21 L23 21 Z"/>'
+        '<rect x="110" y="30" width="60" height="24" fill="url(#g2)"/>'
+        '<rect x="20" y="110" width="60" height="24" fill="url(#g)"/>'
+        '<circle cx="140" cy="130" r="10" fill="#e76f51"/>'),
+    'use-external-inherit-symbol-root': (
+        'equivalent: the used elements copied in',
+        '<defs><linearGradient id="g"><stop offset="0" stop-color="#e76f51"/><stop offset="1" '
+        'stop-color="#e9c46a"/></linearGradient></defs>'
+        '<g transform="translate(20 20)" fill="#264653"><circle cx="12" cy="12" r="10"/>'
+        '<rect x="28" width="60" height="24" fill="url(#g)" transform="scale(0.5)"/></g>'
+        '<svg x="100" y="20" width="80" height="80" viewBox="0 0 10 10"><circle cx="5" cy="5" '
+        'r="5" fill="#264653"/><rect x="3" y="3" width="4" height="4" fill="#e9c46a"/></svg>'
+        '<svg x="30" y="110" width="60" height="60" viewBox="0 0 60 60"><rect width="60" '
+        'height="60" fill="#e9c46a"/><circle cx="30" cy="30" r="20" fill="#e76f51"/></svg>'),
+    'use-external-refused': ('equivalent: nothing drawn', ''),
+})

@@ -106,18 +106,27 @@ def build_tree(root, options: Optional[Options] = None, image_cache: Optional[di
     if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
         raise SVGError('tolerance must be a positive number, got %r' % (tol,))
     with _gc_paused():
-        found = {'id': [], 'requiredExtensions': [], 'systemLanguage': []}
-        styles = declared_styles(root, options.extra_css, found)
-        by_id = {}
-        for el in found['id']:
-            i = el.get('id')
-            if i not in by_id:
-                by_id[i] = el
-        cache = Cache(options=options, root=root, styles=styles, by_id=by_id,
-                      conditional=set(found['requiredExtensions']) | set(found['systemLanguage']),
-                      converters=CONVERTERS, parse_nested=build_tree,
-                      image_cache={} if image_cache is None else image_cache)
+        cache = _document_cache(root, options, {} if image_cache is None else image_cache)
         return convert_root(root, cache)
+
+
+def _document_cache(root, options, image_cache):
+    """The :class:`Cache` of a loaded document: its cascade, ids and
+    conditional elements."""
+    found = {'id': [], 'requiredExtensions': [], 'systemLanguage': []}
+    styles = declared_styles(root, options.extra_css, found)
+    by_id = {}
+    for el in found['id']:
+        i = el.get('id')
+        if i not in by_id:
+            by_id[i] = el
+
+    def open_document(other_root, other_options):
+        return _document_cache(other_root, other_options, image_cache)
+    return Cache(options=options, root=root, styles=styles, by_id=by_id,
+                 conditional=set(found['requiredExtensions']) | set(found['systemLanguage']),
+                 converters=CONVERTERS, parse_nested=build_tree, image_cache=image_cache,
+                 open_document=open_document)
 
 
 @contextlib.contextmanager

@@ -186,6 +186,10 @@ class Cache:
     image_cache : dict
         Decoded images by resolved reference, shared with nested SVG
         images (see :mod:`raster.parser.imageload`).
+    open_document : callable
+        ``open_document(root, options)`` -> the Cache of another document
+        whose elements this one references (``use href="lib.svg#id"``;
+        the parser's, passed in like ``parse_nested``).
     """
     options: Options
     root: object
@@ -201,6 +205,7 @@ class Cache:
     active: set = field(default_factory=set)
     memo: dict = field(default_factory=dict)
     image_cache: dict = field(default_factory=dict)
+    open_document: object = None
 
     def table(self, name):
         """The memo table ``name`` (created empty on first use)."""

@@ -21,7 +21,7 @@ from .convert import convert, convert_children
 from .css import parse_declarations
 from .effects import clip_rect, effects, wrap
 from .paint import GradientServer, PatternServer, in_space, paint
-from .refs import href_target, is_recursive
+from .refs import external_target, href_target, is_recursive
 from .style import (initial_inherited, is_displayed, length, length_context, local_name,
                     passes_conditions, style_of, transform_of)
 from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length,
@@ -130,26 +130,56 @@ def _viewport(el, inh, own, t, state, cache, parent, x, y, w, h, content_el):
 
 def convert_use(el, state, cache, parent):
     """``use``: an instance of the referenced element (``symbol`` and
-    ``svg`` targets are viewports sized by the ``use`` element)."""
+    ``svg`` targets are viewports sized by the ``use`` element).  The
+    element may be in another local SVG document (``lib.svg#id``; see
+    :func:`raster.parser.refs.external_target`): it is then converted with
+    that document's cache (its style sheets and ids)."""
     e = _element(el, state, cache)
     if e is None:
         return
     inh, own, ctx, t = e
-    tgt = href_target(el, cache)
-    if tgt is None:
-        return
-    if is_recursive(el, cache):
-        cache.warn('use-cycle', 'recursive use reference ignored (id %r)' % el.get('id'))
-        return
+    ext = external_target(el, cache)
+    if ext is not None:
+        tgt, tcache = ext
+        key = (id(tcache), id(tgt))
+        active = cache.table('external_active')
+        if key in active:
+            cache.warn('use-cycle', 'recursive use reference ignored (id %r)' % el.get('id'))
+            return
+    else:
+        # (a reference to another document that cannot be followed warned)
+        tgt, tcache = href_target(el, cache, warn=False), cache
+        if tgt is None:
+            return
+        if is_recursive(el, cache):
+            cache.warn('use-cycle', 'recursive use reference ignored (id %r)' % el.get('id'))
+            return
     max_depth = cache.options.max_use_depth
     if state.use_depth >= max_depth:
         cache.warn('use-depth', 'use nesting deeper than %d ignored' % max_depth)
         return
-    x = length(el, 'x', 'x', ctx)
-    y = length(el, 'y', 'y', ctx)
     name = local_name(tgt)
     if name is None:
         return
+    if ext is None:
+        _instance(el, tgt, name, inh, own, ctx, t, state, cache, cache, parent)
+        return
+    # the element counts and limits of the whole rendering carry on in the
+    # other document's cache
+    active[key] = True
+    tcache.count, tcache.stopped = cache.count, cache.stopped
+    try:
+        _instance(el, tgt, name, inh, own, ctx, t, state, cache, tcache, parent)
+    finally:
+        active.pop(key, None)
+        cache.count, cache.stopped = tcache.count, tcache.stopped
+
+
+def _instance(el, tgt, name, inh, own, ctx, t, state, cache, tcache, parent):
+    """The content of ``use`` element ``el`` (of ``cache``'s document)
+    instantiating ``tgt`` (of ``tcache``'s)."""
+    x = length(el, 'x', 'x', ctx)
+    y = length(el, 'y', 'y', ctx)
     # the use element is the context element of its content (SVG 2)
     cfill = paint(inh.get('fill', 'black'), inh, ctx, state, cache)
     sv = inh.get('stroke')
@@ -157,9 +187,9 @@ def convert_use(el, state, cache, parent):
     st2 = state.sub(inh, own, use_depth=state.use_depth + 1, context=(cfill, cstroke))
     kids = []
     if name == 'symbol':
-        if not is_displayed(tgt, cache):
+        if not is_displayed(tgt, tcache):
             return
-        sinh, sown = style_of(tgt, inh, own, cache)
+        sinh, sown = style_of(tgt, inh, own, tcache)
         w = length(el, 'width', 'x', ctx, None)
         h = length(el, 'height', 'y', ctx, None)
         if w is None:
@@ -168,7 +198,7 @@ def convert_use(el, state, cache, parent):
             h = length(tgt, 'height', 'y', ctx, None)
         w = state.vw if w is None else w
         h = state.vh if h is None else h
-        _viewport(tgt, sinh, sown, IDENTITY, st2.sub(transform=t), cache, kids, x, y, w, h,
+        _viewport(tgt, sinh, sown, IDENTITY, st2.sub(transform=t), tcache, kids, x, y, w, h,
                   tgt)
         _rebase_context(kids, IDENTITY, inh, cfill, cstroke)
         parent.extend(wrap(el, own, t, kids, state, cache))
@@ -178,19 +208,19 @@ def convert_use(el, state, cache, parent):
     if name == 'svg':
         w = length(el, 'width', 'x', ctx, None)
         h = length(el, 'height', 'y', ctx, None)
-        if not is_displayed(tgt, cache):
+        if not is_displayed(tgt, tcache):
             return
-        if not cache.tick():
+        if not tcache.tick():
             return
-        sinh, sown = style_of(tgt, inh, own, cache)
-        sctx = length_context(sinh, st2, cache)
+        sinh, sown = style_of(tgt, inh, own, tcache)
+        sctx = length_context(sinh, st2, tcache)
         stt = transform_of(tgt, sown, sctx)
         if stt is None:
             return
-        _nested_svg(tgt, sinh, sown, sctx, stt, st2.sub(transform=tt), cache, kids,
+        _nested_svg(tgt, sinh, sown, sctx, stt, st2.sub(transform=tt), tcache, kids,
                     use_size=(w, h))
     else:
-        convert(tgt, st2.sub(transform=tt), cache, kids)
+        convert(tgt, st2.sub(transform=tt), tcache, kids)
     _rebase_context(kids, move, inh, cfill, cstroke)
     parent.extend(wrap(el, own, tt, kids, state, cache))
 

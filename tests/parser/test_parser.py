@@ -972,3 +972,64 @@ def test_invisible_children_count_in_the_object_bounding_box(invisible):
     (clip_rect_node, m), = [(n, m) for n, m in walk(cp.root, cp.transform)
                             if isinstance(n, PathNode)]
     assert box(clip_rect_node, m) == pytest.approx((0, 0, 100, 80))
+
+
+def _external_docs(tmp_path):
+    lib = tmp_path / 'doc' / 'lib'
+    lib.mkdir(parents=True)
+    (lib / 'a.svg').write_text(
+        '<svg xmlns="http://www.w3.org/2000/svg"><style>.c { fill: #00ff00 }</style>'
+        '<rect id="r" class="c" width="10" height="10"/><use id="u" href="b.svg#r2"/>'
+        '<use id="loop" href="b.svg#back"/>'
+        '<g id="many">%s</g></svg>' % ''.join('<rect width="1" height="1"/>' for _ in range(50)))
+    (lib / 'b.svg').write_text('<svg xmlns="http://www.w3.org/2000/svg"><rect id="r2" x="5" '
+                               'width="3" height="3" fill="blue"/><use id="back" '
+                               'href="a.svg#loop"/></svg>')
+    (tmp_path / 'outside.svg').write_text('<svg xmlns="http://www.w3.org/2000/svg"><rect '
+                                          'id="o" width="9" height="9"/></svg>')
+    return tmp_path / 'doc'
+
+
+def _filled(t):
+    return [n for n, _ in walk(t.root) if isinstance(n, PathNode) and n.fill is not None]
+
+
+def test_use_of_an_element_in_another_local_file(tmp_path):
+    doc = _external_docs(tmp_path)
+    root = load_document(b'<svg xmlns="http://www.w3.org/2000/svg"><use href="lib/a.svg#r" '
+                         b'x="20"/><use href="lib/a.svg#u"/></svg>')
+    t = build_tree(root, base_dir=str(doc))
+    (a, ma), (b, mb) = [(n, m) for n, m in walk(t.root) if isinstance(n, PathNode)]
+    # styled by the other file's style sheet, placed by the use; chains follow
+    assert a.fill.paint == SolidPaint((0.0, 1.0, 0.0, 1.0)) and box(a, ma) == (20, 0, 30, 10)
+    assert b.fill.paint == SolidPaint((0.0, 0.0, 1.0, 1.0)) and box(b, mb) == (5, 0, 8, 3)
+    assert not t.ids.get('r')               # the other file's ids are not this tree's
+
+
+@pytest.mark.parametrize('href', ['../outside.svg#o', 'lib/a.svg#missing', 'lib/a.svg#loop',
+                                  'http://localhost/a.svg#r', 'lib/nofile.svg#r'])
+def test_external_use_references_that_are_not_followed(tmp_path, href):
+    doc = _external_docs(tmp_path)
+    root = load_document(('<svg xmlns="http://www.w3.org/2000/svg"><use href="%s"/></svg>'
+                          % href).encode())
+    with pytest.warns(RasterWarning):
+        t = build_tree(root, base_dir=str(doc))
+    assert _filled(t) == []
+
+
+def test_external_use_counts_against_the_element_limit(tmp_path):
+    doc = _external_docs(tmp_path)
+    root = load_document(('<svg xmlns="http://www.w3.org/2000/svg">%s</svg>'
+                          % ('<use href="lib/a.svg#many"/>' * 10)).encode())
+    with pytest.warns(RasterWarning, match='more than 120 nodes'):
+        t = build_tree(root, base_dir=str(doc), max_elements=120)
+    assert len(_filled(t)) < 120
+
+
+def test_external_use_is_refused_inside_svg_images(tmp_path):
+    doc = _external_docs(tmp_path)
+    root = load_document(b'<svg xmlns="http://www.w3.org/2000/svg"><use href="lib/a.svg#r"/>'
+                         b'</svg>')
+    with pytest.warns(RasterWarning, match='refused'):
+        t = build_tree(root, base_dir=str(doc), image_depth=1)
+    assert _filled(t) == []
