@@ -236,3 +236,25 @@ def hex_color(rgba):
     """``'#rrggbb'`` of straight RGBA floats (alpha dropped)."""
     r, g, b = (max(0, min(255, int(round(float(v) * 255)))) for v in rgba[:3])
     return '#%02x%02x%02x' % (r, g, b)
+
+
+def add_languages(parser):
+    """Give ``parser`` a ``--languages`` option: the user's languages for
+    ``systemLanguage`` (default: the environment's locale, see
+    :func:`languages_of`)."""
+    parser.add_argument('--languages', metavar='LIST',
+                        help="the user's languages for systemLanguage, e.g. en,de-CH "
+                             "(default: from LC_ALL / LC_MESSAGES / LANG, else en)")
+
+
+def languages_of(args):
+    """The languages a command parses with: ``--languages``, else those of
+    the environment's locale (``LC_ALL``, ``LC_MESSAGES``, ``LANG``; ``en``
+    without one).  A malformed list is a usage error."""
+    from raster.parser.context import locale_languages, parse_languages
+    if args.languages is None:
+        return locale_languages()
+    try:
+        return parse_languages(args.languages)
+    except SVGError as e:
+        raise UsageError('--languages: %s' % e) from None

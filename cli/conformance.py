@@ -104,7 +104,7 @@ class RasterRenderer:
     def render(self, case):
         return self.render_fn(case['svg'], width=self.cfg['width'],
                               font_dirs=[self.cfg['fonts_dir']],
-                              resources_dir=self.cfg['resources_dir'])
+                              resources_dir=self.cfg['resources_dir'], languages=('en',))
 
 
 class ResvgRenderer:

@@ -25,8 +25,8 @@ failed run leaves no file at the output path.
 import argparse
 import sys
 
-from ._common import (Parser, UsageError, add_version, base_dir_of, read_source, run,
-                      write_output)
+from ._common import (Parser, UsageError, add_languages, add_version, base_dir_of, languages_of,
+                      read_source, run, write_output)
 
 PROG = 'rasterize'
 
@@ -61,6 +61,7 @@ def build_parser():
     ap.add_argument('--compress-level', type=int, metavar='N',
                     help='PNG zlib level 0-9 (default 1)')
     ap.add_argument('--tolerance', type=float, default=0.25, help=argparse.SUPPRESS)
+    add_languages(ap)
     add_version(ap)
     return ap
 
@@ -103,7 +104,8 @@ def _body(args):
     bg = parse_background(args.background)       # a bad colour fails before any work
     data = read_source(args.input)
     tree = load_svg(data, dpi=dpi, font_dirs=args.font_dir,
-                    resources_dir=args.allow_dir, base_dir=base_dir_of(args.input))
+                    resources_dir=args.allow_dir, base_dir=base_dir_of(args.input),
+                    languages=languages_of(args))
     crop = args.id is not None and not args.id_page
     canvas = render_tree(tree, width=args.width, height=args.height, zoom=args.zoom,
                          background=bg, node_id=args.id, tolerance=args.tolerance, crop=crop)

@@ -16,8 +16,9 @@ stroke outlines (joins, caps, dashes).  ``--id`` reports only that element
 import json
 import sys
 
-from ._common import (Parser, add_version, base_dir_of, drawn_shapes, node_transforms, read_source, run,
-                      subtree_shapes, user_to_doc, write_text)
+from ._common import (Parser, add_languages, add_version, base_dir_of, drawn_shapes, languages_of,
+                      node_transforms, read_source, run, subtree_shapes, user_to_doc,
+                      write_text)
 
 PROG = 'svg-bbox'
 
@@ -116,6 +117,7 @@ def build_parser():
     ap.add_argument('--id', metavar='ID', help='report only this element')
     ap.add_argument('--stroke', action='store_true', help='include stroke outlines')
     ap.add_argument('-o', '--output', default='-', help='output file (default: stdout)')
+    add_languages(ap)
     add_version(ap)
     return ap
 
@@ -123,7 +125,7 @@ def build_parser():
 def _body(args):
     from raster.svg import load_svg
     data = read_source(args.input)
-    tree = load_svg(data, base_dir=base_dir_of(args.input))
+    tree = load_svg(data, base_dir=base_dir_of(args.input), languages=languages_of(args))
     result = boxes(tree, args.stroke, args.id)
     write_text(args.output, json.dumps(result, indent=1) + '\n')
     return 0

@@ -36,8 +36,8 @@ import json
 import math
 import sys
 
-from ._common import (Parser, add_version, base_dir_of, drawn_shapes, hex_color, read_source, run,
-                      user_to_doc, write_text)
+from ._common import (Parser, add_languages, add_version, base_dir_of, drawn_shapes, hex_color,
+                      languages_of, read_source, run, user_to_doc, write_text)
 
 PROG = 'svg-flatten'
 
@@ -55,6 +55,7 @@ def build_parser():
     ap.add_argument('--outline-strokes', action='store_true',
                     help='replace strokes by their outline polygons')
     ap.add_argument('--dpi', type=float, default=96.0, help=argparse.SUPPRESS)
+    add_languages(ap)
     add_version(ap)
     return ap
 
@@ -187,7 +188,8 @@ def to_csv(shapes):
 def _body(args):
     from raster.svg import load_svg
     data = read_source(args.input)
-    tree = load_svg(data, dpi=args.dpi, base_dir=base_dir_of(args.input))
+    tree = load_svg(data, dpi=args.dpi, base_dir=base_dir_of(args.input),
+                    languages=languages_of(args))
     shapes = collect(tree, args.tolerance, args.pixels, args.outline_strokes)
     if args.format == 'json':
         text = json.dumps(shapes, indent=1) + '\n'

@@ -140,7 +140,8 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
            zoom: Optional[float] = None, dpi: float = 96, background: Background = None,
            id: Optional[str] = None, font_dirs: Sequence[str] = (),
            resources_dir: Optional[str] = None, premultiplied: bool = False,
-           tolerance: float = DEFAULT_TOLERANCE, crop: bool = False) -> np.ndarray:
+           tolerance: float = DEFAULT_TOLERANCE, crop: bool = False,
+           languages: Sequence[str] = ('en',)) -> np.ndarray:
     """Render an SVG document to an RGBA array.
 
     Parameters
@@ -169,6 +170,9 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
         Return premultiplied colours (default: straight alpha).
     tolerance : float
         Flattening tolerance in device pixels.
+    languages : sequence of str
+        The user's languages for ``systemLanguage`` (language tags; see
+        :class:`raster.parser.Options`).
 
     Returns
     -------
@@ -189,7 +193,8 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
     ((2, 4, 4), [0, 0, 255, 255], [0, 0, 0, 0])
     """
     bg = parse_background(background)
-    tree = load_svg(source, dpi=dpi, font_dirs=font_dirs, resources_dir=resources_dir)
+    tree = load_svg(source, dpi=dpi, font_dirs=font_dirs, resources_dir=resources_dir,
+                    languages=tuple(languages))
     canvas = render_tree(tree, width=width, height=height, zoom=zoom, background=bg,
                          node_id=id, tolerance=tolerance, crop=crop)
     return canvas.to_rgba8(premultiplied=bool(premultiplied))

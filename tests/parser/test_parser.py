@@ -1033,3 +1033,13 @@ def test_external_use_is_refused_inside_svg_images(tmp_path):
     with pytest.warns(RasterWarning, match='refused'):
         t = build_tree(root, base_dir=str(doc), image_depth=1)
     assert _filled(t) == []
+
+
+@pytest.mark.parametrize('user, listed, passes', [
+    (('en',), 'en', True), (('en',), 'en-GB', True), (('en',), 'EN-gb', True),
+    (('en-GB',), 'en', True), (('en-GB',), 'en-US', True), (('zh',), 'zh-Hant-TW', True),
+    (('de', 'en'), 'fr, en', True), (('de',), 'fr, en', False), (('en',), 'eng', False),
+])
+def test_system_language_compares_primary_subtags(user, listed, passes):
+    t = tree_of('<rect systemLanguage="%s" width="5" height="5"/>' % listed, languages=user)
+    assert bool([n for n, _ in walk(t.root) if isinstance(n, PathNode)]) == passes
