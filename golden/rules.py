@@ -595,3 +595,19 @@ EQUIVALENT.update({
         'height="60" fill="#e9c46a"/><circle cx="30" cy="30" r="20" fill="#e76f51"/></svg>'),
     'use-external-refused': ('equivalent: nothing drawn', ''),
 })
+
+CASES['filter-offset-whole-pixels'] = (
+    'feOffset and feDropShadow move by whole device pixels, truncated',
+    'Offsets of 7.5 and -3.7 px (dx="7.5" dy="-3.7"; a drop shadow of dx="2.6") move the '
+    'content 7, -3 and 2 whole pixels: the fraction is dropped toward zero, as resvg does '
+    '(an approximation: the exact result would resample), and feTile repeats the shifted '
+    'tile with that phase.',
+    '<filter id="o" x="0" y="0" width="1" height="1"><feOffset dx="7.5" dy="-3.7"/></filter>'
+    '<filter id="t" filterUnits="userSpaceOnUse" x="100" y="20" width="80" height="80">'
+    '<feFlood flood-color="#264653" x="104" y="24" width="10" height="10"/><feOffset dx="5.5" '
+    'dy="2.5"/><feTile/></filter><filter id="d" filterUnits="userSpaceOnUse" x="0" y="110" '
+    'width="200" height="90"><feDropShadow dx="2.6" dy="2.6" stdDeviation="0" '
+    'flood-color="#264653"/></filter>'
+    '<rect x="20" y="20" width="60" height="60" fill="#e76f51" filter="url(#o)"/>'
+    '<rect x="100" y="20" width="80" height="80" filter="url(#t)"/>'
+    '<rect x="30.5" y="120.5" width="60" height="60" fill="#2a9d8f" filter="url(#d)"/>')

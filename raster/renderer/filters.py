@@ -10,7 +10,9 @@ axis-aligned CTM (scale + translate) is exact.  Under rotation or skew the
 region is the device bounding box of the transformed user-space region;
 blur radii and offsets are scaled by the lengths of the CTM matrix's rows
 (not rotated), and turbulence runs along the device axes at that scale: an
-approximation, the one resvg makes.  ``stitchTiles="stitch"`` tiles the
+approximation, the one resvg makes.  Offsets (feOffset, feDropShadow) move
+by whole device pixels, truncated toward zero as resvg does (a 7.5 px offset
+moves 7 px).  ``stitchTiles="stitch"`` tiles the
 turbulence across its primitive subregion (user space).  Colour: results
 carry their colour space; an input is converted to the primitive's space
 (``linear``) on unpremultiplied values, and the final result back to sRGB.
@@ -206,7 +208,7 @@ def _gaussian_blur(p, imgs, ins, sub, lin, run):
 def _offset(p, imgs, ins, sub, lin, run):
     dx, dy = p.dx * run.sx, p.dy * run.sy
     fx.check_finite(dx, dy)
-    dx, dy = int(round(dx)), int(round(dy))
+    dx, dy = int(dx), int(dy)
     if imgs[0].solid:
         return FilterImage(alpha=fx.shift(imgs[0].alpha, dx, dy), colour=imgs[0].colour)
     return fx.shift(imgs[0].data, dx, dy)
@@ -341,7 +343,7 @@ def _drop_shadow(p, imgs, ins, sub, lin, run):
         a = fx.blur_array(a, *fx.blur_plans(max(s_x, 0.0), max(s_y, 0.0), run.tol))
     dx, dy = p.dx * run.sx, p.dy * run.sy
     fx.check_finite(dx, dy)
-    a = fx.shift(a, int(round(dx)), int(round(dy)))
+    a = fx.shift(a, int(dx), int(dy))
     c = p.color
     col = np.array(c[:3], np.float32)
     if lin:
