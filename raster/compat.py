@@ -158,7 +158,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
         rounds to 0 pixels or exceeds :mod:`raster.limits`.
     """
     from .pixels.encode import encode
-    from .svg import parse_background
+    from .svg import check_dpi, parse_background
     from .parser import build_tree
     from .parser.document import load_document
     from .renderer import render_tree
@@ -168,12 +168,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
                                 parse_viewbox, viewbox_transform)
 
     bg = parse_background(background_color)
-    try:
-        d = float(dpi)
-    except (TypeError, ValueError):
-        d = math.nan
-    if not (math.isfinite(d) and d > 0):
-        raise SVGError('dpi must be a positive number, got %r' % (dpi,))
+    d = check_dpi(dpi)
     source, path = _document(bytestring, file_obj, url)
     root = load_document(source)
     vb = parse_viewbox(root.get('viewBox')) if root.get('viewBox') is not None else None

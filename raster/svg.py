@@ -40,7 +40,7 @@ Source = Union[str, 'os.PathLike[str]', bytes, BinaryIO]
 #: A background: a CSS colour string or 3 or 4 floats in [0, 1].
 Background = Union[None, str, Sequence[float]]
 
-__all__ = ['load_svg', 'render', 'render_image', 'render_tree', 'parse_background']
+__all__ = ['load_svg', 'render', 'render_image', 'render_tree', 'parse_background', 'check_dpi']
 
 
 def _source_and_base(source):
@@ -88,12 +88,7 @@ def load_svg(source: Source, *, dpi: float = 96, font_dirs: Sequence[str] = (),
         The file cannot be read, or ``source`` is a URL other than
         ``file:`` (also an :class:`OSError`).
     """
-    try:
-        d = float(dpi)
-    except (TypeError, ValueError):
-        d = math.nan
-    if not (math.isfinite(d) and d > 0):
-        raise SVGError('dpi must be a positive number, got %r' % (dpi,))
+    d = check_dpi(dpi)
     if isinstance(font_dirs, (str, os.PathLike)):
         font_dirs = (font_dirs,)                 # one directory, not its characters
     src, sbase = _source_and_base(source)
@@ -103,6 +98,23 @@ def load_svg(source: Source, *, dpi: float = 96, font_dirs: Sequence[str] = (),
     opts = Options(dpi=d, font_dirs=tuple(font_dirs or ()), resources_dir=resources_dir,
                    base_dir=base_dir if base_dir is not None else sbase, **options)
     return build_tree(root, opts)
+
+
+def check_dpi(dpi) -> float:
+    """``dpi`` as a positive finite float.
+
+    Raises
+    ------
+    raster.errors.SVGError
+        Anything else.
+    """
+    try:
+        d = float(dpi)
+    except (TypeError, ValueError):
+        d = math.nan
+    if not (math.isfinite(d) and d > 0):
+        raise SVGError('dpi must be a positive number, got %r' % (dpi,))
+    return d
 
 
 def parse_background(bg: Background) -> Optional[Tuple[float, float, float, float]]:
