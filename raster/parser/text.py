@@ -67,7 +67,6 @@ __all__ = ['convert_text', 'collapse_whitespace']
 _XML_SPACE = '{http://www.w3.org/XML/1998/namespace}space'
 _SPAN_NAMES = frozenset(['tspan', 'a'])
 _WEIGHTS = {'normal': 400, 'bold': 700}
-_DB_CACHE = {}
 _SHAPED_LIMIT = 4096    # shaped chunks remembered per build
 _SPACES = re.compile(' {2,}')
 
@@ -147,8 +146,7 @@ def _font_db(cache):
     memo = cache.table('text')
     db = memo.get('fontdb')
     if db is None:
-        dirs = tuple(str(d) for d in (cache.options.font_dirs or ()))
-        db = memo['fontdb'] = cached(_DB_CACHE, dirs, lambda: FontDB(dirs), 16)
+        db = memo['fontdb'] = FontDB.for_options(cache.options.fonts)
     return db
 
 
@@ -179,10 +177,9 @@ def _build(el, state, cache, out):
         cache.warn('text-vertical', 'vertical writing modes are approximated: every glyph is '
                'turned a quarter turn clockwise (no upright CJK, no vertical metrics)')
     db = _font_db(cache)
-    if not db.faces:
-        cache.warn('text-nofont', 'no fonts available (font_dirs=%r); text is not rendered'
-               % (tuple(cache.options.font_dirs or ()),))
-        return
+    if db.bundled_only:
+        cache.warn('text-nofont', 'no usable fonts found; text is drawn with the bundled '
+                   'Noto Sans (ASCII only)')
     # -- collect characters ---------------------------------------------------
     chars = []          # characters after whitespace processing
     owner = []          # span index of each character
@@ -597,23 +594,16 @@ def _load_font(db, face, cache):
     return None
 
 
-def _fallback_font(db, ch, font, cache={}):
-    key = (id(db), ch)
-    if key in cache:
-        return cache[key]
-    r = font
-    for face in db.fallback_faces(font.face):
-        try:
-            f = Font.load(face)
-        except RasterError:
-            continue
-        if f.has_char(ch):
-            r = f
-            break
-    if len(cache) > 10000:
-        cache.clear()
-    cache[key] = r
-    return r
+def _fallback_font(db, ch, font):
+    """The font to draw character ``ch`` with when ``font`` has no glyph
+    for it (``font`` itself when no face has one)."""
+    face = db.fallback_face(font.face, ch)
+    if face is None:
+        return font
+    try:
+        return Font.load(face)
+    except RasterError:
+        return font
 
 
 def _text_path_geometry(tp_el, ctx, cache):

@@ -9,7 +9,7 @@ from PIL import Image
 
 from raster.geometry.bounds import bbox
 from raster.errors import RasterWarning
-from raster.fonts import Font, FontDB
+from raster.fonts import Font, FontDB, FontOptions
 from raster.geometry.path import Path
 from raster.svg import load_svg, render
 from raster.parser.text import collapse_whitespace
@@ -18,15 +18,18 @@ from raster.testing import compare_images
 
 from _shared import SUITE_FONTS as FONTS, SUITE_ROOT as SUITE
 NS = 'xmlns="http://www.w3.org/2000/svg"'
+#: The suite's fonts only (no system fonts: the tests do not depend on the
+#: machine).
+SUITE_FONTS = FontOptions(dirs=FONTS, system=False)
 
 
 def doc(body, extra=''):
     return ('<svg %s width="400" height="200" %s>%s</svg>' % (NS, extra, body)).encode()
 
 
-def text_paths(body, font_dirs=(FONTS,)):
+def text_paths(body, fonts=SUITE_FONTS):
     """(path, abs transform, node) of every PathNode of a document."""
-    tree = load_svg(doc(body), font_dirs=font_dirs)
+    tree = load_svg(doc(body), fonts=fonts)
     return [(n.path.transform(t), n) for n, t in walk(tree.root) if isinstance(n, PathNode)]
 
 
@@ -179,19 +182,24 @@ def test_text_in_clip_path_clips():
     img = render(doc('<clipPath id="c"><text x="0" y="150" font-size="200" '
                      'font-family="Noto Sans">I</text></clipPath>'
                      '<rect width="400" height="200" fill="blue" clip-path="url(#c)"/>'),
-                 font_dirs=[FONTS])
+                 fonts=SUITE_FONTS)
     assert img[100, 2, 3] == 0 and img[100, 300, 3] == 0
     assert (img[:, :, 3] == 255).sum() > 1000
 
 
 # -- robustness -------------------------------------------------------------------
 
-def test_missing_font_dir_warns_and_renders_rest(tmp_path):
-    body = '<rect width="10" height="10" fill="red"/><text x="20" y="50">Hi</text>'
-    with pytest.warns(RasterWarning, match='no fonts'):
-        img = render(doc(body), font_dirs=[str(tmp_path / 'missing')])
+def test_no_usable_font_draws_with_the_bundled_font_and_warns_once(tmp_path):
+    body = ('<rect width="10" height="10" fill="red"/><text x="20" y="50">Hi</text>'
+            '<text x="20" y="80">there</text>')
+    fonts = FontOptions(dirs=str(tmp_path / 'missing'), system=False)
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter('always')
+        img = render(doc(body), fonts=fonts)
+    msgs = [str(x.message) for x in w if issubclass(x.category, RasterWarning)]
+    assert len(msgs) == 1 and 'bundled' in msgs[0]
     assert tuple(img[5, 5]) == (255, 0, 0, 255)
-    assert img[:, 15:].max() == 0
+    assert img[30:55, 15:].max() > 0         # "Hi" is drawn
 
 
 @pytest.mark.parametrize('body', [
@@ -207,7 +215,7 @@ def test_missing_font_dir_warns_and_renders_rest(tmp_path):
 def test_bad_or_unsupported_text_never_raises(body):
     with warnings.catch_warnings():
         warnings.simplefilter('ignore')
-        img = render(doc('<rect width="5" height="5"/>' + body), font_dirs=[FONTS])
+        img = render(doc('<rect width="5" height="5"/>' + body), fonts=SUITE_FONTS)
     assert img[2, 2, 3] == 255
 
 
@@ -233,7 +241,7 @@ def test_suite_case_matches_resvg_reference(case):
     ref = np.asarray(Image.open(svg[:-4] + '.png').convert('RGBA'))
     with warnings.catch_warnings():
         warnings.simplefilter('ignore')
-        img = render(svg, width=ref.shape[1], font_dirs=[FONTS])
+        img = render(svg, width=ref.shape[1], fonts=SUITE_FONTS)
     r = compare_images(ref, img)
     assert r.passed, r.reason
 
@@ -309,7 +317,7 @@ def test_unusable_font_warns_and_falls_back(tmp_path):
         shutil.copy(os.path.join(FONTS, fn), tmp_path / fn)
     with pytest.warns(RasterWarning, match='not usable'):
         ps = text_paths('<text x="10" y="50" font-family="Noto Color Emoji">A</text>',
-                        font_dirs=(str(tmp_path),))
+                        fonts=FontOptions(dirs=str(tmp_path), system=False))
     ref = text_paths('<text x="10" y="50" font-family="Noto Sans">A</text>')
     assert len(ps) == 1 and ps[0][0] == ref[0][0]
 
