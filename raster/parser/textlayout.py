@@ -384,22 +384,28 @@ def shape_clusters(text, owner, spans, fallback, memo):
 
     for k in order:
         shaped[k] = groups_of(*fkey[k])
-    base_groups, seq = shaped[base_k]
     span_key = {}
     for s in used:
         sp = spans[s]
         if sp.font is not None:
             span_key[s] = (id(sp.font), None if sp.features is None else
                            tuple(sorted(sp.features.items())))
+    # every cluster from the shaping by its own span's font, in visual order
+    rank = np.empty(n, np.int64)
+    pos = 0
+    for a, b, rtl in runs:
+        rank[a:b] = np.arange(pos + b - a - 1, pos - 1, -1) if rtl else np.arange(pos, pos + b - a)
+        pos += b - a
+    picked = []
+    for k in order:
+        groups, ks = shaped[k]
+        for c in ks:
+            s = int(owner[c])
+            if span_key.get(s, base_k) == k or (s not in span_key and k == base_k):
+                picked.append((int(rank[c]), c, s, groups[c]))
+    picked.sort(key=lambda r: r[0])
     out = []
-    for c in seq:
-        s = int(owner[c])
-        grp = None
-        k = span_key.get(s)
-        if k is not None and k != base_k:
-            grp = shaped[k][0].get(c)
-        if grp is None:
-            grp = base_groups[c]
+    for _, c, s, grp in picked:
         if (grp[1] == 0).any() and text[c] not in ' \u00a0\t' and ord(text[c]) >= 32:
             grp = _fallback_group(grp, c, text, runs, spans[s].features, fallback, memo)
         out.append((c, s, grp))
@@ -454,7 +460,9 @@ def _build_clusters(out, spans, text):
         g_scale.append(np.full(m, sc))
         char[k] = c
         span[k] = s
-        width[k] = float(adv.max()) * sc if m else 0.0
+        # the cluster's advance: its glyphs' advances (a mark or a vowel
+        # sign of its own in a cluster moves the pen, as resvg's references show)
+        width[k] = float(adv.sum()) * sc if m else 0.0
         asc[k] = font.ascender * sc
         desc[k] = font.descender * sc
         xh[k] = font.x_height * sc
