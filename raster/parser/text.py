@@ -318,8 +318,9 @@ def _build(el, state, cache, out):
     for sp in spans:
         sp.shift = _span_shift(sp, vertical)
     decor = _decorations(el, spans, cache)
-    ls = np.array([sp.ls for sp in spans])
-    ws = np.array([sp.ws for sp in spans])
+    spacing = any(sp.ls or sp.ws for sp in spans)
+    ls = np.array([sp.ls for sp in spans]) if spacing else None
+    ws = np.array([sp.ws for sp in spans]) if spacing else None
     # -- chunks ------------------------------------------------------------------
     brk = ~np.isnan(np.fmin(ax, ay))     # an absolute x or y
     onpath = np.full(n, -1, np.int64) if path_ranges else None
@@ -350,7 +351,8 @@ def _build(el, state, cache, out):
             continue
         if vertical:
             apply_vertical(cl)
-        apply_spacing(cl, ls, ws)
+        if spacing:
+            apply_spacing(cl, ls, ws)
         if not len(cl):
             continue
         segs = []
@@ -380,7 +382,11 @@ def _build(el, state, cache, out):
                                       sub(angle), -shifts)
             base = translate(0.0, 0.0)[None]
             cur_x, cur_y = ex, ey
-        gm, gvis = glyph_matrices(cl)
+        simple = cl.m is None and cl.pm is None and not vertical
+        if simple:
+            gm, gvis = None, cl.visible[cl.g_cluster]
+        else:
+            gm, gvis = glyph_matrices(cl)
         box = metric_boxes(cl)
         chunk_spans = [int(own_c[a]) for a in [0] + cuts]
         done = set()
@@ -389,7 +395,13 @@ def _build(el, state, cache, out):
                 continue
             done.add(si)
             sp = spans[si]
-            sts = base if tp is not None else compose(base, translate(0.0, sp.shift)[None])
+            if tp is not None:
+                sts = base
+            elif vertical:
+                sts = compose(base, translate(0.0, sp.shift)[None])
+            else:
+                sts = base.copy()
+                sts[0, 1, 2] += sp.shift
             if len(box):
                 corners.append(_apply(sts[0], box))
             mask = cl.span == si
@@ -399,7 +411,8 @@ def _build(el, state, cache, out):
                     pieces.append((si, kind, p))
             g = np.flatnonzero(mask[cl.g_cluster] & gvis)
             if len(g):
-                pieces.append((si, 'glyphs', (cl, g, compose(sts, gm[g]))))
+                pieces.append((si, 'glyphs', (cl, g, sts[0] if gm is None else
+                                              compose(sts, gm[g]))))
             p = _decoration_path(cl, mask, sp, 'line-through', decor, sts[0], vertical)
             if p is not None:
                 pieces.append((si, 'line-through', p))
@@ -499,6 +512,8 @@ def _decorations(el, spans, cache):
         outer.update(_decoration(d))
     own = [set(_decoration(sp.own.get('text-decoration', sp.el.get('text-decoration')
                                       if sp.el is not None else None))) for sp in spans]
+    if not outer and not any(own):
+        return {}
     index = {id(sp): k for k, sp in enumerate(spans)}
     out = {}
     for k, sp in enumerate(spans):
@@ -539,10 +554,14 @@ def _decoration_path(cl, mask, sp, kind, decor, span_ts, vertical):
     ok = widths > 0
     if not ok.any():
         return None
-    widths, mats = widths[ok], mats[ok]
+    widths = widths[ok]
+    if not isinstance(mats, tuple):
+        mats = mats[ok]
     k = len(widths)
     xs = np.stack([np.zeros(k), widths, widths, np.zeros(k)], 1)
     ys = np.tile(np.array([-th / 2, -th / 2, th / 2, th / 2]) + off, (k, 1))
+    if isinstance(mats, tuple):          # translations of the pieces
+        mats = translate(mats[0][ok], mats[1][ok])
     m = compose(span_ts[None], mats)
     X = m[:, 0, 0, None] * xs + m[:, 0, 1, None] * ys + m[:, 0, 2, None]
     Y = m[:, 1, 0, None] * xs + m[:, 1, 1, None] * ys + m[:, 1, 2, None]
@@ -575,6 +594,16 @@ def _outline_path(cl, g, mats):
         npts = np.concatenate([c for _, _, c in parts])
     if not len(verbs):
         return None
+    if mats.ndim == 2:          # translated clusters: scale, flip and move each glyph
+        s = cl.g_scale[g]
+        gc = cl.g_cluster[g]
+        ox = cl.x[gc] + cl.g_x[g] * s + mats[0, 2]
+        oy = cl.y[gc] - cl.g_y[g] * s + mats[1, 2]
+        S = np.repeat(s, npts)
+        out = np.empty_like(P)
+        out[:, 0] = P[:, 0] * S + np.repeat(ox, npts)
+        out[:, 1] = np.repeat(oy, npts) - P[:, 1] * S
+        return Path(verbs, out, _checked=True)
     M = np.repeat(mats, npts, axis=0)
     out = np.empty_like(P)
     out[:, 0] = M[:, 0, 0] * P[:, 0] + M[:, 0, 1] * P[:, 1] + M[:, 0, 2]

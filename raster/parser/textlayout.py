@@ -64,7 +64,7 @@ def bidi_levels(text):
     [0, 0, 1, 1]
     """
     n = len(text)
-    if not any(_maybe_rtl(c) for c in text):
+    if _RTL_RE.search(text) is None:
         return np.zeros(n, np.int64)
     try:
         from bidi.bidi import get_display_inner
@@ -80,11 +80,10 @@ def bidi_levels(text):
     return np.asarray(byte_levels, np.int64)[starts]
 
 
-def _maybe_rtl(c):
-    o = ord(c)
-    return (0x0590 <= o <= 0x08FF or 0xFB1D <= o <= 0xFDFF or 0xFE70 <= o <= 0xFEFF or
-            0x200E <= o <= 0x200F or 0x202A <= o <= 0x202E or 0x2066 <= o <= 0x2069 or
-            0x10800 <= o <= 0x10FFF or 0x1E800 <= o <= 0x1EFFF)
+# characters that may make a run right to left (Hebrew, Arabic and the other
+# RTL blocks, the bidi controls): text without any needs no bidi pass
+_RTL_RE = re.compile('[\u0590-\u08ff\ufb1d-\ufdff\ufe70-\ufeff\u200e\u200f\u202a-\u202e'
+                     '\u2066-\u2069\U00010800-\U00010fff\U0001e800-\U0001efff]')
 
 
 def visual_runs(levels):
@@ -97,6 +96,8 @@ def visual_runs(levels):
     n = len(levels)
     if n == 0:
         return []
+    if not levels.any():
+        return [(0, n, False)]
     cuts = (np.flatnonzero(np.diff(levels)) + 1).tolist()
     runs = [(a, b, int(levels[a])) for a, b in zip([0] + cuts, cuts + [n])]
     hi = max(r[2] for r in runs)
@@ -280,10 +281,27 @@ class Clusters:
     """
     __slots__ = ('char', 'span', 'width', 'advance', 'ascent', 'descent', 'x_height', 'visible',
                  'relshift', 'm', 'pm', 'pre', 'g_cluster', 'g_font', 'g_gid', 'g_x', 'g_y',
-                 'g_scale', 'fonts', 'cps')
+                 'g_scale', 'fonts', 'cps', 'x', 'y')
+
+    def mats(self):
+        """(C, 3, 3) cluster transforms (made from the positions ``x``,
+        ``y`` when the clusters are only translated: ``m`` None)."""
+        if self.m is None:
+            self.m = translate(self.x, self.y)
+        return self.m
 
     def __len__(self):
         return len(self.char)
+
+    def copy(self):
+        """A copy whose per-cluster arrays can be changed (the glyph arrays
+        are shared: they are never changed)."""
+        c = Clusters()
+        for name in self.__slots__:
+            setattr(c, name, getattr(self, name))
+        c.advance = self.advance.copy()
+        c.width = self.width.copy()
+        return c
 
     def drop(self, keep):
         """Keep only clusters where ``keep`` ((C,) bool) is True."""
@@ -338,6 +356,10 @@ def _groups(cl):
     return np.r_[0, cuts], np.r_[cuts, len(cl)]
 
 
+def _font_key(sp):
+    return (id(sp.font), None if sp.features is None else tuple(sorted(sp.features.items())))
+
+
 def shape_clusters(text, owner, spans, fallback, memo):
     """Shape a chunk into :class:`Clusters` (steps 1 to 3 of the module
     docstring).
@@ -355,133 +377,162 @@ def shape_clusters(text, owner, spans, fallback, memo):
         ``fallback(font, ch) -> Font or None``: a font with a glyph for
         ``ch``.
     memo : dict
-        Shaping results shared by the chunks of a document.
+        Shaping results shared by the chunks of a document (the clusters
+        of a repeated chunk are copied from it).
+
+    Returns None when no span has a font.
     """
     n = len(text)
+    cuts = (np.flatnonzero(owner[1:] != owner[:-1]) + 1).tolist()
+    starts = [0] + cuts
+    key = ('clusters', text, tuple((a, _font_key(spans[int(owner[a])]), spans[int(owner[a])].fs)
+                                   for a in starts))
+    tmpl = memo.get(key)
+    if tmpl is None:
+        tmpl = _shape_clusters(text, owner, spans, fallback, memo, starts)
+        if len(memo) > 4096:
+            memo.clear()
+        memo[key] = tmpl if tmpl is not None else False
+    if not tmpl:
+        return None
+    c = tmpl.copy()
+    c.span = owner[c.char]          # this element's spans
+    return c
+
+
+def _shape_clusters(text, owner, spans, fallback, memo, starts):
+    n = len(text)
     runs = visual_runs(bidi_levels(text))
-    used = sorted(set(owner.tolist()), key=lambda s: int(np.flatnonzero(owner == s)[0]))
-    fkey = {}
-    order = []
-    for s in used:
-        sp = spans[s]
+    keys = []               # distinct (font, features) in order of first use
+    key_of = {}
+    for a in starts:
+        sp = spans[int(owner[a])]
         if sp.font is None:
             continue
-        k = (id(sp.font), None if sp.features is None else tuple(sorted(sp.features.items())))
-        if k not in fkey:
-            fkey[k] = (sp.font, sp.features)
-            order.append(k)
-    if not order:
+        k = _font_key(sp)
+        key_of[int(owner[a])] = k
+        if k not in keys:
+            keys.append(k)
+    if not keys:
         return None
-    # the glyph groups of each (font, features) shaping, by cluster id
-    base_k = order[0]
-    shaped = {}
+    feats = {k: spans[s].features for s, k in key_of.items()}
+    fonts_k = {k: spans[s].font for s, k in key_of.items()}
+    # the key of every character's span (-1: a span without a font: base)
+    if len(keys) > 1:
+        kidx = np.zeros(n, np.int64)
+        for s, k in key_of.items():
+            kidx[owner == s] = keys.index(k)
+    parts = []
+    for ki, k in enumerate(keys):
+        gid, cl, adv, xo, yo = _shape_runs(fonts_k[k], text, runs, feats[k], memo)
+        if len(keys) == 1:
+            parts.append((ki, gid, cl, adv, xo, yo))
+            break
+        sel = kidx[cl] == ki
+        parts.append((ki, gid[sel], cl[sel], adv[sel], xo[sel], yo[sel]))
+    fonts = [fonts_k[k] for k in keys]
+    if len(parts) == 1:
+        _, gid, cl, adv, xo, yo = parts[0]
+        fi = np.zeros(len(gid), np.int64)
+    else:
+        # every cluster from the shaping by its own span's font, in visual order
+        rank = np.empty(n, np.int64)
+        pos = 0
+        for a, b, rtl in runs:
+            rank[a:b] = np.arange(pos + b - a - 1, pos - 1, -1) if rtl else \
+                np.arange(pos, pos + b - a)
+            pos += b - a
+        gid = np.concatenate([p[1] for p in parts])
+        cl = np.concatenate([p[2] for p in parts])
+        adv = np.concatenate([p[3] for p in parts])
+        xo = np.concatenate([p[4] for p in parts])
+        yo = np.concatenate([p[5] for p in parts])
+        fi = np.repeat([p[0] for p in parts], [len(p[1]) for p in parts])
+        order = np.argsort(rank[cl], kind='stable')
+        gid, cl, adv, xo, yo, fi = gid[order], cl[order], adv[order], xo[order], yo[order], \
+            fi[order]
+    missing = (gid == 0)
+    if missing.any():
+        gid, cl, adv, xo, yo, fi = _fallbacks(text, runs, owner, spans, fonts, fallback, memo,
+                                              gid, cl, adv, xo, yo, fi)
+    return _build_clusters(text, owner, spans, fonts, gid, cl, adv, xo, yo, fi)
 
-    def groups_of(font, features):
-        gid, cl, adv, xo, yo = _shape_runs(font, text, runs, features, memo)
-        st, en = _groups(cl)
-        return {int(cl[a]): (font, gid[a:b], adv[a:b], xo[a:b], yo[a:b]) for a, b in zip(st, en)}, \
-            [int(cl[a]) for a in st]
 
-    for k in order:
-        shaped[k] = groups_of(*fkey[k])
-    span_key = {}
-    for s in used:
-        sp = spans[s]
-        if sp.font is not None:
-            span_key[s] = (id(sp.font), None if sp.features is None else
-                           tuple(sorted(sp.features.items())))
-    # every cluster from the shaping by its own span's font, in visual order
-    rank = np.empty(n, np.int64)
-    pos = 0
-    for a, b, rtl in runs:
-        rank[a:b] = np.arange(pos + b - a - 1, pos - 1, -1) if rtl else np.arange(pos, pos + b - a)
-        pos += b - a
-    picked = []
-    for k in order:
-        groups, ks = shaped[k]
-        for c in ks:
-            s = int(owner[c])
-            if span_key.get(s, base_k) == k or (s not in span_key and k == base_k):
-                picked.append((int(rank[c]), c, s, groups[c]))
-    picked.sort(key=lambda r: r[0])
+def _fallbacks(text, runs, owner, spans, fonts, fallback, memo, gid, cl, adv, xo, yo, fi):
+    """Replace the glyphs of clusters with a missing glyph by those of a
+    fallback font (up to 8 fonts tried per cluster, each shaping the whole
+    chunk, as usvg does)."""
+    st, en = _groups(cl)
     out = []
-    for _, c, s, grp in picked:
-        if (grp[1] == 0).any() and text[c] not in ' \u00a0\t' and ord(text[c]) >= 32:
-            grp = _fallback_group(grp, c, text, runs, spans[s].features, fallback, memo)
-        out.append((c, s, grp))
-    return _build_clusters(out, spans, text)
+    for a, b in zip(st.tolist(), en.tolist()):
+        c = int(cl[a])
+        grp = (gid[a:b], cl[a:b], adv[a:b], xo[a:b], yo[a:b], fi[a:b])
+        ch = text[c]
+        if (grp[0] == 0).any() and ch not in ' \u00a0\t' and ord(ch) >= 32:
+            font = fonts[int(fi[a])]
+            tried = {id(font)}
+            for _ in range(8):
+                f = fallback(font, ch)
+                if f is None or id(f) in tried:
+                    break
+                tried.add(id(f))
+                g2, c2, a2, x2, y2 = _shape_runs(f, text, runs, spans[int(owner[c])].features,
+                                                 memo)
+                idx = np.flatnonzero(c2 == c)
+                if len(idx) and not (g2[idx] == 0).any():
+                    if all(x is not f for x in fonts):
+                        fonts.append(f)
+                    k = next(i for i, x in enumerate(fonts) if x is f)
+                    grp = (g2[idx], c2[idx], a2[idx], x2[idx], y2[idx],
+                           np.full(len(idx), k, np.int64))
+                    break
+                font = f
+        out.append(grp)
+    return tuple(np.concatenate([g[i] for g in out]) for i in range(6))
 
 
-def _fallback_group(grp, c, text, runs, features, fallback, memo):
-    """The glyphs of cluster ``c`` from fallback fonts when ``grp`` has a
-    missing glyph (up to 8 fonts tried, each shaping the whole chunk)."""
-    font = grp[0]
-    tried = {id(font)}
-    for _ in range(8):
-        f = fallback(font, text[c])
-        if f is None or id(f) in tried:
-            return grp
-        tried.add(id(f))
-        gid, cl, adv, xo, yo = _shape_runs(f, text, runs, features, memo)
-        idx = np.flatnonzero(cl == c)
-        if len(idx) and not (gid[idx] == 0).any():
-            a, b = idx[0], idx[-1] + 1
-            return (f, gid[a:b], adv[a:b], xo[a:b], yo[a:b])
-        font = f
-    return grp
-
-
-def _build_clusters(out, spans, text):
-    cl = Clusters()
-    C = len(out)
-    fonts, findex = [], {}
-    g_cluster, g_font, g_gid, g_x, g_y, g_scale = [], [], [], [], [], []
-    char = np.empty(C, np.int64)
-    span = np.empty(C, np.int64)
-    width = np.empty(C)
-    asc = np.empty(C)
-    desc = np.empty(C)
-    xh = np.empty(C)
-    for k, (c, s, (font, gid, adv, xo, yo)) in enumerate(out):
-        fi = findex.get(id(font))
-        if fi is None:
-            fi = findex[id(font)] = len(fonts)
-            fonts.append(font)
-        sc = spans[s].fs / font.upem
-        m = len(gid)
-        pen = np.zeros(m)
-        if m > 1:
-            np.cumsum(adv[:-1], out=pen[1:])
-        g_cluster.append(np.full(m, k, np.int64))
-        g_font.append(np.full(m, fi, np.int64))
-        g_gid.append(gid)
-        g_x.append(pen + xo)
-        g_y.append(np.asarray(yo, float))
-        g_scale.append(np.full(m, sc))
-        char[k] = c
-        span[k] = s
-        # the cluster's advance: its glyphs' advances (a mark or a vowel
-        # sign of its own in a cluster moves the pen, as resvg's references show)
-        width[k] = float(adv.sum()) * sc if m else 0.0
-        asc[k] = font.ascender * sc
-        desc[k] = font.descender * sc
-        xh[k] = font.x_height * sc
-    cl.char, cl.span, cl.width = char, span, width
-    cl.advance = width.copy()
-    cl.ascent, cl.descent, cl.x_height = asc, desc, xh
-    cl.visible = np.ones(C, bool)
-    cl.relshift = np.zeros(C, bool)
-    cl.m = None
-    cl.pm = cl.pre = None
-    cl.cps = np.fromiter((ord(text[c]) for c in char), np.int64, C)
-    cl.fonts = fonts
-    cl.g_cluster = np.concatenate(g_cluster) if C else np.zeros(0, np.int64)
-    cl.g_font = np.concatenate(g_font) if C else np.zeros(0, np.int64)
-    cl.g_gid = np.concatenate(g_gid).astype(np.int64) if C else np.zeros(0, np.int64)
-    cl.g_x = np.concatenate(g_x) if C else np.zeros(0)
-    cl.g_y = np.concatenate(g_y) if C else np.zeros(0)
-    cl.g_scale = np.concatenate(g_scale) if C else np.zeros(0)
-    return cl
+def _build_clusters(text, owner, spans, fonts, gid, cl, adv, xo, yo, fi):
+    """:class:`Clusters` of glyph arrays in visual order (runs of equal
+    ``cl`` are clusters), on whole arrays."""
+    G = len(gid)
+    c = Clusters()
+    fs = np.array([sp.fs for sp in spans])
+    upem = np.array([f.upem for f in fonts])
+    asc = np.array([f.ascender for f in fonts])
+    desc = np.array([f.descender for f in fonts])
+    xh = np.array([f.x_height for f in fonts])
+    if G:
+        is_start = np.ones(G, bool)
+        is_start[1:] = cl[1:] != cl[:-1]
+        starts = np.flatnonzero(is_start)
+    else:
+        is_start = np.zeros(0, bool)
+        starts = np.zeros(0, np.int64)
+    g_cluster = np.cumsum(is_start) - 1
+    char = cl[starts]
+    span = owner[char] if len(char) else np.zeros(0, np.int64)
+    g_scale = fs[owner[cl]] / upem[fi] if G else np.zeros(0)
+    excl = np.zeros(G)
+    if G > 1:
+        np.cumsum(adv[:-1], out=excl[1:])
+    pen = excl - excl[starts][g_cluster] if G else excl
+    sc = g_scale[starts]
+    f0 = fi[starts]
+    # the cluster's advance: its glyphs' advances (a mark or a vowel sign of
+    # its own in a cluster moves the pen, as resvg's references show)
+    width = np.add.reduceat(adv * g_scale, starts) if G else np.zeros(0)
+    c.char, c.span, c.width = char, span, width
+    c.advance = width.copy()
+    c.ascent, c.descent, c.x_height = asc[f0] * sc, desc[f0] * sc, xh[f0] * sc
+    C = len(char)
+    c.visible = np.ones(C, bool)
+    c.relshift = np.zeros(C, bool)
+    c.m = c.pm = c.pre = c.x = c.y = None
+    c.cps = np.frombuffer(text.encode('utf-32-le'), np.uint32).astype(np.int64)[char]
+    c.fonts = fonts
+    c.g_cluster, c.g_font, c.g_gid = g_cluster, fi, gid.astype(np.int64)
+    c.g_x, c.g_y, c.g_scale = pen + xo, np.asarray(yo, float), g_scale
+    return c
 
 
 # -- spacing and length ----------------------------------------------------------------------
@@ -575,16 +626,22 @@ def position_linear(cl, anchor, dx, dy, rot, vertical):
     x = x0 + np.cumsum(ax) + before
     y = np.cumsum(ay)
     cl.relshift = (ddx != 0) | (ddy != 0)
-    m = translate(x, y)
+    cl.x, cl.y = x, y
+    cl.m = None                 # translations only, unless turned or scaled
+    nz = None
     if rot is not None:
         r = rot[ch]
         nz = r != 0
-        if nz.any():
+        if not nz.any():
+            nz = None
+    if nz is not None or cl.pre is not None:
+        m = translate(x, y)
+        if nz is not None:
             m = np.where(nz[:, None, None], compose(m, rotate(r)), m)
             cl.relshift |= nz
-    if cl.pre is not None:
-        m = compose(cl.pre, m)
-    cl.m = m
+        if cl.pre is not None:
+            m = compose(cl.pre, m)
+        cl.m = m
     end_x = float(x[-1] + cl.advance[-1]) if C else x0
     end_y = float(y[-1]) if C else 0.0
     return end_x, end_y
@@ -656,6 +713,9 @@ def decoration_pieces(cl, span_mask):
     starts = np.flatnonzero(brk)
     group = np.cumsum(brk) - 1
     widths = np.bincount(group, weights=cl.advance[idx], minlength=len(starts))
+    if cl.m is None:
+        first = idx[starts]
+        return widths, (cl.x[first], cl.y[first])
     return widths, cl.m[idx[starts]]
 
 
@@ -669,9 +729,13 @@ def metric_boxes(cl):
     adv = np.where(cl.advance[vis] > 0, cl.advance[vis], 1.0)
     a = cl.ascent[vis]
     d = cl.descent[vis]
+    if cl.m is None and cl.pm is None:
+        # translations only (the common case): the box's two corners
+        x, y = cl.x[vis], cl.y[vis]
+        return np.array([[x.min(), (y - a).min()], [(x + adv).max(), (y - d).max()]])
+    m = cl.mats()[vis]
     xs = np.stack([np.zeros_like(adv), adv, adv, np.zeros_like(adv)], 1)
     ys = np.stack([-a, -a, -d, -d], 1)
-    m = cl.m[vis]
     if cl.pm is not None:
         m = compose(m, cl.pm[vis])
     X = m[:, 0, 0, None] * xs + m[:, 0, 1, None] * ys + m[:, 0, 2, None]
@@ -684,7 +748,7 @@ def glyph_matrices(cl):
     the chunk frame (y down), and the (G,) mask of glyphs of visible
     clusters."""
     g = cl.g_cluster
-    m = cl.m[g]
+    m = cl.mats()[g]
     if cl.pm is not None:
         m = compose(m, cl.pm[g])
     s = cl.g_scale
