@@ -126,6 +126,13 @@ FAMILY_CLASSES = {
     'lucida console': 'monospace', 'andale mono': 'monospace', 'cascadia code': 'monospace',
     'hack': 'monospace', 'iosevka': 'monospace',
     'comic sans ms': 'cursive', 'zapf chancery': 'cursive', 'impact': 'fantasy',
+    **{f: 'sans-serif' for f in ('myriad', 'myriad pro', 'frutiger', 'humnst777 bt',
+                                 'humanist 777', 'futura', 'gill sans', 'gill sans mt', 'optima',
+                                 'univers', 'avenir', 'avenir next', 'franklin gothic',
+                                 'century gothic', 'lucida sans', 'segoe ui', 'sf pro',
+                                 'source sans pro', 'noto sans', 'pt sans', 'istok web')},
+    **{f: 'serif' for f in ('minion', 'minion pro', 'caslon', 'bodoni', 'didot', 'rockwell',
+                            'pt serif', 'charter', 'constantia', 'cochin')},
 }
 
 _STRETCH = {'ultra-condensed': 1, 'extra-condensed': 2, 'condensed': 3,
@@ -189,7 +196,7 @@ def _class_of_name(name):
         return c
     if re.search(r'\b(mono|code|courier|consol)', low):
         return 'monospace'
-    if re.search(r'\bsans\b', low):
+    if re.search(r'\b(sans|gothic|grotesk|grotesque|humnst|humanist|myriad)', low):
         return 'sans-serif'
     if re.search(r'\bserif\b', low):
         return 'serif'
