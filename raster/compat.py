@@ -113,7 +113,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
             parent_width: float | None = None, parent_height: float | None = None,
             scale: float = 1, unsafe: bool = False, background_color: str | None = None,
             output_width: float | None = None,
-            output_height: float | None = None) -> bytes | None:
+            output_height: float | None = None, fonts=None) -> bytes | None:
     """Render an SVG document to PNG, with CairoSVG's ``svg2png`` arguments.
 
     Parameters
@@ -140,6 +140,9 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
         A CSS colour under the document (default transparent).
     output_width, output_height : float, optional
         Output size in px (see the module docstring).
+    fonts : raster.FontOptions or dict, optional
+        The fonts of text (default: the system's fonts), as for
+        :func:`raster.render`; not a CairoSVG argument.
 
     Returns
     -------
@@ -158,7 +161,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
         rounds to 0 pixels or exceeds :mod:`raster.limits`.
     """
     from .pixels.encode import encode
-    from .svg import check_dpi, parse_background
+    from .svg import check_dpi, font_options, parse_background
     from .parser import build_tree
     from .parser.document import load_document
     from .renderer import render_tree
@@ -178,7 +181,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
         files = dict(base_dir=base, resources_dir=os.path.abspath(os.sep))
     else:
         files = dict(base_dir=None, resources_dir=None)     # data: URIs only
-    tree = build_tree(root, dpi=d, **files)
+    tree = build_tree(root, dpi=d, fonts=font_options(fonts), **files)
     w, h = tree.width, tree.height
     W, H = _output_box(w, h, scale, output_width, output_height)
     Wi, Hi = int(round(W)), int(round(H))
