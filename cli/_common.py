@@ -41,6 +41,57 @@ class Parser(argparse.ArgumentParser):
     message; :func:`run` turns that into a return value."""
 
 
+def add_font_options(parser):
+    """Give ``parser`` the font options shared by the commands:
+    ``--font-dir DIR`` and ``--font-file FILE`` (repeatable),
+    ``--no-system-fonts``, ``--serif-family`` ... ``--fantasy-family`` (as
+    resvg names them), ``--default-family`` and ``--list-fonts``; see
+    :func:`font_options` and :func:`list_fonts`."""
+    g = parser.add_argument_group('fonts')
+    g.add_argument('--font-dir', action='append', default=[], metavar='DIR',
+                   help='folder of fonts for text, searched before the system fonts (repeatable)')
+    g.add_argument('--font-file', action='append', default=[], metavar='FILE',
+                   help='a font file for text (repeatable)')
+    g.add_argument('--no-system-fonts', action='store_true',
+                   help="use only --font-dir and --font-file fonts, not the system's")
+    for generic in ('serif', 'sans-serif', 'monospace', 'cursive', 'fantasy'):
+        g.add_argument('--%s-family' % generic, metavar='NAME',
+                       help='family the %s generic family resolves to' % generic)
+    g.add_argument('--default-family', metavar='NAME',
+                   help='family of text whose font-family names nothing available '
+                        '(default: serif)')
+    g.add_argument('--list-fonts', action='store_true',
+                   help='print the fonts found and what each generic family resolves to, '
+                        'then exit')
+
+
+def font_options(args):
+    """The :class:`raster.FontOptions` of parsed :func:`add_font_options`
+    arguments."""
+    from raster.fonts import FontOptions
+    return FontOptions(dirs=tuple(args.font_dir), files=tuple(args.font_file),
+                       system=not args.no_system_fonts, serif_family=args.serif_family,
+                       sans_serif_family=args.sans_serif_family,
+                       monospace_family=args.monospace_family,
+                       cursive_family=args.cursive_family, fantasy_family=args.fantasy_family,
+                       default_family=args.default_family)
+
+
+def list_fonts(args, required=('input',)):
+    """``--list-fonts``: print the font list (stdout) and return True; else
+    check that the positional arguments ``required`` were given (a usage
+    error otherwise) and return False."""
+    if args.list_fonts:
+        from raster.fonts import FontDB
+        db = FontDB.for_options(font_options(args))
+        sys.stdout.write('\n'.join(db.describe()) + '\n')
+        return True
+    missing = [n for n in required if getattr(args, n, None) is None]
+    if missing:
+        raise UsageError('the following arguments are required: %s' % ', '.join(missing))
+    return False
+
+
 def add_version(parser):
     """Give ``parser`` a ``--version`` option printing ``<prog> <version>``
     (the version of the installed ``raster`` package)."""

@@ -9,7 +9,9 @@ The front door (see README.md):
 * :func:`render` / :func:`render_image` -- an SVG document to an RGBA array or
   a PIL image;
 * :func:`svg2png` -- CairoSVG's ``svg2png`` (PNG bytes or a file), see
-  :mod:`raster.compat`.
+  :mod:`raster.compat`;
+* :class:`FontOptions` -- the fonts of text, for every function above that
+  takes ``fonts=`` (default: the system's fonts), see :mod:`raster.fonts`.
 
 The Pillow plugin (``Image.open('x.svg')``) is :mod:`raster.pillow`; it is
 registered by ``raster.pillow.register()`` or ``import raster.pillow.auto``,
@@ -45,6 +47,8 @@ _LAZY = {
     'render_image': 'raster.svg',
     'load_svg': 'raster.svg',
     'svg2png': 'raster.compat',
+    'FontOptions': 'raster.fonts',
+    'FontError': 'raster.fonts',
 }
 
 

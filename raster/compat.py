@@ -114,7 +114,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
             parent_width: float | None = None, parent_height: float | None = None,
             scale: float = 1, unsafe: bool = False, background_color: str | None = None,
             output_width: float | None = None,
-            output_height: float | None = None) -> bytes | None:
+            output_height: float | None = None, fonts=None) -> bytes | None:
     """Render an SVG document to PNG, with CairoSVG's ``svg2png`` arguments.
 
     Parameters
@@ -141,6 +141,9 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
         A CSS colour under the document (default transparent).
     output_width, output_height : float, optional
         Output size in px (see the module docstring).
+    fonts : raster.FontOptions or dict, optional
+        The fonts of text (default: the system's fonts), as for
+        :func:`raster.render`; not a CairoSVG argument.
 
     Returns
     -------
@@ -159,7 +162,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
         rounds to 0 pixels or exceeds :mod:`raster.limits`.
     """
     from .pixels.encode import encode
-    from .svg import parse_background
+    from .svg import check_dpi, font_options, parse_background
     from .parser import build_tree
     from .parser.document import load_document
     from .renderer import render_tree
@@ -169,12 +172,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
                                 parse_viewbox, viewbox_transform)
 
     bg = parse_background(background_color)
-    try:
-        d = float(dpi)
-    except (TypeError, ValueError):
-        d = math.nan
-    if not (math.isfinite(d) and d > 0):
-        raise SVGError('dpi must be a positive number, got %r' % (dpi,))
+    d = check_dpi(dpi)
     source, path = _document(bytestring, file_obj, url)
     root = load_document(source)
     vb = parse_viewbox(root.get('viewBox')) if root.get('viewBox') is not None else None
@@ -184,7 +182,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
         files = dict(base_dir=base, resources_dir=os.path.abspath(os.sep))
     else:
         files = dict(base_dir=None, resources_dir=None)     # data: URIs only
-    tree = build_tree(root, dpi=d, **files)
+    tree = build_tree(root, dpi=d, fonts=font_options(fonts), **files)
     w, h = tree.width, tree.height
     W, H = _output_box(w, h, scale, output_width, output_height)
     Wi, Hi = int(round(W)), int(round(H))

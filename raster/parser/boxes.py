@@ -8,7 +8,18 @@ from ..errors import RasterError
 from ..geometry.transform import IDENTITY
 from ..tree import Group, ImageNode, PathNode, walk
 
-__all__ = ['nodes_box', 'object_box', 'layer_box', 'content_box', 'walk_all']
+__all__ = ['nodes_box', 'object_box', 'layer_box', 'content_box', 'walk_all', 'Boxed']
+
+
+class Boxed(list):
+    """A list of nodes with a known object bounding box ``box`` ((x, y, w,
+    h), or None): text, whose box comes from its font metrics, not from
+    its glyph outlines (SVG 2, 11.11: the bounding box of text is the
+    union of its glyph cells)."""
+
+    def __init__(self, nodes, box):
+        super().__init__(nodes)
+        self.box = box
 
 
 def walk_all(nodes, transform=IDENTITY):
@@ -48,7 +59,10 @@ def nodes_box(nodes, stroke_pad=False):
 
 def object_box(nodes):
     """(x, y, w, h) object bounding box (fill box) of nodes in their
-    parent's user space, or None when there is no geometry."""
+    parent's user space, or None when there is no geometry (a
+    :class:`Boxed` list gives its own box)."""
+    if isinstance(nodes, Boxed):
+        return nodes.box
     b = nodes_box(nodes)
     return None if b is None else (b[0], b[1], b[2] - b[0], b[3] - b[1])
 

@@ -20,6 +20,7 @@ from typing import Optional, Tuple
 
 from .. import limits
 from ..errors import RasterWarning, SVGError, TransformError
+from ..fonts import FontOptions
 from ..geometry.transform import Affine
 
 __all__ = ['Options', 'State', 'Cache', 'SVG_NS', 'XLINK_HREF', 'NO_OWN', 'locale_languages',
@@ -109,8 +110,9 @@ class Options:
         Directory files may be read from (default: ``base_dir``).
     resources_dir : str or None
         A further directory files may be read from.
-    font_dirs : tuple of str
-        Directories of fonts for text.
+    fonts : raster.fonts.FontOptions
+        Where the fonts of text come from (default: the system's fonts)
+        and how generic families resolve.
     image_depth : int
         Nesting depth of SVG images (0: the outermost document; nested
         documents read no files).
@@ -125,7 +127,7 @@ class Options:
     base_dir: Optional[str] = None
     allow_files_under: Optional[str] = None
     resources_dir: Optional[str] = None
-    font_dirs: Tuple[str, ...] = ()
+    fonts: FontOptions = FontOptions()
     image_depth: int = 0
 
 

@@ -142,11 +142,12 @@ def in_space(p, to_space=IDENTITY, box=None):
     return dataclasses.replace(p, transform=inv @ p.transform)
 
 
-def paint(value, inh, ctx, state, cache, path=None):
+def paint(value, inh, ctx, state, cache, path=None, box=None):
     """The paint of a ``fill``/``stroke`` value for a node with geometry
-    ``path`` (its box resolves objectBoundingBox units); None when nothing
-    is painted.  Without ``path`` a server needing a box is returned as is
-    (a context paint, placed later by :func:`in_space`)."""
+    ``path`` (its box, or ``box`` (x0, y0, x1, y1) when given, resolves
+    objectBoundingBox units); None when nothing is painted.  Without
+    ``path`` a server needing a box is returned as is (a context paint,
+    placed later by :func:`in_space`)."""
     p = parse_paint(value)
     if p is None:
         return None
@@ -167,10 +168,10 @@ def paint(value, inh, ctx, state, cache, path=None):
             if isinstance(server, (GradientServer, PatternServer)):
                 if not server.needs_box():
                     return _user_space(server, cache)
-                if path is None:
+                if path is None and box is None:
                     return server
                 try:
-                    x0, y0, x1, y1 = exact_bbox(path)
+                    x0, y0, x1, y1 = box if box is not None else exact_bbox(path)
                 except RasterError:
                     x0 = x1 = 0.0
                 # a bounding box of zero width or height cannot be used

@@ -305,10 +305,11 @@ def _rule(v):
     return FillRule.EVENODD if v == 'evenodd' else FillRule.NONZERO
 
 
-def fill_and_stroke(inh, ctx, path, state, cache):
+def fill_and_stroke(inh, ctx, path, state, cache, box=None):
     """The resolved ``(Fill or None, Stroke or None)`` of a shape or text
     run with computed style ``inh`` and geometry ``path`` (for
-    objectBoundingBox paints); inside a clip path, a black fill with the
+    objectBoundingBox paints, unless ``box`` (x0, y0, x1, y1) gives the
+    bounding box: text); inside a clip path, a black fill with the
     clip-rule."""
     if state.clip:
         return Fill(SolidPaint(BLACK), 1.0, _rule(inh.get('clip-rule', 'nonzero'))), None
@@ -319,12 +320,12 @@ def fill_and_stroke(inh, ctx, path, state, cache):
         return (None if fp is None else Fill(fp, fop, rule),
                 None if sp is None else Stroke(sp, params[0], params[1]))
     fill = stroke = None
-    fp = paint(inh.get('fill', 'black'), inh, ctx, state, cache, path)
+    fp = paint(inh.get('fill', 'black'), inh, ctx, state, cache, path, box)
     if fp is not None:
         fill = Fill(fp, opacity(inh.get('fill-opacity')), _rule(inh.get('fill-rule', 'nonzero')))
     sv = inh.get('stroke')
     if sv is not None:
-        sp = paint(sv, inh, ctx, state, cache, path)
+        sp = paint(sv, inh, ctx, state, cache, path, box)
         if sp is not None:
             params = _stroke_params(inh, ctx, cache)
             if params is not False:
