@@ -16,13 +16,11 @@
 
 import argparse
 import errno
-import gzip
 import io
 import os
 import stat
 import sys
 import warnings
-import tempfile
 import zlib
 
 from raster.errors import RasterError, SVGError
@@ -36,9 +34,32 @@ class UsageError(Exception):
     """Bad combination of arguments found after parsing (exit status 2)."""
 
 
+def _help_formatter(prog):
+    """argparse's help formatter at the terminal's width (``COLUMNS``, else
+    the width of the terminal on stdout, else 80), found as
+    ``shutil.get_terminal_size`` does but without importing :mod:`shutil`,
+    which loads bz2 and lzma: argparse builds a formatter for every
+    ``add_argument``."""
+    try:
+        cols = int(os.environ.get('COLUMNS', ''))
+    except ValueError:
+        cols = 0
+    if cols <= 0:
+        try:
+            cols = os.get_terminal_size(sys.__stdout__.fileno()).columns
+        except (AttributeError, ValueError, OSError):
+            cols = 0
+    return argparse.HelpFormatter(prog, width=(cols or 80) - 2)
+
+
 class Parser(argparse.ArgumentParser):
     """ArgumentParser that raises :class:`SystemExit` (2) with its usual
-    message; :func:`run` turns that into a return value."""
+    message; :func:`run` turns that into a return value.  Help is
+    formatted at the terminal's width (see :func:`_help_formatter`)."""
+
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault('formatter_class', _help_formatter)
+        super().__init__(*args, **kwargs)
 
 
 def add_version(parser):
@@ -113,6 +134,7 @@ def read_source(path):
     else:
         data = read_file(path, MAX_SVG_BYTES)     # file: URLs read, other URLs refused
     if data[:2] == b'\x1f\x8b':
+        import gzip
         try:
             with gzip.GzipFile(fileobj=io.BytesIO(data)) as g:
                 data = g.read(MAX_SVG_BYTES + 1)
@@ -153,12 +175,11 @@ def write_output(path, data):
         return
     # a link to a regular file: replace the file it names, not the link
     target = os.path.realpath(path)
-    d = os.path.dirname(target)
-    fd, tmp = tempfile.mkstemp(prefix='.%s.' % os.path.basename(target), suffix='.tmp', dir=d)
+    fd, tmp = _temporary_beside(target)
     try:
         with os.fdopen(fd, 'wb') as f:
             f.write(data)
-        # mkstemp creates 0600; give the file the mode a plain open() would
+        # created 0600; give the file the mode a plain open() would
         os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, target)
     except BaseException:
@@ -167,6 +188,22 @@ def write_output(path, data):
         except OSError:
             pass
         raise
+
+
+def _temporary_beside(target):
+    """``(fd, path)`` of a new file ``.<name>.<random>.tmp`` in the
+    directory of ``target``, created exclusively with mode 0600 (what
+    ``tempfile.mkstemp`` does; :mod:`tempfile` itself imports shutil,
+    random and hashlib, a tenth of the command's start-up)."""
+    d, name = os.path.split(target)
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, 'O_CLOEXEC', 0)
+    for _ in range(100):
+        tmp = os.path.join(d, '.%s.%s.tmp' % (name, os.urandom(6).hex()))
+        try:
+            return os.open(tmp, flags, 0o600), tmp
+        except FileExistsError:
+            continue
+    raise FileExistsError(errno.EEXIST, 'no unused temporary name', os.path.join(d, name))
 
 
 def _umask():

@@ -1,4 +1,5 @@
-"""raster._malloc: freed large numpy temporaries are reused, not re-faulted."""
+"""raster_cli._malloc, the command's opt-in allocator tuning: freed large
+numpy temporaries are reused, not re-faulted."""
 
 import subprocess
 import sys
@@ -9,7 +10,7 @@ import pytest
 SCRIPT = textwrap.dedent('''
     import resource, sys
     import numpy as np
-    import raster._malloc as m
+    import raster_cli._malloc as m
     applied = m.tune()
     def faults():
         return resource.getrusage(resource.RUSAGE_SELF).ru_minflt

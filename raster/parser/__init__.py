@@ -37,17 +37,32 @@ from ..tree import Tree
 from .context import Cache, Options
 from .css import declared_styles
 from .document import load_document
-from .images import convert_image
 from .shapes import SHAPES, convert_shape
 from .structure import convert_group, convert_root, convert_svg, convert_switch, convert_use
-from .text import convert_text
 
 __all__ = ['Options', 'build_tree', 'parse', 'load_document', 'CONVERTERS']
+
+
+def convert_text(el, state, cache, parent):
+    """``text``: :func:`raster.parser.text.convert_text`, loaded with the
+    first text element (with it fonts, fontTools and HarfBuzz)."""
+    from .text import convert_text as convert
+    convert(el, state, cache, parent)
+
+
+def convert_image(el, state, cache, parent):
+    """``image``: :func:`raster.parser.images.convert_image`, loaded with
+    the first image (with it the image decoders and Pillow)."""
+    from .images import convert_image as convert
+    convert(el, state, cache, parent)
+
 
 #: Element local name -> converter ``convert(el, state, cache, parent)``.
 #: Elements not listed are never rendered directly (``defs``, ``symbol``,
 #: paint servers, ``clipPath``, ``mask``, ``marker``, ``filter``, ...) or
-#: unknown.
+#: unknown.  Families that need heavy modules (text, images) are entered
+#: as small functions importing their module on first use, so a document
+#: without them never loads it.
 CONVERTERS = dict({name: convert_shape for name in SHAPES},
                   g=convert_group, a=convert_group, switch=convert_switch, svg=convert_svg,
                   use=convert_use, text=convert_text, image=convert_image)

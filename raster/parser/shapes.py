@@ -25,7 +25,6 @@ from ..geometry.pathdata import (circle_path, ellipse_path, line_path, parse_pat
 from ..tree import Fill, FillRule, Group, PathNode, SolidPaint, Stroke
 from .context import SVG_NS
 from .effects import NO_EFFECTS, effects
-from .markers import build_markers
 from .paint import paint
 from .style import (BLACK, length, length_context, opacity, paint_order, style_of,
                     transform_of)
@@ -81,6 +80,7 @@ def convert_shape(el, state, cache, parent):
         fill, stroke = fill_and_stroke(inh, ctx, path, state, cache)
     markers = None
     if has_markers and not hidden and not clip_mode:
+        from .markers import build_markers      # (loaded with the first marker)
         placement = _placement_path(el, name, path, ctx, cache)
         markers = build_markers(el, name, path, placement, inh, ctx, state.sub(transform=t),
                                 cache, fill, stroke)

@@ -23,7 +23,7 @@ tree, the geometry kernel and the pixel layer; never the parser.
 import math
 from typing import Optional, Tuple
 
-from .. import _malloc, limits
+from .. import limits
 from ..errors import CanvasError, SVGError
 from ..pixels.canvas import Canvas
 from ..geometry.transform import IDENTITY, Affine
@@ -147,7 +147,6 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
     """
     if not isinstance(tree, Tree):
         raise SVGError('render_tree needs a raster.tree.Tree, got %s' % type(tree).__name__)
-    _malloc.tune()
     tol = _positive('tolerance', tolerance)
     w, h, sx, sy = output_size(tree.width, tree.height, width, height, zoom)
     canvas = Canvas(w, h, background)

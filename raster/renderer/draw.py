@@ -35,7 +35,6 @@ from ..tree import (Group, ImageNode, LinearGradient, MaskType, PaintItem, PathN
                     RadialGradient, SolidPaint)
 from .batch import Masks
 from .bounds import clip_rect, group_box, pixel_box
-from .filters import apply_filters, filter_box, filter_pixel_box
 from .paint import draw_pixels, gradient_colors, sample
 
 __all__ = ['Renderer']
@@ -87,6 +86,8 @@ class Renderer:
         # the layer: the group's box, or its filter region (effects draw
         # outside the content)
         if g.filters:
+            # the filter machinery loads with the first filter drawn
+            from .filters import apply_filters, filter_box, filter_pixel_box
             px = filter_pixel_box(filter_box(g.filters, ct), canvas.width, canvas.height)
         else:
             box = group_box(g, ct)

@@ -17,7 +17,6 @@ window actually drawn only.
 import math
 
 import numpy as np
-from PIL import Image
 
 from ..errors import RasterError
 from ..geometry.path import Path
@@ -376,12 +375,13 @@ def _radial_param(p, px, py):
 # Raster images
 # ---------------------------------------------------------------------------
 
-#: Pillow filters by name, and the source margin (pixels) each one reads
-#: around a sample position.  resvg draws smooth images with a bicubic
-#: (Mitchell) filter; Pillow has only the sharper Catmull-Rom-like cubic,
-#: which lands further from the suite's references than bilinear does.
-_FILTERS = {'nearest': (Image.Resampling.NEAREST, 1),
-            'bilinear': (Image.Resampling.BILINEAR, 2)}
+#: Pillow filters by name (``PIL.Image.Resampling`` members, looked up
+#: when Pillow is loaded, with the first image), and the source margin
+#: (pixels) each one reads around a sample position.  resvg draws smooth
+#: images with a bicubic (Mitchell) filter; Pillow has only the sharper
+#: Catmull-Rom-like cubic, which lands further from the suite's references
+#: than bilinear does.
+_FILTERS = {'nearest': ('NEAREST', 1), 'bilinear': ('BILINEAR', 2)}
 #: Largest edge padding (source pixels) of a resampled crop; only images
 #: drawn more than this many times smaller than their size could show it.
 _MAX_PAD = 512
@@ -505,7 +505,9 @@ def resample_window(pix, inv, x0, y0, w, h, filter='bilinear'):
     (h, w, 4) float32 ndarray or None
         Premultiplied RGBA in [0, 1]; None when the window is empty.
     """
+    from PIL import Image
     resample, margin = _FILTERS[filter]
+    resample = Image.Resampling[resample]
     ih, iw = pix.shape[:2]
     if w <= 0 or h <= 0:
         return None
@@ -584,6 +586,7 @@ def _pil(rgba, mode):
     """A Pillow image of (h, w, 4) uint8 pixels: ``mode`` 'RGBa' for
     premultiplied ones, 'RGBA' for straight ones (nearest only: Pillow
     premultiplies 'RGBA' itself for the other filters)."""
+    from PIL import Image
     rgba = np.ascontiguousarray(rgba)
     return Image.frombuffer(mode, (rgba.shape[1], rgba.shape[0]), rgba, 'raw', mode, 0, 1)
 
