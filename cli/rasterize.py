@@ -100,13 +100,14 @@ def _body(args):
     tree = load_svg(data, dpi=dpi, font_dirs=args.font_dir,
                     resources_dir=args.allow_dir, base_dir=base_dir_of(args.input))
     canvas = render_tree(tree, width=args.width, height=args.height, zoom=args.zoom,
-                         background=bg, node_id=args.id, tolerance=args.tolerance)
+                         background=bg, node_id=args.id, tolerance=args.tolerance,
+                         dtype='uint8')
     # the resolution at which the document keeps its physical size
     res = None if args.dpi is None else (dpi * canvas.width / tree.width,
                                          dpi * canvas.height / tree.height)
-    from raster.pixels.encode import encode
-    write_output(args.output, encode(canvas.to_rgba8(), fmt, dpi=res, quality=args.quality,
-                                     compress_level=args.compress_level))
+    from raster.pixels.encode import encode_canvas
+    write_output(args.output, encode_canvas(canvas, fmt, dpi=res, quality=args.quality,
+                                            compress_level=args.compress_level))
     return 0
 
 

@@ -188,7 +188,7 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
     bg = parse_background(background)
     tree = load_svg(source, dpi=dpi, font_dirs=font_dirs, resources_dir=resources_dir)
     canvas = render_tree(tree, width=width, height=height, zoom=zoom, background=bg,
-                         node_id=id, tolerance=tolerance)
+                         node_id=id, tolerance=tolerance, dtype=np.uint8)
     return canvas.to_rgba8(premultiplied=bool(premultiplied))
 
 

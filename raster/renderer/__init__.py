@@ -117,7 +117,8 @@ def output_size(doc_width: float, doc_height: float, width: Optional[int] = None
 def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] = None,
                 zoom: Optional[float] = None,
                 background: Optional[Tuple[float, float, float, float]] = None,
-                node_id: Optional[str] = None, tolerance: float = DEFAULT_TOLERANCE) -> Canvas:
+                node_id: Optional[str] = None, tolerance: float = DEFAULT_TOLERANCE,
+                dtype='float32') -> Canvas:
     """Render a resolved tree.
 
     Parameters
@@ -132,11 +133,16 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
         transforms of its ancestors.
     tolerance : float
         Flattening tolerance in device pixels (> 0).
+    dtype : 'float32' or 'uint8' (or the numpy types)
+        Storage of the output canvas: float32 (16 bytes a pixel), or 8-bit
+        (4 bytes a pixel, each composite onto it rounded to 1/255 as in
+        resvg; what :func:`raster.svg.render` and the ``rasterize`` command
+        use).  Group layers, clip paths and masks are float32 either way.
 
     Returns
     -------
     raster.pixels.canvas.Canvas
-        Premultiplied float32 RGBA canvas of the output size.
+        Premultiplied RGBA canvas of the output size.
 
     Raises
     ------
@@ -149,14 +155,14 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
         raise SVGError('render_tree needs a raster.tree.Tree, got %s' % type(tree).__name__)
     tol = _positive('tolerance', tolerance)
     w, h, sx, sy = output_size(tree.width, tree.height, width, height, zoom)
-    canvas = Canvas(w, h, background)
+    canvas = Canvas(w, h, background, dtype)
     base = Affine.scale(sx, sy)
     if node_id is None:
         node, t = tree.root, base
     else:
         node, t = find_node(tree, node_id)
         t = base @ t
-    Renderer(tol).draw(node, t, canvas)
+    Renderer(tol, canvas.dtype).draw(node, t, canvas)
     return canvas
 
 

@@ -24,7 +24,12 @@ from ..pixels.scan import path_coverage
 from ..geometry.transform import Affine
 from ..tree import LinearGradient
 
-__all__ = ['gradient_colors', 'draw_pixels', 'sample', 'resample_window']
+__all__ = ['gradient_colors', 'draw_pixels', 'sample', 'resample_window', 'STRIP_PIXELS']
+
+#: Pixels of an image, gradient or pattern window computed and composited at
+#: a time (the float32 colours of a strip are what is held, not those of the
+#: whole window).
+STRIP_PIXELS = 1 << 18
 
 _F32 = np.float32
 
@@ -442,11 +447,15 @@ def draw_pixels(n, t, canvas, tol):
                * cm.data[ay0 - cm.y0:ay1 - cm.y0, ax0 - cm.x0:ax1 - cm.x0])
         x0, y0 = ax0, ay0
     h, w = cov.shape
-    col = resample_window(pix, inv, x0, y0, w, h, 'bilinear' if n.smooth else 'nearest')
-    if col is None:
-        return
-    _apply_coverage(col, cov)
-    canvas.composite(col, x0, y0, n.opacity)
+    flt = 'bilinear' if n.smooth else 'nearest'
+    step = max(1, STRIP_PIXELS // w)
+    for r0 in range(0, h, step):        # strips of rows: bounded temporaries
+        k = cov[r0:r0 + step]
+        col = resample_window(pix, inv, x0, y0 + r0, w, len(k), flt)
+        if col is None:
+            continue
+        _apply_coverage(col, k)
+        canvas.composite(col, x0, y0 + r0, n.opacity)
 
 
 def _apply_coverage(col, cov):
