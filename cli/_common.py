@@ -15,7 +15,9 @@
 """
 
 import argparse
+import contextlib
 import errno
+import gc
 import io
 import os
 import stat
@@ -89,8 +91,28 @@ def error_message(exc):
     return _one_line('internal error: %s: %s' % (type(exc).__name__, exc))
 
 
+@contextlib.contextmanager
+def collector_paused():
+    """Python's cyclic garbage collector paused for the duration, then
+    restored as it was.
+
+    A command is a short process that builds tens of thousands of
+    long-lived objects (the document's tree), which the collector would
+    keep rescanning: a sixth of a chart's tree building.  The commands opt
+    in through :func:`run`; the library itself never changes the
+    collector's state."""
+    was = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if was:
+            gc.enable()
+
+
 def run(prog, body, parser, argv):
-    """Parse ``argv`` with ``parser`` and call ``body(args)``.
+    """Parse ``argv`` with ``parser`` and call ``body(args)`` with the
+    garbage collector paused (:func:`collector_paused`).
 
     Returns the exit status: ``body``'s return value (default 0), 1 after an
     error (one line on stderr), 2 for usage errors."""
@@ -103,7 +125,8 @@ def run(prog, body, parser, argv):
                             print('%s: warning: %s' % (prog, _one_line(message)),
                                   file=sys.stderr))
     try:
-        rc = body(args)
+        with collector_paused():
+            rc = body(args)
     except UsageError as e:
         parser.print_usage(sys.stderr)
         print('%s: error: %s' % (prog, _one_line(e)), file=sys.stderr)

@@ -26,9 +26,7 @@ The parser never imports the renderer: the tree is the only contract.
 (20.0, 10.0, (1.0, 0.0, 0.0, 1.0))
 """
 
-import contextlib
 import dataclasses
-import gc
 import math
 from typing import Optional
 
@@ -120,40 +118,17 @@ def build_tree(root, options: Optional[Options] = None, image_cache: Optional[di
     tol = options.tolerance
     if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
         raise SVGError('tolerance must be a positive number, got %r' % (tol,))
-    with _gc_paused():
-        found = {'id': [], 'requiredExtensions': [], 'systemLanguage': []}
-        styles = declared_styles(root, options.extra_css, found)
-        by_id = {}
-        for el in found['id']:
-            i = el.get('id')
-            if i not in by_id:
-                by_id[i] = el
-        cache = Cache(options=options, root=root, styles=styles, by_id=by_id,
-                      conditional=set(found['requiredExtensions']) | set(found['systemLanguage']),
-                      converters=CONVERTERS, parse_nested=build_tree,
-                      image_cache={} if image_cache is None else image_cache)
-        return convert_root(root, cache)
-
-
-@contextlib.contextmanager
-def _gc_paused():
-    """Pause Python's cyclic garbage collector while a tree is built.
-
-    Building allocates tens of thousands of small objects (nodes, paints,
-    lists) that all stay alive, and the collector would keep scanning them
-    (a sixth of the build time of a chart).  Afterwards the objects alive
-    are moved to the oldest generation (``gc.freeze()`` then
-    ``gc.unfreeze()``, which moves lists without scanning them) rather than
-    scanned as young objects right away: the tree is long-lived.  That is
-    skipped when the application has frozen objects of its own (the pair
-    would unfreeze them) or had the collector disabled."""
-    was = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if was:
-            if gc.get_freeze_count() == 0:
-                gc.freeze()
-                gc.unfreeze()
-            gc.enable()
+    # (the library leaves Python's garbage collector as the application set
+    # it; the commands pause it while they run: raster_cli._common.run)
+    found = {'id': [], 'requiredExtensions': [], 'systemLanguage': []}
+    styles = declared_styles(root, options.extra_css, found)
+    by_id = {}
+    for el in found['id']:
+        i = el.get('id')
+        if i not in by_id:
+            by_id[i] = el
+    cache = Cache(options=options, root=root, styles=styles, by_id=by_id,
+                  conditional=set(found['requiredExtensions']) | set(found['systemLanguage']),
+                  converters=CONVERTERS, parse_nested=build_tree,
+                  image_cache={} if image_cache is None else image_cache)
+    return convert_root(root, cache)
