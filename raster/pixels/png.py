@@ -45,31 +45,37 @@ def _chunk(kind, payload):
             + struct.pack('>I', zlib.crc32(payload, zlib.crc32(kind)) & 0xFFFFFFFF))
 
 
-def _filtered(raw, prev=None):
+def _filtered(raw, prev=None, scratch=None):
     """Rows of ``raw`` ((H, N) uint8) each prefixed with its filter type
     (0 None, 1 Sub, 2 Up) and filtered by it: (H, N + 1) uint8.  ``prev``
     ((N,) uint8) is the image row above ``raw[0]`` (None: ``raw`` starts the
-    image, where Up sees a row of zeros)."""
+    image, where Up sees a row of zeros).  ``scratch``: optional (3, h, N)
+    uint8 work space, h >= H, reused from strip to strip."""
     H, N = raw.shape
     out = np.empty((H, N + 1), np.uint8)
-    up = np.empty_like(raw)
+    if scratch is None or scratch.shape[1] < H or scratch.shape[2] != N:
+        scratch = np.empty((3, H, N), np.uint8)
+    up, sub, tmp = scratch[0, :H], scratch[1, :H], scratch[2, :H]
     if prev is None:
         up[:1] = raw[:1]
     else:
         np.subtract(raw[:1], prev, out=up[:1])
     np.subtract(raw[1:], raw[:-1], out=up[1:])
-    sub = np.empty_like(raw)
     sub[:, :4] = raw[:, :4]
     np.subtract(raw[:, 4:], raw[:, :-4], out=sub[:, 4:])
 
     def cost(a):        # sum of |byte as int8|: min(b, 256 - b) per byte
-        return np.minimum(a, np.uint8(0) - a).sum(1, dtype=np.uint64)
+        np.negative(a, out=tmp)
+        np.minimum(a, tmp, out=tmp)
+        return tmp.sum(1, dtype=np.uint32)          # (128 N < 2**32)
     costs = np.stack([cost(raw), cost(sub), cost(up)])
     kind = np.argmin(costs, axis=0).astype(np.uint8)      # ties: the lower type
     out[:, 0] = kind
     for k, src in ((0, raw), (1, sub), (2, up)):
-        rows = kind == k
-        if rows.any():
+        rows = np.flatnonzero(kind == k)
+        if len(rows) == H:
+            out[:, 1:] = src
+        elif len(rows):
             out[rows, 1:] = src[rows]
     return out
 
@@ -184,7 +190,7 @@ def encode_png_strips(width, height, strips, level=DEFAULT_LEVEL, dpi=None):
     parts = [_SIGNATURE, _chunk(b'IHDR', struct.pack('>IIBBBBB', W, H, 8, 6, 0, 0, 0)), phys]
     pending = []                    # compressed bytes not yet in an IDAT chunk
     npend = 0
-    prev = None
+    prev = scratch = None
     rows = 0
     for strip in strips:
         a = np.asarray(strip)
@@ -197,7 +203,9 @@ def encode_png_strips(width, height, strips, level=DEFAULT_LEVEL, dpi=None):
         if rows > H:
             raise CanvasError('PNG strips hold more than %d rows' % H)
         raw = np.ascontiguousarray(a).reshape(len(a), W * 4)
-        z = co.compress(memoryview(_filtered(raw, prev)).cast('B'))
+        if scratch is None or scratch.shape[1] < len(a):
+            scratch = np.empty((3, len(a), W * 4), np.uint8)
+        z = co.compress(memoryview(_filtered(raw, prev, scratch)).cast('B'))
         prev = raw[-1].copy()
         if z:
             pending.append(z)
