@@ -45,3 +45,32 @@ def test_a_command_body_runs_with_the_collector_paused(monkeypatch, tmp_path):
     # a failing run restores it too
     assert rasterize([str(tmp_path / 'missing.svg'), str(tmp_path / 'b.png')]) == 1
     assert gc.isenabled()
+
+
+def run_code(code, env_extra=None):
+    import os
+    import subprocess
+    import sys
+    env = {k: v for k, v in os.environ.items() if k != 'OPENBLAS_NUM_THREADS'}
+    env.update(env_extra or {})
+    return subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
+                          env=env, check=True).stdout.split()
+
+
+BLAS = '''
+import os, sys
+from raster_cli import _common
+sys.argv = ['rasterize', '--version']
+try:
+    _common.run('rasterize', lambda a: 0, _common.Parser(prog='rasterize'), %s)
+except SystemExit:
+    pass
+print(os.environ.get('OPENBLAS_NUM_THREADS', '-'))
+'''
+
+
+def test_from_the_command_line_numpy_gets_one_blas_thread():
+    assert run_code(BLAS % 'None') == ['1']
+    assert run_code(BLAS % 'None', {'OPENBLAS_NUM_THREADS': '3'}) == ['3']   # the user's
+    assert run_code(BLAS % '[]') == ['-']          # called with arguments: not a command line
+    assert run_code('import numpy\n' + BLAS % 'None') == ['-']    # numpy already loaded
