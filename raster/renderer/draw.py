@@ -88,7 +88,7 @@ class Renderer:
         # outside the content)
         if g.filters:
             # the filter machinery loads with the first filter drawn
-            from .filters import apply_filters, filter_box, filter_pixel_box
+            from .filters import filter_box, filter_layer, filter_pixel_box
             px = filter_pixel_box(filter_box(g.filters, ct), canvas.width, canvas.height)
         else:
             box = group_box(g, ct)
@@ -102,12 +102,7 @@ class Renderer:
         for c in g.children:
             self.node(c, lt, layer)
         if g.filters:
-            lw, lh = layer.width, layer.height
-            if layer.dtype == np.float32:
-                layer.data[...] = apply_filters(g.filters, layer.data, lt, draw=self._draw_new)
-            else:                   # filters work on float32 pixels
-                layer.store(0, lh, 0, lw, apply_filters(g.filters, layer.read(0, lh, 0, lw), lt,
-                                                        draw=self._draw_new))
+            filter_layer(g.filters, layer, lt, draw=self._draw_new)
         if g.clip_path is not None:
             layer.scale(self.clip_coverage(g.clip_path, lt, layer.width, layer.height))
         if g.mask is not None:

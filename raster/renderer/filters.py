@@ -25,7 +25,7 @@ from ..pixels.effects import FilterImage
 from ..geometry.transform import Affine
 from ..tree import filter as F
 
-__all__ = ['apply_filters', 'filter_box', 'filter_pixel_box']
+__all__ = ['apply_filters', 'filter_layer', 'filter_box', 'filter_pixel_box']
 
 _UNBOUNDED = 1e9
 
@@ -124,10 +124,67 @@ class _Run:
 
 
 def _apply_one(f, data, t, tol, draw=None):
+    r = _filter_image(f, data, t, tol, draw)
+    if r is None:
+        return np.zeros_like(data)
+    img, (rx0, ry0, rx1, ry1) = r
+    img = img.data
+    h, w = data.shape[:2]
+    if (rx0, ry0, rx1, ry1) == (0, 0, w, h):
+        return img.copy() if np.may_share_memory(img, data) else img
+    result = np.zeros_like(data)
+    result[ry0:ry1, rx0:rx1] = img
+    return result
+
+
+def filter_layer(filters, layer, t, draw=None):
+    """:func:`apply_filters` on a :class:`~raster.pixels.canvas.Canvas`
+    layer, in place.
+
+    The filters work on float32 pixels read from the layer once; the last
+    filter's result is written back a strip of rows at a time, an image of
+    one colour (a blurred shadow) from its alpha channel alone, so an
+    8-bit layer is never held as two float32 copies.
+
+    Parameters
+    ----------
+    filters : sequence of raster.tree.filter.Filter
+    layer : raster.pixels.canvas.Canvas
+    t, draw :
+        As for :func:`apply_filters`.
+    """
+    w, h = layer.width, layer.height
+    data = fx.check_image(layer.read(0, h, 0, w), 'layer')
+    for f in filters[:-1]:
+        data = _apply_one(f, data, t, None, draw)
+    r = _filter_image(filters[-1], data, t, None, draw)
+    del data
+    layer.data[...] = 0
+    if r is None:
+        return
+    img, (rx0, ry0, rx1, ry1) = r
+    step = max(1, _STRIP_PIXELS // max(1, rx1 - rx0))
+    colour = None if not img.solid else np.append(img.colour, np.float32(1.0))
+    for y in range(0, ry1 - ry0, step):
+        if colour is not None:
+            px = img.alpha[y:y + step, :, None] * colour
+        else:
+            px = img.data[y:y + step]
+        layer.store(ry0 + y, ry0 + y + len(px), rx0, rx1, px)
+
+
+#: Pixels of a filter result written into a layer at a time (filter_layer).
+_STRIP_PIXELS = 1 << 18
+
+
+def _filter_image(f, data, t, tol, draw=None):
+    """One filter on ``data`` ((H, W, 4) float32): ``(FilterImage in sRGB,
+    (x0, y0, x1, y1) pixel region)`` (transparent outside the region), or
+    None when the region is empty."""
     h, w = data.shape[:2]
     rx0, ry0, rx1, ry1 = _pixel_rect(_device_box(f.region, t), w, h)
     if rx1 <= rx0 or ry1 <= ry0:
-        return np.zeros_like(data)
+        return None
     rt = Affine.translate(-rx0, -ry0) @ t
     rw, rh = rx1 - rx0, ry1 - ry0
     src = np.ascontiguousarray(data[ry0:ry1, rx0:rx1])
@@ -177,12 +234,7 @@ def _apply_one(f, data, t, tol, draw=None):
         prev = (img.clip(sub), out_lin, area)
         if p.result:
             named[p.result] = prev
-    img = fx.convert_space(prev[0], prev[1], False).data
-    if (rx0, ry0, rx1, ry1) == (0, 0, w, h):
-        return img.copy() if np.may_share_memory(img, data) else img
-    result = np.zeros_like(data)
-    result[ry0:ry1, rx0:rx1] = img
-    return result
+    return fx.convert_space(prev[0], prev[1], False), (rx0, ry0, rx1, ry1)
 
 
 # -- the primitives ------------------------------------------------------------------
