@@ -154,7 +154,9 @@ def filter_layer(filters, layer, t, draw=None):
         As for :func:`apply_filters`.
     """
     w, h = layer.width, layer.height
-    data = fx.check_image(layer.read(0, h, 0, w), 'layer')
+    data = _layer_source(layer) if len(filters) == 1 else None
+    if data is None:
+        data = fx.check_image(layer.read(0, h, 0, w), 'layer')
     for f in filters[:-1]:
         data = _apply_one(f, data, t, None, draw)
     r = _filter_image(filters[-1], data, t, None, draw)
@@ -175,29 +177,65 @@ def filter_layer(filters, layer, t, draw=None):
 
 #: Pixels of a filter result written into a layer at a time (filter_layer).
 _STRIP_PIXELS = 1 << 18
+#: Largest difference (levels) between an 8-bit layer's colour channels and
+#: its brightest pixel's straight colour times its alpha for the layer to
+#: count as painted in that one colour (the rounding of two levels).
+_SOLID_LEVELS = 1.0
+
+
+def _layer_source(layer):
+    """An 8-bit layer painted in one colour (a shadow's shape) as a
+    FilterImage of its alpha channel and that colour, found without a
+    float32 copy of the layer; None for anything else."""
+    d = layer.data
+    if d.dtype != np.uint8:
+        return None
+    flat = d.reshape(-1, 4)
+    i = int(np.argmax(flat[:, 3]))
+    am = int(flat[i, 3])
+    c = np.zeros(3, np.float32) if am == 0 else (flat[i, :3] / np.float32(am))
+    step = max(1, (1 << 14) // max(1, layer.width))       # blocks that stay in cache
+    for y in range(0, layer.height, step):
+        blk = d[y:y + step].astype(np.float32)
+        a = blk[..., 3]
+        for k in range(3):
+            if np.abs(blk[..., k] - a * c[k]).max() > _SOLID_LEVELS:
+                return None
+    return FilterImage(alpha=np.divide(d[..., 3], np.float32(255), dtype=np.float32),
+                       colour=np.clip(c, 0.0, 1.0).astype(np.float32))
 
 
 def _filter_image(f, data, t, tol, draw=None):
-    """One filter on ``data`` ((H, W, 4) float32): ``(FilterImage in sRGB,
-    (x0, y0, x1, y1) pixel region)`` (transparent outside the region), or
-    None when the region is empty."""
-    h, w = data.shape[:2]
+    """One filter on ``data`` ((H, W, 4) float32, or a one-colour
+    FilterImage of that size): ``(FilterImage in sRGB, (x0, y0, x1, y1)
+    pixel region)`` (transparent outside the region), or None when the
+    region is empty."""
+    solid = isinstance(data, FilterImage)
+    h, w = (data.alpha if solid else data).shape[:2]
     rx0, ry0, rx1, ry1 = _pixel_rect(_device_box(f.region, t), w, h)
     if rx1 <= rx0 or ry1 <= ry0:
         return None
     rt = Affine.translate(-rx0, -ry0) @ t
     rw, rh = rx1 - rx0, ry1 - ry0
-    src = np.ascontiguousarray(data[ry0:ry1, rx0:rx1])
+    if solid:
+        src_alpha = np.ascontiguousarray(data.alpha[ry0:ry1, rx0:rx1])
+    else:
+        src = np.ascontiguousarray(data[ry0:ry1, rx0:rx1])
+        src_alpha = src[..., 3]
     full = (0, 0, rw, rh)
     # resvg's scale of a transform: the lengths of the matrix rows
     run = _Run(rt, math.hypot(t.a, t.c), math.hypot(t.b, t.d), fx.check_tolerance(tol),
-               src.shape, draw)
+               (rh, rw, 4), draw)
     sources = {}                      # SourceGraphic / SourceAlpha, made on first use
 
     def source(name):
         if name not in sources:
-            img = FilterImage.of(src) if name is F.Source.GRAPHIC else \
-                FilterImage(alpha=src[..., 3], colour=np.zeros(3, np.float32))
+            if name is not F.Source.GRAPHIC:
+                img = FilterImage(alpha=src_alpha, colour=np.zeros(3, np.float32))
+            elif solid:
+                img = FilterImage(alpha=src_alpha, colour=data.colour)
+            else:
+                img = FilterImage.of(src)
             sources[name] = (img, False, full)
         return sources[name]
 

@@ -73,3 +73,37 @@ def test_layers_masks_and_clips_take_a_quarter_of_the_memory():
     # (premultiplied: where the alpha is a level or two, straight colours
     # of the two differ by much more, as any demultiplied 8-bit colour)
     assert np.abs(f.to_rgba8(True).astype(int) - c.to_rgba8(True)).max() <= 2
+
+
+SHADOW = '''<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d">
+<filter id="b" x="-10%%" y="-10%%" width="120%%" height="120%%"><feGaussianBlur stdDeviation="6"/></filter>
+<rect x="20%%" y="20%%" width="60%%" height="60%%" fill="%s" filter="url(#b)"/></svg>'''
+
+
+@pytest.mark.parametrize('colour', ['black', '#3366cc'])
+def test_a_blurred_one_colour_layer_is_filtered_from_its_alpha(monkeypatch, colour):
+    """An 8-bit layer painted in one colour (a shadow) is filtered from its
+    alpha channel, never read as float32 RGBA (16 bytes a pixel): the same
+    picture as the float32 render within two levels."""
+    from raster.pixels.canvas import Canvas
+    n = 300
+    tree = load_svg((SHADOW % (n, n, colour)).encode())
+    f = render_tree(tree)
+    reads = []
+    real = Canvas.read
+
+    def read(self, *a):
+        reads.append((self.dtype, self.width, self.height))
+        return real(self, *a)
+    monkeypatch.setattr(Canvas, 'read', read)
+    c = render_tree(tree, dtype='uint8')
+    assert reads == []
+    assert np.abs(f.to_rgba8(True).astype(int) - c.to_rgba8(True)).max() <= 2
+    assert c.data[n // 2, n // 2, 3] == 255 and c.data[2, 2, 3] == 0
+    # a layer of two colours is read once
+    doc = (SHADOW % (n, n, colour)).replace(
+        '<rect x', '<g filter="url(#b)"><rect width="50%" height="50%" fill="red"/><rect x'
+    ).replace(' filter="url(#b)"/></svg>', '/></g></svg>')
+    reads.clear()
+    render_tree(load_svg(doc.encode()), dtype='uint8')
+    assert len(reads) == 1 and reads[0][0] == np.uint8
