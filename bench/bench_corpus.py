@@ -2,8 +2,10 @@
 
 Run from the repository root::
 
-    python bench/bench_corpus.py [--repeat N] [--files PATTERN] [--widths natural,2000]
+    python bench/bench_corpus.py [--mode process|inprocess|both] [--repeat N]
+                                 [--files PATTERN] [--widths natural,2000,8000]
                                  [--renderers raster,resvg,cairosvg] [--timeout S]
+                                 [--python VENV/bin/python] [--rasterize CMD]
                                  [--markdown OUT.md] [--json OUT.json] [--save DIR]
 
 Every file of the corpus (default ``../shared/corpus/*.svg`` relative to the
@@ -25,7 +27,25 @@ own PNG encode:
 * cairosvg: ``cairosvg.svg2png(bytestring=..., url=path, unsafe=False,
   output_width=W)`` (``output_width`` omitted at natural size).
 
-Method.  Each (file, width, renderer) cell runs in a fresh worker process
+Whole-process mode (``--mode process``, and ``both``, the default): what a
+user running one renderer per file gets.  Every render is a fresh process:
+``rasterize in.svg out.png [--width W] --font-dir ...`` for raster, and
+``python -c`` programs (:data:`RESVG_PROGRAM`, :data:`CAIROSVG_PROGRAM`)
+that import the peer, render the file with the options above and write the
+PNG.  Each (file, width) runs ``--repeat`` rounds, each renderer once per
+round in a rotated order, so load from elsewhere falls on all alike.
+Reported: the medians of the wall-clock time seen by this driver, of the
+process's user + system time (``wait4``) and of its peak RSS (``/usr/bin/time
+-f %M``; ``ru_maxrss`` from ``wait4``, the same number, without it); raster
+over the faster peer, raster's RSS over resvg's, and per width the
+geometric mean and the files beyond the targets of issue 17 (1.5x the
+faster peer's time, 2x resvg's peak RSS).  ``--python`` names the
+interpreter of the peers and of the in-process workers, and ``rasterize``
+beside it is raster's command: time an installed copy (``pip install .``
+into a venv compiles the bytecode; an editable install under
+``PYTHONDONTWRITEBYTECODE`` recompiles raster at every start).
+
+In-process method.  Each (file, width, renderer) cell runs in a fresh worker process
 (this script with ``--worker``): it imports the renderer, renders a tiny
 warm-up document through the same code path (this loads lazily imported
 modules and Pillow's PNG plugin), resets the kernel's peak-RSS mark
