@@ -119,7 +119,8 @@ def _body(args):
                     languages=languages_of(args))
     crop = args.id is not None and not args.id_page
     canvas = render_tree(tree, width=args.width, height=args.height, zoom=args.zoom,
-                         background=bg, node_id=args.id, tolerance=args.tolerance, crop=crop)
+                         background=bg, node_id=args.id, tolerance=args.tolerance, crop=crop,
+                         dtype='uint8')
     res = None
     if args.dpi is not None:
         # the resolution at which the document keeps its physical size
@@ -127,9 +128,9 @@ def _body(args):
         sx, sy = output_geometry(tree, args.width, args.height, args.zoom, args.id,
                                  crop).scale
         res = (dpi * sx, dpi * sy)
-    from raster.pixels.encode import encode
-    write_output(args.output, encode(canvas.to_rgba8(), fmt, dpi=res, quality=args.quality,
-                                     compress_level=args.compress_level))
+    from raster.pixels.encode import encode_canvas
+    write_output(args.output, encode_canvas(canvas, fmt, dpi=res, quality=args.quality,
+                                            compress_level=args.compress_level))
     return 0
 
 

@@ -200,7 +200,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
         rect = parse_path('M0 0H%rV%rH0Z' % (W, H))
         kids.insert(0, PathNode(path=rect, fill=Fill(SolidPaint(bg))))
     out = Tree(width=float(Wi), height=float(Hi), root=Group(children=kids), ids=tree.ids)
-    png = encode(render_tree(out).to_rgba8(), 'png')
+    png = encode(render_tree(out, dtype='uint8').to_rgba8(), 'png')
     if write_to is None:
         return png
     if hasattr(write_to, 'write'):

@@ -232,7 +232,7 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
                     resources_dir=resources_dir,
                     languages=tuple(languages))
     canvas = render_tree(tree, width=width, height=height, zoom=zoom, background=bg,
-                         node_id=id, tolerance=tolerance, crop=crop)
+                         node_id=id, tolerance=tolerance, crop=crop, dtype=np.uint8)
     return canvas.to_rgba8(premultiplied=bool(premultiplied))
 
 

@@ -12,8 +12,6 @@ import dataclasses
 
 from ..geometry.pathdata import rect_path
 from ..tree import BlendMode, ClipPath, Fill, Group, ImageNode, PathNode, SolidPaint
-from .clipmask import EMPTY, build_mask, clip_property, cut_masks
-from .filters import resolve_filter_property
 from .refs import reference
 from .style import BLACK, opacity
 
@@ -78,6 +76,8 @@ def effects(el, own, state, cache, kids, t=None):
         if e is None:
             e = memo[o] = Effects(opacity=opacity(o))
         return e
+    # clip paths, masks and filters load with the first element that has one
+    from .clipmask import EMPTY, build_mask, clip_property, cut_masks
     mask = None
     if t is not None and not t.is_identity and ('clip-path' in own or 'mask' in own):
         state = state.sub(transform=t)
@@ -96,6 +96,7 @@ def effects(el, own, state, cache, kids, t=None):
     v = own.get('filter')
     filters = None
     if v is not None and v.strip() != 'none':
+        from .filters import resolve_filter_property
         filters = resolve_filter_property(el, v, kids, state, cache)
         if filters is None:         # invalid reference, empty filter: not rendered
             return NOT_DRAWN

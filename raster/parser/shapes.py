@@ -26,7 +26,6 @@ from ..geometry.pathdata import (circle_path, ellipse_path, line_path, parse_pat
 from ..tree import Fill, FillRule, Group, PathNode, SolidPaint, Stroke
 from .context import SVG_NS
 from .effects import NO_EFFECTS, effects
-from .markers import build_markers
 from .paint import paint
 from .style import (BLACK, length, length_context, opacity, paint_order, style_of,
                     transform_of)
@@ -82,6 +81,7 @@ def convert_shape(el, state, cache, parent):
         fill, stroke = fill_and_stroke(inh, ctx, path, state, cache)
     markers = None
     if has_markers and not hidden and not clip_mode:
+        from .markers import build_markers      # (loaded with the first marker)
         placement = _placement_path(el, name, path, ctx, cache)
         markers = build_markers(el, name, path, placement, inh, ctx, state.sub(transform=t),
                                 cache, fill, stroke)
@@ -171,6 +171,10 @@ def path_data(d, tol, cache):
     return p
 
 
+#: Characters of path data parsed in one vectorized pass (see _element_paths).
+_PATHS_CHARS = 1 << 18
+
+
 def _element_paths(cache):
     """``{path element: Path}`` for the document's arc-free path data,
     parsed in one vectorized pass on first use (a map with thousands of
@@ -191,13 +195,22 @@ def _element_paths(cache):
                 if len(ds) >= 65536:
                     break
     if len(ds) >= 32:
+        # in passes of about _PATHS_CHARS characters: a pass's temporaries are
+        # some tens of bytes per character of path data
         ds = list(ds)
-        try:
-            parsed = parse_paths(ds, cache.options.tolerance)
-        except RasterError:
-            parsed = None            # one of them overflows: parsed one by one later
-        if parsed is not None:
-            memo.update(zip(ds, parsed))
+        i = 0
+        while i < len(ds):
+            j, n = i, 0
+            while j < len(ds) and (j == i or n + len(ds[j]) <= _PATHS_CHARS):
+                n += len(ds[j])
+                j += 1
+            part = ds[i:j]
+            i = j
+            try:
+                parsed = parse_paths(part, cache.options.tolerance)
+            except RasterError:
+                continue            # one of them overflows: parsed one by one later
+            memo.update(zip(part, parsed))
     paths = cache.memo['element_paths'] = {el: memo[d] for el, d in els if d in memo}
     return paths
 

@@ -17,7 +17,6 @@ window actually drawn only.
 import math
 
 import numpy as np
-from PIL import Image
 
 from ..errors import RasterError
 from ..geometry.path import Path
@@ -26,7 +25,12 @@ from ..geometry.transform import Affine
 from ..pixels.mesh import mesh_gradient
 from ..tree import LinearGradient
 
-__all__ = ['gradient_colors', 'mesh_colors', 'draw_pixels', 'sample', 'resample_window']
+__all__ = ['gradient_colors', 'mesh_colors', 'draw_pixels', 'sample', 'resample_window', 'STRIP_PIXELS']
+
+#: Pixels of an image, gradient or pattern window computed and composited at
+#: a time (the float32 colours of a strip are what is held, not those of the
+#: whole window).
+STRIP_PIXELS = 1 << 18
 
 _F32 = np.float32
 
@@ -425,12 +429,13 @@ def _radial_param(p, px, py):
 # Raster images
 # ---------------------------------------------------------------------------
 
-#: Pillow filters by name, and the source margin (pixels) each one reads
-#: around a sample position.  resvg draws smooth images with a bicubic
-#: (Mitchell) filter; Pillow has only the sharper Catmull-Rom-like cubic,
-#: which lands further from the suite's references than bilinear does.
-_FILTERS = {'nearest': (Image.Resampling.NEAREST, 1),
-            'bilinear': (Image.Resampling.BILINEAR, 2)}
+#: Pillow filters by name (``PIL.Image.Resampling`` members, looked up
+#: when Pillow is loaded, with the first image), and the source margin
+#: (pixels) each one reads around a sample position.  resvg draws smooth
+#: images with a bicubic (Mitchell) filter; Pillow has only the sharper
+#: Catmull-Rom-like cubic, which lands further from the suite's references
+#: than bilinear does.
+_FILTERS = {'nearest': ('NEAREST', 1), 'bilinear': ('BILINEAR', 2)}
 #: Largest edge padding (source pixels) of a resampled crop; only images
 #: drawn more than this many times smaller than their size could show it.
 _MAX_PAD = 512
@@ -491,11 +496,15 @@ def draw_pixels(n, t, canvas, tol):
                * cm.data[ay0 - cm.y0:ay1 - cm.y0, ax0 - cm.x0:ax1 - cm.x0])
         x0, y0 = ax0, ay0
     h, w = cov.shape
-    col = resample_window(pix, inv, x0, y0, w, h, 'bilinear' if n.smooth else 'nearest')
-    if col is None:
-        return
-    _apply_coverage(col, cov)
-    canvas.composite(col, x0, y0, n.opacity)
+    flt = 'bilinear' if n.smooth else 'nearest'
+    step = max(1, STRIP_PIXELS // w)
+    for r0 in range(0, h, step):        # strips of rows: bounded temporaries
+        k = cov[r0:r0 + step]
+        col = resample_window(pix, inv, x0, y0 + r0, w, len(k), flt)
+        if col is None:
+            continue
+        _apply_coverage(col, k)
+        canvas.composite(col, x0, y0 + r0, n.opacity)
 
 
 def _apply_coverage(col, cov):
@@ -554,7 +563,9 @@ def resample_window(pix, inv, x0, y0, w, h, filter='bilinear'):
     (h, w, 4) float32 ndarray or None
         Premultiplied RGBA in [0, 1]; None when the window is empty.
     """
+    from PIL import Image
     resample, margin = _FILTERS[filter]
+    resample = Image.Resampling[resample]
     ih, iw = pix.shape[:2]
     if w <= 0 or h <= 0:
         return None
@@ -633,6 +644,7 @@ def _pil(rgba, mode):
     """A Pillow image of (h, w, 4) uint8 pixels: ``mode`` 'RGBa' for
     premultiplied ones, 'RGBA' for straight ones (nearest only: Pillow
     premultiplies 'RGBA' itself for the other filters)."""
+    from PIL import Image
     rgba = np.ascontiguousarray(rgba)
     return Image.frombuffer(mode, (rgba.shape[1], rgba.shape[0]), rgba, 'raw', mode, 0, 1)
 
