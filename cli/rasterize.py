@@ -34,9 +34,10 @@ natural size, so the document keeps its physical size.
 
 Large PNG output is rendered in strips of rows (windows of the whole
 render, equal to it) and written as the strips finish, so memory stays
-within ``--memory-budget`` (MB of strip pixels, default 256) whatever the
-size, up to 4 000 million pixels; ``--jobs`` spreads the strips of one
-large image over worker processes.  Other formats are encoded by Pillow
+within ``--memory-budget`` (MB of strip pixels per process, default 256)
+whatever the size, up to 4 000 million pixels; ``--jobs`` spreads the
+strips of one large image over worker processes (for an image beyond the
+budget: the same strips and file bytes whatever the number of workers).  Other formats are encoded by Pillow
 from the whole image (at most 100 million pixels).
 
 Many files: every input (folders are walked for ``.svg``/``.svgz``,
@@ -119,8 +120,8 @@ def build_parser():
                    help='worker processes for many files, the strips of a large image or '
                         'tiles (default: the number of CPUs)')
     g.add_argument('--memory-budget', type=float, metavar='MB', default=256.0,
-                   help='memory for the pixels being rendered at once, in MB (default 256): '
-                        'larger PNG output is rendered and written in strips')
+                   help='memory for the pixels a process renders at once, in MB (default '
+                        '256): larger PNG output is rendered and written in strips')
     g.add_argument('--tiles', metavar='DIR',
                    help='write an XYZ pyramid of 256 px PNG tiles DIR/z/x/y.png and '
                         'DIR/tiles.json instead of one image')
@@ -258,7 +259,11 @@ def convert(args, dpi, fmt, bg, inp, out, jobs=1):
         from raster.pixels.png import DEFAULT_LEVEL, PNGWriter
         level = DEFAULT_LEVEL if args.compress_level is None else args.compress_level
         workers = max(1, jobs)
-        spans = strip_spans(g.height, strip_rows(g.width, budget, workers))
+        # the budget is per process: the strips are the same whatever the
+        # number of workers (so is the file), and a worker pays the fixed
+        # cost of a strip (the tree walked, the outlines crossing it
+        # flattened) no more often than one process alone would
+        spans = strip_spans(g.height, strip_rows(g.width, budget))
         if len(spans) == 1 and workers > 1:
             spans = strip_spans(g.height, -(-g.height // workers))
         job = (tree, kw, level)

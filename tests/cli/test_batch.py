@@ -208,3 +208,14 @@ def test_tiles_usage_errors(tmp_path, capsys):
     assert rasterize.main([src, '--tiles', d, '--min-zoom', '3', '--max-zoom', '1']) == 2
     assert rasterize.main([src, '--tiles', d, '--max-zoom', '30']) == 1
     assert not os.path.exists(d)
+
+
+def test_the_file_does_not_depend_on_the_number_of_workers(tmp_path):
+    src = write(tmp_path, 'big.svg', doc(300, 200, 60, 'orange'))
+    outs = []
+    for jobs in ('1', '2'):
+        out = tmp_path / ('j%s.png' % jobs)
+        assert rasterize.main([src, str(out), '--width', '500', '--memory-budget', '0.5',
+                               '--jobs', jobs]) == 0
+        outs.append(out.read_bytes())
+    assert outs[0] == outs[1]
