@@ -461,34 +461,68 @@ def _shape_clusters(text, owner, spans, fallback, memo, starts):
 def _fallbacks(text, runs, owner, spans, fonts, fallback, memo, gid, cl, adv, xo, yo, fi):
     """Replace the glyphs of clusters with a missing glyph by those of a
     fallback font (up to 8 fonts tried per cluster, each shaping the whole
-    chunk, as usvg does)."""
+    chunk, as usvg does).
+
+    A fallback font may join more characters into one cluster than the
+    first font did (an emoji sequence with ZWJ, a flag, a skin tone): the
+    replacement then covers all of them and the first font's clusters
+    inside it are dropped.
+    """
+    n = len(text)
     st, en = _groups(cl)
-    out = []
-    for a, b in zip(st.tolist(), en.tolist()):
-        c = int(cl[a])
-        grp = (gid[a:b], cl[a:b], adv[a:b], xo[a:b], yo[a:b], fi[a:b])
+    starts = cl[st]
+    # end (exclusive, logical order) of every cluster: the next cluster start
+    srt = np.unique(starts)
+    nxt = np.r_[srt[1:], n]
+    cend = nxt[np.searchsorted(srt, starts)]
+    missing = np.logical_or.reduceat(gid == 0, st) if len(st) else np.zeros(0, bool)
+    repl = {}           # group index -> replacement arrays
+    covered = np.zeros(n, bool)     # characters taken by a replacement
+    for k in np.flatnonzero(missing).tolist():
+        c = int(starts[k])
+        if covered[c]:
+            continue
         ch = text[c]
-        if (grp[0] == 0).any() and ch not in ' \u00a0\t' and ord(ch) >= 32:
-            font = fonts[int(fi[a])]
-            tried = {id(font)}
-            for _ in range(8):
-                f = fallback(font, ch)
-                if f is None or id(f) in tried:
-                    break
-                tried.add(id(f))
-                g2, c2, a2, x2, y2 = _shape_runs(f, text, runs, spans[int(owner[c])].features,
-                                                 memo)
-                idx = np.flatnonzero(c2 == c)
-                if len(idx) and not (g2[idx] == 0).any():
-                    if all(x is not f for x in fonts):
-                        fonts.append(f)
-                    k = next(i for i, x in enumerate(fonts) if x is f)
-                    grp = (g2[idx], c2[idx], a2[idx], x2[idx], y2[idx],
-                           np.full(len(idx), k, np.int64))
-                    break
-                font = f
-        out.append(grp)
-    return tuple(np.concatenate([g[i] for g in out]) for i in range(6))
+        if ch in ' \u00a0\t' or ord(ch) < 32:
+            continue
+        font = fonts[int(fi[st[k]])]
+        tried = {id(font)}
+        for _ in range(8):
+            f = fallback(font, ch)
+            if f is None or id(f) in tried:
+                break
+            tried.add(id(f))
+            g2, c2, a2, x2, y2 = _shape_runs(f, text, runs, spans[int(owner[c])].features, memo)
+            later = c2[c2 > c]
+            fend = int(later.min()) if len(later) else n
+            end = max(int(cend[k]), fend)
+            idx = np.flatnonzero((c2 >= c) & (c2 < end))
+            if len(idx) and not (g2[idx] == 0).any() and (c2[idx] == c).any():
+                if all(x is not f for x in fonts):
+                    fonts.append(f)
+                j = next(i for i, x in enumerate(fonts) if x is f)
+                repl[k] = (g2[idx], np.full(len(idx), c, np.int64), a2[idx], x2[idx], y2[idx],
+                           np.full(len(idx), j, np.int64))
+                covered[c + 1:end] = True
+                break
+            font = f
+    if not repl:
+        return gid, cl, adv, xo, yo, fi
+    cols = (gid, cl, adv, xo, yo, fi)
+    keep_group = ~covered[starts]
+    for k in repl:
+        keep_group[k] = True
+    parts = []
+    prev = 0            # first glyph not yet copied
+    for k in sorted(set(repl) | set(np.flatnonzero(~keep_group).tolist())):
+        if st[k] > prev:
+            parts.append(tuple(a[prev:st[k]] for a in cols))
+        if k in repl:
+            parts.append(repl[k])
+        prev = int(en[k])
+    if prev < len(gid):
+        parts.append(tuple(a[prev:] for a in cols))
+    return tuple(np.concatenate([p[i] for p in parts]) for i in range(6))
 
 
 def _build_clusters(text, owner, spans, fonts, gid, cl, adv, xo, yo, fi):
