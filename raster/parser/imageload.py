@@ -60,7 +60,7 @@ from .. import limits
 from ..errors import RasterError
 from .document import load_document
 
-__all__ = ['load_image', 'fetch_image', 'image_source', 'decode_raster', 'sniff', 'parse_data_uri',
+__all__ = ['load_image', 'load_svg_data', 'fetch_image', 'image_source', 'decode_raster', 'sniff', 'parse_data_uri',
            'ImageSource', 'ImageError', 'MAX_IMAGE_DEPTH', 'MAX_IMAGE_BYTES', 'MAX_IMAGE_PIXELS']
 
 #: Deepest nesting of SVG images (an image inside an SVG image inside ...).
@@ -315,6 +315,21 @@ def _load_svg(data, source, cache, tolerance):
     opts = type(o)(dpi=o.dpi, font_size=o.font_size, languages=o.languages or ('en',),
                    tolerance=tolerance, base_dir=source.base_dir, image_depth=depth)
     return cache.parse_nested(root, opts, cache.image_cache)
+
+
+def load_svg_data(data, cache, tolerance=None):
+    """Parse SVG document bytes that come from no file (a font's SVG
+    glyph document) into a Tree, like an SVG image one nesting level
+    deeper: self-contained (no files are read).
+
+    Raises
+    ------
+    ImageError or RasterError
+        Nested too deep, or not a usable document.
+    """
+    if tolerance is None:
+        tolerance = cache.options.tolerance
+    return _load_svg(data, ImageSource(None, (), False), cache, tolerance)
 
 
 def fetch_image(href, source=ImageSource(), images=None):

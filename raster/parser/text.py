@@ -55,12 +55,13 @@ from ..geometry.flattening import flatten
 from ..fonts import Font, FontDB, FontError, cached, parse_font_family
 from ..geometry.path import Path
 from ..geometry.transform import Affine
-from ..tree import PathNode
+from ..tree import PathNode, SolidPaint
+from .colorglyph import color_glyph_node
 from .boxes import Boxed
 from .effects import wrap
 from .shapes import fill_and_stroke, geometry
 from .textlayout import (apply_length, apply_spacing, apply_vertical, compose, glyph_matrices,
-                         metric_boxes, position_linear, position_on_path, rotate,
+                         metric_boxes, position_linear, position_on_path, rotate, scale,
                          shape_clusters, translate, decoration_pieces)
 from .style import (is_displayed, length_context, local_name, paint_order, passes_conditions,
                     style_of, transform_of)
@@ -402,7 +403,10 @@ def _build(el, state, cache, out):
                 lo, hi = c.min(0), c.max(0)
                 corners.append((float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])))
         for rel, kind, path in res.pieces:
-            pieces.append((order[rel], kind, _moved_path(path, base)))
+            if kind == 'color':
+                pieces.append((order[rel], kind, _moved_color(path, base)))
+            else:
+                pieces.append((order[rel], kind, _moved_path(path, base)))
     if not pieces:
         return
     bbox = None
@@ -410,12 +414,15 @@ def _build(el, state, cache, out):
         bbox = (min(b[0] for b in corners), min(b[1] for b in corners),
                 max(b[2] for b in corners), max(b[3] for b in corners))
     for si, kind, p in pieces:
-        if kind != 'glyphs':
+        if kind not in ('glyphs', 'color'):
             x0, y0, x1, y1 = _path_extent(p)
             if bbox is not None and x1 >= x0:
                 bbox = (min(bbox[0], x0), min(bbox[1], y0), max(bbox[2], x1), max(bbox[3], y1))
     kids = []
     for si, kind, path in pieces:
+        if kind == 'color':
+            kids.extend(_color_nodes(spans[si], path, st, cache, bbox))
+            continue
         if kind == 'glyphs':
             node = _paint_node(spans[si], path, st, cache, bbox)
         else:
@@ -485,7 +492,8 @@ class _ChunkMemo:
         return self.table.get(key)
 
     def put(self, key, chunk):
-        size = len(chunk.corners) + sum(len(p.points) for _, _, p in chunk.pieces)
+        size = len(chunk.corners) + sum(len(p.points) if kind != 'color' else 64 * len(p)
+                                        for _, kind, p in chunk.pieces)
         if self.points + size > self.limit:
             self.table.clear()
             self.points = 0
@@ -573,9 +581,7 @@ def _lay_chunk(chunk_text, own_c, run_starts, order, anchor, tp, dx, dy, rot, st
                     pieces.append((rank, kind, p))
         g = np.flatnonzero(gvis) if mask is None else np.flatnonzero(mask[cl.g_cluster] & gvis)
         if len(g):
-            p = _outline_path(cl, g, sts if gm is None else compose(sts[None], gm[g]))
-            if p is not None:
-                pieces.append((rank, 'glyphs', p))
+            _glyph_pieces(cl, g, sts, gm, rank, pieces)
         if (si, 'line-through') in env.decor:
             p = _decoration_path(cl, mask, sp, 'line-through', sts, vertical)
             if p is not None:
@@ -586,6 +592,125 @@ def _lay_chunk(chunk_text, own_c, run_starts, order, anchor, tp, dx, dy, rot, st
             lo, hi = c.min(0), c.max(0)
             out.box = (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
     return out
+
+
+def _color_of(cl, g):
+    """``(descriptions, flags)`` of glyphs ``g`` of a chunk: each glyph's
+    colour description (:meth:`raster.fonts.color.ColorFont.glyph`) or
+    None, and (len(g),) bool; None when no glyph has one."""
+    fi = cl.g_font[g]
+    gid = cl.g_gid[g]
+    flags = None
+    for k, font in enumerate(cl.fonts):
+        cf = font.color
+        if cf is None:
+            continue
+        sel = fi == k
+        ids = gid[sel]
+        ok = (ids >= 0) & (ids < len(cf.mask))
+        hit = np.zeros(len(ids), bool)
+        hit[ok] = cf.mask[ids[ok]]
+        if hit.any():
+            if flags is None:
+                flags = np.zeros(len(g), bool)
+            flags[np.flatnonzero(sel)[hit]] = True
+    if flags is None:
+        return None
+    descs = [None] * len(g)
+    for j in np.flatnonzero(flags).tolist():
+        descs[j] = cl.fonts[int(fi[j])].color.glyph(int(gid[j]))
+        if descs[j] is None:
+            flags[j] = False
+    return (descs, flags) if flags.any() else None
+
+
+def _glyph_pieces(cl, g, sts, gm, rank, pieces):
+    """Append the pieces of glyphs ``g`` of one span: runs of outline
+    glyphs as one ``'glyphs'`` Path, colour glyphs as ``'color'`` pieces
+    (tuples of (font, glyph id, description, (3, 3) glyph-space to
+    chunk-frame matrix)), in glyph order."""
+    colour = _color_of(cl, g)
+    if colour is None:
+        p = _outline_path(cl, g, sts if gm is None else compose(sts[None], gm[g]))
+        if p is not None:
+            pieces.append((rank, 'glyphs', p))
+        return
+    descs, flags = colour
+    if gm is None:              # translated clusters: the glyph matrices
+        s = cl.g_scale[g]
+        gc = cl.g_cluster[g]
+        ms = compose(sts[None], translate(cl.x[gc] + cl.g_x[g] * s, cl.y[gc] - cl.g_y[g] * s),
+                     scale(s, -s))
+    else:
+        ms = compose(sts[None], gm[g])
+    cuts = (np.flatnonzero(flags[1:] != flags[:-1]) + 1).tolist()
+    for a, z in zip([0] + cuts, cuts + [len(g)]):
+        if flags[a]:
+            items = tuple((cl.fonts[int(cl.g_font[g[j]])], int(cl.g_gid[g[j]]), descs[j], ms[j])
+                          for j in range(a, z))
+            pieces.append((rank, 'color', items))
+        else:
+            p = _outline_path(cl, g[a:z], ms[a:z])
+            if p is not None:
+                pieces.append((rank, 'glyphs', p))
+
+
+def _moved_color(items, base):
+    """Colour glyph items of a chunk frame in user space (``base`` as for
+    _moved_points)."""
+    if base is None:
+        return items
+    if isinstance(base, tuple):
+        out = []
+        for f, gid, d, m in items:
+            m = m.copy()
+            m[0, 2] += base[0]
+            m[1, 2] += base[1]
+            out.append((f, gid, d, m))
+        return tuple(out)
+    bm = np.vstack([base.matrix, [0.0, 0.0, 1.0]])
+    return tuple((f, gid, d, bm @ m) for f, gid, d, m in items)
+
+
+def _color_nodes(sp, items, st, cache, bbox):
+    """The nodes of colour glyph items of span ``sp`` (user space): one
+    Group per glyph (see :mod:`raster.parser.colorglyph`).  Inside a clip
+    path, and for glyphs whose description draws nothing, the outlines
+    are used instead, filled like other glyphs."""
+    if sp.inh.get('visibility', 'visible') in ('hidden', 'collapse'):
+        return []
+    out = []
+    fg = None
+    plain = []
+    for font, gid, desc, m in items:
+        node = None
+        if not st.clip:
+            if fg is None:
+                fg = _foreground(sp, st, cache, bbox)
+            node = color_glyph_node(font, desc, Affine.from_matrix(m), fg, cache)
+            if node is not None and not abs(m[:2, 2]).max() <= limits.MAX_COORD:
+                cache.warn('text-coord', 'text beyond the coordinate limit is not rendered')
+                continue
+        if node is None:
+            o = font.outline(gid)
+            plain.append(o.transform(Affine.from_matrix(m)))
+        else:
+            out.append(node)
+    if plain:
+        node = _paint_node(sp, Path.concat(plain), st, cache, bbox)
+        if node is not None:
+            out.append(node)
+    return out
+
+
+def _foreground(sp, st, cache, bbox):
+    """Straight RGBA of a colour glyph's foreground colour: the span's fill
+    when it is a solid colour (its fill-opacity applied), else black."""
+    fill, _ = fill_and_stroke(sp.inh, sp.ctx, Path.empty(), st, cache, box=bbox)
+    if fill is not None and isinstance(fill.paint, SolidPaint):
+        r, g, b, a = fill.paint.color
+        return (r, g, b, a * fill.opacity)
+    return (0.0, 0.0, 0.0, 1.0)
 
 
 def _moved_points(pts, base):

@@ -32,7 +32,7 @@ from ..pixels.scan import path_coverage
 from ..pixels.views import ClipRect
 from ..geometry.transform import Affine
 from ..tree import (Group, ImageNode, LinearGradient, MaskType, MeshGradient, PaintItem, PathNode,
-                    Pattern, RadialGradient, SolidPaint)
+                    Pattern, RadialGradient, SolidPaint, SweepGradient)
 from .batch import Masks
 from .bounds import clip_rect, group_box, pixel_box
 from .filters import apply_filters, filter_box, filter_pixel_box
@@ -218,7 +218,7 @@ class Renderer:
         if isinstance(paint, SolidPaint):
             canvas.fill(mask, paint.color, opacity)
             return
-        if isinstance(paint, (LinearGradient, RadialGradient)):
+        if isinstance(paint, (LinearGradient, RadialGradient, SweepGradient)):
             src = gradient_colors(paint, mask, t)
         elif isinstance(paint, MeshGradient):
             src = mesh_colors(paint, mask, t, self.tol)

@@ -309,17 +309,21 @@ def test_vertical_writing_mode_is_quarter_turn_of_central_baseline_text():
     np.testing.assert_allclose(vert[0][0].points, np.c_[-y, x], atol=1e-9)
 
 
-def test_unusable_font_warns_and_falls_back(tmp_path):
-    """A bitmap-only (CBDT) font has no outlines: the text is drawn with
-    another face of the directory, with a warning."""
+def test_bitmap_only_font_draws_its_bitmaps_and_falls_back_for_the_rest(tmp_path):
+    """A bitmap-only (CBDT) font has no outlines: its emoji is an image,
+    the letter it lacks comes from another face of the directory."""
     import shutil
+    from raster.tree import ImageNode
     for fn in ('NotoColorEmojiCBDT.subset.ttf', 'NotoSans-Regular.ttf'):
         shutil.copy(os.path.join(FONTS, fn), tmp_path / fn)
-    with pytest.warns(RasterWarning, match='not usable'):
-        ps = text_paths('<text x="10" y="50" font-family="Noto Color Emoji">A</text>',
-                        fonts=FontOptions(dirs=str(tmp_path), system=False))
+    fonts = FontOptions(dirs=str(tmp_path), system=False)
+    tree = load_svg(doc('<text x="10" y="50" font-family="Noto Color Emoji">A\U0001F600</text>'),
+                    fonts=fonts)
+    paths = [(n.path.transform(t), n) for n, t in walk(tree.root) if isinstance(n, PathNode)]
+    images = [n for n, _ in walk(tree.root) if isinstance(n, ImageNode)]
     ref = text_paths('<text x="10" y="50" font-family="Noto Sans">A</text>')
-    assert len(ps) == 1 and ps[0][0] == ref[0][0]
+    assert len(paths) == 1 and paths[0][0] == ref[0][0]
+    assert len(images) == 1 and images[0].pixels.shape == (128, 136, 4)
 
 
 _XML_CHARS = st.characters(blacklist_categories=('Cs', 'Cc'), blacklist_characters='<&>')
@@ -419,7 +423,8 @@ def per_glyph_reference(spans, x, y, ls=0.0, ws=0.0, dx=(), rotate=()):
 @pytest.mark.parametrize('spans, attrs', [
     ([('Hello, World', 'Noto Sans', 40)], {}),
     ([('AVAWAY orbit', 'Noto Serif', 23.5)], {'letter-spacing': 2.5, 'word-spacing': 4}),
-    ([('AB', 'CFF Outlines and SBIX', 50), ('BA', 'CFF Outlines and SBIX', 25)], {}),
+    # 'B' only: the font's 'A' is an sbix bitmap (drawn as an image)
+    ([('BB', 'CFF Outlines and SBIX', 50), ('B B', 'CFF Outlines and SBIX', 25)], {}),
     ([('Ab', 'Noto Sans', 30), ('cd', 'Noto Sans', 15), ('ef', 'Noto Serif', 20)],
      {'dx': [1, 2, 3], 'rotate': [15, -30, 45]}),
     ([('The quick brown fox jumps over the lazy dog 0123456789', 'Source Sans Pro', 12)],
