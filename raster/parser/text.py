@@ -675,27 +675,25 @@ def _moved_color(items, base):
 def _color_nodes(sp, items, st, cache, bbox):
     """The nodes of colour glyph items of span ``sp`` (user space): one
     Group per glyph (see :mod:`raster.parser.colorglyph`).  Inside a clip
-    path, and for glyphs whose description draws nothing, the outlines
-    are used instead, filled like other glyphs."""
+    path the outlines are used instead, filled like other glyphs."""
     if sp.inh.get('visibility', 'visible') in ('hidden', 'collapse'):
         return []
     out = []
     fg = None
     plain = []
     for font, gid, desc, m in items:
-        node = None
-        if not st.clip:
-            if fg is None:
-                fg = _foreground(sp, st, cache, bbox)
-            node = color_glyph_node(font, desc, Affine.from_matrix(m), fg, cache)
-            if node is not None and not abs(m[:2, 2]).max() <= limits.MAX_COORD:
-                cache.warn('text-coord', 'text beyond the coordinate limit is not rendered')
-                continue
+        if st.clip:
+            plain.append(font.outline(gid).transform(Affine.from_matrix(m)))
+            continue
+        if fg is None:
+            fg = _foreground(sp, st, cache, bbox)
+        node = color_glyph_node(font, desc, Affine.from_matrix(m), fg, cache)
         if node is None:
-            o = font.outline(gid)
-            plain.append(o.transform(Affine.from_matrix(m)))
-        else:
-            out.append(node)
+            continue
+        if not abs(m[:2, 2]).max() <= limits.MAX_COORD:
+            cache.warn('text-coord', 'text beyond the coordinate limit is not rendered')
+            continue
+        out.append(node)
     if plain:
         node = _paint_node(sp, Path.concat(plain), st, cache, bbox)
         if node is not None:
