@@ -128,3 +128,41 @@ def stops(*pairs, extend='pad'):
 def gzip_bomb(size):
     """Gzip bytes inflating to ``size`` bytes of spaces after an SVG start."""
     return gzip.compress(b'<svg xmlns="http://www.w3.org/2000/svg">' + b' ' * size + b'</svg>')
+
+
+#: The sequences of :func:`emoji_font`: (characters, ligature glyph).
+SEQUENCES = (('\U0001F468\u200D\U0001F469', 'family'),        # ZWJ sequence
+             ('\U0001F44B\U0001F3FD', 'wave_tone'),           # skin tone modifier
+             ('\U0001F1EB\U0001F1F7', 'flag_fr'))             # regional indicators
+
+
+def emoji_font(path, family='Test Emoji'):
+    """Write a COLR emoji font: single characters of :data:`SEQUENCES` are
+    blue squares, each sequence's ligature (GSUB ``ccmp``) a red square;
+    advance 1000 for every glyph but the ZWJ and the skin tone modifier
+    when they stay alone (0)."""
+    from fontTools.feaLib.builder import addOpenTypeFeaturesFromString
+    chars = sorted({c for seq, _ in SEQUENCES for c in seq})
+    names = {c: 'u%04X' % ord(c) for c in chars}
+    ligs = [name for _, name in SEQUENCES]
+    order = ['.notdef'] + [names[c] for c in chars] + ligs
+    fb = FontBuilder(1000, isTTF=True)
+    fb.setupGlyphOrder(order)
+    fb.setupCharacterMap({ord(c): names[c] for c in chars})
+    fb.setupGlyf({g: _rect(0, 0, 1000, 1000) for g in order})
+    zero = {names['\u200D'], names['\U0001F3FD']}
+    fb.setupHorizontalMetrics({g: (0 if g in zero else 1000, 0) for g in order})
+    fb.setupHorizontalHeader(ascent=800, descent=-200)
+    fb.setupNameTable({'familyName': family, 'styleName': 'Regular'})
+    fb.setupOS2(sTypoAscender=800, sTypoDescender=-200, usWinAscent=800, usWinDescent=200)
+    fb.setupPost()
+    font = fb.font
+    rules = ''.join('  sub %s by %s;\n' % (' '.join(names[c] for c in seq), name)
+                    for seq, name in SEQUENCES)
+    addOpenTypeFeaturesFromString(font, 'feature ccmp {\n%s} ccmp;\n' % rules)
+    paints = {names[c]: [(names[c], 1)] for c in chars if c not in '\u200D\U0001F3FD'}
+    paints.update({name: [(name, 0)] for name in ligs})
+    font['COLR'] = buildCOLR(paints, glyphMap=font.getReverseGlyphMap())
+    font['CPAL'] = buildCPAL([[(1, 0, 0, 1), (0, 0, 1, 1)]])
+    fb.save(str(path))
+    return str(path)

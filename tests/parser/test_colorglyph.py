@@ -17,7 +17,7 @@ from raster.fonts import FontOptions
 from raster.svg import load_svg, render
 from raster.tree import Group, ImageNode, PathNode, walk
 
-from _colorfonts import colr_font, glyph, solid, stops, svg_font
+from _colorfonts import SEQUENCES, colr_font, glyph, solid, stops, svg_font
 from _shared import SUITE_FONTS
 
 NS = 'xmlns="http://www.w3.org/2000/svg"'
@@ -191,3 +191,25 @@ def test_colour_glyph_nodes_are_groups_in_glyph_space(tmp_path):
               and isinstance(n.children[0], PathNode)]
     (g, t), = groups
     np.testing.assert_allclose(tuple(t), (0.1, 0, 0, -0.1, 20, 120), atol=1e-12)
+
+
+@pytest.mark.parametrize('seq', [s for s, _ in SEQUENCES], ids=['zwj', 'skin-tone', 'flag'])
+@pytest.mark.parametrize('family', ['Test Emoji', 'Noto Sans, Test Emoji'])
+def test_emoji_sequences_are_one_glyph(tmp_path, seq, family):
+    """A ZWJ sequence, a skin tone modifier and a flag each shape to one
+    ligature glyph (red, one advance), also when the first family lacks
+    the characters and the emoji font is the fallback that joins them."""
+    from _colorfonts import emoji_font
+    f = emoji_font(tmp_path / 'e.ttf')
+    fonts = FontOptions(files=[f, os.path.join(SUITE_FONTS, 'NotoSans-Regular.ttf')],
+                        system=False)
+    svg = ('<svg %s width="360" height="140"><text x="20" y="120" font-size="100" '
+           'font-family="%s">%s|</text></svg>' % (NS, family, seq))
+    img = render(svg.encode(), fonts=fonts)
+    assert at(img, 500, 500) == RED
+    assert not (img[..., 2] > 128).any()            # no single-character glyph drawn
+    # the square covers one advance (x 20..120); the bar after it follows
+    ink = np.flatnonzero(img[60, :, 3] > 128)
+    assert ink.min() == 20 and ink[ink < 120].size == 100
+    bar = ink[ink >= 120]
+    assert len(bar) and 120 < bar.min() < 160 and bar.max() < 170
