@@ -57,6 +57,7 @@ from ..geometry.path import Path
 from ..geometry.transform import Affine
 from ..tree import PathNode, SolidPaint
 from .colorglyph import color_glyph_node
+from .fontface import document_font_db
 from .boxes import Boxed
 from .effects import wrap
 from .shapes import fill_and_stroke, geometry
@@ -148,10 +149,12 @@ def _spacing(value, ctx):
 
 
 def _font_db(cache):
+    """The document's FontDB: its options' fonts and its ``@font-face``
+    fonts (:mod:`raster.parser.fontface`), made once per document."""
     memo = cache.table('text')
     db = memo.get('fontdb')
     if db is None:
-        db = memo['fontdb'] = FontDB.for_options(cache.options.fonts)
+        db = memo['fontdb'] = document_font_db(FontDB.for_options(cache.options.fonts), cache)
     return db
 
 
