@@ -381,6 +381,8 @@ def _build(el, state, cache, out):
                 _CHUNKS.put(key, res)
         if res.empty:
             continue
+        if res.missing:
+            _warn_missing(res.missing, cache)
         if tp is None:
             cx = ax[c0] if not math.isnan(ax[c0]) else None
             cy = ay[c0] if not math.isnan(ay[c0]) else None
@@ -463,11 +465,13 @@ class _Chunk:
     the rank indexing the chunk's spans in order of first use;
     ``corners``: (K, 2) float64 corners of the clusters' metric boxes;
     ``box``: their extent (x0, y0, x1, y1) or None; ``end``: the pen
-    position after the chunk; ``empty``: no clusters.
+    position after the chunk; ``empty``: no clusters; ``missing``: the
+    characters no font has a glyph for.
     """
-    __slots__ = ('pieces', 'corners', 'box', 'end', 'empty')
+    __slots__ = ('pieces', 'corners', 'box', 'end', 'empty', 'missing')
 
     def __init__(self):
+        self.missing = ''
         self.pieces = []
         self.corners = np.zeros((0, 2))
         self.box = None
@@ -547,6 +551,7 @@ def _lay_chunk(chunk_text, own_c, run_starts, order, anchor, tp, dx, dy, rot, st
     if not len(cl):
         return out
     out.empty = False
+    out.missing = cl.missing
     segs = []
     for a, z in zip(run_starts, run_starts[1:] + [len(chunk_text)]):
         sp = spans[int(own_c[a])]
@@ -712,6 +717,13 @@ def _foreground(sp, st, cache, bbox):
         r, g, b, a = fill.paint.color
         return (r, g, b, a * fill.opacity)
     return (0.0, 0.0, 0.0, 1.0)
+
+
+def _warn_missing(chars, cache):
+    """One warning per document: characters without a glyph in any font."""
+    shown = ' '.join('U+%04X' % ord(c) for c in chars[:5]) + (' ...' if len(chars) > 5 else '')
+    cache.warn('text-missing-glyphs', 'no font has a glyph for some characters (drawn as '
+               'boxes): %s' % shown)
 
 
 def _moved_points(pts, base):

@@ -278,10 +278,13 @@ class Clusters:
     g_scale : (G,) float64
         Font size over units per em of each glyph's font.
     fonts : list of Font
+    missing : str
+        Characters no font has a glyph for (drawn as the first font's
+        .notdef glyph), in order, without repeats.
     """
     __slots__ = ('char', 'span', 'width', 'advance', 'ascent', 'descent', 'x_height', 'visible',
                  'relshift', 'm', 'pm', 'pre', 'g_cluster', 'g_font', 'g_gid', 'g_x', 'g_y',
-                 'g_scale', 'fonts', 'cps', 'x', 'y')
+                 'g_scale', 'fonts', 'cps', 'x', 'y', 'missing')
 
     def mats(self):
         """(C, 3, 3) cluster transforms (made from the positions ``x``,
@@ -455,7 +458,25 @@ def _shape_clusters(text, owner, spans, fallback, memo, starts):
     if missing.any():
         gid, cl, adv, xo, yo, fi = _fallbacks(text, runs, owner, spans, fonts, fallback, memo,
                                               gid, cl, adv, xo, yo, fi)
-    return _build_clusters(text, owner, spans, fonts, gid, cl, adv, xo, yo, fi)
+    c = _build_clusters(text, owner, spans, fonts, gid, cl, adv, xo, yo, fi)
+    c.missing = _missing(text, gid, cl) if missing.any() else ''
+    return c
+
+
+def _missing(text, gid, cl):
+    """The characters of clusters still drawn with a .notdef glyph (gid 0)
+    after the fallback, without spaces, controls and default-ignorable
+    characters, in order, once each."""
+    out = []
+    for c in np.unique(cl[gid == 0]).tolist():
+        ch = text[c]
+        cp = ord(ch)
+        if cp < 32 or ch.isspace() or 0x200B <= cp <= 0x200F or 0x2060 <= cp <= 0x206F or \
+                0xFE00 <= cp <= 0xFE0F or 0xE0000 <= cp <= 0xE0FFF or cp == 0xFEFF:
+            continue
+        if ch not in out:
+            out.append(ch)
+    return ''.join(out)
 
 
 def _fallbacks(text, runs, owner, spans, fonts, fallback, memo, gid, cl, adv, xo, yo, fi):

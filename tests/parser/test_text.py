@@ -498,3 +498,28 @@ def test_same_string_in_other_fonts_of_one_document():
         assert p == q
     np.testing.assert_allclose(together[3][0].points, together[0][0].points + [0, 60], atol=1e-9)
     assert together[0][0] != together[2][0]
+
+
+# -- characters without a glyph -------------------------------------------------
+
+def test_characters_without_a_glyph_warn_once_per_document():
+    """U+E000 (private use) and U+0378 (unassigned) are in none of the
+    suite's fonts: one warning naming them, however many elements hold
+    such characters; the boxes are still drawn."""
+    body = ('<text x="10" y="50" font-family="Noto Sans">a\ue000b\u0378</text>'
+            '<text x="10" y="90">\ue001</text>')
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter('always')
+        ps = text_paths(body)
+    msgs = [str(x.message) for x in w if issubclass(x.category, RasterWarning)]
+    assert len(msgs) == 1 and 'U+E000 U+0378' in msgs[0] and 'boxes' in msgs[0]
+    assert len(ps) == 2
+
+
+@pytest.mark.parametrize('text', ['a b', 'a\u200db', 'a\ufe0fb', '\u4e2d', 'a\u00a0b\tc'])
+def test_no_warning_when_every_character_has_a_glyph(text):
+    """Spaces, default-ignorable characters and characters another face
+    has (CJK from the fallback) do not warn."""
+    with warnings.catch_warnings():
+        warnings.simplefilter('error')
+        assert text_paths('<text x="10" y="50" font-family="Noto Sans">%s</text>' % text)
