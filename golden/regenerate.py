@@ -5,7 +5,17 @@ test extra), an independent renderer.  Runs only on request:
     python golden/regenerate.py stroke-    # cases whose name contains 'stroke-'
 
 The options reproduce resvg's own defaults (usvg::Options), as the
-conformance scorer does: dpi 96, font size 12, language 'en'.
+conformance scorer does: dpi 96, font size 12, language 'en'; and the
+resvg suite's fonts only (``../shared/resvg-suite/fonts``, no system
+fonts) with its harness's generic families, so that text references do
+not depend on the machine (``raster.testing.suite_fonts`` gives raster the
+same fonts in tests/test_golden.py).
+
+A case whose rendering resvg does not support (``@font-face``, which usvg
+ignores) has its reference made from a stand-in document in
+``golden/standins/<case>.svg`` that draws what the case means with means
+resvg has (the installed family instead of the @font-face one); the case's
+``<desc>`` says so.
 """
 
 import os
@@ -13,14 +23,21 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASES = os.path.join(HERE, 'cases')
+STANDINS = os.path.join(HERE, 'standins')
+SUITE_FONTS = os.path.normpath(os.path.join(HERE, '..', '..', 'shared', 'resvg-suite', 'fonts'))
 
 
 def render_reference(svg_path):
     """PNG bytes of resvg's rendering of ``svg_path`` at its natural size."""
     import resvg_py
+    sys.path.insert(0, os.path.dirname(HERE))
+    from raster.testing import SUITE_DEFAULT_FAMILY, SUITE_GENERIC_FAMILIES as g
     return bytes(resvg_py.svg_to_bytes(
         svg_path=svg_path, resources_dir=os.path.dirname(svg_path),
-        dpi=96.0, font_size=12.0, languages=['en'], font_family='Times New Roman'))
+        dpi=96.0, font_size=12.0, languages=['en'], font_family=SUITE_DEFAULT_FAMILY,
+        skip_system_fonts=True, font_dirs=[SUITE_FONTS], serif_family=g['serif'],
+        sans_serif_family=g['sans-serif'], cursive_family=g['cursive'],
+        fantasy_family=g['fantasy'], monospace_family=g['monospace']))
 
 
 def main(argv):
@@ -28,7 +45,10 @@ def main(argv):
     if argv:
         names = [n for n in names if any(a in n for a in argv)]
     for n in names:
-        png = render_reference(os.path.join(CASES, n + '.svg'))
+        src = os.path.join(STANDINS, n + '.svg')
+        if not os.path.exists(src):
+            src = os.path.join(CASES, n + '.svg')
+        png = render_reference(src)
         with open(os.path.join(CASES, n + '.png'), 'wb') as f:
             f.write(png)
         print('wrote', n + '.png')

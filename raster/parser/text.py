@@ -53,6 +53,7 @@ from .. import limits
 from ..errors import RasterError
 from ..geometry.flattening import flatten
 from ..fonts import Font, FontDB, FontError, cached, parse_font_family
+from ..fonts.matching import best_face
 from ..geometry.path import Path
 from ..geometry.transform import Affine
 from ..tree import PathNode, SolidPaint
@@ -112,7 +113,7 @@ class _Span:
     """Style of one element contributing characters."""
     __slots__ = ('el', 'inh', 'own', 'ctx', 'face', 'font', 'fs', 'shift', 'ls', 'ws', 'tl',
                  'weight', 'parent', 'decor', 'vertical', 'features', 'glyph_adjust', 'index',
-                 'key')
+                 'key', 'families', 'style', 'stretch')
 
     def __init__(self, el, inh, own, ctx, parent, weight):
         self.el, self.inh, self.own, self.ctx, self.parent = el, inh, own, ctx, parent
@@ -305,7 +306,10 @@ def _build(el, state, cache, out):
         i = sp.inh
         style = (i.get('font-style') or 'normal').strip()
         stretch = (i.get('font-stretch') or 'normal').strip()
-        sp.face, sp.font = fonts_of(i.get('font-family', ''), sp.weight, style, stretch)
+        family = i.get('font-family', '')
+        sp.families = _families(family)
+        sp.style, sp.stretch = style, stretch
+        sp.face, sp.font = fonts_of(family, sp.weight, style, stretch)
         if sp.font is not None and sp.font.axes:
             sp.font = sp.font.variant(_variations(sp, style, stretch))
         sp.ls = _spacing(i.get('letter-spacing'), sp.ctx)
@@ -323,7 +327,7 @@ def _build(el, state, cache, out):
     for sp in spans:
         sp.shift = _span_shift(sp, vertical)
         sp.key = (sp.font, None if sp.features is None else tuple(sorted(sp.features.items())),
-                  sp.fs, sp.ls, sp.ws, sp.tl, sp.glyph_adjust, sp.shift)
+                  sp.fs, sp.ls, sp.ws, sp.tl, sp.glyph_adjust, sp.shift, sp.families)
     decor = _decorations(el, spans, cache)
     spacing = any(sp.ls or sp.ws for sp in spans)
     ls = np.array([sp.ls for sp in spans]) if spacing else None
@@ -344,13 +348,13 @@ def _build(el, state, cache, out):
     memo = cache.table('text_shaped')
     fallbacks = cache.table('text_fallback')
 
-    def fallback(font, ch):
+    def fallback(font, ch, sp):
         if font is None:
             return None
-        k = (font, ch)
+        k = (font, ch, sp.families, sp.weight, sp.style, sp.stretch)
         f = fallbacks.get(k)
         if f is None:
-            f = fallbacks[k] = _fallback_font(db, ch, font)
+            f = fallbacks[k] = _fallback_font(db, ch, font, sp, cache)
         return f
     env = _ChunkEnv(spans, decor, vertical, spacing, ls, ws, fallback, memo)
     pieces = []         # (span index, kind, Path) in user space
@@ -1062,9 +1066,24 @@ def _load_font(db, face, cache):
     return None
 
 
-def _fallback_font(db, ch, font):
+def _fallback_font(db, ch, font, sp, cache):
     """The font to draw character ``ch`` with when ``font`` has no glyph
-    for it (``font`` itself when no face has one)."""
+    for it (``font`` itself when no face has one): CSS Fonts' order, the
+    span's other ``font-family`` entries first (their best face for the
+    span's weight, style and stretch), then every face
+    (:meth:`raster.fonts.FontDB.fallback_face`)."""
+    cp = ord(ch)
+    for fam in sp.families:
+        cands = db.match_family([fam])
+        if not cands:
+            continue
+        face = best_face(cands, sp.weight, sp.style, _STRETCH_CLASS.get(sp.stretch, 5))
+        if face == font.face or not db.has_char(face, cp):
+            continue
+        try:
+            return Font.load(face)
+        except RasterError:
+            continue
     face = db.fallback_face(font.face, ch)
     if face is None:
         return font
@@ -1072,6 +1091,16 @@ def _fallback_font(db, ch, font):
         return Font.load(face)
     except RasterError:
         return font
+
+
+_STRETCH_CLASS = {'ultra-condensed': 1, 'extra-condensed': 2, 'condensed': 3,
+                  'semi-condensed': 4, 'normal': 5, 'semi-expanded': 6, 'expanded': 7,
+                  'extra-expanded': 8, 'ultra-expanded': 9}
+
+
+def _families(value):
+    """The parsed ``font-family`` list of a span (a tuple: a memo key)."""
+    return tuple(parse_font_family(value))
 
 
 def _text_path_geometry(tp_el, ctx, cache):

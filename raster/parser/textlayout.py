@@ -360,7 +360,8 @@ def _groups(cl):
 
 
 def _font_key(sp):
-    return (id(sp.font), None if sp.features is None else tuple(sorted(sp.features.items())))
+    return (id(sp.font), None if sp.features is None else tuple(sorted(sp.features.items())),
+            getattr(sp, 'families', None))
 
 
 def shape_clusters(text, owner, spans, fallback, memo):
@@ -377,8 +378,8 @@ def shape_clusters(text, owner, spans, fallback, memo):
         Span objects with ``font`` (a Font or None), ``fs`` (font size),
         ``features`` (dict or None).
     fallback : callable
-        ``fallback(font, ch) -> Font or None``: a font with a glyph for
-        ``ch``.
+        ``fallback(font, ch, span) -> Font or None``: a font with a glyph
+        for ``ch`` (``span``: the span of the character).
     memo : dict
         Shaping results shared by the chunks of a document (the clusters
         of a repeated chunk are copied from it).
@@ -509,7 +510,7 @@ def _fallbacks(text, runs, owner, spans, fonts, fallback, memo, gid, cl, adv, xo
         font = fonts[int(fi[st[k]])]
         tried = {id(font)}
         for _ in range(8):
-            f = fallback(font, ch)
+            f = fallback(font, ch, spans[int(owner[c])])
             if f is None or id(f) in tried:
                 break
             tried.add(id(f))
