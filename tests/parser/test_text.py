@@ -523,3 +523,17 @@ def test_no_warning_when_every_character_has_a_glyph(text):
     with warnings.catch_warnings():
         warnings.simplefilter('error')
         assert text_paths('<text x="10" y="50" font-family="Noto Sans">%s</text>' % text)
+
+
+def test_fallback_tries_the_font_family_list_first():
+    """CSS Fonts' order: a character the first family lacks comes from the
+    next family of the list that has it (Twitter Color Emoji: an SVG
+    glyph), not from the first face of the folder that has it (Noto Color
+    Emoji: a bitmap)."""
+    from raster.tree import ImageNode
+    def images(family):
+        tree = load_svg(doc('<text x="10" y="50" font-family="%s">a\U0001F600</text>' % family),
+                        fonts=SUITE_FONTS)
+        return [n for n, _ in walk(tree.root) if isinstance(n, ImageNode)]
+    assert images('Noto Sans, Twitter Color Emoji') == []
+    assert len(images('Noto Sans, Noto Color Emoji')) == 1
