@@ -104,7 +104,7 @@ class RasterRenderer:
 
     def render(self, case):
         return self.render_fn(case['svg'], width=self.cfg['width'], fonts=self.fonts,
-                              resources_dir=self.cfg['resources_dir'])
+                              resources_dir=self.cfg['resources_dir'], languages=('en',))
 
     @property
     def fonts(self):

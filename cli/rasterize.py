@@ -34,8 +34,9 @@ failed run leaves no file at the output path.
 import argparse
 import sys
 
-from ._common import (Parser, UsageError, add_font_options, add_version, base_dir_of,
-                      font_options, list_fonts, read_source, run, write_output)
+from ._common import (Parser, UsageError, add_font_options, add_languages, add_version,
+                      base_dir_of, font_options, languages_of, list_fonts, read_source, run,
+                      write_output)
 
 PROG = 'rasterize'
 
@@ -69,6 +70,7 @@ def build_parser():
                     help='PNG zlib level 0-9 (default 1)')
     ap.add_argument('--tolerance', type=float, default=0.25, help=argparse.SUPPRESS)
     add_font_options(ap)
+    add_languages(ap)
     add_version(ap)
     return ap
 
@@ -113,10 +115,12 @@ def _body(args):
     bg = parse_background(args.background)       # a bad colour fails before any work
     data = read_source(args.input)
     tree = load_svg(data, dpi=dpi, fonts=font_options(args),
-                    resources_dir=args.allow_dir, base_dir=base_dir_of(args.input))
+                    resources_dir=args.allow_dir, base_dir=base_dir_of(args.input),
+                    languages=languages_of(args))
     crop = args.id is not None and not args.id_page
     canvas = render_tree(tree, width=args.width, height=args.height, zoom=args.zoom,
-                         background=bg, node_id=args.id, tolerance=args.tolerance, crop=crop)
+                         background=bg, node_id=args.id, tolerance=args.tolerance, crop=crop,
+                         dtype='uint8')
     res = None
     if args.dpi is not None:
         # the resolution at which the document keeps its physical size
@@ -124,9 +128,9 @@ def _body(args):
         sx, sy = output_geometry(tree, args.width, args.height, args.zoom, args.id,
                                  crop).scale
         res = (dpi * sx, dpi * sy)
-    from raster.pixels.encode import encode
-    write_output(args.output, encode(canvas.to_rgba8(), fmt, dpi=res, quality=args.quality,
-                                     compress_level=args.compress_level))
+    from raster.pixels.encode import encode_canvas
+    write_output(args.output, encode_canvas(canvas, fmt, dpi=res, quality=args.quality,
+                                            compress_level=args.compress_level))
     return 0
 
 

@@ -19,9 +19,9 @@ glyph outlines, laid out with the system's fonts and the font options of
 import json
 import sys
 
-from ._common import (Parser, add_font_options, add_version, base_dir_of, drawn_shapes,
-                      font_options, list_fonts, node_transforms, read_source, run,
-                      subtree_shapes, user_to_doc, write_text)
+from ._common import (Parser, add_font_options, add_languages, add_version, base_dir_of,
+                      drawn_shapes, font_options, languages_of, list_fonts, node_transforms,
+                      read_source, run, subtree_shapes, user_to_doc, write_text)
 
 PROG = 'svg-bbox'
 
@@ -121,6 +121,7 @@ def build_parser():
     ap.add_argument('--stroke', action='store_true', help='include stroke outlines')
     ap.add_argument('-o', '--output', default='-', help='output file (default: stdout)')
     add_font_options(ap)
+    add_languages(ap)
     add_version(ap)
     return ap
 
@@ -130,7 +131,8 @@ def _body(args):
     if list_fonts(args):
         return 0
     data = read_source(args.input)
-    tree = load_svg(data, base_dir=base_dir_of(args.input), fonts=font_options(args))
+    tree = load_svg(data, base_dir=base_dir_of(args.input), fonts=font_options(args),
+                    languages=languages_of(args))
     result = boxes(tree, args.stroke, args.id)
     write_text(args.output, json.dumps(result, indent=1) + '\n')
     return 0

@@ -41,9 +41,9 @@ import json
 import math
 import sys
 
-from ._common import (Parser, add_font_options, add_version, base_dir_of, drawn_shapes,
-                      font_options, hex_color, list_fonts, read_source, run, user_to_doc,
-                      write_text)
+from ._common import (Parser, add_font_options, add_languages, add_version, base_dir_of,
+                      drawn_shapes, font_options, hex_color, languages_of, list_fonts, read_source,
+                      run, user_to_doc, write_text)
 
 PROG = 'svg-flatten'
 
@@ -62,6 +62,7 @@ def build_parser():
                     help='replace strokes by their outline polygons')
     ap.add_argument('--dpi', type=float, default=96.0, help=argparse.SUPPRESS)
     add_font_options(ap)
+    add_languages(ap)
     add_version(ap)
     return ap
 
@@ -197,7 +198,8 @@ def _body(args):
         return 0
     data = read_source(args.input)
     tree = load_svg(data, dpi=args.dpi, base_dir=base_dir_of(args.input),
-                    fonts=font_options(args))
+                    fonts=font_options(args),
+                    languages=languages_of(args))
     shapes = collect(tree, args.tolerance, args.pixels, args.outline_strokes)
     if args.format == 'json':
         text = json.dumps(shapes, indent=1) + '\n'

@@ -4,6 +4,8 @@ committed, and their reference PNGs are made by regenerate.py on request."""
 
 import os
 
+import rules
+
 HEAD = ('<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
         'width="200" height="200" viewBox="0 0 200 200">\n  <title>{title}</title>\n'
         '  <rect x="1" y="1" width="198" height="198" fill="none" stroke="#777" stroke-width="2"/>\n')
@@ -152,7 +154,7 @@ TEXT_CASES = {
     'text-font-kerning-none': ('font-kerning none', '<text x="15" y="80" ' + SANS + ' font-size="44">AVATAR</text><text x="15" y="150" ' + SANS + ' font-size="44" font-kerning="none">AVATAR</text>'),
     # --- font matching and fallback -------------------------------------------------------------
     'text-font-weights': ('font-weight 300 to 900 over Noto Sans Light, Regular, Bold and Black', '<g ' + SANS + ' font-size="24"><text x="10" y="35" font-weight="300">Weight 300</text><text x="10" y="65" font-weight="400">Weight 400</text><text x="10" y="95" font-weight="500">Weight 500</text><text x="10" y="125" font-weight="600">Weight 600</text><text x="10" y="155" font-weight="800">Weight 800</text><text x="10" y="185" font-weight="900">Weight 900</text></g>'),
-    'text-font-relative-weights': ('font-weight bolder and lighter', '<desc>CSS Fonts 4, 2.2: lighter than 700 is 400, bolder than 300 is 400.  resvg takes 100 off for lighter (600: the bold face), so the reference is made from golden/standins/text-font-relative-weights.svg with the computed weights written out.</desc><g ' + SANS + ' font-size="22"><text x="10" y="60" font-weight="bold">bold <tspan font-weight="lighter">lighter</tspan></text><text x="10" y="120" font-weight="300">light <tspan font-weight="bolder">bolder</tspan></text></g>'),
+    'text-font-relative-weights': ('font-weight bolder and lighter', '<desc>CSS Fonts 4, 2.2: lighter than 700 is 400, bolder than 300 is 400.  resvg takes 100 off for lighter (600: the bold face), so the reference is made from golden/equivalent/text-font-relative-weights.svg with the computed weights written out.</desc><g ' + SANS + ' font-size="22"><text x="10" y="60" font-weight="bold">bold <tspan font-weight="lighter">lighter</tspan></text><text x="10" y="120" font-weight="300">light <tspan font-weight="bolder">bolder</tspan></text></g>'),
     'text-font-italic': ('font-style italic picks the italic face', '<text x="15" y="80" ' + SANS + ' font-size="30" font-style="italic">Italic text</text><text x="15" y="140" ' + SANS + ' font-size="30" font-style="oblique">Oblique</text>'),
     'text-font-generic-families': ('the generic families serif, sans-serif, monospace, cursive and fantasy', '<g font-size="22"><text x="10" y="35" font-family="serif">serif text</text><text x="10" y="70" font-family="sans-serif">sans-serif text</text><text x="10" y="105" font-family="monospace">monospace text</text><text x="10" y="140" font-family="cursive">cursive text</text><text x="10" y="175" font-family="fantasy">fantasy text</text></g>'),
     'text-font-family-list': ('the first available family of a list is used', '<g font-size="24"><text x="10" y="60" font-family="No Such Font, Noto Serif">Second</text><text x="10" y="120" font-family="\'Missing One\', \'Missing Two\', Noto Mono">Third</text></g>'),
@@ -170,9 +172,9 @@ TEXT_CASES = {
     'text-color-vertical': ('colour glyphs in vertical text stay upright', '<text x="100" y="15" font-family="Twitter Color Emoji" font-size="40" writing-mode="tb">😀😁🦀</text>'),
     'text-color-rotate': ('colour glyphs turned by rotate', '<text x="30" y="110" font-family="Noto Color Emoji COLR" font-size="40" rotate="0 20 -30 45">🐶🐝🌓🥳</text>'),
     # --- @font-face (stand-in references: resvg ignores @font-face) -------------------------------------
-    'text-fontface-file': ('@font-face with a font file next to the document', '<desc>resvg ignores @font-face: the reference is golden/standins/text-fontface-file.svg, the same text in the installed family (Yellowtail) the file holds.</desc><style>@font-face { font-family: "Doc Script"; src: url(fonts/yellowtail-subset.ttf) format("truetype"); }</style><text x="20" y="110" font-family="Doc Script" font-size="48">Hello</text>'),
+    'text-fontface-file': ('@font-face with a font file next to the document', '<desc>resvg ignores @font-face: the reference is golden/equivalent/text-fontface-file.svg, the same text in the installed family (Yellowtail) the file holds.</desc><style>@font-face { font-family: "Doc Script"; src: url(fonts/yellowtail-subset.ttf) format("truetype"); }</style><text x="20" y="110" font-family="Doc Script" font-size="48">Hello</text>'),
     'text-fontface-woff2-data': ('@font-face with a WOFF2 data URI', None),
-    'text-fontface-local-and-weight': ('@font-face local() with a weight descriptor', '<desc>resvg ignores @font-face: the reference is golden/standins/text-fontface-local-and-weight.svg, where the family is the installed Noto Sans Black that local() names.</desc><style>@font-face { font-family: "Heavy"; src: local("Nope"), local("NotoSans-Black"); font-weight: 700; }</style><text x="20" y="110" font-family="Heavy" font-size="40" font-weight="bold">Heavy</text>'),
+    'text-fontface-local-and-weight': ('@font-face local() with a weight descriptor', '<desc>resvg ignores @font-face: the reference is golden/equivalent/text-fontface-local-and-weight.svg, where the family is the installed Noto Sans Black that local() names.</desc><style>@font-face { font-family: "Heavy"; src: local("Nope"), local("NotoSans-Black"); font-weight: 700; }</style><text x="20" y="110" font-family="Heavy" font-size="40" font-weight="bold">Heavy</text>'),
 }
 
 
@@ -234,11 +236,11 @@ def main():
             f.write(HEAD.format(title=title) + '  ' + body + '\n</svg>\n')
     font = os.path.join(here, 'fonts', 'yellowtail-subset.ttf')
     subset_font(font)
-    standins = os.path.join(os.path.dirname(here), 'standins')
+    standins = os.path.join(os.path.dirname(here), 'equivalent')
     os.makedirs(standins, exist_ok=True)
     for name, (title, body) in TEXT_CASES.items():
         if name == 'text-fontface-woff2-data':
-            body = ('<desc>resvg ignores @font-face: the reference is golden/standins/%s.svg, '
+            body = ('<desc>resvg ignores @font-face: the reference is golden/equivalent/%s.svg, '
                     'the same text in the installed family (Yellowtail) the WOFF2 data holds '
                     '(a subset of Yellowtail, Apache 2.0: golden/cases/fonts).</desc><style>'
                     '@font-face { font-family: "Inline Script"; src: url(%s) format("woff2"); }'
@@ -263,6 +265,20 @@ def main():
         svg = HEAD.format(title='preserveAspectRatio ' + par) + '  ' + body + '\n</svg>\n'
         with open(os.path.join(here, name + '.svg'), 'w') as f:
             f.write(svg)
+    # the rules of issue 14 (golden/rules.py): a <desc> states each rule
+    for name, (title, desc, body) in rules.CASES.items():
+        head = HEAD.format(title=title).replace(
+            '</title>\n', '</title>\n  <desc>%s</desc>\n' % desc, 1)
+        with open(os.path.join(here, name + '.svg'), 'w') as f:
+            f.write(head + '  ' + body + '\n</svg>\n')
+    for name, doc in rules.DOCS.items():
+        with open(os.path.join(here, name + '.svg'), 'w') as f:
+            f.write(doc)
+    eq = os.path.join(os.path.dirname(here), 'equivalent')
+    for name, (title, body) in rules.EQUIVALENT.items():
+        os.makedirs(eq, exist_ok=True)
+        with open(os.path.join(eq, name + '.svg'), 'w') as f:
+            f.write(HEAD.format(title=title) + '  ' + body + '\n</svg>\n')
 
 
 if __name__ == '__main__':

@@ -11,11 +11,11 @@ fonts) with its harness's generic families, so that text references do
 not depend on the machine (``raster.testing.suite_fonts`` gives raster the
 same fonts in tests/test_golden.py).
 
-A case whose rendering resvg does not support (``@font-face``, which usvg
-ignores) has its reference made from a stand-in document in
-``golden/standins/<case>.svg`` that draws what the case means with means
-resvg has (the installed family instead of the @font-face one); the case's
-``<desc>`` says so.
+Where resvg does not follow a rule a case pins down (the case's <desc>
+says why; ``@font-face``, which usvg ignores, is one), golden/equivalent/NAME.svg
+draws what the rule asks for without the feature (for @font-face: the
+installed family instead of the document's one), and resvg's rendering of
+that equivalent is the reference.
 """
 
 import os
@@ -23,7 +23,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASES = os.path.join(HERE, 'cases')
-STANDINS = os.path.join(HERE, 'standins')
+EQUIVALENT = os.path.join(HERE, 'equivalent')
 SUITE_FONTS = os.path.normpath(os.path.join(HERE, '..', '..', 'shared', 'resvg-suite', 'fonts'))
 
 
@@ -45,10 +45,8 @@ def main(argv):
     if argv:
         names = [n for n in names if any(a in n for a in argv)]
     for n in names:
-        src = os.path.join(STANDINS, n + '.svg')
-        if not os.path.exists(src):
-            src = os.path.join(CASES, n + '.svg')
-        png = render_reference(src)
+        eq = os.path.join(EQUIVALENT, n + '.svg')
+        png = render_reference(eq if os.path.exists(eq) else os.path.join(CASES, n + '.svg'))
         with open(os.path.join(CASES, n + '.png'), 'wb') as f:
             f.write(png)
         print('wrote', n + '.png')

@@ -81,14 +81,15 @@ def _document(bytestring, file_obj, url):
 def _root_size_against_parent(root, vb, parent_width, parent_height):
     """Resolve percentages of the root's width/height (absent: 100 %)
     against the parent box, in place.  Without a parent size a percentage
-    is CairoSVG's zero, which means the viewBox size when there is one."""
+    (or an absent side) is CairoSVG's zero, which means the viewBox size
+    when there is one (not raster's aspect ratio from the other side)."""
     for i, (attr, parent) in enumerate((('width', parent_width), ('height', parent_height))):
         m = _PERCENT.match(root.get(attr, '100%'))
         if m is None:
             continue
         if parent is not None:
             root.set(attr, repr(float(m.group(1)) * _number('parent_' + attr, parent) / 100.0))
-        elif vb is not None and root.get(attr) is not None:
+        elif vb is not None:
             root.set(attr, repr(vb[2 + i]))
 
 
@@ -199,7 +200,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
         rect = parse_path('M0 0H%rV%rH0Z' % (W, H))
         kids.insert(0, PathNode(path=rect, fill=Fill(SolidPaint(bg))))
     out = Tree(width=float(Wi), height=float(Hi), root=Group(children=kids), ids=tree.ids)
-    png = encode(render_tree(out).to_rgba8(), 'png')
+    png = encode(render_tree(out, dtype='uint8').to_rgba8(), 'png')
     if write_to is None:
         return png
     if hasattr(write_to, 'write'):

@@ -175,7 +175,8 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
            id: Optional[str] = None, fonts: Optional[FontOptions] = None,
            resources_dir: Optional[str] = None, premultiplied: bool = False,
            tolerance: float = DEFAULT_TOLERANCE, crop: bool = False,
-           font_dirs: Optional[Sequence[str]] = None) -> np.ndarray:
+           font_dirs: Optional[Sequence[str]] = None,
+           languages: Sequence[str] = ('en',)) -> np.ndarray:
     """Render an SVG document to an RGBA array.
 
     Parameters
@@ -204,6 +205,9 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
         Return premultiplied colours (default: straight alpha).
     tolerance : float
         Flattening tolerance in device pixels.
+    languages : sequence of str
+        The user's languages for ``systemLanguage`` (language tags; see
+        :class:`raster.parser.Options`).
 
     Returns
     -------
@@ -225,9 +229,10 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
     """
     bg = parse_background(background)
     tree = load_svg(source, dpi=dpi, fonts=font_options(fonts, font_dirs),
-                    resources_dir=resources_dir)
+                    resources_dir=resources_dir,
+                    languages=tuple(languages))
     canvas = render_tree(tree, width=width, height=height, zoom=zoom, background=bg,
-                         node_id=id, tolerance=tolerance, crop=crop)
+                         node_id=id, tolerance=tolerance, crop=crop, dtype=np.uint8)
     return canvas.to_rgba8(premultiplied=bool(premultiplied))
 
 

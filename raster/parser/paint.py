@@ -17,7 +17,14 @@ made monotonic, ``stop-color``/``stop-opacity`` with ``currentColor``,
 colour; one without stops paints the fallback colour (else nothing).
 Patterns: ``href`` inheritance, ``patternUnits``, ``patternContentUnits``,
 ``viewBox`` with ``preserveAspectRatio``, ``patternTransform``; a
-recursive pattern paints nothing.
+recursive pattern, or one whose content draws nothing, paints nothing
+(a transparent pattern).  A paint server that cannot paint paints
+the fallback colour of the ``url()`` (``fill="url(#p) lime"``; none given:
+nothing): a gradient without stops, a pattern without content (no
+element children, itself or through ``href``), with a tile of zero (or
+negative) size or a viewBox of zero size, and a server with objectBoundingBox units (``gradientUnits``,
+``patternUnits`` or ``patternContentUnits``) on a shape whose bounding box
+has no width or no height (a horizontal line).
 """
 
 import dataclasses
@@ -37,7 +44,7 @@ from .refs import href_chain
 from .style import BLACK, doc_style, local_name, number_or_percent, opacity
 from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length, parse_paint,
                      parse_preserve_aspect_ratio, parse_transform, parse_transform_origin,
-                     parse_viewbox, viewbox_transform)
+                     resolve_viewbox, viewbox_transform, ZERO_VIEWBOX)
 
 __all__ = ['paint', 'server_of', 'in_space', 'GradientServer', 'PatternServer', 'UNSUPPORTED']
 
@@ -241,8 +248,11 @@ def _pattern(el, ctx, cache):
         if any(isinstance(c.tag, str) and c.tag.startswith(_P) for c in e):
             content_el = e
             break
+    # a pattern that cannot paint -- no content, an empty tile, a viewBox
+    # of zero size -- paints the fallback (content that draws nothing is a
+    # transparent pattern)
     if content_el is None:
-        return None
+        return UNSUPPORTED
     obb = attr('patternUnits') != 'userSpaceOnUse'
     cobb = attr('patternContentUnits') == 'objectBoundingBox'
     if obb:
@@ -256,7 +266,7 @@ def _pattern(el, ctx, cache):
         vals.append(0.0 if r is None else r)
     x, y, w, h = vals
     if not (w > 0 and h > 0):
-        return None
+        return UNSUPPORTED
     tf = IDENTITY
     ts = attr('patternTransform')
     if ts is not None:
@@ -266,11 +276,10 @@ def _pattern(el, ctx, cache):
             tf = _with_origin(el, t, ctx, cache)
     vb = par = None
     content_t = IDENTITY
-    vbs = attr('viewBox')
-    if vbs is not None:
-        vb = parse_viewbox(vbs)
-        if vb is None:
-            return None
+    vb = resolve_viewbox(attr('viewBox'))
+    if vb is ZERO_VIEWBOX:
+        return UNSUPPORTED
+    if vb is not None:
         par = parse_preserve_aspect_ratio(attr('preserveAspectRatio') or '')
         if not obb:
             content_t = viewbox_transform(vb, par, w, h)

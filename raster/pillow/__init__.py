@@ -159,7 +159,7 @@ class SvgImageFile(ImageFile.ImageFile):
             from ..renderer import render_tree
             width, height, zoom = self._svg_request
             canvas = render_tree(tree, width=width, height=height, zoom=zoom,
-                                 background=self._svg_background)
+                                 background=self._svg_background, dtype='uint8')
             self.load_prepare()
             self.frombytes(canvas.to_rgba8().tobytes())
             if self.fp is not None and getattr(self, '_exclusive_fp', False):

@@ -23,7 +23,7 @@ tree, the geometry kernel and the pixel layer; never the parser.
 import math
 from typing import NamedTuple, Optional, Tuple
 
-from .. import _malloc, limits
+from .. import limits
 from ..errors import CanvasError, SVGError
 from ..pixels.canvas import Canvas
 from ..geometry.transform import IDENTITY, Affine
@@ -120,7 +120,7 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
                 zoom: Optional[float] = None,
                 background: Optional[Tuple[float, float, float, float]] = None,
                 node_id: Optional[str] = None, tolerance: float = DEFAULT_TOLERANCE,
-                crop: bool = False) -> Canvas:
+                crop: bool = False, dtype='float32') -> Canvas:
     """Render a resolved tree.
 
     Parameters
@@ -141,11 +141,16 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
         regions included, clip paths and masks applied) instead of the
         page, and ``width``/``height``/``zoom`` size that box (resvg's
         ``--export-id``).
+    dtype : 'float32' or 'uint8' (or the numpy types)
+        Storage of the output canvas: float32 (16 bytes a pixel), or 8-bit
+        (4 bytes a pixel, each composite onto it rounded to 1/255 as in
+        resvg; what :func:`raster.svg.render` and the ``rasterize`` command
+        use).  Group layers, clip paths and masks are float32 either way.
 
     Returns
     -------
     raster.pixels.canvas.Canvas
-        Premultiplied float32 RGBA canvas of the output size.
+        Premultiplied RGBA canvas of the output size.
 
     Raises
     ------
@@ -157,11 +162,10 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
     """
     if not isinstance(tree, Tree):
         raise SVGError('render_tree needs a raster.tree.Tree, got %s' % type(tree).__name__)
-    _malloc.tune()
     tol = _positive('tolerance', tolerance)
     g = output_geometry(tree, width, height, zoom, node_id, crop)
-    canvas = Canvas(g.width, g.height, background)
-    Renderer(tol).draw(g.node, g.transform, canvas)
+    canvas = Canvas(g.width, g.height, background, dtype)
+    Renderer(tol, canvas.dtype).draw(g.node, g.transform, canvas)
     return canvas
 
 

@@ -560,3 +560,43 @@ def test_id_of_an_element_that_draws_nothing_is_an_error(tmp_path, capsys, eid):
     out = tmp_path / 'o.png'
     assert rasterize.main([src, str(out), '--id', eid]) == 1
     assert one_error_line(capsys.readouterr().err, 'rasterize') and not out.exists()
+
+
+LANG_DOC = (b'<svg xmlns="http://www.w3.org/2000/svg" width="30" height="10"><switch>'
+            b'<rect systemLanguage="de" width="30" height="10" fill="#0000ff"/>'
+            b'<rect systemLanguage="en" width="30" height="10" fill="#00ff00"/>'
+            b'<rect width="30" height="10" fill="#ff0000"/></switch></svg>')
+
+
+@pytest.mark.parametrize('env, opts, colour', [
+    ({'LANG': 'de_DE.UTF-8'}, [], (0, 0, 255)),
+    ({'LANG': 'en_US.UTF-8'}, [], (0, 255, 0)),
+    ({'LC_ALL': 'C'}, [], (0, 255, 0)),                 # C: English
+    ({}, [], (0, 255, 0)),                               # nothing set: English
+    ({'LANG': 'fr_FR'}, [], (255, 0, 0)),                # neither: the fallback child
+    ({'LC_MESSAGES': 'de_AT', 'LANG': 'en_US'}, [], (0, 0, 255)),
+    ({'LC_ALL': 'fr_FR', 'LC_MESSAGES': 'de_AT'}, [], (255, 0, 0)),
+    ({'LANG': 'de_DE.UTF-8'}, ['--languages', 'en'], (0, 255, 0)),
+    ({}, ['--languages', 'de-CH,en'], (0, 0, 255)),      # primary subtags: de-CH is de
+    ({}, ['--languages', 'fr, de'], (0, 0, 255)),
+])
+def test_languages_option_and_locale_default(tmp_path, monkeypatch, env, opts, colour):
+    for k in ('LC_ALL', 'LC_MESSAGES', 'LANG'):
+        monkeypatch.delenv(k, raising=False)
+    for k, v in env.items():
+        monkeypatch.setenv(k, v)
+    src = write(tmp_path, 'l.svg', LANG_DOC)
+    out = str(tmp_path / 'l.png')
+    assert rasterize.main([src, out] + opts) == 0
+    assert tuple(png(out)[5, 5, :3]) == colour
+    res = str(tmp_path / 'l.json')
+    assert svg_flatten.main([src, '-o', res, '--format', 'json'] + opts) == 0
+    assert svg_bbox.main([src, '-o', res] + opts) == 0
+
+
+@pytest.mark.parametrize('main', [rasterize.main, svg_flatten.main, svg_bbox.main])
+def test_bad_languages_list_is_a_usage_error(tmp_path, main, capsys):
+    src = write(tmp_path, 'l.svg', LANG_DOC)
+    args = [src, str(tmp_path / 'o.png')] if main is rasterize.main else [src]
+    assert main(args + ['--languages', 'de_CH,,x']) == 2
+    assert 'languages' in capsys.readouterr().err
