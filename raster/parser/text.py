@@ -57,7 +57,6 @@ from ..fonts.matching import best_face
 from ..geometry.path import Path
 from ..geometry.transform import Affine
 from ..tree import PathNode, SolidPaint
-from .colorglyph import color_glyph_node
 from .fontface import document_font_db
 from .boxes import Boxed
 from .effects import wrap
@@ -690,6 +689,9 @@ def _color_nodes(sp, items, st, cache, bbox):
     path the outlines are used instead, filled like other glyphs."""
     if sp.inh.get('visibility', 'visible') in ('hidden', 'collapse'):
         return []
+    # colour glyphs (and the filters and images they may use) load with
+    # the first one drawn
+    from .colorglyph import color_glyph_node
     out = []
     fg = None
     plain = []
