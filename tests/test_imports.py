@@ -21,12 +21,10 @@ from PIL import Image
 
 from _shared import SUITE_FONTS
 
-#: Loaded only by documents that need them (of raster.fonts, a plain
-#: document loads only the package and its options module: the FontOptions
-#: of raster.parser.Options).
-HEAVY = ('fontTools', 'uharfbuzz', 'PIL', 'raster.fonts.files', 'raster.fonts.font',
-         'raster.fonts.matching', 'raster.fonts.discovery', 'raster.fonts.color',
-         'raster.parser.text', 'raster.parser.fontface',
+#: Loaded only by documents that need them.
+HEAVY = ('fontTools', 'uharfbuzz', 'PIL', 'raster.fonts.font', 'raster.fonts.matching',
+         'raster.fonts.discovery', 'raster.fonts.color', 'raster.parser.text',
+         'raster.parser.fontface',
          'raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
          'raster.tree.filter', 'raster.parser.images', 'raster.parser.imageload',
          'raster.parser.markers', 'raster.parser.clipmask')
@@ -109,8 +107,8 @@ def test_a_filter_loads_the_filter_modules():
 def test_text_loads_the_fonts():
     doc = SVG % '<text x="1" y="8" font-family="Noto Sans" font-size="8">Hi</text>'
     mods = modules_after(render_code(doc, font_dirs=[SUITE_FONTS]))
-    assert loaded(mods, ('fontTools', 'uharfbuzz', 'raster.fonts.font', 'raster.parser.text')) == [
-        'fontTools', 'raster.fonts.font', 'raster.parser.text', 'uharfbuzz']
+    assert loaded(mods, ('fontTools', 'uharfbuzz', 'raster.fonts', 'raster.parser.text')) == [
+        'fontTools', 'raster.fonts', 'raster.parser.text', 'uharfbuzz']
     assert loaded(mods, FILTERS) == []
 
 

@@ -15,17 +15,32 @@
 * :mod:`raster.fonts.color` -- colour glyphs (COLRv0, COLRv1, sbix,
   CBDT/CBLC, SVG) as neutral layer descriptions.
 
-Names are imported on first use: a document without text loads only
-:mod:`raster.fonts.options` (the :class:`FontOptions` of its
-:class:`raster.parser.Options`), not the font readers, fontTools or
-HarfBuzz.
-
 >>> from raster.fonts import parse_font_family
 >>> parse_font_family('"Noto Sans", Arial ,serif')
 ['Noto Sans', 'Arial', 'serif']
 """
 
+import importlib
+
+from .files import FONT_EXTENSIONS, FontError, FontFace
 from .options import FontOptions
+
+#: Names of the heavier submodules, imported on first use (a document
+#: without text loads only :mod:`raster.fonts.options`).
+_LAZY = {'Font': 'font', 'Shaped': 'font', 'register_memory_font': 'font',
+         'BUNDLED_FONT': 'matching', 'FAMILY_CLASSES': 'matching',
+         'GENERIC_PREFERENCES': 'matching', 'METRIC_ALIASES': 'matching', 'FontDB': 'matching',
+         'cached': 'matching', 'generic_keyword': 'matching', 'parse_font_family': 'matching'}
+
+
+def __getattr__(name):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError('module %r has no attribute %r' % (__name__, name))
+    value = getattr(importlib.import_module('.' + module, __name__), name)
+    globals()[name] = value
+    return value
+
 
 __all__ = ['FontError', 'FontFace', 'FontDB', 'Font', 'Shaped', 'FontOptions',
            'parse_font_family', 'generic_keyword', 'cached', 'register_memory_font',
@@ -35,26 +50,3 @@ __all__ = ['FontError', 'FontFace', 'FontDB', 'Font', 'Shaped', 'FontOptions',
 #: The family usvg (and so the conformance harness) gives text without a
 #: ``font-family``; raster's own default is the ``serif`` generic family.
 DEFAULT_FAMILY = 'Times New Roman'
-
-# The rest of the names come from their modules on first use.
-_LAZY = {
-    'FONT_EXTENSIONS': 'files', 'FontError': 'files', 'FontFace': 'files',
-    'Font': 'font', 'Shaped': 'font', 'register_memory_font': 'font',
-    'BUNDLED_FONT': 'matching', 'FAMILY_CLASSES': 'matching',
-    'GENERIC_PREFERENCES': 'matching', 'METRIC_ALIASES': 'matching', 'FontDB': 'matching',
-    'cached': 'matching', 'generic_keyword': 'matching', 'parse_font_family': 'matching',
-}
-
-
-def __getattr__(name):
-    mod = _LAZY.get(name)
-    if mod is None:
-        raise AttributeError('module %r has no attribute %r' % (__name__, name))
-    import importlib
-    value = getattr(importlib.import_module('.' + mod, __name__), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__():
-    return sorted(set(globals()) | set(_LAZY))

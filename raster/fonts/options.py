@@ -5,16 +5,12 @@ import os
 from dataclasses import dataclass, fields
 from typing import Optional, Tuple
 
+from .files import FontError
 
 __all__ = ['FontOptions', 'GENERIC_NAMES']
 
 #: Generic family keywords of CSS that :class:`FontOptions` can override.
 GENERIC_NAMES = ('serif', 'sans-serif', 'monospace', 'cursive', 'fantasy')
-
-
-def _error(msg):
-    from .files import FontError        # the font readers load only when needed
-    return FontError(msg)
 
 
 def _paths(name, value):
@@ -25,7 +21,7 @@ def _paths(name, value):
     try:
         out = tuple(os.fspath(v) for v in value)
     except TypeError:
-        raise _error('%s must be a path or a sequence of paths, got %r'
+        raise FontError('%s must be a path or a sequence of paths, got %r'
                         % (name, value)) from None
     return out
 
@@ -80,7 +76,7 @@ class FontOptions:
             v = getattr(self, f.name)
             if f.name.endswith('_family') and v is not None:
                 if not isinstance(v, str) or not v.strip():
-                    raise _error('%s must be a non-empty family name, got %r' % (f.name, v))
+                    raise FontError('%s must be a non-empty family name, got %r' % (f.name, v))
                 object.__setattr__(self, f.name, v.strip())
         object.__setattr__(self, 'system', bool(self.system))
         object.__setattr__(self, 'cache', bool(self.cache))
@@ -106,6 +102,6 @@ class FontOptions:
             try:
                 return cls(**value)
             except TypeError as e:
-                raise _error('bad font options: %s' % e) from None
-        raise _error('fonts must be a raster.FontOptions, a dict or None, got %s'
+                raise FontError('bad font options: %s' % e) from None
+        raise FontError('fonts must be a raster.FontOptions, a dict or None, got %s'
                         % type(value).__name__)

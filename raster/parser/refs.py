@@ -65,7 +65,6 @@ def external_target(el, cache):
         cache.warn('external', 'references to other documents are only followed to local '
                                'files: %s' % href[:60])
         return None
-    # the file readers load with the first reference to another document
     from .imageload import ImageError, fetch_document, image_source
     opts = cache.options
     try:
