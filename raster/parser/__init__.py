@@ -130,13 +130,14 @@ def _import_loader(options):
     :func:`raster.parser.imageload.fetch_stylesheet`, chains at most
     ``MAX_IMPORT_DEPTH`` deep, at most ``MAX_IMPORTS`` sheets, a sheet
     importing itself (directly or not) skipped; each refusal one warning."""
-    import warnings
-    from ..errors import RasterWarning
-    from .imageload import MAX_IMPORT_DEPTH, MAX_IMPORTS, ImageError, fetch_stylesheet
     count = [0]
 
     def loader(base_dir, chain):
         def load(href):
+            # (imported here: a document without @import loads none of it)
+            import warnings
+            from ..errors import RasterWarning
+            from .imageload import MAX_IMPORT_DEPTH, MAX_IMPORTS, ImageError, fetch_stylesheet
             if len(chain) >= MAX_IMPORT_DEPTH or count[0] >= MAX_IMPORTS:
                 warnings.warn('style sheet not imported: more than %d imports or %d levels: %s'
                               % (MAX_IMPORTS, MAX_IMPORT_DEPTH, href[:60]), RasterWarning,

@@ -17,7 +17,6 @@ import dataclasses
 import os
 
 from .context import SVG_NS, XLINK_HREF
-from .imageload import ImageError, fetch_document, image_source
 from .style import local_name
 from .values import parse_url
 
@@ -67,6 +66,8 @@ def external_target(el, cache):
                                'files: %s' % href[:60])
         return None
     opts = cache.options
+    # (imported here: documents without such references never load it)
+    from .imageload import ImageError, fetch_document, image_source
     try:
         real, root = fetch_document(file, opts, cache.table('documents'))
     except ImageError as e:
