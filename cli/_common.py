@@ -249,8 +249,21 @@ def write_output(path, data):
     atomically: a temporary file beside it, renamed over it.  Any other
     existing file (a device, a FIFO, a socket, a link to one) is opened and
     written directly: renaming over it would replace the device node."""
+    with open_output(path) as f:
+        f.write(data)
+
+
+@contextlib.contextmanager
+def open_output(path):
+    """A binary file to write ``path`` through, by the rules of
+    :func:`write_output`: ``-`` is stdout; a regular file (or a new path)
+    is a temporary file beside it, renamed into place when the block ends
+    without an error and removed otherwise, so a failed or interrupted
+    write never leaves a partial file at ``path``; an existing device,
+    FIFO or socket is opened and written directly.  What streams its
+    output (a PNG written strip by strip) writes through this."""
     if path == '-':
-        sys.stdout.buffer.write(data)
+        yield sys.stdout.buffer
         sys.stdout.buffer.flush()
         return
     try:
@@ -261,14 +274,14 @@ def write_output(path, data):
         if stat.S_ISDIR(st.st_mode):
             raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), path)
         with open(path, 'wb') as f:
-            f.write(data)
+            yield f
         return
     # a link to a regular file: replace the file it names, not the link
     target = os.path.realpath(path)
     fd, tmp = _temporary_beside(target)
     try:
         with os.fdopen(fd, 'wb') as f:
-            f.write(data)
+            yield f
         # created 0600; give the file the mode a plain open() would
         os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, target)
@@ -278,6 +291,84 @@ def write_output(path, data):
         except OSError:
             pass
         raise
+
+
+#: File name endings batch conversion picks up in folders.
+SVG_SUFFIXES = ('.svg', '.svgz')
+
+
+def collect_inputs(paths, recursive=False):
+    """The documents of a batch: ``[(input path, folder relative to the
+    walked root)]`` in the order given, folders walked for
+    :data:`SVG_SUFFIXES` files (case-insensitive, sorted by name; with
+    ``recursive`` their subfolders too, whose relative folder is kept);
+    a file given by name is taken whatever its name, with folder ``''``.
+
+    Raises
+    ------
+    raster.errors.RasterIOError
+        A path that does not exist."""
+    from raster.errors import RasterIOError
+    out = []
+    for p in paths:
+        if p != '-' and os.path.isdir(p):
+            for d, dirs, files in os.walk(p):
+                dirs.sort()
+                if not recursive:
+                    dirs[:] = []
+                rel = os.path.relpath(d, p)
+                rel = '' if rel == '.' else rel
+                out.extend((os.path.join(d, f), rel) for f in sorted(files)
+                           if f.lower().endswith(SVG_SUFFIXES))
+        elif p == '-' or os.path.exists(p):
+            out.append((p, ''))
+        else:
+            raise RasterIOError(errno.ENOENT, 'No such file or directory', p)
+    return out
+
+
+def output_name(path, rel, out_dir, pattern, ext):
+    """Output path of batch input ``path`` found in folder ``rel`` (see
+    :func:`collect_inputs`): ``out_dir/rel/<pattern>`` where ``pattern``
+    names the file with the fields ``{stem}`` (the input's name without
+    ``.svg``/``.svgz``), ``{name}`` (its whole name) and ``{ext}`` (the
+    output format's extension, ``png``...).
+
+    >>> output_name('in/a/logo.svgz', 'a', 'out', '{stem}.{ext}', 'png')
+    'out/a/logo.png'
+    """
+    name = os.path.basename(path)
+    stem = name
+    for suf in SVG_SUFFIXES:
+        if stem.lower().endswith(suf):
+            stem = stem[:-len(suf)]
+            break
+    try:
+        fname = pattern.format(stem=stem, name=name, ext=ext)
+    except (KeyError, IndexError, ValueError) as e:
+        raise UsageError('--out-pattern %r: unknown field or bad format (%s); fields: '
+                         '{stem} {name} {ext}' % (pattern, e)) from None
+    return os.path.join(out_dir, rel, fname) if rel else os.path.join(out_dir, fname)
+
+
+def cpu_count():
+    """CPUs this process may run on (its affinity where the system says)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):
+        return max(1, os.cpu_count() or 1)
+
+
+def process_pool(jobs, initializer=None, initargs=()):
+    """A pool of ``jobs`` worker processes for a command.  Where the system
+    can fork, the workers are copies of the command's process, so the
+    imports (and a document already parsed) are paid for once, not once
+    per worker; elsewhere they are started afresh and ``initializer`` runs
+    in each."""
+    import multiprocessing
+    methods = multiprocessing.get_all_start_methods()
+    ctx = multiprocessing.get_context('fork' if 'fork' in methods else None)
+    return ctx.Pool(jobs, initializer=initializer, initargs=initargs)
 
 
 def _temporary_beside(target):

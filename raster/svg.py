@@ -176,7 +176,8 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
            resources_dir: Optional[str] = None, premultiplied: bool = False,
            tolerance: float = DEFAULT_TOLERANCE, crop: bool = False,
            font_dirs: Optional[Sequence[str]] = None,
-           languages: Sequence[str] = ('en',)) -> np.ndarray:
+           languages: Sequence[str] = ('en',),
+           window: Optional[Tuple[int, int, int, int]] = None) -> np.ndarray:
     """Render an SVG document to an RGBA array.
 
     Parameters
@@ -208,11 +209,18 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
     languages : sequence of str
         The user's languages for ``systemLanguage`` (language tags; see
         :class:`raster.parser.Options`).
+    window : (x0, y0, x1, y1) ints or None
+        Only this rectangle of the output (columns x0 to x1 - 1, rows y0
+        to y1 - 1), equal to that part of the whole image; the whole output
+        may then exceed :data:`raster.limits.MAX_PIXELS` (see
+        :func:`raster.renderer.render_tree`).  To render many windows of
+        one document, load it once (:func:`load_svg`) and call
+        :func:`raster.renderer.render_tree` with ``window`` on the tree.
 
     Returns
     -------
     (H, W, 4) uint8 ndarray
-        RGBA, row 0 at the top.
+        RGBA, row 0 at the top (``(y1 - y0, x1 - x0, 4)`` with a window).
 
     Raises
     ------
@@ -232,7 +240,8 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
                     resources_dir=resources_dir,
                     languages=tuple(languages))
     canvas = render_tree(tree, width=width, height=height, zoom=zoom, background=bg,
-                         node_id=id, tolerance=tolerance, crop=crop, dtype=np.uint8)
+                         node_id=id, tolerance=tolerance, crop=crop, dtype=np.uint8,
+                         window=window)
     return canvas.to_rgba8(premultiplied=bool(premultiplied))
 
 

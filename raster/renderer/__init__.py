@@ -32,7 +32,12 @@ from ..tree.extent import drawn_box
 from .draw import Renderer
 
 __all__ = ['render_tree', 'output_size', 'output_geometry', 'OutputGeometry', 'find_node', 'DEFAULT_TOLERANCE',
-           'Renderer']
+           'Renderer', 'check_window', 'MAX_WINDOWED_PIXELS']
+
+#: Largest whole output (pixels) that is rendered a window at a time
+#: (``render_tree(window=...)``, the strips of ``rasterize``, map tiles):
+#: each window is still at most :data:`raster.limits.MAX_PIXELS`.
+MAX_WINDOWED_PIXELS = 4_000_000_000
 
 #: Default flattening tolerance in device pixels.
 DEFAULT_TOLERANCE = 0.25
@@ -50,7 +55,8 @@ def _positive(name, v):
 
 def output_size(doc_width: float, doc_height: float, width: Optional[int] = None,
                 height: Optional[int] = None,
-                zoom: Optional[float] = None) -> Tuple[int, int, float, float]:
+                zoom: Optional[float] = None,
+                max_pixels: Optional[int] = None) -> Tuple[int, int, float, float]:
     """Output size in pixels and the document-to-device scale.
 
     Parameters
@@ -64,6 +70,9 @@ def output_size(doc_width: float, doc_height: float, width: Optional[int] = None
         non-uniform scale.
     zoom : float or None
         Scale factor of the natural size (not with ``width``/``height``).
+    max_pixels : int or None
+        Largest output in pixels (default :data:`raster.limits.MAX_PIXELS`;
+        windowed rendering allows :data:`MAX_WINDOWED_PIXELS`).
 
     Returns
     -------
@@ -110,9 +119,10 @@ def output_size(doc_width: float, doc_height: float, width: Optional[int] = None
     if w != int(w) or h != int(h):
         raise CanvasError('output size must be whole pixels, got %r x %r' % (w, h))
     w, h = int(w), int(h)
-    if w > limits.MAX_SIDE or h > limits.MAX_SIDE or w * h > limits.MAX_PIXELS:
+    mp = limits.MAX_PIXELS if max_pixels is None else max_pixels
+    if w > limits.MAX_SIDE or h > limits.MAX_SIDE or w * h > mp:
         raise CanvasError('output size %d x %d exceeds the limit (%d px per side, %d pixels)'
-                          % (w, h, limits.MAX_SIDE, limits.MAX_PIXELS))
+                          % (w, h, limits.MAX_SIDE, mp))
     return w, h, w / dw, h / dh
 
 
@@ -120,7 +130,8 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
                 zoom: Optional[float] = None,
                 background: Optional[Tuple[float, float, float, float]] = None,
                 node_id: Optional[str] = None, tolerance: float = DEFAULT_TOLERANCE,
-                crop: bool = False, dtype='float32') -> Canvas:
+                crop: bool = False, dtype='float32',
+                window: Optional[Tuple[int, int, int, int]] = None) -> Canvas:
     """Render a resolved tree.
 
     Parameters
@@ -146,11 +157,21 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
         (4 bytes a pixel, each composite onto it rounded to 1/255 as in
         resvg; what :func:`raster.svg.render` and the ``rasterize`` command
         use).  Group layers, clip paths and masks are float32 either way.
+    window : (x0, y0, x1, y1) ints or None
+        Render only this rectangle of the output (pixel columns x0 to
+        x1 - 1, rows y0 to y1 - 1; 0 <= x0 < x1 <= width, likewise for y):
+        the canvas is ``(x1 - x0) x (y1 - y0)`` and holds those pixels of
+        the whole render.  Filters, masks, clip paths and patterns that
+        reach across the window's border are drawn with the margins they
+        need, so windows put side by side equal the whole image (to within
+        one level of 255 where a blur's sums round differently).  The
+        whole output may then be up to :data:`MAX_WINDOWED_PIXELS` pixels;
+        the window at most :data:`raster.limits.MAX_PIXELS`.
 
     Returns
     -------
     raster.pixels.canvas.Canvas
-        Premultiplied RGBA canvas of the output size.
+        Premultiplied RGBA canvas of the output size (of the window).
 
     Raises
     ------
@@ -158,15 +179,52 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
         Bad output size (see :func:`output_size`) or tolerance.
     SVGError
         ``tree`` is not a Tree, ``node_id`` names no node of it, or the
-        node to crop to draws nothing.
+        node to crop to draws nothing; a window that is not inside the
+        output.
     """
     if not isinstance(tree, Tree):
         raise SVGError('render_tree needs a raster.tree.Tree, got %s' % type(tree).__name__)
     tol = _positive('tolerance', tolerance)
-    g = output_geometry(tree, width, height, zoom, node_id, crop)
-    canvas = Canvas(g.width, g.height, background, dtype)
-    Renderer(tol, canvas.dtype).draw(g.node, g.transform, canvas)
+    g = output_geometry(tree, width, height, zoom, node_id, crop,
+                        max_pixels=None if window is None else MAX_WINDOWED_PIXELS)
+    if window is None:
+        canvas = Canvas(g.width, g.height, background, dtype)
+        Renderer(tol, canvas.dtype).draw(g.node, g.transform, canvas)
+        return canvas
+    x0, y0, x1, y1 = check_window(window, g.width, g.height)
+    canvas = Canvas(x1 - x0, y1 - y0, background, dtype)
+    Renderer(tol, canvas.dtype).draw(g.node, Affine.translate(-x0, -y0) @ g.transform, canvas,
+                                     frame=(-x0, -y0, g.width - x0, g.height - y0))
     return canvas
+
+
+def check_window(window, width: int, height: int) -> Tuple[int, int, int, int]:
+    """``window`` as four ints ``(x0, y0, x1, y1)`` with
+    ``0 <= x0 < x1 <= width`` and ``0 <= y0 < y1 <= height``.
+
+    Raises
+    ------
+    CanvasError
+        Anything else, or a window of more than
+        :data:`raster.limits.MAX_PIXELS` pixels.
+
+    >>> check_window((0, 10, 20, 30), 100, 50)
+    (0, 10, 20, 30)
+    """
+    try:
+        vals = tuple(window)
+        x0, y0, x1, y1 = (int(v) for v in vals)
+        if any(int(v) != v for v in vals):
+            raise ValueError
+    except (TypeError, ValueError):
+        raise CanvasError('window must be four whole numbers (x0, y0, x1, y1), got %r'
+                          % (window,)) from None
+    if not (0 <= x0 < x1 <= width and 0 <= y0 < y1 <= height):
+        raise CanvasError('window %r is not inside the %d x %d output' % (window, width, height))
+    if (x1 - x0) * (y1 - y0) > limits.MAX_PIXELS:
+        raise CanvasError('window %d x %d exceeds %d pixels'
+                          % (x1 - x0, y1 - y0, limits.MAX_PIXELS))
+    return x0, y0, x1, y1
 
 
 class OutputGeometry(NamedTuple):
@@ -183,9 +241,9 @@ class OutputGeometry(NamedTuple):
 
 def output_geometry(tree: Tree, width: Optional[int] = None, height: Optional[int] = None,
                     zoom: Optional[float] = None, node_id: Optional[str] = None,
-                    crop: bool = False) -> OutputGeometry:
+                    crop: bool = False, max_pixels: Optional[int] = None) -> OutputGeometry:
     """The :class:`OutputGeometry` of a render (arguments as for
-    :func:`render_tree`)."""
+    :func:`render_tree`; ``max_pixels`` as for :func:`output_size`)."""
     if node_id is None:
         node, t = tree.root, IDENTITY
     else:
@@ -194,10 +252,11 @@ def output_geometry(tree: Tree, width: Optional[int] = None, height: Optional[in
         box = drawn_box(node, t, tolerance=0.01)
         if box is None or not (box[2] > box[0] and box[3] > box[1]):
             raise SVGError('element %r draws nothing to crop to' % (node_id,))
-        w, h, sx, sy = output_size(box[2] - box[0], box[3] - box[1], width, height, zoom)
+        w, h, sx, sy = output_size(box[2] - box[0], box[3] - box[1], width, height, zoom,
+                                   max_pixels)
         t = Affine.translate(-box[0], -box[1]) @ t
     else:
-        w, h, sx, sy = output_size(tree.width, tree.height, width, height, zoom)
+        w, h, sx, sy = output_size(tree.width, tree.height, width, height, zoom, max_pixels)
     return OutputGeometry(node, w, h, Affine.scale(sx, sy) @ t, (sx, sy))
 
 

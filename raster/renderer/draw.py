@@ -51,12 +51,73 @@ class Renderer:
         self.dtype = np.dtype(dtype)
         self.masks = Masks(tolerance)
         self._limit_warned = False
+        # windowed rendering: id(canvas) -> (frame, need), see draw()
+        self._frames = {}
 
-    def draw(self, node, t, canvas):
+    def draw(self, node, t, canvas, frame=None):
         """Draw ``node`` (and what is below it) with CTM ``t`` on ``canvas``,
-        planning the masks of its subtree first."""
-        self.masks.plan([node], t, canvas)
-        self.node(node, t, canvas)
+        planning the masks of its subtree first.
+
+        ``frame`` : (x0, y0, x1, y1) ints or None
+            When ``canvas`` is a window of a larger output, the rectangle of
+            that whole output in the canvas's pixel coordinates.  Layers are
+            then placed and clipped as they would be on the whole output,
+            and filter layers reach past the window by the margin their
+            primitives read (:func:`raster.renderer.filters.filter_margin`),
+            so the window's pixels are those of the whole render."""
+        if frame is not None:
+            self._frames[id(canvas)] = (tuple(int(v) for v in frame),
+                                        (0, 0, canvas.width, canvas.height))
+        try:
+            self.masks.plan([node], t, canvas)
+            self.node(node, t, canvas)
+        finally:
+            if frame is not None:
+                self._frames.pop(id(canvas), None)
+
+    def _layer_box(self, g, ct, canvas):
+        """``(px, frame)``: the pixel box of a group's layer on ``canvas``
+        and the layer's frame (the whole render's layer in the layer's own
+        pixel coordinates), or ``(None, None)``; ``frame`` is None outside
+        windowed rendering."""
+        base = canvas
+        while isinstance(base, ClipRect):       # a view: its canvas's frame
+            base = base.canvas
+        entry = self._frames.get(id(base))
+        if g.filters:
+            from .filters import filter_box, filter_margin, filter_pixel_box
+            box = filter_box(g.filters, ct)
+        else:
+            box = group_box(g, ct)
+        if entry is None:
+            if box is None:
+                return None, None
+            if g.filters:
+                return filter_pixel_box(box, canvas.width, canvas.height), None
+            return pixel_box(box, canvas.width, canvas.height), None
+        (fx0, fy0, fx1, fy1), need = entry
+        if box is None:
+            return None, None
+        sbox = (box[0] - fx0, box[1] - fy0, box[2] - fx0, box[3] - fy0)
+        if g.filters:
+            full = filter_pixel_box(sbox, fx1 - fx0, fy1 - fy0)
+            m = filter_margin(g.filters, ct)
+        else:
+            full = pixel_box(sbox, fx1 - fx0, fy1 - fy0)
+            m = 0
+        if full is None:
+            return None, None
+        full = (full[0] + fx0, full[1] + fy0, full[2] + fx0, full[3] + fy0)
+        if m is None:                   # reads the whole region (feTile...)
+            px = full
+        else:
+            m = int(math.ceil(m))
+            px = (max(full[0], need[0] - m), max(full[1], need[1] - m),
+                  min(full[2], need[2] + m), min(full[3], need[3] + m))
+        if px[2] <= px[0] or px[3] <= px[1]:
+            return None, None
+        frame = (full[0] - px[0], full[1] - px[1], full[2] - px[0], full[3] - px[1])
+        return px, frame
 
     def node(self, node, t, canvas):
         if isinstance(node, Group):
@@ -85,28 +146,30 @@ class Renderer:
                     self.node(c, ct, view)
             return
         # the layer: the group's box, or its filter region (effects draw
-        # outside the content)
-        if g.filters:
-            # the filter machinery loads with the first filter drawn
-            from .filters import filter_box, filter_layer, filter_pixel_box
-            px = filter_pixel_box(filter_box(g.filters, ct), canvas.width, canvas.height)
-        else:
-            box = group_box(g, ct)
-            px = None if box is None else pixel_box(box, canvas.width, canvas.height)
+        # outside the content); the filter machinery loads with the first
+        # filter drawn
+        px, frame = self._layer_box(g, ct, canvas)
         if px is None:
             return
         x0, y0, x1, y1 = px
         layer = Canvas(x1 - x0, y1 - y0, dtype=self.dtype)
         lt = Affine.translate(-x0, -y0) @ ct
-        self.masks.plan(g.children, lt, layer)
-        for c in g.children:
-            self.node(c, lt, layer)
-        if g.filters:
-            filter_layer(g.filters, layer, lt, draw=self._draw_new)
-        if g.clip_path is not None:
-            layer.scale(self.clip_coverage(g.clip_path, lt, layer.width, layer.height))
-        if g.mask is not None:
-            layer.scale(self.mask_values(g.mask, lt, layer.width, layer.height))
+        if frame is not None:
+            self._frames[id(layer)] = (frame, (0, 0, layer.width, layer.height))
+        try:
+            self.masks.plan(g.children, lt, layer)
+            for c in g.children:
+                self.node(c, lt, layer)
+            if g.filters:
+                from .filters import filter_layer
+                filter_layer(g.filters, layer, lt, draw=self._draw_new)
+            if g.clip_path is not None:
+                layer.scale(self.clip_coverage(g.clip_path, lt, layer.width, layer.height))
+            if g.mask is not None:
+                layer.scale(self.mask_values(g.mask, lt, layer.width, layer.height, frame))
+        finally:
+            if frame is not None:
+                self._frames.pop(id(layer), None)
         blend_layer(canvas, layer.data, x0, y0, float(g.opacity), g.blend_mode)
 
     def _draw_new(self, node, m, w, h):
@@ -157,10 +220,17 @@ class Renderer:
             if m is not None:
                 _unite(cov, m)
 
-    def mask_values(self, mask, t, w, h):
-        """(h, w) float32 values of a Mask with CTM ``t``."""
+    def mask_values(self, mask, t, w, h, frame=None):
+        """(h, w) float32 values of a Mask with CTM ``t`` (``frame``: that
+        of the masked layer in windowed rendering, see :meth:`draw`)."""
         layer = Canvas(w, h, dtype=self.dtype)
-        self.node(mask.root, t, layer)
+        if frame is not None:
+            self._frames[id(layer)] = (frame, (0, 0, w, h))
+        try:
+            self.node(mask.root, t, layer)
+        finally:
+            if frame is not None:
+                self._frames.pop(id(layer), None)
         if mask.kind == MaskType.ALPHA:
             m = layer.combine((0.0, 0.0, 0.0, 1.0))
         else:
@@ -180,7 +250,7 @@ class Renderer:
                 return np.zeros((h, w), np.float32)
             _times_mask(m, rc)
         if mask.mask is not None:
-            m *= self.mask_values(mask.mask, t, w, h)
+            m *= self.mask_values(mask.mask, t, w, h, frame)
         np.clip(m, 0.0, 1.0, out=m)
         return m
 

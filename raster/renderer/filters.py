@@ -29,7 +29,7 @@ from ..pixels.effects import FilterImage
 from ..geometry.transform import Affine
 from ..tree import filter as F
 
-__all__ = ['apply_filters', 'filter_layer', 'filter_box', 'filter_pixel_box']
+__all__ = ['apply_filters', 'filter_layer', 'filter_box', 'filter_pixel_box', 'filter_margin']
 
 _UNBOUNDED = 1e9
 
@@ -74,6 +74,53 @@ def filter_pixel_box(box, width, height):
     if x1 <= max(x0, 0) or y1 <= max(y0, 0) or x0 >= width or y0 >= height:
         return None
     return x0, y0, x1, y1
+
+
+def filter_margin(filters, t):
+    """How far (device pixels) the result of ``filters`` under the CTM
+    ``t`` reads its input away from the pixel it computes, summed over
+    every primitive (a bound for any chain of them); None when a primitive
+    can read anywhere in its region (``feTile``, ``feConvolveMatrix`` with
+    ``edgeMode="wrap"``).
+
+    A window of a render (:func:`raster.renderer.render_tree` with
+    ``window``) draws a filtered group's layer over the window grown by
+    this margin, so the window's pixels equal the whole render's.  Blurs
+    count ``4 sigma + 4`` (the three box blurs of a Gaussian reach about
+    ``2.8 sigma + 2``), offsets their length, morphology its radius,
+    convolution its kernel, displacement half its scale, lighting one
+    pixel.
+
+    >>> from raster.tree.filter import Filter, GaussianBlur, Offset
+    >>> f = Filter(region=None, primitives=[GaussianBlur(std_dev=(2.0, 1.0)), Offset(dx=3.0)])
+    >>> filter_margin([f], Affine.scale(2.0))
+    27.0
+    """
+    sx, sy = math.hypot(t.a, t.c), math.hypot(t.b, t.d)
+    s = max(sx, sy)
+    total = 0.0
+    for f in filters:
+        for p in f.primitives:
+            if isinstance(p, (F.GaussianBlur, F.DropShadow)):
+                sd = max(abs(p.std_dev[0]) * sx, abs(p.std_dev[1]) * sy)
+                total += 4.0 * sd + 4.0 if sd > 0 else 0.0
+            if isinstance(p, (F.Offset, F.DropShadow)):
+                total += abs(p.dx) * sx + abs(p.dy) * sy + 1.0
+            elif isinstance(p, F.Morphology):
+                total += max(abs(p.radius[0]) * sx, abs(p.radius[1]) * sy) + 1.0
+            elif isinstance(p, F.ConvolveMatrix):
+                if p.edge_mode == F.EdgeMode.WRAP or p.kernel is None:
+                    return None
+                total += max(np.shape(p.kernel)) + 1.0
+            elif isinstance(p, F.DisplacementMap):
+                total += abs(p.scale) * s / 2.0 + 2.0
+            elif isinstance(p, (F.DiffuseLighting, F.SpecularLighting)):
+                total += 2.0
+            elif isinstance(p, F.Tile):
+                return None
+    if not math.isfinite(total):
+        return None
+    return total
 
 
 def _pixel_rect(box, w, h):
