@@ -20,7 +20,9 @@ imported lazily so that ``import raster`` stays fast.
 """
 
 from .errors import (RasterError, PathError, TransformError, CanvasError,  # noqa: F401
-                     LimitError, SVGError, FormatError, RasterIOError)
+                     LimitError, InputLimitError, SVGError, FormatError, RasterIOError)
+from . import limits  # noqa: F401
+from .limits import Limits  # noqa: F401
 from .geometry.path import Path  # noqa: F401
 from .geometry.pens import PathBuilder, TransformPen, RecordingPen  # noqa: F401
 from .geometry.transform import Affine  # noqa: F401

@@ -30,12 +30,18 @@ class CanvasError(RasterError, ValueError):
 
 
 class LimitError(RasterError):
-    """A safety limit was exceeded (too many points, ``use`` nesting, pixel
-    buffer size, ...)."""
+    """A budget of :mod:`raster.limits` was exceeded (too many points,
+    ``use`` nesting, pixel work, ...).  The message names the budget."""
 
 
 class SVGError(RasterError):
     """The document cannot be rendered: unreadable XML, not SVG, invalid size."""
+
+
+class InputLimitError(LimitError, SVGError):
+    """A document beyond a whole-document budget of :mod:`raster.limits`
+    (``max_input_bytes``, ``max_xml_elements``): nothing is rendered.
+    Both a :class:`LimitError` and an :class:`SVGError`."""
 
 
 class FormatError(RasterError, ValueError):

@@ -101,7 +101,7 @@ from typing import Any, List, NamedTuple, Optional, Sequence, Tuple
 import numpy as np
 
 from ..errors import LimitError, RasterError
-from ..limits import MAX_COORD, MAX_FLATTEN_POINTS
+from .. import limits
 from .bezier import evaluate
 from .flattening import flatten_beziers
 from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
@@ -379,9 +379,12 @@ def _ranges(counts):
 
 
 def _check_size(n, what):
-    if n > MAX_FLATTEN_POINTS:
-        raise LimitError('stroke needs %.3g %s, more than the limit of %d'
-                         % (n, what, MAX_FLATTEN_POINTS))
+    """The budget of :mod:`raster.limits` for ``n`` points (or dashes)
+    of a stroke, before they are made."""
+    lim = limits.current().max_flatten_points
+    if n > lim:
+        raise LimitError('stroke needs %.3g %s, more than max_flatten_points %d'
+                         % (n, what, lim))
 
 
 def _refine_ends(ctrl, points, counts, r, tol, ends=None):
@@ -1239,7 +1242,7 @@ def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: Affine
         Invalid style values or tolerance, or ``path`` not a Path.
     LimitError
         When the outline would need more than
-        :data:`raster.limits.MAX_FLATTEN_POINTS` points or dashes.
+        ``max_flatten_points`` (:mod:`raster.limits`) points or dashes.
 
     Examples
     --------
@@ -1273,6 +1276,7 @@ def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: Affine
         raise LimitError('transform scale is too large (%r)' % (t,))
     if style.width == 0 or len(path.verbs) == 0 or scale == 0:
         return Path.empty()
+    _check_device(path.points if t.is_identity else t.apply(path.points))   # before any work
     pts, counts, _ = _geometry(path, style, tol / scale)
     if not t.is_identity:
         pts = t.apply(pts)
@@ -1344,10 +1348,12 @@ def _eps_per_path(lines, cp, npaths):
 
 def _check_device(pts):
     """Outline points after the transform: finite and within
-    :data:`raster.limits.MAX_COORD` (as scan conversion requires), else
+    ``max_coord`` (:mod:`raster.limits`) (as scan conversion requires), else
     :class:`~raster.errors.LimitError`."""
-    if len(pts) and not (np.all(np.isfinite(pts)) and np.abs(pts).max() <= MAX_COORD):
-        raise LimitError('stroke outline coordinates exceed MAX_COORD %g' % MAX_COORD)
+    if len(pts) and not (np.all(np.isfinite(pts))
+                         and np.abs(pts).max() <= limits.current().max_coord):
+        raise LimitError('stroke outline coordinates exceed max_coord %g'
+                         % limits.current().max_coord)
 
 
 def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
@@ -1393,7 +1399,7 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
         of transforms different from the number of paths.
     LimitError
         When the outlines together would need more than
-        :data:`raster.limits.MAX_FLATTEN_POINTS` points or dashes, or an
+        ``max_flatten_points`` (:mod:`raster.limits`) points or dashes, or an
         outline overflows.
 
     Examples
@@ -1449,6 +1455,11 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
     vpath = np.repeat(np.arange(len(rep)), lens[rep])
     cpath = vpath[big.verbs == MOVE]
     tol_u = (tol / scales[rep])[cpath]
+    mu = m[use]
+    # device coordinates of the paths themselves, before any work
+    upts = [paths[i].points for i in use.tolist()]
+    vp = np.repeat(np.arange(len(use)), [len(q) for q in upts])
+    _check_device(apply_each(mu[vp], np.concatenate(upts)))
     pts, rcounts, owner = _geometry(big, style, tol_u, cpath, len(rep))
     # polygons come out path by path
     ppath = np.repeat(owner, rcounts)
@@ -1460,7 +1471,6 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
         pts = pts[_starts(npts)[inv][ipath] + loc]
     else:
         ipath = ppath
-    mu = m[use]
     if len(ipath) and not np.all(mu == (1.0, 0.0, 0.0, 1.0, 0.0, 0.0)):
         pts = apply_each(mu[ipath], pts)
     _check_device(pts)

@@ -32,6 +32,7 @@ import gc
 import math
 from typing import Optional
 
+from .. import limits
 from ..errors import SVGError
 from ..tree import Tree
 from .context import Cache, Options
@@ -99,6 +100,13 @@ def build_tree(root, options: Optional[Options] = None, image_cache: Optional[di
         if 'languages' in fields:
             fields['languages'] = tuple(fields['languages'])
         options = dataclasses.replace(options, **fields)
+    lim = limits.current()
+    if options.max_elements is None or options.max_use_depth is None:
+        options = dataclasses.replace(
+            options,
+            max_elements=lim.max_elements if options.max_elements is None else options.max_elements,
+            max_use_depth=(lim.max_use_depth if options.max_use_depth is None
+                           else options.max_use_depth))
     tag = root.tag
     if not (isinstance(tag, str) and tag == '{http://www.w3.org/2000/svg}svg'):
         raise SVGError('not an SVG document: root element is not <svg>')
@@ -116,8 +124,12 @@ def build_tree(root, options: Optional[Options] = None, image_cache: Optional[di
         cache = Cache(options=options, root=root, styles=styles, by_id=by_id,
                       conditional=set(found['requiredExtensions']) | set(found['systemLanguage']),
                       converters=CONVERTERS, parse_nested=build_tree,
-                      image_cache={} if image_cache is None else image_cache)
-        return convert_root(root, cache)
+                      image_cache={} if image_cache is None else image_cache, limits=lim)
+        tree = convert_root(root, cache)
+    deep = cache.memo.get('too-deep')
+    if deep:
+        cache.warn('nesting', 'element <%s> nested too deeply: not rendered' % deep['tag'])
+    return tree
 
 
 @contextlib.contextmanager

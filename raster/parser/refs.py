@@ -9,7 +9,7 @@ from .context import SVG_NS, XLINK_HREF
 from .style import local_name
 from .values import parse_url
 
-__all__ = ['href_target', 'reference', 'href_chain', 'is_recursive']
+__all__ = ['href_target', 'reference', 'href_chain', 'is_recursive', 'instance_size']
 
 _USE = '{%s}use' % SVG_NS
 
@@ -91,3 +91,46 @@ def is_recursive(use, cache):
         return res
 
     return visit(use, 0)
+
+
+#: Sizes above this are all "too many" (keeps the arithmetic small).
+_SIZE_CAP = 10 ** 15
+
+
+def instance_size(el, cache):
+    """Estimated nodes that converting ``el`` builds: the elements of its
+    subtree, each ``use`` in it counting the size of its target again (an
+    upper estimate: hidden and non-rendered elements count too).  A cycle
+    counts nothing (it is refused when converted).  Memoized per element,
+    linear in the document; no recursion (use chains may be deep).
+
+    The cost model of ``use`` fan-outs (``max_elements`` of
+    :mod:`raster.limits`): a ``use`` whose content cannot fit in what is
+    left of the budget is left out before any of it is built."""
+    memo = cache.table('instance_size')
+    v = memo.get(el)
+    if v is not None:
+        return v
+    gray = -1
+    stack = [(el, None)]
+    while stack:
+        e, kids = stack.pop()
+        if kids is None:
+            if e in memo:
+                continue
+            memo[e] = gray
+            kids = [c for c in e if isinstance(c.tag, str)]
+            if e.tag == _USE:
+                t = href_target(e, cache)
+                if t is not None:
+                    kids.append(t)
+            stack.append((e, kids))
+            stack.extend((c, None) for c in kids if c not in memo)
+        else:
+            n = 1
+            for c in kids:
+                m = memo.get(c, 0)
+                if m > 0:
+                    n += m
+            memo[e] = min(n, _SIZE_CAP)
+    return memo[el]

@@ -21,7 +21,7 @@ from .convert import convert, convert_children
 from .css import parse_declarations
 from .effects import clip_rect, effects, wrap
 from .paint import GradientServer, PatternServer, in_space, paint
-from .refs import href_target, is_recursive
+from .refs import href_target, instance_size, is_recursive
 from .style import (initial_inherited, is_displayed, length, length_context, local_name,
                     passes_conditions, style_of, transform_of)
 from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length,
@@ -138,11 +138,20 @@ def convert_use(el, state, cache, parent):
     if tgt is None:
         return
     if is_recursive(el, cache):
-        cache.warn('use-cycle', 'recursive use reference ignored (id %r)' % el.get('id'))
+        cache.warn('use-cycle', 'recursive use reference ignored (or nested deeper than %d)'
+                   % cache.options.max_use_depth)
         return
     max_depth = cache.options.max_use_depth
     if state.use_depth >= max_depth:
         cache.warn('use-depth', 'use nesting deeper than %d ignored' % max_depth)
+        return
+    # the cost model: a copy that cannot fit in the node budget is left out
+    # before any of it is built (raster.limits max_elements)
+    need = instance_size(tgt, cache)
+    left = cache.options.max_elements - cache.count
+    if need > left:
+        cache.warn('limit', 'use element not rendered: its content needs about %d nodes, '
+                   'more than the %d left of max_elements' % (need, max(left, 0)))
         return
     x = length(el, 'x', 'x', ctx)
     y = length(el, 'y', 'y', ctx)

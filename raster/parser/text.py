@@ -158,6 +158,9 @@ def convert_text(el, state, cache, parent):
     (:class:`~raster.errors.RasterWarning`) and the element is skipped.
     """
     mark = len(parent)
+    # the layout budget (raster.limits max_glyphs), before any layout
+    if not cache.spend('glyphs', sum(map(len, el.itertext())), 'text'):
+        return
     try:
         _build(el, state, cache, parent)
     except Exception as e:      # text must never break a document (RasterError too)

@@ -175,8 +175,8 @@ class Canvas:
     ------
     CanvasError
         Size not a positive whole number, a side above
-        :data:`raster.limits.MAX_SIDE` or more than
-        :data:`raster.limits.MAX_PIXELS` pixels; malformed background.
+        ``max_side`` or more than ``max_pixels`` pixels
+        (:mod:`raster.limits`); malformed background.
 
     >>> Canvas(3, 2).data.shape
     (2, 3, 4)

@@ -26,7 +26,7 @@ __all__ = ['FilterError', 'FilterImage', 'gaussian_blur', 'box_blur', 'box_sigma
            'morphology', 'convolve', 'lighting', 'turbulence', 'displace', 'tile',
            'srgb_to_linear', 'linear_to_srgb', 'premultiply', 'unpremultiply', 'solid_image',
            'convert_space', 'check_image', 'check_finite', 'check_tolerance',
-           'DEFAULT_TOLERANCE']
+           'DEFAULT_TOLERANCE', 'MAX_OCTAVES', 'blur_cost']
 
 #: Default tolerance (device pixels) for explicit-accuracy blurs (see
 #: :func:`gaussian_blur`; the renderer follows the specification's box
@@ -179,13 +179,39 @@ def _perlin_tables(seed):
     return r
 
 
+#: Octaves of feTurbulence computed: octave ``k`` adds at most ``2**-k`` to
+#: a channel, so the ones past the 32nd change no channel by more than
+#: ``2**-31`` (far below 8-bit output and float32 resolution near 1) and a
+#: ``numOctaves`` of 10**9 costs what 32 cost.
+MAX_OCTAVES = 32
+
+# Lattice coordinates at or beyond this are whole numbers; they are reduced
+# modulo it (a multiple of the lattice's 256) before the integer cast.
+_WRAP = float(2 ** 52)
+
+
+def _lattice_coord(v):
+    """``v + 4096`` with huge (or non-finite) values reduced so that the
+    integer cast is exact: the lattice index (mod 256) and the fraction
+    (0) of a whole number beyond 2**52 are kept; NaN and infinities are
+    0."""
+    t = v + 4096.0
+    big = ~(np.abs(t) < _WRAP)
+    if big.any():
+        with np.errstate(invalid='ignore'):
+            r = np.fmod(t[big], _WRAP)
+        t = t.copy()
+        t[big] = np.nan_to_num(r, nan=0.0, posinf=0.0, neginf=0.0)
+    return t
+
+
 def _noise2(lattice, grad, vx, vy):
     """Perlin noise of the four channels at points (vx, vy): (4, N)."""
-    t = vx + 4096.0
+    t = _lattice_coord(vx)
     ix = t.astype(np.int64)
     bx0, rx0 = ix & 255, t - ix
     bx1 = (bx0 + 1) & 255
-    t = vy + 4096.0
+    t = _lattice_coord(vy)
     iy = t.astype(np.int64)
     by0, ry0 = iy & 255, t - iy
     by1 = (by0 + 1) & 255
@@ -213,6 +239,8 @@ def turbulence(x, y, base_freq, octaves, seed, fractal):
     x, y : (H, W) float64 ndarrays, user-space coordinates
     base_freq : (fx, fy) floats >= 0
     octaves : int >= 0
+        Only the first :data:`MAX_OCTAVES` are computed (the others are
+        below the output's resolution).
     seed : int
     fractal : bool
         True for ``fractalNoise`` (``(sum + 1) / 2``), False for
@@ -224,14 +252,16 @@ def turbulence(x, y, base_freq, octaves, seed, fractal):
     """
     lattice, grad = _perlin_tables(int(seed))
     h, w = x.shape
-    vx = x.ravel() * base_freq[0]
-    vy = y.ravel() * base_freq[1]
+    with np.errstate(over='ignore', invalid='ignore'):
+        vx = x.ravel() * float(base_freq[0])
+        vy = y.ravel() * float(base_freq[1])
     total = np.zeros((4, vx.size))
     ratio = 1.0
-    for _ in range(octaves):                 # loop over octaves, not pixels
+    for _ in range(min(int(octaves), MAX_OCTAVES)):     # loop over octaves, not pixels
         n = _noise2(lattice, grad, vx, vy)
         total += (n if fractal else np.abs(n)) / ratio
-        vx, vy, ratio = vx * 2.0, vy * 2.0, ratio * 2.0
+        with np.errstate(over='ignore'):
+            vx, vy, ratio = vx * 2.0, vy * 2.0, ratio * 2.0
     if fractal:
         total = (total + 1.0) / 2.0
     return np.clip(total.T.reshape(h, w, 4), 0.0, 1.0).astype(np.float32)
@@ -759,6 +789,29 @@ def blur_array(x, plan_x, plan_y):
     out = np.zeros(x.shape, np.float32)
     out[y0:y1, x0:x1] = work
     return out
+
+
+def blur_cost(plan_x, plan_y):
+    """Array passes per pixel (and channel) of :func:`blur_array` with
+    these plans: a box pass of width ``d`` costs about ``log2(d) +
+    popcount(d)`` additions plus two copies (:func:`_box_passes`), a
+    Gaussian of reach ``r`` a multiply and an add per tap.  Used to weigh
+    a blur against a work budget before running it.
+
+    >>> blur_cost(*blur_plans(5.0, 5.0, None))      # three boxes of 9 px per axis
+    48.0
+    """
+    cost = 0.0
+    for plan in (plan_x, plan_y):
+        if plan is None:
+            continue
+        kind, arg = plan
+        if kind == 'gauss':
+            cost += 2.0 * (2 * max(1, int(math.ceil(4.0 * arg))) + 1)
+        else:
+            cost += sum(max(int(d), 1).bit_length() + bin(max(int(d), 1)).count('1') + 2
+                        for d, _ in arg)
+    return float(cost)
 
 
 def blur_image(img, plan_x, plan_y):

@@ -73,8 +73,8 @@ def output_size(doc_width: float, doc_height: float, width: Optional[int] = None
     ------
     CanvasError
         A size or zoom that is not positive and finite, both zoom and a
-        size, or an output of more than :data:`raster.limits.MAX_PIXELS`
-        pixels or a side above :data:`raster.limits.MAX_SIDE`.
+        size, or an output of more than ``max_pixels`` pixels or a side
+        above ``max_side`` (:mod:`raster.limits`).
 
     >>> output_size(100, 50)
     (100, 50, 1.0, 1.0)
@@ -108,9 +108,10 @@ def output_size(doc_width: float, doc_height: float, width: Optional[int] = None
     if w != int(w) or h != int(h):
         raise CanvasError('output size must be whole pixels, got %r x %r' % (w, h))
     w, h = int(w), int(h)
-    if w > limits.MAX_SIDE or h > limits.MAX_SIDE or w * h > limits.MAX_PIXELS:
-        raise CanvasError('output size %d x %d exceeds the limit (%d px per side, %d pixels)'
-                          % (w, h, limits.MAX_SIDE, limits.MAX_PIXELS))
+    lim = limits.current()
+    if w > lim.max_side or h > lim.max_side or w * h > lim.max_pixels:
+        raise CanvasError('output size %d x %d exceeds the limit (max_side %d px, max_pixels '
+                          '%d)' % (w, h, lim.max_side, lim.max_pixels))
     return w, h, w / dw, h / dh
 
 
@@ -157,7 +158,9 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
     else:
         node, t = find_node(tree, node_id)
         t = base @ t
-    Renderer(tol).draw(node, t, canvas)
+    # the whole-render budgets (pixel work, flattened points) of raster.limits
+    with limits.metering(limits.Meter(limits.current(), w * h)):
+        Renderer(tol).draw(node, t, canvas)
     return canvas
 
 

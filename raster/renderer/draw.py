@@ -42,6 +42,14 @@ __all__ = ['Renderer']
 
 _BLACK = (0.0, 0.0, 0.0, 1.0)
 
+# Work (raster.limits max_pixel_work, in array passes over a pixel) of a
+# layer, clip or mask canvas: per pixel (made, drawn into, combined and
+# composited), and what one costs whatever its size (planning and batching
+# its content: about two milliseconds).  A painted path costs its mask's
+# pixels: its fixed costs are bounded by max_elements, but not its area.
+_LAYER_PASSES = 4
+_LAYER_FIXED = 1 << 20
+
 
 class Renderer:
     """Draws tree nodes onto canvases with flattening ``tolerance`` (device
@@ -51,20 +59,29 @@ class Renderer:
         self.tol = tolerance
         self.masks = Masks(tolerance)
         self._limit_warned = False
+        self._too_deep = False
 
     def draw(self, node, t, canvas):
         """Draw ``node`` (and what is below it) with CTM ``t`` on ``canvas``,
         planning the masks of its subtree first."""
         self.masks.plan([node], t, canvas)
         self.node(node, t, canvas)
+        if self._too_deep:
+            self._too_deep = False
+            self._left_out(LimitError('nested too deeply'))
 
     def node(self, node, t, canvas):
-        if isinstance(node, Group):
-            self.group(node, t, canvas)
-        elif isinstance(node, PathNode):
-            self.path(node, t, canvas)
-        elif isinstance(node, ImageNode):
-            self.image(node, t, canvas)
+        try:
+            if isinstance(node, Group):
+                self.group(node, t, canvas)
+            elif isinstance(node, PathNode):
+                self.path(node, t, canvas)
+            elif isinstance(node, ImageNode):
+                self.image(node, t, canvas)
+        except LimitError as e:         # a budget of raster.limits: this node left out
+            self._left_out(e)
+        except RecursionError:          # nested deeper than Python's stack allows
+            self._too_deep = True       # warned by draw(), once the stack has unwound
 
     # -- groups ----------------------------------------------------------------
     def group(self, g, t, canvas):
@@ -94,6 +111,7 @@ class Renderer:
         if px is None:
             return
         x0, y0, x1, y1 = px
+        limits.spend_work(_LAYER_PASSES * (x1 - x0) * (y1 - y0) + _LAYER_FIXED, 'a group layer')
         layer = Canvas(x1 - x0, y1 - y0)
         lt = Affine.translate(-x0, -y0) @ ct
         self.masks.plan(g.children, lt, layer)
@@ -118,6 +136,7 @@ class Renderer:
     def clip_coverage(self, clip, t, w, h):
         """(h, w) float32 coverage of a ClipPath with CTM ``t`` (the
         clipped group's user space to layer pixels)."""
+        limits.spend_work(_LAYER_PASSES * w * h + _LAYER_FIXED, 'a clip path')
         layer = Canvas(w, h)
         self._clip_node(clip.root, t @ clip.transform, layer)
         cov = layer.data[..., 3].copy()
@@ -132,6 +151,8 @@ class Renderer:
         if isinstance(n, Group):
             if n.clip_path is not None:
                 ct = t @ n.transform
+                limits.spend_work(_LAYER_PASSES * layer.width * layer.height + _LAYER_FIXED,
+                                  'a clip path')
                 sub = Canvas(layer.width, layer.height)
                 for c in n.children:
                     self._clip_node(c, ct, sub)
@@ -151,10 +172,12 @@ class Renderer:
                 self._left_out(e)
                 return
             if m is not None:
+                limits.spend_work(m.data.size, 'a clip path')
                 layer.fill(m, _BLACK, 1.0)
 
     def mask_values(self, mask, t, w, h):
         """(h, w) float32 values of a Mask with CTM ``t``."""
+        limits.spend_work(_LAYER_PASSES * w * h + _LAYER_FIXED, 'a mask')
         layer = Canvas(w, h)
         self.node(mask.root, t, layer)
         d = layer.data
@@ -189,8 +212,9 @@ class Renderer:
             self._left_out(e)
 
     def _left_out(self, e):
-        """One element beyond a limit (a coordinate above MAX_COORD, too
-        many dashes...) is left out with one warning; the rest of the
+        """One element beyond a budget of :mod:`raster.limits` (a
+        coordinate above max_coord, too many dashes, the pixel work
+        spent...) is left out, with one warning per render; the rest of the
         document is drawn."""
         if not self._limit_warned:
             self._limit_warned = True
@@ -215,6 +239,7 @@ class Renderer:
     def paint(self, canvas, mask, paint, opacity, t):
         """Composite ``paint`` (in the user space that ``t`` maps to the
         canvas) through coverage ``mask`` with ``opacity``."""
+        limits.spend_work(mask.data.size, 'a path')
         if isinstance(paint, SolidPaint):
             canvas.fill(mask, paint.color, opacity)
             return
@@ -242,8 +267,10 @@ class Renderer:
         sy = math.hypot(tile_to_dev.c, tile_to_dev.d)
         tw = max(1, int(math.ceil(w * sx)))
         th = max(1, int(math.ceil(h * sy)))
-        if tw * th > limits.MAX_PIXELS // 4:
+        if tw * th > limits.current().max_pixels // 4:
             return None
+        limits.spend_work(_LAYER_PASSES * tw * th + 8 * mask.data.size + _LAYER_FIXED,
+                          'a pattern')
         # As resvg: the tile raster has whole-pixel size (rounded up) and the
         # content is drawn at the device scale, so the period is tw / sx
         # (up to a pixel longer than the tile): references tile this way.
@@ -281,6 +308,8 @@ class Renderer:
         if px is None:
             return
         x0, y0, x1, y1 = px
+        limits.spend_work(_LAYER_PASSES * (x1 - x0) * (y1 - y0) + _LAYER_FIXED,
+                          'an SVG image')
         layer = Canvas(x1 - x0, y1 - y0)
         lt = Affine.translate(-x0, -y0)
         self.node(g, lt @ it, layer)

@@ -19,6 +19,7 @@ import math
 import numpy as np
 from PIL import Image
 
+from .. import limits
 from ..errors import RasterError
 from ..geometry.path import Path
 from ..pixels.scan import path_coverage
@@ -28,6 +29,10 @@ from ..tree import LinearGradient
 __all__ = ['gradient_colors', 'draw_pixels', 'sample', 'resample_window']
 
 _F32 = np.float32
+
+# Work (raster.limits max_pixel_work) per covered pixel of a raster image:
+# resampled (bilinear: four taps), covered and composited.
+_IMAGE_PASSES = 40
 
 
 
@@ -442,6 +447,7 @@ def draw_pixels(n, t, canvas, tol):
                * cm.data[ay0 - cm.y0:ay1 - cm.y0, ax0 - cm.x0:ax1 - cm.x0])
         x0, y0 = ax0, ay0
     h, w = cov.shape
+    limits.spend_work(_IMAGE_PASSES * w * h, 'an image')
     col = resample_window(pix, inv, x0, y0, w, h, 'bilinear' if n.smooth else 'nearest')
     if col is None:
         return
