@@ -104,7 +104,8 @@ class Renderer:
         # the layer: the group's box, or its filter region (effects draw
         # outside the content)
         if g.filters:
-            px = filter_pixel_box(filter_box(g.filters, ct), canvas.width, canvas.height)
+            px = filter_pixel_box(filter_box(g.filters, ct, lambda: group_box(g, ct)),
+                                  canvas.width, canvas.height)
         else:
             box = group_box(g, ct)
             px = None if box is None else pixel_box(box, canvas.width, canvas.height)

@@ -40,15 +40,79 @@ def _device_box(rect, t):
     return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
 
 
-def filter_box(filters, t):
+def filter_box(filters, t, content=None):
     """Device box ``(x0, y0, x1, y1)`` covering the regions of ``filters``
-    under the CTM ``t`` (user space to device pixels), or None."""
+    under the CTM ``t`` (user space to device pixels), or None.
+
+    A filter without a region (a CSS filter function) covers the canvas,
+    unless ``content`` is given: a callable returning the device box of
+    what the filtered group draws (or None).  When every such filter keeps
+    transparent pixels transparent (colour functions, blurs, shadows,
+    offsets, as the CSS functions do) its box is that content box grown by
+    how far its primitives move or spread pixels -- every pixel it can
+    make non-zero, so the result is the same as over the canvas, for a
+    fraction of the work."""
     box = None
+    reach = None
     for f in filters:
+        if f.region is None and content is not None:
+            r = _function_reach(f, t)
+            if r is not None:
+                reach = r if reach is None else (reach[0] + r[0], reach[1] + r[1])
+                continue
         b = _device_box(f.region, t)
         box = b if box is None else (min(box[0], b[0]), min(box[1], b[1]),
                                      max(box[2], b[2]), max(box[3], b[3]))
+    if reach is not None:
+        c = content()
+        if c is not None:
+            c = (c[0] - reach[0], c[1] - reach[1], c[2] + reach[0], c[3] + reach[1])
+            box = c if box is None else (min(box[0], c[0]), min(box[1], c[1]),
+                                         max(box[2], c[2]), max(box[3], c[3]))
     return box
+
+
+def _keeps_transparent(p):
+    """Whether primitive ``p`` (of a region-less filter) maps transparent
+    black to transparent black, so it draws nothing outside its input."""
+    k = type(p)
+    if k is F.ColorMatrix:
+        a = np.asarray(p.matrix, np.float64)[3]
+        return bool(a[0] == 0 and a[1] == 0 and a[2] == 0 and a[4] == 0)
+    if k is F.ComponentTransfer:
+        fn = p.funcs.get(3)
+        if fn is None:
+            return True
+        if isinstance(fn, (F.TableTransfer, F.DiscreteTransfer)):
+            return bool(fn.values) and fn.values[0] == 0
+        if isinstance(fn, F.LinearTransfer):
+            return fn.intercept == 0
+        return False
+    return k in (F.GaussianBlur, F.DropShadow, F.Offset)
+
+
+def _function_reach(f, t):
+    """``(rx, ry)``: how far (device px) filter ``f``'s primitives can move
+    or spread pixels under ``t``, or None when one may draw where its input
+    is transparent (or reads anything but the previous result)."""
+    sx, sy = math.hypot(t.a, t.c), math.hypot(t.b, t.d)
+    rx = ry = 0.0
+    for p in f.primitives:
+        if not _keeps_transparent(p):
+            return None
+        if any(i is not F.Source.GRAPHIC and i is not F.PREVIOUS for i in p.inputs):
+            return None
+        k = type(p)
+        if k is F.GaussianBlur or k is F.DropShadow:
+            # box blurs reach under 3 sigma + 3 px, kernels 4 sigma + 1 px
+            rx += 4.0 * max(p.std_dev[0], 0.0) * sx + 3.0
+            ry += 4.0 * max(p.std_dev[1], 0.0) * sy + 3.0
+        if k is F.Offset or k is F.DropShadow:
+            rx += abs(p.dx) * sx + 1.0
+            ry += abs(p.dy) * sy + 1.0
+    if not (math.isfinite(rx) and math.isfinite(ry)):
+        return None
+    return rx, ry
 
 
 def filter_pixel_box(box, width, height):
