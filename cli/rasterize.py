@@ -25,8 +25,8 @@ failed run leaves no file at the output path.
 import argparse
 import sys
 
-from ._common import (Parser, UsageError, add_version, base_dir_of, read_source, run,
-                      write_output)
+from ._common import (Parser, UsageError, add_limit_options, add_version, base_dir_of,
+                      read_source, run, write_output)
 
 PROG = 'rasterize'
 
@@ -56,6 +56,7 @@ def build_parser():
     ap.add_argument('--compress-level', type=int, metavar='N',
                     help='PNG zlib level 0-9 (default 1)')
     ap.add_argument('--tolerance', type=float, default=0.25, help=argparse.SUPPRESS)
+    add_limit_options(ap)
     add_version(ap)
     return ap
 

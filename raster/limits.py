@@ -17,8 +17,13 @@ name                      default         what it bounds
 ``max_elements``          100,000         render-tree nodes built (``use``
                                           copies included)
 ``max_use_depth``         64              ``use`` nesting followed
+``max_layers``            2,000           group layers built (a clip path,
+                                          mask, filter, blend mode, a group
+                                          opacity), ``use`` copies included
 ``max_css_matches``       1,000,000       selector tests of the CSS cascade
                                           (candidate rules x elements)
+``max_path_bytes``        2,000,000       path data of one element (``d``,
+                                          ``points``)
 ``max_glyphs``            200,000         characters of text laid out
 ``max_image_bytes``       64 MiB          encoded size of one image
 ``max_image_pixels``      89,478,485      decoded size of one raster image
@@ -27,7 +32,7 @@ name                      default         what it bounds
 ``max_coord``             1e9             device-pixel coordinate magnitude
 ``max_flatten_points``    4,000,000       polyline points of one flattening
                                           (one path or one batch)
-``max_render_points``     40,000,000      polyline points of one render
+``max_render_points``     10,000,000      curve points flattened by one render
 ``max_pixel_work``        512             pixel work of one render (layers,
                                           masks, clip paths, pattern tiles,
                                           images, filter primitives, fills)
@@ -107,10 +112,15 @@ class Limits:
     max_elements: float = _budget(
         100_000, 'nodes', 'render-tree nodes built, use copies included; the rest is left out')
     max_use_depth: float = _budget(64, 'levels', 'use nesting followed')
+    max_layers: float = _budget(
+        2_000, 'elements', 'group layers built (a clip path, mask, filter, blend mode or a '
+        'group opacity), use copies included; the rest is left out')
     max_css_matches: float = _budget(
         1_000_000, 'tests',
         'selector tests of the CSS cascade (candidate rules x elements); over it the '
         'stylesheets are ignored')
+    max_path_bytes: float = _budget(
+        2_000_000, 'bytes', 'path data of one element (d, points); a longer one is left out')
     max_glyphs: float = _budget(200_000, 'characters', 'characters of text laid out')
     max_image_bytes: float = _budget(64 * 1024 * 1024, 'bytes', 'encoded size of one image')
     max_image_pixels: float = _budget(89_478_485, 'pixels', 'decoded size of one raster image')
@@ -118,9 +128,11 @@ class Limits:
     max_side: float = _budget(100_000, 'pixels', 'pixels of a canvas side')
     max_coord: float = _budget(1e9, 'pixels', 'device coordinate magnitude of geometry')
     max_flatten_points: float = _budget(
-        4_000_000, 'points', 'polyline points of one flattening (a path or a batch of paths)')
+        4_000_000, 'points', 'polyline points of one flattening (a path or a batch of paths), '
+        'estimated before flattening')
     max_render_points: float = _budget(
-        40_000_000, 'points', 'polyline points flattened by one render')
+        10_000_000, 'points', 'curve points flattened by one render (estimated, as for '
+        'max_flatten_points)')
     max_pixel_work: float = _budget(
         512, 'passes',
         'pixel work of one render (layers, masks, clip paths, pattern tiles, images, filter '

@@ -193,6 +193,9 @@ class Cache:
         The budgets of this document (see :meth:`spend`).
     spent : dict
         What the document has used of its budgets, by kind.
+    prepaid : int
+        Depth of ``use`` copies being converted whose layers were taken
+        from the budget ahead (see :func:`raster.parser.refs.instance_size`).
     """
     options: Options
     root: object
@@ -210,6 +213,7 @@ class Cache:
     image_cache: dict = field(default_factory=dict)
     limits: Limits = field(default_factory=current_limits)
     spent: dict = field(default_factory=dict)
+    prepaid: int = 0
 
     def table(self, name):
         """The memo table ``name`` (created empty on first use)."""

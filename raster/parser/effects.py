@@ -78,6 +78,10 @@ def effects(el, own, state, cache, kids, t=None):
         if e is None:
             e = memo[o] = Effects(opacity=opacity(o))
         return e
+    # the layer budget (raster.limits max_layers); use copies pay ahead
+    if not cache.prepaid and not cache.spend('layers', 1, 'element with a clip path, mask, '
+                                             'filter or blend mode'):
+        return NOT_DRAWN
     mask = None
     if t is not None and not t.is_identity and ('clip-path' in own or 'mask' in own):
         state = state.sub(transform=t)
@@ -121,6 +125,9 @@ def wrap(el, own, t, kids, state, cache, clip=None, keep=False):
         else:
             e = dataclasses.replace(e, clip=clip)
     kids, e = _fold_opacity(kids, e)
+    if (e.opacity < 1.0 and not e.composited and not cache.prepaid
+            and not cache.spend('layers', 1, 'group with opacity')):
+        return []                   # the layer budget (raster.limits max_layers)
     i = el.get('id') or ''
     if not keep and not i and t.is_identity and e.trivial:
         return kids

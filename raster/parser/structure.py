@@ -145,14 +145,27 @@ def convert_use(el, state, cache, parent):
     if state.use_depth >= max_depth:
         cache.warn('use-depth', 'use nesting deeper than %d ignored' % max_depth)
         return
-    # the cost model: a copy that cannot fit in the node budget is left out
-    # before any of it is built (raster.limits max_elements)
-    need = instance_size(tgt, cache)
+    # the cost model: a copy that cannot fit in the node or layer budgets
+    # is left out before any of it is built (raster.limits max_elements,
+    # max_layers)
+    need, layers = instance_size(el, cache)        # the use itself included
+    need -= 1                                      # (already counted)
     left = cache.options.max_elements - cache.count
     if need > left:
         cache.warn('limit', 'use element not rendered: its content needs about %d nodes, '
                    'more than the %d left of max_elements' % (need, max(left, 0)))
         return
+    if layers and not cache.prepaid and not cache.spend('layers', layers, 'use element'):
+        return
+    cache.prepaid += bool(layers)
+    try:
+        _instantiate(el, tgt, state, cache, parent, inh, own, ctx, t)
+    finally:
+        cache.prepaid -= bool(layers)
+
+
+def _instantiate(el, tgt, state, cache, parent, inh, own, ctx, t):
+    """The rest of :func:`convert_use`: ``el``'s copy of ``tgt``."""
     x = length(el, 'x', 'x', ctx)
     y = length(el, 'y', 'y', ctx)
     name = local_name(tgt)

@@ -50,7 +50,7 @@ import re
 import numpy as np
 
 from .. import limits
-from ..errors import RasterError
+from ..errors import RasterError, log_warnings
 from ..geometry.flattening import flatten
 from ..fonts import Font, FontDB, FontError, cached, parse_font_family
 from ..geometry.path import Path
@@ -162,7 +162,8 @@ def convert_text(el, state, cache, parent):
     if not cache.spend('glyphs', sum(map(len, el.itertext())), 'text'):
         return
     try:
-        _build(el, state, cache, parent)
+        with log_warnings('fontTools'):         # a broken font's log lines: our warnings
+            _build(el, state, cache, parent)
     except Exception as e:      # text must never break a document (RasterError too)
         del parent[mark:]
         cache.warn('text-error', 'text element not rendered: %s' % (e,))

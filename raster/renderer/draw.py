@@ -45,10 +45,10 @@ _BLACK = (0.0, 0.0, 0.0, 1.0)
 # Work (raster.limits max_pixel_work, in array passes over a pixel) of a
 # layer, clip or mask canvas: per pixel (made, drawn into, combined and
 # composited), and what one costs whatever its size (planning and batching
-# its content: about two milliseconds).  A painted path costs its mask's
+# its content: a few milliseconds).  A painted path costs its mask's
 # pixels: its fixed costs are bounded by max_elements, but not its area.
 _LAYER_PASSES = 4
-_LAYER_FIXED = 1 << 20
+_LAYER_FIXED = 1 << 21
 
 
 class Renderer:
@@ -101,6 +101,8 @@ class Renderer:
                 for c in g.children:
                     self.node(c, ct, view)
             return
+        # what a layer costs whatever its size, before its box is measured
+        limits.spend_work(_LAYER_FIXED, 'a group layer')
         # the layer: the group's box, or its filter region (effects draw
         # outside the content)
         if g.filters:
@@ -112,7 +114,7 @@ class Renderer:
         if px is None:
             return
         x0, y0, x1, y1 = px
-        limits.spend_work(_LAYER_PASSES * (x1 - x0) * (y1 - y0) + _LAYER_FIXED, 'a group layer')
+        limits.spend_work(_LAYER_PASSES * (x1 - x0) * (y1 - y0), 'a group layer')
         layer = Canvas(x1 - x0, y1 - y0)
         lt = Affine.translate(-x0, -y0) @ ct
         self.masks.plan(g.children, lt, layer)

@@ -263,8 +263,8 @@ _PASSES = {F.Offset: 24, F.Flood: 4, F.Merge: 30, F.Composite: 30, F.Blend: 40,
 _OCTAVE_PASSES = 240
 # one tap of feConvolveMatrix
 _TAP_PASSES = 5
-# what making a filter layer costs whatever its size (about two milliseconds)
-_FILTER_FIXED = 1 << 20
+# what making a filter layer costs whatever its size (a few milliseconds)
+_FILTER_FIXED = 1 << 21
 
 
 def filter_work(f, width, height, sx=1.0, sy=1.0, tolerance=None):
@@ -277,7 +277,7 @@ def filter_work(f, width, height, sx=1.0, sy=1.0, tolerance=None):
     passes.  ``sx``, ``sy`` scale user lengths to pixels; ``tolerance`` is
     the blur tolerance.  Cheap: no pixel is touched.
 
-    >>> filter_work(F.Filter(region=None, primitives=[F.Flood()]), 10, 10) - 2 ** 20
+    >>> filter_work(F.Filter(region=None, primitives=[F.Flood()]), 10, 10) - 2 ** 21
     400.0
     """
     px = float(width) * float(height)
