@@ -20,6 +20,7 @@
 import argparse
 import errno
 import os
+import re
 import stat
 import sys
 import warnings
@@ -51,8 +52,22 @@ def _one_line(msg):
     return msg or 'unknown error'
 
 
+_REPR = re.compile(r'<[^<>]*? at 0x[0-9A-Fa-f]+>')
+
+
+def _no_reprs(msg):
+    """``msg`` without object reprs (``<_io.BytesIO object at 0x...>``):
+    heap addresses mean nothing to the user."""
+    return _REPR.sub('', msg)
+
+
 def error_message(exc):
-    """One-line description of an exception for the user."""
+    """One-line description of an exception for the user (no object
+    reprs)."""
+    return _no_reprs(_error_message(exc))
+
+
+def _error_message(exc):
     if isinstance(exc, OSError):
         parts = [exc.strerror or str(exc)]
         if exc.filename:
@@ -114,7 +129,7 @@ def install_warnings(prog):
     seen = set()
 
     def show(message, category, filename, lineno, file=None, line=None):
-        msg = _one_line(message)
+        msg = _one_line(_no_reprs(str(message)))
         if msg not in seen:
             seen.add(msg)
             print('%s: warning: %s' % (prog, msg), file=sys.stderr)
@@ -219,19 +234,31 @@ def write_output(path, data):
     # a link to a regular file: replace the file it names, not the link
     target = os.path.realpath(path)
     d = os.path.dirname(target)
-    fd, tmp = tempfile.mkstemp(prefix='.%s.' % os.path.basename(target), suffix='.tmp', dir=d)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix='.%s.' % os.path.basename(target), suffix='.tmp',
+                                   dir=d)
+    except OSError as e:
+        raise _about(e, path) from None
     try:
         with os.fdopen(fd, 'wb') as f:
             f.write(data)
         # mkstemp creates 0600; give the file the mode a plain open() would
         os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, target)
-    except BaseException:
+    except BaseException as e:
         try:
             os.unlink(tmp)
         except OSError:
             pass
+        if isinstance(e, OSError):      # about the output, not the temporary file
+            raise _about(e, path) from None
         raise
+
+
+def _about(e, path):
+    """``e`` (an OSError) told about ``path`` rather than a temporary
+    file."""
+    return type(e)(e.errno, e.strerror or str(e), path)
 
 
 def _umask():

@@ -24,7 +24,7 @@ name                      default         what it bounds
                                           (candidate rules x elements)
 ``max_path_bytes``        2,000,000       path data of one element (``d``,
                                           ``points``)
-``max_glyphs``            200,000         characters of text laid out
+``max_glyphs``            20,000          characters of text laid out
 ``max_image_bytes``       64 MiB          encoded size of one image
 ``max_image_pixels``      89,478,485      decoded size of one raster image
 ``max_pixels``            100,000,000     pixels of a canvas or layer
@@ -121,7 +121,9 @@ class Limits:
         'stylesheets are ignored')
     max_path_bytes: float = _budget(
         2_000_000, 'bytes', 'path data of one element (d, points); a longer one is left out')
-    max_glyphs: float = _budget(200_000, 'characters', 'characters of text laid out')
+    max_glyphs: float = _budget(
+        20_000, 'characters', 'characters of text laid out; a text element that would go '
+        'over it is left out')
     max_image_bytes: float = _budget(64 * 1024 * 1024, 'bytes', 'encoded size of one image')
     max_image_pixels: float = _budget(89_478_485, 'pixels', 'decoded size of one raster image')
     max_pixels: float = _budget(100_000_000, 'pixels', 'pixels of the canvas or of one layer')

@@ -18,16 +18,22 @@ document's own directory).
 
 Output sizes are in device pixels; the document's natural size is its
 ``width``/``height`` in CSS px (96 per inch at ``dpi=96``).
+
+Every function takes ``limits``: the budgets of :mod:`raster.limits` for
+this call (a :class:`~raster.limits.Limits`, a mapping such as
+``{'max_xml_text_bytes': 50_000_000}``, or ``'unlimited'`` for trusted
+input); by default the budgets in force (:func:`raster.limits.current`).
 """
 
-import math
 import math
 import os
 from typing import BinaryIO, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
+from . import limits as _limits
 from .errors import SVGError
+from .limits import LimitsSpec
 from .parser import Options, build_tree, load_document
 from .parser.values import CURRENT_COLOR, parse_color
 from .renderer import DEFAULT_TOLERANCE, render_tree
@@ -55,7 +61,7 @@ def _source_and_base(source):
 
 def load_svg(source: Source, *, dpi: float = 96, font_dirs: Sequence[str] = (),
              resources_dir: Optional[str] = None, base_dir: Optional[str] = None,
-             **options) -> Tree:
+             limits: LimitsSpec = None, **options) -> Tree:
     """Load and resolve an SVG document.
 
     Parameters
@@ -71,6 +77,8 @@ def load_svg(source: Source, *, dpi: float = 96, font_dirs: Sequence[str] = (),
     base_dir : str or None
         Directory relative references resolve against (default: the
         source file's directory).
+    limits : raster.limits.Limits, mapping, 'unlimited' or None
+        Budgets for this call (see the module docstring).
     **options
         Further fields of :class:`raster.parser.Options` (``font_size``,
         ``languages``, ``tolerance``, ``max_elements``, ``max_use_depth``,
@@ -84,10 +92,24 @@ def load_svg(source: Source, *, dpi: float = 96, font_dirs: Sequence[str] = (),
     ------
     raster.errors.SVGError
         Unreadable XML, not an SVG document, invalid size or ``dpi``.
+    raster.errors.InputLimitError
+        A document beyond ``max_input_bytes`` or ``max_xml_elements``
+        (also an :class:`~raster.errors.SVGError`).
     raster.errors.RasterIOError
         The file cannot be read, or ``source`` is a URL other than
         ``file:`` (also an :class:`OSError`).
+
+    Warns
+    -----
+    raster.errors.RasterWarning
+        Content ignored or unsupported, or left out over a budget (once
+        per kind).
     """
+    with _limits.applied(limits):
+        return _load_svg(source, dpi, font_dirs, resources_dir, base_dir, options)
+
+
+def _load_svg(source, dpi, font_dirs, resources_dir, base_dir, options):
     try:
         d = float(dpi)
     except (TypeError, ValueError):
@@ -140,7 +162,7 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
            zoom: Optional[float] = None, dpi: float = 96, background: Background = None,
            id: Optional[str] = None, font_dirs: Sequence[str] = (),
            resources_dir: Optional[str] = None, premultiplied: bool = False,
-           tolerance: float = DEFAULT_TOLERANCE) -> np.ndarray:
+           tolerance: float = DEFAULT_TOLERANCE, limits: LimitsSpec = None) -> np.ndarray:
     """Render an SVG document to an RGBA array.
 
     Parameters
@@ -166,6 +188,9 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
         Return premultiplied colours (default: straight alpha).
     tolerance : float
         Flattening tolerance in device pixels.
+    limits : raster.limits.Limits, mapping, 'unlimited' or None
+        Budgets for this call (see the module docstring): an element over
+        one is left out with a warning.
 
     Returns
     -------
@@ -178,7 +203,9 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
         Bad document, unknown ``id`` or bad background colour.
     raster.errors.CanvasError
         Zero, negative or non-finite size or zoom, or an output above
-        :data:`raster.limits.MAX_PIXELS` pixels.
+        ``max_pixels`` (:mod:`raster.limits`).
+    raster.errors.InputLimitError
+        A document beyond ``max_input_bytes`` or ``max_xml_elements``.
 
     >>> img = render(b'<svg xmlns="http://www.w3.org/2000/svg" width="4" height="2">'
     ...              b'<rect width="2" height="2" fill="blue"/></svg>')
@@ -186,9 +213,10 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
     ((2, 4, 4), [0, 0, 255, 255], [0, 0, 0, 0])
     """
     bg = parse_background(background)
-    tree = load_svg(source, dpi=dpi, font_dirs=font_dirs, resources_dir=resources_dir)
-    canvas = render_tree(tree, width=width, height=height, zoom=zoom, background=bg,
-                         node_id=id, tolerance=tolerance)
+    with _limits.applied(limits):
+        tree = load_svg(source, dpi=dpi, font_dirs=font_dirs, resources_dir=resources_dir)
+        canvas = render_tree(tree, width=width, height=height, zoom=zoom, background=bg,
+                             node_id=id, tolerance=tolerance)
     return canvas.to_rgba8(premultiplied=bool(premultiplied))
 
 

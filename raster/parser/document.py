@@ -241,7 +241,7 @@ def _huge_hint(msg):
     if not _HUGE_ADVICE.search(msg):
         return msg
     return _HUGE_ADVICE.sub('', msg).rstrip(' ,:') + \
-        ' (libxml2\'s limit: raise max_xml_text_bytes above %d for its huge mode)' % _LIBXML2_TEXT
+        ' (libxml2\'s limit: raise max_xml_text_bytes above 10 MB)'
 
 
 _XLINK_HREF_IN_DTD = re.compile(rb'(\s)xlink:href(\s*=)')
