@@ -1276,7 +1276,7 @@ def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: Affine
         raise LimitError('transform scale is too large (%r)' % (t,))
     if style.width == 0 or len(path.verbs) == 0 or scale == 0:
         return Path.empty()
-    _check_device(path.points if t.is_identity else t.apply(path.points))   # before any work
+    _check_early(path.points if t.is_identity else t.apply(path.points), style.width * scale)
     pts, counts, _ = _geometry(path, style, tol / scale)
     if not t.is_identity:
         pts = t.apply(pts)
@@ -1354,6 +1354,19 @@ def _check_device(pts):
                          and np.abs(pts).max() <= limits.current().max_coord):
         raise LimitError('stroke outline coordinates exceed max_coord %g'
                          % limits.current().max_coord)
+
+
+def _check_early(pts, width):
+    """Before any work: the path's device points ``pts`` within
+    ``max_coord``, and a stroke ``width`` (device px) that cannot put the
+    outline beyond it for certain (every path point has outline points
+    ``width / 2`` away, one coordinate at least ``width / (2 sqrt 2)``
+    off)."""
+    _check_device(pts)
+    if len(pts):
+        lim = limits.current().max_coord
+        if 0.5 * width / math.sqrt(2.0) - float(np.abs(pts).max()) > lim:
+            raise LimitError('stroke outline coordinates exceed max_coord %g' % lim)
 
 
 def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
@@ -1459,7 +1472,7 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
     # device coordinates of the paths themselves, before any work
     upts = [paths[i].points for i in use.tolist()]
     vp = np.repeat(np.arange(len(use)), [len(q) for q in upts])
-    _check_device(apply_each(mu[vp], np.concatenate(upts)))
+    _check_early(apply_each(mu[vp], np.concatenate(upts)), style.width * float(scales[use].max()))
     pts, rcounts, owner = _geometry(big, style, tol_u, cpath, len(rep))
     # polygons come out path by path
     ppath = np.repeat(owner, rcounts)

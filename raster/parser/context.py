@@ -229,9 +229,10 @@ class Cache:
             self.warned.add(kind)
             warnings.warn(msg, RasterWarning, stacklevel=4)
 
-    def tick(self):
-        """Count one node; False (with a warning) once the limit is hit."""
-        self.count += 1
+    def tick(self, n=1):
+        """Count ``n`` nodes (default one); False (with a warning) once the
+        limit is hit."""
+        self.count += n
         if self.count > self.options.max_elements:
             if not self.stopped:
                 self.stopped = True
