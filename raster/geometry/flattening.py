@@ -664,8 +664,9 @@ def flatten(path: Path, tolerance: float = DEFAULT_TOLERANCE,
     ctrl = seg.ctrl
     cstart = seg.contour_start
     if not t.is_identity:
-        ctrl = t.apply(ctrl)
-        cstart = t.apply(cstart)
+        with np.errstate(over='ignore', invalid='ignore'):     # checked just below
+            ctrl = t.apply(ctrl)
+            cstart = t.apply(cstart)
         if not (np.all(np.isfinite(ctrl)) and np.all(np.isfinite(cstart))):
             raise PathError('transformed path has non-finite coordinates')
     out, starts, keep_c, _ = _assemble(ctrl, cstart, seg.degree, seg.contour,
@@ -790,7 +791,8 @@ def flatten_joined(paths: Sequence[Path], transforms: Optional[Sequence[AffineLi
         def apply(pts, owner):
             out = pts.copy()
             move = np.flatnonzero(~ident[owner])
-            out[move] = apply_each(M[owner[move]], pts[move])
+            with np.errstate(over='ignore', invalid='ignore'):   # checked below
+                out[move] = apply_each(M[owner[move]], pts[move])
             return out
         ctrl = apply(ctrl, c_path[seg.contour])
         cstart = apply(cstart, c_path)

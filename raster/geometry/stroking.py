@@ -450,7 +450,8 @@ def _refine_ends(ctrl, points, counts, r, tol, ends=None):
             ta[todo[ok]] = t[ok]
             todo, t = todo[~ok], 0.5 * t[~ok]
         need = ta > 0
-        rho = 1.0 + np.minimum(1.0, c1 / np.maximum(r * ang, 1e-300))
+        with np.errstate(over='ignore'):             # a huge ratio is clamped to 1
+            rho = 1.0 + np.minimum(1.0, c1 / np.maximum(r * ang, 1e-300))
         need &= rho > 1.0
         lr = np.log(np.where(need, rho, 2.0))
         J = np.where(need, np.minimum(64, np.ceil(np.log(np.maximum(r * ang / tol, 1.0)) / lr) + 1),
@@ -764,8 +765,10 @@ def _dash(lines, pattern, offset):
     off = float(offset) % period
     if not 0 <= off < period:
         off = 0.0
-    K = np.floor((L + off) / period).astype(np.int64) + 1
-    _check_size(float(K.sum()) * len(on0), 'dashes')
+    with np.errstate(over='ignore', invalid='ignore'):
+        Kf = np.floor((L + off) / period) + 1
+    _check_size(float(Kf.sum()) * len(on0), 'dashes')      # before the int cast (huge)
+    K = Kf.astype(np.int64)
     kc, kk = _ranges(K)
     a = (kk * period - off)[:, None] + on0[None, :]
     b = (kk * period - off)[:, None] + on1[None, :]
@@ -1276,7 +1279,9 @@ def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: Affine
         raise LimitError('transform scale is too large (%r)' % (t,))
     if style.width == 0 or len(path.verbs) == 0 or scale == 0:
         return Path.empty()
-    _check_early(path.points if t.is_identity else t.apply(path.points), style.width * scale)
+    with np.errstate(over='ignore', invalid='ignore'):         # checked in _check_early
+        dev = path.points if t.is_identity else t.apply(path.points)
+    _check_early(dev, style.width * scale)
     pts, counts, _ = _geometry(path, style, tol / scale)
     if not t.is_identity:
         pts = t.apply(pts)
@@ -1472,7 +1477,9 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
     # device coordinates of the paths themselves, before any work
     upts = [paths[i].points for i in use.tolist()]
     vp = np.repeat(np.arange(len(use)), [len(q) for q in upts])
-    _check_early(apply_each(mu[vp], np.concatenate(upts)), style.width * float(scales[use].max()))
+    with np.errstate(over='ignore', invalid='ignore'):         # checked in _check_early
+        dev = apply_each(mu[vp], np.concatenate(upts))
+    _check_early(dev, style.width * float(scales[use].max()))
     pts, rcounts, owner = _geometry(big, style, tol_u, cpath, len(rep))
     # polygons come out path by path
     ppath = np.repeat(owner, rcounts)

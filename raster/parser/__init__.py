@@ -32,6 +32,8 @@ import gc
 import math
 from typing import Optional
 
+import numpy as np
+
 from .. import limits
 from ..errors import SVGError
 from ..tree import Tree
@@ -113,7 +115,9 @@ def build_tree(root, options: Optional[Options] = None, image_cache: Optional[di
     tol = options.tolerance
     if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
         raise SVGError('tolerance must be a positive number, got %r' % (tol,))
-    with _gc_paused():
+    # hostile numbers overflow in transforms and boxes: the results are
+    # checked where they are used (State.check, finite paths), not warned about
+    with _gc_paused(), np.errstate(over='ignore', invalid='ignore', divide='ignore'):
         found = {'id': [], 'requiredExtensions': [], 'systemLanguage': []}
         styles = declared_styles(root, options.extra_css, found)
         by_id = {}

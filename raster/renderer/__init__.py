@@ -23,6 +23,8 @@ tree, the geometry kernel and the pixel layer; never the parser.
 import math
 from typing import Optional, Tuple
 
+import numpy as np
+
 from .. import _malloc, limits
 from ..errors import CanvasError, SVGError
 from ..pixels.canvas import Canvas
@@ -158,8 +160,11 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
     else:
         node, t = find_node(tree, node_id)
         t = base @ t
-    # the whole-render budgets (pixel work, flattened points) of raster.limits
-    with limits.metering(limits.Meter(limits.current(), w * h)):
+    # the whole-render budgets (pixel work, flattened points) of raster.limits;
+    # hostile numbers overflow in transforms and boxes: the results are
+    # checked where they are used (finite, max_coord), not warned about
+    with limits.metering(limits.Meter(limits.current(), w * h)), \
+            np.errstate(over='ignore', invalid='ignore', divide='ignore'):
         Renderer(tol).draw(node, t, canvas)
     return canvas
 

@@ -268,6 +268,8 @@ class Renderer:
         tile_to_dev = t @ p.transform @ Affine.translate(x, y)
         sx = math.hypot(tile_to_dev.a, tile_to_dev.b)
         sy = math.hypot(tile_to_dev.c, tile_to_dev.d)
+        if not (math.isfinite(w * sx) and math.isfinite(h * sy) and sx > 0 and sy > 0):
+            return None                 # a tile of no or of infinite size
         tw = max(1, int(math.ceil(w * sx)))
         th = max(1, int(math.ceil(h * sy)))
         if tw * th > limits.current().max_pixels // 4:

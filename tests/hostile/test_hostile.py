@@ -2,7 +2,8 @@
 runs it (the command in a child process), with its expected outcome.
 
 For every case: the exit status; stderr is one line per message (no
-traceback, no object repr, no temporary file name, no file contents) and
+traceback, no object repr, no temporary file name, no file contents, no
+numpy floating-point warning) and
 matches the expected pattern; when the rest of the document is expected
 to be drawn, the output holds the document's red square.  Each case runs
 the command's ``main`` in a child process forked from a server that has
@@ -108,6 +109,7 @@ def test_hostile_case(name, tmp_path):
         assert re.match(r'[a-z-]+: (warning|error): \S', ln), shown      # one line each
         assert 'Traceback' not in ln and ' at 0x' not in ln and '.tmp' not in ln, shown
         assert 'root:' not in ln, shown                                 # no /etc/passwd
+        assert 'encountered in' not in ln, shown          # numpy's floating-point warnings
     msg = case['message']
     if msg is None:
         assert lines == [], shown
