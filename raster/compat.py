@@ -32,8 +32,8 @@ otherwise) -- and errors are :class:`~raster.errors.RasterError` s
 (CairoSVG raises ``ValueError``, ``TypeError`` or parser errors).  Internal
 XML entities are expanded with libxml2's amplification guard whether or
 not ``unsafe`` is set; ``unsafe`` lifts raster's budgets
-(:mod:`raster.limits`), as it lets CairoSVG read very large files.  ``negate_colors`` and ``invert_images`` are not
-supported.
+(:mod:`raster.limits`), as it lets CairoSVG read very large files.
+``negate_colors`` and ``invert_images`` are not supported.
 """
 
 from __future__ import annotations

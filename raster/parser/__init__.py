@@ -104,11 +104,10 @@ def build_tree(root, options: Optional[Options] = None, image_cache: Optional[di
         options = dataclasses.replace(options, **fields)
     lim = limits.current()
     if options.max_elements is None or options.max_use_depth is None:
-        options = dataclasses.replace(
-            options,
-            max_elements=lim.max_elements if options.max_elements is None else options.max_elements,
-            max_use_depth=(lim.max_use_depth if options.max_use_depth is None
-                           else options.max_use_depth))
+        me, md = options.max_elements, options.max_use_depth
+        options = dataclasses.replace(options,
+                                      max_elements=lim.max_elements if me is None else me,
+                                      max_use_depth=lim.max_use_depth if md is None else md)
     tag = root.tag
     if not (isinstance(tag, str) and tag == '{http://www.w3.org/2000/svg}svg'):
         raise SVGError('not an SVG document: root element is not <svg>')

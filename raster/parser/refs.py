@@ -107,9 +107,9 @@ def instance_size(el, cache):
     elements of its subtree, each ``use`` in it counting its target again
     (an upper estimate: hidden and non-rendered elements count too), and
     those of them with a clip path, mask, filter, blend mode or isolation
-    (:data:`LAYER_PROPS`) or, for containers, an opacity below 1.  A cycle counts nothing (it is refused when
-    converted).  Memoized per element, linear in the document; no
-    recursion (use chains may be deep).
+    (:data:`LAYER_PROPS`) or, for containers, an opacity below 1.  A cycle
+    counts nothing (it is refused when converted).  Memoized per element,
+    linear in the document; no recursion (use chains may be deep).
 
     The cost model of ``use`` fan-outs (``max_elements`` and
     ``max_layers`` of :mod:`raster.limits`): a ``use`` whose content

@@ -2,8 +2,9 @@
 (by tests/hostile/test_hostile.py).
 
 Each function takes the directory to write into and returns the path of
-the document it made, or ``(path, extra command-line arguments)``.  ``tests/hostile/expected.json`` names them as
-``"gen:<function>"``; the ``cases/`` directory holds the small inputs.
+the document it made, or ``(path, extra command-line arguments)``.
+``tests/hostile/expected.json`` names them as ``"gen:<function>"``; the
+``cases/`` directory holds the small inputs.
 """
 
 import base64
@@ -37,18 +38,22 @@ def convolve_order_1000(d):
 
 def use_opacity_copies(d):
     """10**4 use copies of a group with opacity (a layer each)."""
-    uses = ''.join('<use href="#l" x="%d" y="%d"/>' % (i % 100, i // 100) for i in range(10 ** 4))
+    uses = ''.join('<use href="#l" x="%d" y="%d"/>' % (i % 100, i // 100)
+                   for i in range(10 ** 4))
     return _write(d, 'use_opacity.svg', '<svg %s width="200" height="200"><defs><g id="l" '
                   'opacity="0.5"><rect width="100" height="100" fill="blue"/><rect x="50" y="50" '
-                  'width="100" height="100" fill="green"/></g></defs>%s%s</svg>' % (NS, uses, MARK))
+                  'width="100" height="100" fill="green"/></g></defs>%s%s</svg>'
+                  % (NS, uses, MARK))
 
 
 def use_blur_copies(d):
     """10**4 use copies of a blurred rectangle (a filter each)."""
-    uses = ''.join('<use href="#r" x="%d" y="%d"/>' % (i % 100, i // 100) for i in range(10 ** 4))
+    uses = ''.join('<use href="#r" x="%d" y="%d"/>' % (i % 100, i // 100)
+                   for i in range(10 ** 4))
     return _write(d, 'use_blur.svg', '<svg %s width="200" height="200"><defs><filter id="b">'
                   '<feGaussianBlur stdDeviation="5"/></filter><rect id="r" width="100" '
-                  'height="100" fill="blue" filter="url(#b)"/></defs>%s%s</svg>' % (NS, uses, MARK))
+                  'height="100" fill="blue" filter="url(#b)"/></defs>%s%s</svg>'
+                  % (NS, uses, MARK))
 
 
 def long_path(d):
