@@ -93,7 +93,7 @@ def broken_font(d):
     """A font directory with a copy of the bundled Noto Sans whose ``hhea``
     claims fewer horizontal metrics than ``hmtx`` holds (fontTools logs
     "too much 'hmtx' table data") and whose ``head`` magic is zeroed."""
-    src = os.path.join(ROOT, 'raster', 'curves', 'NotoSans-Regular-ASCII.ttf')
+    src = os.path.join(ROOT, 'raster', 'fonts', 'NotoSans-Regular-ASCII.ttf')
     with open(src, 'rb') as f:
         buf = bytearray(f.read())
     for i in range(struct.unpack('>H', buf[4:6])[0]):
