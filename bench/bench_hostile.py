@@ -10,8 +10,8 @@ generators need them)::
 Every case is a whole process of a command (``rasterize``, ``svg-bbox``,
 ``svg-flatten``) of each ``--bin`` directory (an installed copy: ``pip
 install .`` into a separate venv compiles the bytecode), started fresh
-under ``/usr/bin/time -f '%e %M'``: the wall time and the peak RSS of the
-process.  Runs are interleaved (case by case, the installs alternating),
+under ``/usr/bin/time -f '%e %M %U %S'``: the wall time, the CPU time
+(user + system) and the peak RSS of the process.  Runs are interleaved (case by case, the installs alternating),
 and the median of ``--repeat`` runs is reported with the first line of
 stderr and the number of stderr lines.  A process over ``--timeout``
 seconds is killed and shown as ``> T s``; one over ``--memory-mb`` of
@@ -96,7 +96,8 @@ def prepare(spec, d):
 
 
 def run_once(bindir, command, src, args, stdin, out, timeout, memory_mb):
-    """(seconds or None, peak RSS kB or None, stderr lines) of one process."""
+    """(seconds or None, peak RSS kB or None, stderr lines, CPU seconds or None)
+    of one process."""
     exe = os.path.join(bindir, command)
     target = [out] if command == 'rasterize' else ['-o', out]
     inner = [exe, src] + target + args
@@ -105,7 +106,7 @@ def run_once(bindir, command, src, args, stdin, out, timeout, memory_mb):
         script += 'head -c 3000000000 /dev/zero | exec "$@"'
     else:
         script += 'exec "$@"'
-    cmd = ['/usr/bin/time', '-f', 'TIME %e %M', 'timeout', str(timeout), 'bash', '-c', script,
+    cmd = ['/usr/bin/time', '-f', 'TIME %e %M %U %S', 'timeout', str(timeout), 'bash', '-c', script,
            '_'] + inner
     p = subprocess.run(cmd, capture_output=True, text=True, errors='replace')
     lines = p.stderr.splitlines()
@@ -113,9 +114,9 @@ def run_once(bindir, command, src, args, stdin, out, timeout, memory_mb):
     msgs = [ln for ln in lines if not ln.startswith('TIME ') and 'Command exited' not in ln
             and 'Command terminated' not in ln]
     if p.returncode == 124 or not stat:
-        return None, None, msgs
-    _, t, m = stat[-1].split()
-    return float(t), int(m), msgs
+        return None, None, msgs, None
+    _, t, m, u, s = stat[-1].split()
+    return float(t), int(m), msgs, float(u) + float(s)
 
 
 def main(argv=None):
@@ -150,7 +151,8 @@ def main(argv=None):
                 ms = [r[1] for r in runs[b] if r[1] is not None]
                 msgs = runs[b][-1][2]
                 t = ('> %d s' % args.timeout if any(x is None for x in ts)
-                     else '%.2f s' % statistics.median(ts))
+                     else '%.2f s (CPU %.2f s)' % (statistics.median(ts),
+                                                  statistics.median(r[3] for r in runs[b])))
                 m = '%d MB' % (statistics.median(ms) // 1024) if ms else '-'
                 first = msgs[0] if msgs else '(no message)'
                 if len(first) > 110:
