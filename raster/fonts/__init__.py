@@ -15,15 +15,32 @@
 * :mod:`raster.fonts.color` -- colour glyphs (COLRv0, COLRv1, sbix,
   CBDT/CBLC, SVG) as neutral layer descriptions.
 
+>>> from raster.fonts import parse_font_family       # a lazy name: not a global yet
 >>> parse_font_family('"Noto Sans", Arial ,serif')
 ['Noto Sans', 'Arial', 'serif']
 """
 
+import importlib
+
 from .files import FONT_EXTENSIONS, FontError, FontFace
-from .font import Font, Shaped, register_memory_font
-from .matching import (BUNDLED_FONT, FAMILY_CLASSES, GENERIC_PREFERENCES, METRIC_ALIASES, FontDB,
-                       cached, generic_keyword, parse_font_family)
 from .options import FontOptions
+
+#: Names of the heavier submodules, imported on first use (a document
+#: without text loads only :mod:`raster.fonts.options`).
+_LAZY = {'Font': 'font', 'Shaped': 'font', 'register_memory_font': 'font',
+         'BUNDLED_FONT': 'matching', 'FAMILY_CLASSES': 'matching',
+         'GENERIC_PREFERENCES': 'matching', 'METRIC_ALIASES': 'matching', 'FontDB': 'matching',
+         'cached': 'matching', 'generic_keyword': 'matching', 'parse_font_family': 'matching'}
+
+
+def __getattr__(name):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError('module %r has no attribute %r' % (__name__, name))
+    value = getattr(importlib.import_module('.' + module, __name__), name)
+    globals()[name] = value
+    return value
+
 
 __all__ = ['FontError', 'FontFace', 'FontDB', 'Font', 'Shaped', 'FontOptions',
            'parse_font_family', 'generic_keyword', 'cached', 'register_memory_font',

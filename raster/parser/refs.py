@@ -17,7 +17,6 @@ import dataclasses
 import os
 
 from .context import SVG_NS, XLINK_HREF
-from .imageload import ImageError, fetch_document, image_source
 from .style import local_name
 from .values import parse_url
 
@@ -67,6 +66,7 @@ def external_target(el, cache):
         cache.warn('external', 'references to other documents are only followed to local '
                                'files: %s' % href[:60])
         return None
+    from .imageload import ImageError, fetch_document, image_source
     opts = cache.options
     try:
         real, root = fetch_document(file, opts, cache.table('documents'))
