@@ -62,7 +62,7 @@ from .. import limits
 from ..errors import RasterWarning, SVGError
 from .properties import PROPERTIES, PRESENTATION_ATTRIBUTES
 
-__all__ = ['CSSError', 'Declaration', 'Rule', 'Selector', 'parse_stylesheet',
+__all__ = ['CSSError', 'Declaration', 'Rule', 'Selector', 'parse_stylesheet', 'font_face_rules',
            'parse_declarations', 'parse_selector', 'parse_selector_list', 'declared_styles',
            'select', 'SVG_NS']
 
@@ -926,4 +926,47 @@ def declared_styles(root, extra_css='', found=None):
         if simp:
             d.update(simp)
         out[el] = d
+    return out
+
+
+# --------------------------------------------------------------------------
+# @font-face
+# --------------------------------------------------------------------------
+
+def font_face_rules(root):
+    """The ``@font-face`` rules of a document's ``<style>`` elements, in
+    document order: a list of ``{descriptor: value}`` dicts (names lower
+    case, values trimmed, later declarations winning).  Only top-level
+    rules are found (not inside ``@media``); the text layout resolves them
+    (:mod:`raster.parser.fontface`).
+
+    >>> from lxml import etree
+    >>> root = etree.fromstring('<svg xmlns="http://www.w3.org/2000/svg"><style>'
+    ...     '@font-face { font-family: "A B"; src: url(a.woff2) format("woff2") }'
+    ...     'text { fill: red }</style></svg>')
+    >>> font_face_rules(root)
+    [{'font-family': '"A B"', 'src': 'url(a.woff2) format("woff2")'}]
+    """
+    out = []
+    for el in root.iter('{%s}style' % SVG_NS, 'style'):
+        if not _is_style_element(el):
+            continue
+        text = ''.join(el.itertext())
+        if '@font-face' not in text.lower():
+            continue
+        text = _strip_comments(text)
+        pos, n = 0, len(text)
+        while pos < n:
+            at = text.find('@', pos)
+            if at < 0:
+                break
+            end = _scan_to(text, at, ';{}')
+            if end >= n or text[end] != '{':
+                pos = end + 1
+                continue
+            close = _skip_block(text, end)
+            if text[at + 1:end].strip().lower() == 'font-face':
+                body = text[end + 1:close - 1]
+                out.append({d.name: d.value for d in _parse_declarations(body)})
+            pos = close
     return out
