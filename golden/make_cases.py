@@ -274,6 +274,10 @@ def main():
     for name, doc in rules.DOCS.items():
         with open(os.path.join(here, name + '.svg'), 'w') as f:
             f.write(doc)
+    for name, text in rules.CSS_FILES.items():
+        os.makedirs(os.path.join(here, 'lib'), exist_ok=True)
+        with open(os.path.join(here, 'lib', name), 'w') as f:
+            f.write(text)
     eq = os.path.join(os.path.dirname(here), 'equivalent')
     for name, (title, body) in rules.EQUIVALENT.items():
         os.makedirs(eq, exist_ok=True)

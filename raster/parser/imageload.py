@@ -61,12 +61,18 @@ from .. import limits
 from ..errors import RasterError
 from .document import load_document
 
-__all__ = ['load_image', 'load_svg_data', 'fetch_image', 'fetch_document', 'read_reference',
-           'is_network_reference', 'image_source', 'decode_raster', 'sniff', 'parse_data_uri',
-           'ImageSource', 'ImageError', 'MAX_IMAGE_DEPTH', 'MAX_IMAGE_BYTES', 'MAX_IMAGE_PIXELS']
+__all__ = ['load_image', 'load_svg_data', 'fetch_image', 'fetch_document', 'fetch_stylesheet',
+           'read_reference', 'is_network_reference', 'image_source', 'decode_raster', 'sniff',
+           'parse_data_uri', 'ImageSource', 'ImageError', 'MAX_IMAGE_DEPTH', 'MAX_IMAGE_BYTES',
+           'MAX_IMAGE_PIXELS', 'MAX_IMPORT_DEPTH', 'MAX_IMPORTS']
 
 #: Deepest nesting of SVG images (an image inside an SVG image inside ...).
 MAX_IMAGE_DEPTH = 4
+
+#: Deepest chain of CSS ``@import`` rules followed (a sheet importing a
+#: sheet importing ...), and most style sheets imported by one document.
+MAX_IMPORT_DEPTH = 8
+MAX_IMPORTS = 64
 
 #: Default largest encoded image (file or decoded data URI) read, in bytes
 #: (:attr:`raster.limits.Limits.max_image_bytes`).
@@ -549,6 +555,53 @@ def fetch_document(path, options, documents):
     if isinstance(r, ImageError):
         raise r
     return r
+
+
+def fetch_stylesheet(href, base_dir, options):
+    """A style sheet that a CSS ``@import`` names: read under the rules of
+    image files (relative to ``base_dir``, the importing sheet's
+    directory; only below the allowed directories; never the network;
+    never from inside an SVG image), or decoded from a ``data:`` URI.
+
+    Parameters
+    ----------
+    href : str
+        The import's URL (a path, ``file:`` or ``data:`` URL).
+    base_dir : str or None
+        Directory of the importing sheet (None: the document's).
+    options : raster.parser.Options
+        The document's options.
+
+    Returns
+    -------
+    (str or None, str, str or None)
+        The sheet's real path (None for a ``data:`` URI), its text (UTF-8,
+        undecodable bytes replaced) and the directory its own imports
+        resolve against.
+
+    Raises
+    ------
+    ImageError
+        The sheet is refused, missing, unreadable or too large.
+    """
+    href = href.strip()
+    scheme = urllib.parse.urlsplit(href).scheme.lower() if ':' in href else ''
+    if len(scheme) == 1:
+        scheme = ''
+    if href.startswith('//') or href.startswith('\\\\'):
+        scheme = 'network'
+    if scheme == 'data':
+        return None, parse_data_uri(href)[1].decode('utf-8', 'replace'), base_dir
+    if scheme not in ('', 'file'):
+        raise ImageError('style sheet URL not fetched: %s' % _short(href))
+    source = image_source(options)
+    if base_dir is not None:
+        source = source._replace(base_dir=base_dir)
+    try:
+        real = _resolve_file(href, source)
+    except ImageError as e:
+        raise ImageError(str(e).replace('image file', 'style sheet', 1)) from None
+    return real, _read_file(real).decode('utf-8', 'replace'), os.path.dirname(real)
 
 
 def image_source(options):

@@ -55,6 +55,7 @@ from ..geometry.flattening import flatten
 from ..fonts import Font, FontDB, FontError, cached, parse_font_family
 from ..fonts.matching import best_face
 from ..geometry.path import Path
+from ..geometry.pathdata import rect_path
 from ..geometry.transform import Affine
 from ..tree import PathNode, SolidPaint
 from .fontface import document_font_db
@@ -431,6 +432,7 @@ def _build(el, state, cache, out):
             if bbox is not None and x1 >= x0:
                 bbox = (min(bbox[0], x0), min(bbox[1], y0), max(bbox[2], x1), max(bbox[3], y1))
     kids = []
+    undrawn = False
     for si, kind, path in pieces:
         if kind == 'color':
             kids.extend(_color_nodes(spans[si], path, st, cache, bbox))
@@ -440,6 +442,7 @@ def _build(el, state, cache, out):
         else:
             node = _paint_node(decor[(si, kind)], path, st, cache, bbox, spans[si])
         if node is None:
+            undrawn = True
             continue
         pts = path.points
         if len(pts):
@@ -451,6 +454,12 @@ def _build(el, state, cache, out):
                 continue
         kids.append(node)
     box = None if bbox is None else (bbox[0], bbox[1], bbox[2] - bbox[0], bbox[3] - bbox[1])
+    if undrawn and box is not None:
+        # hidden or unpainted glyphs draw nothing but the text still counts
+        # in its parents' object bounding box (which ignores visibility and
+        # paint, SVG 2 8.10): an unpainted rectangle of its metric box, the
+        # box resvg gives text (painting/visibility/bbox-impact-3)
+        kids.append(PathNode(id='', path=rect_path(*box)))
     out.extend(wrap(el, own, t, Boxed(kids, box), st, cache))
 
 
