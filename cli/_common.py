@@ -4,8 +4,11 @@
   an :class:`OSError` (or any other failure) becomes one line
   ``<prog>: error: <message>`` on stderr and exit status 1, never a
   traceback; usage errors from :mod:`argparse` exit with status 2.
-* :func:`read_source` reads a file or ``-`` (stdin) as bytes, gunzipping
-  ``.svgz`` (gzip) data.
+* :func:`read_source` names what to read for a file or ``-`` (stdin): the
+  parser reads it a piece at a time within the budgets of
+  :mod:`raster.limits` (gzip, ``.svgz``, by content);
+* :func:`add_limit_options` gives a command ``--unlimited`` and one
+  ``--max-...`` option per budget, applied by :func:`run`.
 * :func:`write_output` writes bytes to a regular file atomically (a
   temporary file in the target directory, renamed into place, removed on
   failure, so a failed run never leaves a partial file at the output path);
@@ -18,18 +21,14 @@ import argparse
 import contextlib
 import errno
 import gc
-import io
 import os
+import re
 import stat
 import sys
 import warnings
-import zlib
 
-from raster.errors import RasterError, SVGError
-from raster.sources import local_path, read_file
-
-#: Largest decompressed .svgz document accepted (bytes).
-MAX_SVG_BYTES = 256 * 1024 * 1024
+from raster.errors import LimitError, RasterError, RasterWarning, SVGError  # noqa: F401 (re-exported)
+from raster.sources import local_path
 
 
 class UsageError(Exception):
@@ -128,8 +127,22 @@ def _one_line(msg):
     return msg or 'unknown error'
 
 
+_REPR = re.compile(r'<[^<>]*? at 0x[0-9A-Fa-f]+>')
+
+
+def _no_reprs(msg):
+    """``msg`` without object reprs (``<_io.BytesIO object at 0x...>``):
+    heap addresses mean nothing to the user."""
+    return _REPR.sub('', msg)
+
+
 def error_message(exc):
-    """One-line description of an exception for the user."""
+    """One-line description of an exception for the user (no object
+    reprs)."""
+    return _no_reprs(_error_message(exc))
+
+
+def _error_message(exc):
     if isinstance(exc, OSError):
         parts = [exc.strerror or str(exc)]
         if exc.filename:
@@ -140,6 +153,62 @@ def error_message(exc):
     if isinstance(exc, RasterError):
         return _one_line(exc)
     return _one_line('internal error: %s: %s' % (type(exc).__name__, exc))
+
+
+def _budget_value(text):
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError('must be a positive number or inf, got %r' % text)
+    if not v > 0:
+        raise argparse.ArgumentTypeError('must be a positive number or inf, got %r' % text)
+    return v
+
+
+def add_limit_options(parser):
+    """Give ``parser`` the budgets of :mod:`raster.limits`: ``--unlimited``
+    and one ``--max-...`` option per budget (``--max-pixel-work 2048``);
+    :func:`run` applies them around the command's body."""
+    from raster.limits import Limits
+    g = parser.add_argument_group(
+        'limits', 'budgets that bound the time and memory a document may cost; over one, '
+        'the element is left out with a warning (see raster.limits)')
+    g.add_argument('--unlimited', action='store_true',
+                   help='lift every budget (trusted input only)')
+    for name, default, unit, doc in Limits.describe():
+        g.add_argument('--' + name.replace('_', '-'), type=_budget_value, metavar='N',
+                       dest='limit_' + name,
+                       help='%s (%s; default %s)' % (doc, unit, _fmt_default(default)))
+
+
+def _fmt_default(v):
+    return ('%d' % v) if float(v).is_integer() and abs(v) < 1e15 else ('%g' % v)
+
+
+def limits_of(args):
+    """The :class:`raster.limits.Limits` the options of
+    :func:`add_limit_options` ask for (None when the parser has none)."""
+    if not hasattr(args, 'unlimited'):
+        return None
+    from raster import limits
+    base = limits.UNLIMITED if args.unlimited else limits.current()
+    changes = {k[len('limit_'):]: v for k, v in vars(args).items()
+               if k.startswith('limit_') and v is not None}
+    return base.replace(**changes) if changes else base
+
+
+def install_warnings(prog):
+    """Print every warning (an element skipped, no fonts for text, a
+    numpy floating-point warning that escaped...) as one line
+    ``<prog>: warning: <message>``, each distinct message once."""
+    seen = set()
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        msg = _one_line(_no_reprs(str(message)))
+        if msg not in seen:
+            seen.add(msg)
+            print('%s: warning: %s' % (prog, msg), file=sys.stderr)
+    warnings.showwarning = show
 
 
 @contextlib.contextmanager
@@ -187,13 +256,16 @@ def run(prog, body, parser, argv):
         args = parser.parse_args(argv)
     except SystemExit as e:
         return e.code if isinstance(e.code, int) else 2
-    # warnings (an element skipped, no fonts for text...) as one line each
-    warnings.showwarning = (lambda message, category, filename, lineno, file=None, line=None:
-                            print('%s: warning: %s' % (prog, _one_line(message)),
-                                  file=sys.stderr))
+    install_warnings(prog)
     try:
+        lim = limits_of(args)
         with collector_paused():
-            rc = body(args)
+            if lim is None:
+                rc = body(args)
+            else:
+                from raster.limits import applied
+                with applied(lim):
+                    rc = body(args)
     except UsageError as e:
         parser.print_usage(sys.stderr)
         print('%s: error: %s' % (prog, _one_line(e)), file=sys.stderr)
@@ -210,29 +282,37 @@ def run(prog, body, parser, argv):
 
 
 def read_source(path):
-    """Bytes of ``path`` (``-``: stdin), decompressed when gzip-compressed.
+    """What :func:`raster.svg.load_svg` should read for the command-line
+    input ``path``: stdin's binary stream for ``-``, else the local path
+    (``file:`` URLs resolved, other URLs refused).  The document is then
+    read a piece at a time while it is parsed, so input beyond
+    ``max_input_bytes`` or ``max_xml_elements`` (:mod:`raster.limits`;
+    files, stdin and gzip alike) fails before it is read in full, and a
+    regular file's size is checked before anything is read.
 
     Raises
     ------
     raster.errors.RasterIOError
-        The file cannot be read, or ``path`` is a URL other than ``file:``.
-    SVGError
-        Corrupt gzip data or a document beyond :data:`MAX_SVG_BYTES`.
+        ``path`` is a URL other than ``file:``.
     """
     if path == '-':
-        data = sys.stdin.buffer.read()
-    else:
-        data = read_file(path, MAX_SVG_BYTES)     # file: URLs read, other URLs refused
-    if data[:2] == b'\x1f\x8b':
-        import gzip
-        try:
-            with gzip.GzipFile(fileobj=io.BytesIO(data)) as g:
-                data = g.read(MAX_SVG_BYTES + 1)
-        except (OSError, EOFError, zlib.error) as e:
-            raise SVGError('corrupt gzip data: %s' % _one_line(e)) from None
-        if len(data) > MAX_SVG_BYTES:
-            raise SVGError('decompressed document exceeds %d bytes' % MAX_SVG_BYTES)
-    return data
+        return sys.stdin.buffer
+    return local_path(path)
+
+
+def metered(tree):
+    """The whole-render budgets of :mod:`raster.limits` (flattened points)
+    for a command that works on ``tree`` without rendering it (svg-bbox,
+    svg-flatten), as a context manager."""
+    from raster import limits
+    return limits.metering(limits.Meter(limits.current(),
+                                        int(min(tree.width * tree.height, 1e15))))
+
+
+def left_out(e):
+    """One shape beyond a budget (:class:`raster.errors.LimitError`) is
+    left out with a warning; the rest of the document is processed."""
+    warnings.warn('shape left out: %s' % e, RasterWarning, stacklevel=2)
 
 
 def base_dir_of(path):
@@ -278,18 +358,23 @@ def open_output(path):
         return
     # a link to a regular file: replace the file it names, not the link
     target = os.path.realpath(path)
-    fd, tmp = _temporary_beside(target)
+    try:
+        fd, tmp = _temporary_beside(target)
+    except OSError as e:
+        raise _about(e, path) from None
     try:
         with os.fdopen(fd, 'wb') as f:
             yield f
         # created 0600; give the file the mode a plain open() would
         os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, target)
-    except BaseException:
+    except BaseException as e:
         try:
             os.unlink(tmp)
         except OSError:
             pass
+        if isinstance(e, OSError):      # about the output, not the temporary file
+            raise _about(e, path) from None
         raise
 
 
@@ -369,6 +454,10 @@ def process_pool(jobs, initializer=None, initargs=()):
     methods = multiprocessing.get_all_start_methods()
     ctx = multiprocessing.get_context('fork' if 'fork' in methods else None)
     return ctx.Pool(jobs, initializer=initializer, initargs=initargs)
+def _about(e, path):
+    """``e`` (an OSError) told about ``path`` rather than a temporary
+    file."""
+    return type(e)(e.errno, e.strerror or str(e), path)
 
 
 def _temporary_beside(target):

@@ -65,9 +65,10 @@ import os
 import sys
 import time
 
-from ._common import (Parser, UsageError, add_font_options, add_languages, add_version,
-                      base_dir_of, collect_inputs, cpu_count, error_message, font_options,
-                      languages_of, list_fonts, open_output, output_name, process_pool,
+from ._common import (Parser, UsageError, add_font_options, add_languages, add_limit_options,
+                      add_version, base_dir_of, collect_inputs, cpu_count, error_message,
+                      font_options, languages_of, list_fonts, open_output, output_name,
+                      process_pool,
                       read_source, run, write_output)
 
 PROG = 'rasterize'
@@ -132,6 +133,7 @@ def build_parser():
                         'reaches the natural size)')
     add_font_options(ap)
     add_languages(ap)
+    add_limit_options(ap)
     add_version(ap)
     return ap
 
@@ -283,10 +285,10 @@ def convert(args, dpi, fmt, bg, inp, out, jobs=1):
                     png.write_compressed(_compress_strip(job, span))
             png.close()
         return
-    if pixels > limits.MAX_PIXELS:
+    if pixels > limits.current().max_pixels:
         raise CanvasError('output size %d x %d exceeds %d pixels for %s output (PNG is '
                           'written in strips up to %d pixels)'
-                          % (g.width, g.height, limits.MAX_PIXELS, fmt.upper(),
+                          % (g.width, g.height, limits.current().max_pixels, fmt.upper(),
                              MAX_WINDOWED_PIXELS))
     canvas = render_tree(tree, dtype='uint8', **kw)
     from raster.pixels.encode import encode_canvas

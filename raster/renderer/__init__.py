@@ -23,6 +23,8 @@ tree, the geometry kernel and the pixel layer; never the parser.
 import math
 from typing import NamedTuple, Optional, Tuple
 
+import numpy as np
+
 from .. import limits
 from ..errors import CanvasError, SVGError
 from ..pixels.canvas import Canvas
@@ -84,8 +86,8 @@ def output_size(doc_width: float, doc_height: float, width: Optional[int] = None
     ------
     CanvasError
         A size or zoom that is not positive and finite, both zoom and a
-        size, or an output of more than :data:`raster.limits.MAX_PIXELS`
-        pixels or a side above :data:`raster.limits.MAX_SIDE`.
+        size, or an output of more than ``max_pixels`` pixels or a side
+        above ``max_side`` (:mod:`raster.limits`).
 
     >>> output_size(100, 50)
     (100, 50, 1.0, 1.0)
@@ -119,10 +121,13 @@ def output_size(doc_width: float, doc_height: float, width: Optional[int] = None
     if w != int(w) or h != int(h):
         raise CanvasError('output size must be whole pixels, got %r x %r' % (w, h))
     w, h = int(w), int(h)
-    mp = limits.MAX_PIXELS if max_pixels is None else max_pixels
-    if w > limits.MAX_SIDE or h > limits.MAX_SIDE or w * h > mp:
-        raise CanvasError('output size %d x %d exceeds the limit (%d px per side, %d pixels)'
-                          % (w, h, limits.MAX_SIDE, mp))
+    lim = limits.current()
+    # windowed rendering may allow a larger whole output (max_pixels), never
+    # less than the budget
+    mp = lim.max_pixels if max_pixels is None else max(max_pixels, lim.max_pixels)
+    if w > lim.max_side or h > lim.max_side or w * h > mp:
+        raise CanvasError('output size %d x %d exceeds the limit (max_side %d px, max_pixels '
+                          '%d)' % (w, h, lim.max_side, mp))
     return w, h, w / dw, h / dh
 
 
@@ -185,16 +190,21 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
     if not isinstance(tree, Tree):
         raise SVGError('render_tree needs a raster.tree.Tree, got %s' % type(tree).__name__)
     tol = _positive('tolerance', tolerance)
-    g = output_geometry(tree, width, height, zoom, node_id, crop,
-                        max_pixels=None if window is None else MAX_WINDOWED_PIXELS)
-    if window is None:
-        canvas = Canvas(g.width, g.height, background, dtype)
-        Renderer(tol, canvas.dtype).draw(g.node, g.transform, canvas)
-        return canvas
-    x0, y0, x1, y1 = check_window(window, g.width, g.height)
-    canvas = Canvas(x1 - x0, y1 - y0, background, dtype)
-    Renderer(tol, canvas.dtype).draw(g.node, Affine.translate(-x0, -y0) @ g.transform, canvas,
-                                     frame=(-x0, -y0, g.width - x0, g.height - y0))
+    # hostile numbers overflow in transforms and boxes: the results are
+    # checked where they are used (finite, max_coord), not warned about
+    with np.errstate(over='ignore', invalid='ignore', divide='ignore'):
+        g = output_geometry(tree, width, height, zoom, node_id, crop,
+                            max_pixels=None if window is None else MAX_WINDOWED_PIXELS)
+        if window is None:
+            x0, y0, x1, y1 = 0, 0, g.width, g.height
+        else:
+            x0, y0, x1, y1 = check_window(window, g.width, g.height)
+        canvas = Canvas(x1 - x0, y1 - y0, background, dtype)
+        t = g.transform if window is None else Affine.translate(-x0, -y0) @ g.transform
+        frame = None if window is None else (-x0, -y0, g.width - x0, g.height - y0)
+        # the whole-render budgets (pixel work, flattened points) of raster.limits
+        with limits.metering(limits.Meter(limits.current(), canvas.width * canvas.height)):
+            Renderer(tol, canvas.dtype).draw(g.node, t, canvas, frame=frame)
     return canvas
 
 
@@ -221,9 +231,9 @@ def check_window(window, width: int, height: int) -> Tuple[int, int, int, int]:
                           % (window,)) from None
     if not (0 <= x0 < x1 <= width and 0 <= y0 < y1 <= height):
         raise CanvasError('window %r is not inside the %d x %d output' % (window, width, height))
-    if (x1 - x0) * (y1 - y0) > limits.MAX_PIXELS:
+    if (x1 - x0) * (y1 - y0) > limits.current().max_pixels:
         raise CanvasError('window %d x %d exceeds %d pixels'
-                          % (x1 - x0, y1 - y0, limits.MAX_PIXELS))
+                          % (x1 - x0, y1 - y0, limits.current().max_pixels))
     return x0, y0, x1, y1
 
 

@@ -88,6 +88,8 @@ class Masks:
                 ct = m @ n.transform
                 stack.extend((c, ct) for c in reversed(n.children))
             elif isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
+                if n.markers is not None:       # drawn after the path: planned after it
+                    stack.append((n.markers, m))
                 f = n.fill
                 wf = f is not None and f.opacity > 0
                 wh = _wants_hair(n, m)

@@ -39,6 +39,14 @@ from .paint import STRIP_PIXELS, draw_pixels, gradient_colors, mesh_colors, samp
 
 __all__ = ['Renderer']
 
+# Work (raster.limits max_pixel_work, in array passes over a pixel) of a
+# layer, clip or mask canvas: per pixel (made, drawn into, combined and
+# composited), and what one costs whatever its size (planning and batching
+# its content: a few milliseconds).  A painted path costs its mask's
+# pixels: its fixed costs are bounded by max_elements, but not its area.
+_LAYER_PASSES = 4
+_LAYER_FIXED = 1 << 21
+
 
 class Renderer:
     """Draws tree nodes onto canvases with flattening ``tolerance`` (device
@@ -53,6 +61,7 @@ class Renderer:
         self._limit_warned = False
         # windowed rendering: id(canvas) -> (frame, need), see draw()
         self._frames = {}
+        self._too_deep = False
 
     def draw(self, node, t, canvas, frame=None):
         """Draw ``node`` (and what is below it) with CTM ``t`` on ``canvas``,
@@ -74,6 +83,9 @@ class Renderer:
         finally:
             if frame is not None:
                 self._frames.pop(id(canvas), None)
+        if self._too_deep:
+            self._too_deep = False
+            self._left_out(LimitError('nested too deeply'))
 
     def _layer_box(self, g, ct, canvas):
         """``(px, frame)``: the pixel box of a group's layer on ``canvas``
@@ -86,7 +98,7 @@ class Renderer:
         entry = self._frames.get(id(base))
         if g.filters:
             from .filters import filter_box, filter_margin, filter_pixel_box
-            box = filter_box(g.filters, ct)
+            box = filter_box(g.filters, ct, lambda: group_box(g, ct))
         else:
             box = group_box(g, ct)
         if entry is None:
@@ -120,12 +132,17 @@ class Renderer:
         return px, frame
 
     def node(self, node, t, canvas):
-        if isinstance(node, Group):
-            self.group(node, t, canvas)
-        elif isinstance(node, PathNode):
-            self.path(node, t, canvas)
-        elif isinstance(node, ImageNode):
-            self.image(node, t, canvas)
+        try:
+            if isinstance(node, Group):
+                self.group(node, t, canvas)
+            elif isinstance(node, PathNode):
+                self.path(node, t, canvas)
+            elif isinstance(node, ImageNode):
+                self.image(node, t, canvas)
+        except LimitError as e:         # a budget of raster.limits: this node left out
+            self._left_out(e)
+        except RecursionError:          # nested deeper than Python's stack allows
+            self._too_deep = True       # warned by draw(), once the stack has unwound
 
     # -- groups ----------------------------------------------------------------
     def group(self, g, t, canvas):
@@ -145,6 +162,8 @@ class Renderer:
                 for c in g.children:
                     self.node(c, ct, view)
             return
+        # what a layer costs whatever its size, before its box is measured
+        limits.spend_work(_LAYER_FIXED, 'a group layer')
         # the layer: the group's box, or its filter region (effects draw
         # outside the content); the filter machinery loads with the first
         # filter drawn
@@ -152,6 +171,7 @@ class Renderer:
         if px is None:
             return
         x0, y0, x1, y1 = px
+        limits.spend_work(_LAYER_PASSES * (x1 - x0) * (y1 - y0), 'a group layer')
         layer = Canvas(x1 - x0, y1 - y0, dtype=self.dtype)
         lt = Affine.translate(-x0, -y0) @ ct
         if frame is not None:
@@ -183,6 +203,7 @@ class Renderer:
     def clip_coverage(self, clip, t, w, h):
         """(h, w) float32 coverage of a ClipPath with CTM ``t`` (the
         clipped group's user space to layer pixels)."""
+        limits.spend_work(_LAYER_PASSES * w * h + _LAYER_FIXED, 'a clip path')
         cov = np.zeros((h, w), np.float32)
         self._clip_node(clip.root, t @ clip.transform, cov)
         if clip.clip_path is not None:
@@ -198,6 +219,7 @@ class Renderer:
         if isinstance(n, Group):
             ct = t @ n.transform
             if n.clip_path is not None:
+                limits.spend_work(_LAYER_PASSES * cov.size + _LAYER_FIXED, 'a clip path')
                 sub = np.zeros_like(cov)
                 for c in n.children:
                     self._clip_node(c, ct, sub)
@@ -218,11 +240,13 @@ class Renderer:
                 self._left_out(e)
                 return
             if m is not None:
+                limits.spend_work(m.data.size, 'a clip path')
                 _unite(cov, m)
 
     def mask_values(self, mask, t, w, h, frame=None):
         """(h, w) float32 values of a Mask with CTM ``t`` (``frame``: that
         of the masked layer in windowed rendering, see :meth:`draw`)."""
+        limits.spend_work(_LAYER_PASSES * w * h + _LAYER_FIXED, 'a mask')
         layer = Canvas(w, h, dtype=self.dtype)
         if frame is not None:
             self._frames[id(layer)] = (frame, (0, 0, w, h))
@@ -270,8 +294,9 @@ class Renderer:
             self._left_out(e)
 
     def _left_out(self, e):
-        """One element beyond a limit (a coordinate above MAX_COORD, too
-        many dashes...) is left out with one warning; the rest of the
+        """One element beyond a budget of :mod:`raster.limits` (a
+        coordinate above max_coord, too many dashes, the pixel work
+        spent...) is left out, with one warning per render; the rest of the
         document is drawn."""
         if not self._limit_warned:
             self._limit_warned = True
@@ -298,6 +323,7 @@ class Renderer:
         canvas) through coverage ``mask`` with ``opacity``.  Gradient and
         pattern colours are made and composited a strip of rows at a time
         (:data:`raster.renderer.paint.STRIP_PIXELS`)."""
+        limits.spend_work(mask.data.size, 'a path')
         if isinstance(paint, SolidPaint):
             canvas.fill(mask, paint.color, opacity)
             return
@@ -308,6 +334,7 @@ class Renderer:
             def colors(m):
                 return mesh_colors(paint, m, t, self.tol)
         elif isinstance(paint, Pattern):
+            limits.spend_work(8 * mask.data.size, 'a pattern')     # sampled per pixel
             tile = self.pattern_tile(paint, t)
             if tile is None:
                 return
@@ -345,10 +372,13 @@ class Renderer:
         tile_to_dev = t @ p.transform @ Affine.translate(x, y)
         sx = math.hypot(tile_to_dev.a, tile_to_dev.b)
         sy = math.hypot(tile_to_dev.c, tile_to_dev.d)
+        if not (math.isfinite(w * sx) and math.isfinite(h * sy) and sx > 0 and sy > 0):
+            return None                 # a tile of no or of infinite size
         tw = max(1, int(math.ceil(w * sx)))
         th = max(1, int(math.ceil(h * sy)))
-        if tw * th > limits.MAX_PIXELS // 4:
+        if tw * th > limits.current().max_pixels // 4:
             return None
+        limits.spend_work(_LAYER_PASSES * tw * th + _LAYER_FIXED, 'a pattern')
         # As resvg: the tile raster has whole-pixel size (rounded up) and the
         # content is drawn at the device scale, so the period is tw / sx
         # (up to a pixel longer than the tile): references tile this way.
@@ -382,6 +412,8 @@ class Renderer:
         if px is None:
             return
         x0, y0, x1, y1 = px
+        limits.spend_work(_LAYER_PASSES * (x1 - x0) * (y1 - y0) + _LAYER_FIXED,
+                          'an SVG image')
         layer = Canvas(x1 - x0, y1 - y0, dtype=self.dtype)
         lt = Affine.translate(-x0, -y0)
         self.node(g, lt @ it, layer)
