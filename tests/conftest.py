@@ -69,3 +69,9 @@ def pillow_registry():
         else:
             table.clear()
             table.update(old)
+
+
+# A libFuzzer entry point, run by hand (``python tests/fuzz/atheris_render.py``):
+# not a test module, and its import needs atheris, which the test extra
+# does not install.
+collect_ignore = ['fuzz/atheris_render.py']

@@ -140,19 +140,16 @@ def test_png_in_strips_equals_the_one_piece_render(tmp_path, capsys, jobs):
     assert np.array_equal(png(out), whole)
 
 
-def test_strips_reach_outputs_beyond_max_pixels(tmp_path, monkeypatch):
-    # with MAX_PIXELS lowered, an output above it still renders as PNG in
-    # strips (and is refused for a format encoded in one piece)
-    from raster import limits
-    monkeypatch.setattr(limits, 'MAX_PIXELS', 20_000)
+def test_strips_reach_outputs_beyond_max_pixels(tmp_path):
+    # with the max_pixels budget lowered, an output above it still renders
+    # as PNG in strips (and is refused for a format encoded in one piece)
     src = write(tmp_path, 'big.svg', doc(300, 200, 60, 'orange'))
     out = tmp_path / 'big.png'
     assert rasterize.main([src, str(out), '--width', '300', '--memory-budget', '0.1',
-                           '--jobs', '1']) == 0
-    monkeypatch.undo()
+                           '--jobs', '1', '--max-pixels', '20000']) == 0
     assert np.array_equal(png(out), raster.render(src))
-    monkeypatch.setattr(limits, 'MAX_PIXELS', 20_000)
-    assert rasterize.main([src, str(tmp_path / 'big.jpg'), '--width', '300']) == 1
+    assert rasterize.main([src, str(tmp_path / 'big.jpg'), '--width', '300',
+                           '--max-pixels', '20000']) == 1
     assert not (tmp_path / 'big.jpg').exists()
 
 
