@@ -55,7 +55,7 @@ def build_parser():
                     help='JPEG quality 1-100 (default 90); WebP: lossy at Q (default lossless)')
     ap.add_argument('--compress-level', type=int, metavar='N',
                     help='PNG zlib level 0-9 (default 1)')
-    ap.add_argument('--tolerance', type=float, default=0.25, help=argparse.SUPPRESS)
+    ap.add_argument('--tolerance', type=float, default=None, help=argparse.SUPPRESS)
     add_version(ap)
     return ap
 
@@ -94,13 +94,14 @@ def _body(args):
     if not (math.isfinite(dpi) and dpi > 0):
         raise CanvasError('--dpi must be positive and finite, got %g' % dpi)
     fmt = output_format(args)
-    from raster.svg import load_svg, parse_background, render_tree
+    from raster.svg import DEFAULT_TOLERANCE, load_svg, parse_background, render_tree
+    tol = DEFAULT_TOLERANCE if args.tolerance is None else args.tolerance
     bg = parse_background(args.background)       # a bad colour fails before any work
     data = read_source(args.input)
     tree = load_svg(data, dpi=dpi, font_dirs=args.font_dir,
                     resources_dir=args.allow_dir, base_dir=base_dir_of(args.input))
     canvas = render_tree(tree, width=args.width, height=args.height, zoom=args.zoom,
-                         background=bg, node_id=args.id, tolerance=args.tolerance)
+                         background=bg, node_id=args.id, tolerance=tol)
     # the resolution at which the document keeps its physical size
     res = None if args.dpi is None else (dpi * canvas.width / tree.width,
                                          dpi * canvas.height / tree.height)

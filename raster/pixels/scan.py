@@ -315,7 +315,7 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
 
 
 def path_coverage(path, width, height, fill_rule='nonzero', antialias=True, clip=None,
-                  tolerance=0.25, transform=None):
+                  tolerance=0.25, transform=None, straddle=False):
     """Coverage of a :class:`~raster.geometry.path.Path` filled on a canvas.
 
     The path is flattened with :func:`raster.geometry.flattening.flatten` (every contour
@@ -331,6 +331,10 @@ def path_coverage(path, width, height, fill_rule='nonzero', antialias=True, clip
         polyline (default 0.25); the scan conversion itself is exact.
     transform : raster.geometry.transform.Affine or None
         User space to device space.
+    straddle : bool
+        Flatten into straddled polylines (see
+        :func:`raster.geometry.flattening.flatten`): the edges of curves
+        then lie about half as far from the curves, on both sides.
 
     Returns
     -------
@@ -341,7 +345,8 @@ def path_coverage(path, width, height, fill_rule='nonzero', antialias=True, clip
     >>> m.box, float(m.data.sum())
     ((1, 1, 3, 2), 1.0)
     """
-    edges = flatten(path, tolerance=tolerance, transform=transform).edges(close_all=True)
+    edges = flatten(path, tolerance=tolerance, transform=transform,
+                    straddle=straddle).edges(close_all=True)
     return coverage(edges, width, height, fill_rule=fill_rule, antialias=antialias, clip=clip)
 
 

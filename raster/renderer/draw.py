@@ -146,7 +146,7 @@ class Renderer:
             rule = n.fill.rule if n.fill is not None else 'nonzero'
             try:
                 m = path_coverage(n.path, layer.width, layer.height, rule, n.antialias,
-                                  tolerance=self.tol, transform=t)
+                                  tolerance=self.tol, transform=t, straddle=True)
             except LimitError as e:
                 self._left_out(e)
                 return
