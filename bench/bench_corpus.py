@@ -2,8 +2,10 @@
 
 Run from the repository root::
 
-    python bench/bench_corpus.py [--repeat N] [--files PATTERN] [--widths natural,2000]
+    python bench/bench_corpus.py [--mode process|inprocess|both] [--repeat N]
+                                 [--files PATTERN] [--widths natural,2000,8000]
                                  [--renderers raster,resvg,cairosvg] [--timeout S]
+                                 [--python VENV/bin/python] [--rasterize CMD]
                                  [--markdown OUT.md] [--json OUT.json] [--save DIR]
 
 Every file of the corpus (default ``../shared/corpus/*.svg`` relative to the
@@ -25,7 +27,25 @@ own PNG encode:
 * cairosvg: ``cairosvg.svg2png(bytestring=..., url=path, unsafe=False,
   output_width=W)`` (``output_width`` omitted at natural size).
 
-Method.  Each (file, width, renderer) cell runs in a fresh worker process
+Whole-process mode (``--mode process``, and ``both``, the default): what a
+user running one renderer per file gets.  Every render is a fresh process:
+``rasterize in.svg out.png [--width W] --font-dir ...`` for raster, and
+``python -c`` programs (:data:`RESVG_PROGRAM`, :data:`CAIROSVG_PROGRAM`)
+that import the peer, render the file with the options above and write the
+PNG.  Each (file, width) runs ``--repeat`` rounds, each renderer once per
+round in a rotated order, so load from elsewhere falls on all alike.
+Reported: the medians of the wall-clock time seen by this driver, of the
+process's user + system time (``wait4``) and of its peak RSS (``/usr/bin/time
+-f %M``; ``ru_maxrss`` from ``wait4``, the same number, without it); raster
+over the faster peer, raster's RSS over resvg's, and per width the
+geometric mean and the files beyond the targets of issue 17 (1.5x the
+faster peer's time, 2x resvg's peak RSS).  ``--python`` names the
+interpreter of the peers and of the in-process workers, and ``rasterize``
+beside it is raster's command: time an installed copy (``pip install .``
+into a venv compiles the bytecode; an editable install under
+``PYTHONDONTWRITEBYTECODE`` recompiles raster at every start).
+
+In-process method.  Each (file, width, renderer) cell runs in a fresh worker process
 (this script with ``--worker``): it imports the renderer, renders a tiny
 warm-up document through the same code path (this loads lazily imported
 modules and Pillow's PNG plugin), resets the kernel's peak-RSS mark
@@ -244,6 +264,259 @@ def worker(spec):
 
 
 # --------------------------------------------------------------------------
+# Whole-process mode: one fresh process per render, as users run renderers
+# --------------------------------------------------------------------------
+
+#: The peers' programs in whole-process mode (``python -c`` with a JSON
+#: spec): what a user's one-off script does -- import, render the file,
+#: write the PNG.  resvg gets the same options as in the in-process mode.
+RESVG_PROGRAM = """\
+import json, sys
+s = json.loads(sys.argv[1])
+import resvg_py
+kw = dict(svg_path=s['svg'], resources_dir=s['resources'], dpi=96.0, font_size=12.0,
+          languages=['en'], **s['fonts'])
+if s['width'] is not None:
+    kw['width'] = s['width']
+with open(s['out'], 'wb') as f:
+    f.write(bytes(resvg_py.svg_to_bytes(**kw)))
+"""
+CAIROSVG_PROGRAM = """\
+import json, sys
+s = json.loads(sys.argv[1])
+import cairosvg
+kw = dict(url=s['svg'], write_to=s['out'], unsafe=False)
+if s['width'] is not None:
+    kw['output_width'] = s['width']
+cairosvg.svg2png(**kw)
+"""
+
+
+def _utf8_copy(svg, tmpdir):
+    """``svg`` itself when it is UTF-8, else a UTF-8 copy in ``tmpdir`` and
+    a note (resvg_py's ``svg_path`` reads UTF-8 only; the copy is made
+    once, outside the timing, as the in-process mode's transcoding)."""
+    import re
+    with open(svg, 'rb') as f:
+        data = f.read()
+    try:
+        data.decode('utf-8')
+        return svg, None
+    except UnicodeDecodeError:
+        pass
+    m = re.match(rb'<\?xml[^>]*encoding=["\']([A-Za-z0-9._-]+)["\']', data)
+    enc = m.group(1).decode('ascii') if m else 'latin-1'
+    text = re.sub(r'(<\?xml[^>]*encoding=["\'])[A-Za-z0-9._-]+', r'\g<1>utf-8',
+                  data.decode(enc), count=1)
+    out = os.path.join(tmpdir, 'utf8_' + os.path.basename(svg))
+    with open(out, 'w', encoding='utf-8') as f:
+        f.write(text)
+    return out, ('resvg_py reads files as UTF-8 only: transcoded from %s once, untimed' % enc)
+
+
+def process_command(renderer, svg, width, out, args, utf8=None):
+    """argv of one whole-process render of ``svg`` at ``width`` (None:
+    natural size) to the PNG file ``out``."""
+    if renderer == 'raster':
+        cmd = [args.rasterize, svg, out]
+        if width is not None:
+            cmd += ['--width', str(int(width))]
+        for d in RASTER_FONT_DIRS:
+            cmd += ['--font-dir', d]
+        return cmd
+    spec = dict(svg=svg, out=out, width=None if width is None else int(width))
+    if renderer == 'resvg':
+        spec.update(svg=utf8 or svg, resources=os.path.dirname(os.path.abspath(svg)),
+                    fonts=RESVG_FONTS)
+        return [args.python, '-c', RESVG_PROGRAM, json.dumps(spec)]
+    if renderer == 'cairosvg':
+        return [args.python, '-c', CAIROSVG_PROGRAM, json.dumps(spec)]
+    raise ValueError('unknown renderer %r' % renderer)
+
+
+def run_process(cmd, timeout, tmpdir):
+    """Run ``cmd`` once as a fresh process under ``/usr/bin/time -f %M``.
+
+    Returns ``{'wall': s, 'cpu': s, 'rss_mb': MB}`` (wall-clock time seen by
+    this process, the child's user + system time from ``wait4`` and its
+    peak RSS as ``/usr/bin/time`` reports it; without ``/usr/bin/time``,
+    ``ru_maxrss`` from ``wait4``, the same number), or ``{'error': ...}``."""
+    timef = os.path.join(tmpdir, 'time.txt')
+    if os.path.exists(timef):
+        os.unlink(timef)
+    full = (['/usr/bin/time', '-f', '%M', '-o', timef] + cmd if os.path.exists('/usr/bin/time')
+            else list(cmd))
+    errf = os.path.join(tmpdir, 'stderr.txt')
+    with open(errf, 'wb') as err:
+        t0 = time.perf_counter()
+        p = subprocess.Popen(full, stdout=subprocess.DEVNULL, stderr=err, stdin=subprocess.DEVNULL,
+                             start_new_session=True, cwd=ROOT)
+        deadline = t0 + timeout
+        while True:
+            pid, status, ru = os.wait4(p.pid, os.WNOHANG)
+            if pid:
+                break
+            if time.perf_counter() > deadline:
+                try:
+                    os.killpg(p.pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
+                os.wait4(p.pid, 0)
+                p.returncode = -9
+                return {'error': 'timeout: no result after %g s' % timeout}
+            time.sleep(0.002)
+        wall = time.perf_counter() - t0
+    p.returncode = os.waitstatus_to_exitcode(status)
+    if p.returncode != 0:
+        with open(errf, 'rb') as f:
+            tail = f.read().decode('utf-8', 'replace').strip().splitlines()
+        tail = [ln for ln in tail if not ln.startswith('Command exited with')]
+        return {'error': ('exit status %d: %s' % (p.returncode, tail[-1] if tail else ''))[:300]}
+    rss_kb = ru.ru_maxrss
+    try:
+        with open(timef) as f:
+            rss_kb = int(f.read().split()[-1])
+    except (OSError, ValueError, IndexError):
+        pass
+    return {'wall': wall, 'cpu': ru.ru_utime + ru.ru_stime, 'rss_mb': rss_kb / 1024.0}
+
+
+def run_processes(svg, width, renderers, args, tmpdir):
+    """Whole-process cells of one (file, width): ``--repeat`` rounds, each
+    renderer once per round in a rotated order (interleaved, so load from
+    elsewhere falls on all alike).  Returns ``{renderer: cell}`` with lists
+    ``wall``, ``cpu``, ``rss_mb``, the output ``size`` and ``png_bytes``."""
+    utf8, note = (_utf8_copy(svg, tmpdir) if 'resvg' in renderers else (None, None))
+    cells = {r: {'wall': [], 'cpu': [], 'rss_mb': []} for r in renderers}
+    if note and 'resvg' in cells:
+        cells['resvg']['note'] = note
+    for i in range(args.repeat):
+        order = renderers[i % len(renderers):] + renderers[:i % len(renderers)]
+        for r in order:
+            c = cells[r]
+            if 'error' in c:
+                continue
+            out = os.path.join(tmpdir, 'out_%s.png' % r)
+            if os.path.exists(out):
+                os.unlink(out)
+            res = run_process(process_command(r, svg, width, out, args, utf8), args.timeout,
+                              tmpdir)
+            if 'error' not in res:
+                try:
+                    with open(out, 'rb') as f:
+                        png = f.read()
+                    c['size'] = list(_png_size(png))
+                    c['png_bytes'] = len(png)
+                except (OSError, ValueError) as e:
+                    res = {'error': 'no PNG written: %s' % e}
+            if 'error' in res:
+                c.clear()
+                c['error'] = res['error']
+                continue
+            for k in ('wall', 'cpu', 'rss_mb'):
+                c[k].append(res[k])
+            if args.save and i == 0:
+                import shutil
+                shutil.copyfile(out, os.path.join(args.save, '%s_%s_%s.png' % (
+                    os.path.splitext(os.path.basename(svg))[0], width or 'natural', r)))
+    return cells
+
+
+def build_process_tables(results, files, widths, renderers, repeat, inproc=None, metric='wall'):
+    """Markdown lines of the whole-process tables (one per width) and a
+    summary ``{(width, key): value}``.
+
+    ``results`` maps (file, width, renderer) to whole-process cells;
+    ``inproc`` (optional) maps the same keys to in-process cells, shown
+    beside them.  Per file: each renderer's median time, raster over the
+    faster peer, each process's median peak RSS and raster's RSS over
+    resvg's.  Below the table: the geometric mean of raster / faster peer,
+    the files above 1.5x, the files whose peak RSS is above 2x resvg's (the
+    targets of issue 17)."""
+    lines, summary = [], {}
+    peers = [r for r in renderers if r != 'raster']
+    for width in widths:
+        wkey = width or 'natural'
+        lines += ['', '### Whole process, width %s (%s time, median of %d)' % (
+            'natural size' if width is None else '%d px' % width,
+            'wall-clock' if metric == 'wall' else 'CPU', repeat), '']
+        head = ['file', 'size (px)'] + ['%s ms' % r for r in renderers]
+        if 'raster' in renderers and peers:
+            head.append('raster / faster peer')
+        head.append('peak RSS MB (%s)' % ' / '.join(renderers))
+        if 'raster' in renderers and 'resvg' in renderers:
+            head.append('RSS raster / resvg')
+        if inproc is not None:
+            head.append('in-process ms (%s)' % ' / '.join(renderers))
+        lines += ['| ' + ' | '.join(head) + ' |', '|' + '|'.join(['---'] * len(head)) + '|']
+        ratios, rss_ratios, over_t, over_m, errors, notes = [], [], [], [], [], []
+        for svg in files:
+            name = os.path.basename(svg)
+            cells = {r: results.get((name, wkey, r), {'error': 'not run'}) for r in renderers}
+            sizes = {tuple(c['size']) for c in cells.values() if 'size' in c}
+            row = [name, ' vs '.join('%dx%d' % s for s in sorted(sizes)) or '-']
+            t, m = {}, {}
+            for r in renderers:
+                c = cells[r]
+                if 'error' in c or not c.get(metric):
+                    row.append('error')
+                    errors.append('%s / %s / %s: %s' % (name, wkey, r, c.get('error', 'no runs')))
+                    continue
+                t[r], m[r] = _med(c[metric]), _med(c['rss_mb'])
+                mark = ''
+                if c.get('note'):
+                    mark = '*'
+                    notes.append('%s / %s / %s: %s' % (name, wkey, r, c['note']))
+                if len(c[metric]) < repeat:
+                    mark += ' (%d run%s)' % (len(c[metric]), 's' if len(c[metric]) > 1 else '')
+                row.append(_ms(t[r]) + mark)
+            if 'raster' in renderers and peers:
+                pt = [t[p] for p in peers if p in t]
+                if 'raster' in t and pt:
+                    q = t['raster'] / min(pt)
+                    ratios.append(q)
+                    if q > 1.5:
+                        over_t.append('%s (%.2fx)' % (name, q))
+                    row.append('%.2f' % q)
+                else:
+                    row.append('-')
+            row.append(' / '.join('%.0f' % m[r] if r in m else '-' for r in renderers))
+            if 'raster' in renderers and 'resvg' in renderers:
+                if 'raster' in m and 'resvg' in m:
+                    q = m['raster'] / m['resvg']
+                    rss_ratios.append(q)
+                    if q > 2.0:
+                        over_m.append('%s (%.1fx)' % (name, q))
+                    row.append('%.2f' % q)
+                else:
+                    row.append('-')
+            if inproc is not None:
+                vals = []
+                for r in renderers:
+                    c = inproc.get((name, wkey, r), {})
+                    vals.append(_ms(_med(c[metric])) if c.get(metric) else '-')
+                row.append(' / '.join(vals))
+            lines.append('| ' + ' | '.join(row) + ' |')
+        lines.append('')
+        g = geomean(ratios)
+        if g is not None:
+            summary[(wkey, 'faster_peer')] = (g, len(ratios))
+            lines.append('Geometric mean raster / faster peer at %s (whole process, %s time): '
+                         '**%.2f** over %d files (target 1.0 at 2000 px); above 1.5x: %s.'
+                         % (wkey, metric, g, len(ratios), ', '.join(over_t) or 'none'))
+        g = geomean(rss_ratios)
+        if g is not None:
+            summary[(wkey, 'rss_resvg')] = (g, len(rss_ratios), max(rss_ratios))
+            lines.append('Peak RSS raster / resvg at %s: geometric mean %.2f, largest %.2f '
+                         '(target at most 2); above 2x: %s.'
+                         % (wkey, g, max(rss_ratios), ', '.join(over_m) or 'none'))
+        for title, items in (('Errors', errors), ('Notes (*)', notes)):
+            if items:
+                lines += ['', title + ':', ''] + ['- ' + e.replace('|', '/') for e in items]
+    return lines, summary
+
+
+# --------------------------------------------------------------------------
 # Parent side
 # --------------------------------------------------------------------------
 
@@ -258,7 +531,7 @@ def run_cell(renderer, svg, width, args, tmpdir):
     spec = dict(renderer=renderer, svg=svg, width=width, repeat=args.repeat,
                 soft_limit=args.timeout, out=out, save=save)
     hard = args.timeout * 2 + 30      # first render may start just before soft_limit
-    p = subprocess.Popen([sys.executable, os.path.abspath(__file__), '--worker', json.dumps(spec)],
+    p = subprocess.Popen([args.python, os.path.abspath(__file__), '--worker', json.dumps(spec)],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                          stdin=subprocess.DEVNULL, start_new_session=True, cwd=ROOT)
     try:
@@ -280,7 +553,29 @@ def run_cell(renderer, svg, width, args, tmpdir):
         return json.load(f)
 
 
-def machine_info():
+_VERSIONS_PROGRAM = """\
+from importlib import metadata
+vers = []
+for dist in ('numpy', 'Pillow', 'lxml', 'resvg_py', 'CairoSVG', 'cairocffi', 'raster-svg'):
+    try:
+        vers.append('%s %s' % (dist, metadata.version(dist)))
+    except metadata.PackageNotFoundError:
+        vers.append('%s -' % dist)
+try:
+    import cairocffi
+    vers.append('libcairo %s' % cairocffi.cairo_version_string())
+except Exception:
+    pass
+import platform, sys
+print('Python %s (%s), %s; %s' % (platform.python_version(), platform.machine(),
+                                  platform.platform(), sys.prefix))
+print('Libraries: ' + ', '.join(vers))
+"""
+
+
+def machine_info(python=sys.executable):
+    """Lines describing the machine and the libraries of ``python`` (the
+    interpreter that runs the renderers)."""
     model = '?'
     try:
         with open('/proc/cpuinfo') as f:
@@ -298,21 +593,20 @@ def machine_info():
         load = ' (load average %.2f %.2f %.2f)' % os.getloadavg()
     except OSError:
         load = ''
-    vers = []
-    from importlib import metadata
-    for dist in ('numpy', 'Pillow', 'lxml', 'resvg_py', 'CairoSVG', 'cairocffi', 'raster'):
-        try:
-            vers.append('%s %s' % (dist, metadata.version(dist)))
-        except metadata.PackageNotFoundError:
-            vers.append('%s -' % dist)
+    mem = ''
     try:
-        import cairocffi
-        vers.append('libcairo %s' % cairocffi.cairo_version_string())
-    except Exception:                    # pragma: no cover - optional
+        with open('/proc/meminfo') as f:
+            kb = int(f.readline().split()[1])
+        mem = ', %.0f GB RAM' % (kb / 1024 ** 2)
+    except (OSError, ValueError, IndexError):
         pass
-    return ['CPU: %s, %d cores available (os.cpu_count()=%s)%s' % (model, avail, os.cpu_count(), load),
-            'Python %s (%s), %s' % (platform.python_version(), platform.machine(), platform.platform()),
-            'Libraries: ' + ', '.join(vers)]
+    try:
+        libs = subprocess.run([python, '-c', _VERSIONS_PROGRAM], capture_output=True, text=True,
+                              timeout=60).stdout.strip().splitlines()
+    except (OSError, subprocess.TimeoutExpired):
+        libs = []
+    return ['CPU: %s, %d cores available (os.cpu_count()=%s)%s%s'
+            % (model, avail, os.cpu_count(), mem, load)] + (libs or ['Python: %s (not run)' % python])
 
 
 def _med(xs):
@@ -437,6 +731,16 @@ def main(argv=None):
     ap.add_argument('--save', metavar='DIR', help='keep each PNG as DIR/<file>_<width>_<renderer>.png')
     ap.add_argument('--metric', choices=('wall', 'cpu', 'both'), default='both',
                     help='time shown in the tables: wall-clock, worker CPU time, or both')
+    ap.add_argument('--mode', choices=('process', 'inprocess', 'both'), default='both',
+                    help='whole process (each render a fresh process: the command for raster), '
+                    'in-process (warm renders in a worker after a warm-up), or both')
+    ap.add_argument('--python', default=sys.executable,
+                    help='interpreter running the peers and the in-process workers (default: '
+                    'this one); time an installed copy (pip install . into a venv) so that '
+                    'start-up does not include compiling bytecode')
+    ap.add_argument('--rasterize', default=None,
+                    help="raster's command in whole-process mode (default: rasterize beside "
+                    '--python)')
     ap.add_argument('--retable', metavar='IN.json',
                     help='no rendering: rebuild the tables from a --json file of an earlier run')
     ap.add_argument('--worker', help=argparse.SUPPRESS)
@@ -459,15 +763,20 @@ def main(argv=None):
             widths.append(int(w))
         else:
             ap.error('bad width %r' % w)
+    if args.rasterize is None:
+        args.rasterize = os.path.join(os.path.dirname(args.python), 'rasterize')
+    modes = ('process', 'inprocess') if args.mode == 'both' else (args.mode,)
     if args.retable:
         with open(args.retable) as f:
             old = json.load(f)
-        results = {(r['file'], r['width'], r['renderer']): r for r in old['results']}
-        files = sorted({k[0] for k in results})
-        present = {k[1] for k in results}
+        inproc = {(r['file'], r['width'], r['renderer']): r for r in old.get('results', [])}
+        proc = {(r['file'], r['width'], r['renderer']): r for r in old.get('process', [])}
+        keys = set(inproc) | set(proc)
+        files = sorted({k[0] for k in keys})
+        present = {k[1] for k in keys}
         widths = [w for w in widths if (w or 'natural') in present]
-        renderers = [r for r in renderers if r in {k[2] for k in results}]
-        _report(args, argv, old['machine'], results, files, widths, renderers,
+        renderers = [r for r in renderers if r in {k[2] for k in keys}]
+        _report(args, argv, old['machine'], proc, inproc, files, widths, renderers,
                 old.get('repeat', args.repeat))
         return 0
     files = sorted(glob.glob(os.path.join(args.corpus, '*.svg')))
@@ -479,22 +788,38 @@ def main(argv=None):
         ap.error('no .svg files in %s match' % args.corpus)
     if args.save:
         os.makedirs(args.save, exist_ok=True)
+    if 'process' in modes and 'raster' in renderers and not os.path.exists(args.rasterize):
+        ap.error('no rasterize command at %s (give --rasterize)' % args.rasterize)
 
-    info = machine_info()
+    info = machine_info(args.python)
     for line in info:
         print(line)
-    print('Corpus: %s (%d files); widths: %s; renderers: %s; repeat %d'
-          % (args.corpus, len(files), args.widths, ', '.join(renderers), args.repeat))
-    results = {}
+    print('Corpus: %s (%d files); widths: %s; renderers: %s; repeat %d; mode %s'
+          % (args.corpus, len(files), args.widths, ', '.join(renderers), args.repeat, args.mode))
+    inproc, proc = {}, {}
     t_all = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix='bench_corpus_') as tmpdir:
         for svg in files:
             name = os.path.basename(svg)
             for width in widths:
                 wkey = width or 'natural'
+                if 'process' in modes:
+                    cells = run_processes(svg, width, renderers, args, tmpdir)
+                    for r in renderers:
+                        res = proc[(name, wkey, r)] = cells[r]
+                        if 'error' in res:
+                            msg = 'error: ' + res['error']
+                        else:
+                            msg = '%8s ms  cpu %8s ms  peak RSS %5.0f MB  %dx%d  (%d runs)' % (
+                                _ms(_med(res['wall'])), _ms(_med(res['cpu'])),
+                                _med(res['rss_mb']), res['size'][0], res['size'][1],
+                                len(res['wall']))
+                        print('%-40s %-8s %-9s process    %s' % (name, wkey, r, msg), flush=True)
+                if 'inprocess' not in modes:
+                    continue
                 for r in renderers:
                     res = run_cell(r, svg, width, args, tmpdir)
-                    results[(name, wkey, r)] = res
+                    inproc[(name, wkey, r)] = res
                     if 'error' in res:
                         msg = 'error: ' + res['error']
                     else:
@@ -505,22 +830,31 @@ def main(argv=None):
                             msg += '  [%s]' % res['note']
                         if res.get('render_only'):
                             msg += '  render-only %s ms' % _ms(_med(res['render_only']))
-                    print('%-40s %-8s %-9s %s' % (name, wkey, r, msg), flush=True)
+                    print('%-40s %-8s %-9s in-process %s' % (name, wkey, r, msg), flush=True)
     print('Total benchmark time %.0f s' % (time.perf_counter() - t_all))
     if args.json:
         with open(args.json, 'w') as f:
-            json.dump({'machine': info, 'repeat': args.repeat,
+            json.dump({'machine': info, 'repeat': args.repeat, 'mode': args.mode,
                        'results': [dict(v, file=k[0], width=k[1], renderer=k[2])
-                                   for k, v in results.items()]}, f, indent=1)
-    _report(args, argv, info, results, files, widths, renderers, args.repeat)
+                                   for k, v in inproc.items()],
+                       'process': [dict(v, file=k[0], width=k[1], renderer=k[2])
+                                   for k, v in proc.items()]}, f, indent=1)
+    _report(args, argv, info, proc, inproc, files, widths, renderers, args.repeat)
     return 0
 
 
-def _report(args, argv, info, results, files, widths, renderers, repeat):
+def _report(args, argv, info, proc, inproc, files, widths, renderers, repeat):
     metrics = ('wall', 'cpu') if args.metric == 'both' else (args.metric,)
     lines = []
-    for metric in metrics:
-        lines += build_tables(results, files, widths, renderers, repeat, metric)[0]
+    if proc:
+        for metric in metrics:
+            lines += build_process_tables(proc, files, widths, renderers, repeat,
+                                          inproc or None, metric)[0]
+    if inproc:
+        if proc:
+            lines += ['', '## In process (warm renders after a warm-up, one worker per cell)']
+        for metric in metrics:
+            lines += build_tables(inproc, files, widths, renderers, repeat, metric)[0]
     print('\n'.join(lines))
     if args.markdown:
         with open(args.markdown, 'w') as f:
@@ -531,10 +865,17 @@ def _report(args, argv, info, results, files, widths, renderers, repeat):
                     % time.strftime('%Y-%m-%d %H:%M', time.gmtime()))
             for line in info:
                 f.write('- %s\n' % line)
-            f.write('\nTimes are medians of %d renders to PNG bytes (PNG encode included), '
-                    'wall-clock and CPU time of the worker process; peak MB = peak RSS of the '
-                    'worker during the renders minus its RSS before them (after the imports '
-                    'and a warm-up render).\n' % repeat)
+            if proc:
+                f.write('\nWhole process: every render is a fresh process (`rasterize in.svg '
+                        'out.png [--width W]`; the peers through `python -c` importing them, '
+                        'rendering and writing the PNG), the renderers interleaved, %d rounds; '
+                        'medians of wall-clock and CPU time, peak RSS of each process '
+                        '(`/usr/bin/time -f %%M`).\n' % repeat)
+            if inproc:
+                f.write('\nIn process: medians of %d renders to PNG bytes (PNG encode '
+                        'included), wall-clock and CPU time of the worker process; peak MB = '
+                        'peak RSS of the worker during the renders minus its RSS before them '
+                        '(after the imports and a warm-up render).\n' % repeat)
             f.write('\n'.join(lines) + '\n')
 
 

@@ -15,14 +15,14 @@
 """
 
 import argparse
+import contextlib
 import errno
-import gzip
+import gc
 import io
 import os
 import stat
 import sys
 import warnings
-import tempfile
 import zlib
 
 from raster.errors import RasterError, SVGError
@@ -36,9 +36,83 @@ class UsageError(Exception):
     """Bad combination of arguments found after parsing (exit status 2)."""
 
 
+def _help_formatter(prog):
+    """argparse's help formatter at the terminal's width (``COLUMNS``, else
+    the width of the terminal on stdout, else 80), found as
+    ``shutil.get_terminal_size`` does but without importing :mod:`shutil`,
+    which loads bz2 and lzma: argparse builds a formatter for every
+    ``add_argument``."""
+    try:
+        cols = int(os.environ.get('COLUMNS', ''))
+    except ValueError:
+        cols = 0
+    if cols <= 0:
+        try:
+            cols = os.get_terminal_size(sys.__stdout__.fileno()).columns
+        except (AttributeError, ValueError, OSError):
+            cols = 0
+    return argparse.HelpFormatter(prog, width=(cols or 80) - 2)
+
+
 class Parser(argparse.ArgumentParser):
     """ArgumentParser that raises :class:`SystemExit` (2) with its usual
-    message; :func:`run` turns that into a return value."""
+    message; :func:`run` turns that into a return value.  Help is
+    formatted at the terminal's width (see :func:`_help_formatter`)."""
+
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault('formatter_class', _help_formatter)
+        super().__init__(*args, **kwargs)
+
+
+def add_font_options(parser):
+    """Give ``parser`` the font options shared by the commands:
+    ``--font-dir DIR`` and ``--font-file FILE`` (repeatable),
+    ``--no-system-fonts``, ``--serif-family`` ... ``--fantasy-family`` (as
+    resvg names them), ``--default-family`` and ``--list-fonts``; see
+    :func:`font_options` and :func:`list_fonts`."""
+    g = parser.add_argument_group('fonts')
+    g.add_argument('--font-dir', action='append', default=[], metavar='DIR',
+                   help='folder of fonts for text, searched before the system fonts (repeatable)')
+    g.add_argument('--font-file', action='append', default=[], metavar='FILE',
+                   help='a font file for text (repeatable)')
+    g.add_argument('--no-system-fonts', action='store_true',
+                   help="use only --font-dir and --font-file fonts, not the system's")
+    for generic in ('serif', 'sans-serif', 'monospace', 'cursive', 'fantasy'):
+        g.add_argument('--%s-family' % generic, metavar='NAME',
+                       help='family the %s generic family resolves to' % generic)
+    g.add_argument('--default-family', metavar='NAME',
+                   help='family of text whose font-family names nothing available '
+                        '(default: serif)')
+    g.add_argument('--list-fonts', action='store_true',
+                   help='print the fonts found and what each generic family resolves to, '
+                        'then exit')
+
+
+def font_options(args):
+    """The :class:`raster.FontOptions` of parsed :func:`add_font_options`
+    arguments."""
+    from raster.fonts import FontOptions
+    return FontOptions(dirs=tuple(args.font_dir), files=tuple(args.font_file),
+                       system=not args.no_system_fonts, serif_family=args.serif_family,
+                       sans_serif_family=args.sans_serif_family,
+                       monospace_family=args.monospace_family,
+                       cursive_family=args.cursive_family, fantasy_family=args.fantasy_family,
+                       default_family=args.default_family)
+
+
+def list_fonts(args, required=('input',)):
+    """``--list-fonts``: print the font list (stdout) and return True; else
+    check that the positional arguments ``required`` were given (a usage
+    error otherwise) and return False."""
+    if args.list_fonts:
+        from raster.fonts import FontDB
+        db = FontDB.for_options(font_options(args))
+        sys.stdout.write('\n'.join(db.describe()) + '\n')
+        return True
+    missing = [n for n in required if getattr(args, n, None) is None]
+    if missing:
+        raise UsageError('the following arguments are required: %s' % ', '.join(missing))
+    return False
 
 
 def add_version(parser):
@@ -68,11 +142,47 @@ def error_message(exc):
     return _one_line('internal error: %s: %s' % (type(exc).__name__, exc))
 
 
+@contextlib.contextmanager
+def collector_paused():
+    """Python's cyclic garbage collector paused for the duration, then
+    restored as it was.
+
+    A command is a short process that builds tens of thousands of
+    long-lived objects (the document's tree), which the collector would
+    keep rescanning: a sixth of a chart's tree building.  The commands opt
+    in through :func:`run`; the library itself never changes the
+    collector's state."""
+    was = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if was:
+            gc.enable()
+
+
+def one_blas_thread():
+    """Ask numpy's BLAS for one thread (``OPENBLAS_NUM_THREADS=1``) when the
+    user has not set it and numpy is not imported yet.
+
+    numpy starts a BLAS thread pool as it is imported, a third of its
+    import time on this project's machine (40 ms of a command's start-up);
+    raster's arrays never need BLAS threads.  Only a command run from the
+    command line does this (:func:`run` with ``argv`` None): it is the
+    command's own process."""
+    if 'numpy' not in sys.modules and 'OPENBLAS_NUM_THREADS' not in os.environ:
+        os.environ['OPENBLAS_NUM_THREADS'] = '1'
+
+
 def run(prog, body, parser, argv):
-    """Parse ``argv`` with ``parser`` and call ``body(args)``.
+    """Parse ``argv`` with ``parser`` and call ``body(args)`` with the
+    garbage collector paused (:func:`collector_paused`); from the command
+    line (``argv`` None) numpy gets one BLAS thread (:func:`one_blas_thread`).
 
     Returns the exit status: ``body``'s return value (default 0), 1 after an
     error (one line on stderr), 2 for usage errors."""
+    if argv is None:
+        one_blas_thread()
     try:
         args = parser.parse_args(argv)
     except SystemExit as e:
@@ -82,7 +192,8 @@ def run(prog, body, parser, argv):
                             print('%s: warning: %s' % (prog, _one_line(message)),
                                   file=sys.stderr))
     try:
-        rc = body(args)
+        with collector_paused():
+            rc = body(args)
     except UsageError as e:
         parser.print_usage(sys.stderr)
         print('%s: error: %s' % (prog, _one_line(e)), file=sys.stderr)
@@ -113,6 +224,7 @@ def read_source(path):
     else:
         data = read_file(path, MAX_SVG_BYTES)     # file: URLs read, other URLs refused
     if data[:2] == b'\x1f\x8b':
+        import gzip
         try:
             with gzip.GzipFile(fileobj=io.BytesIO(data)) as g:
                 data = g.read(MAX_SVG_BYTES + 1)
@@ -153,12 +265,11 @@ def write_output(path, data):
         return
     # a link to a regular file: replace the file it names, not the link
     target = os.path.realpath(path)
-    d = os.path.dirname(target)
-    fd, tmp = tempfile.mkstemp(prefix='.%s.' % os.path.basename(target), suffix='.tmp', dir=d)
+    fd, tmp = _temporary_beside(target)
     try:
         with os.fdopen(fd, 'wb') as f:
             f.write(data)
-        # mkstemp creates 0600; give the file the mode a plain open() would
+        # created 0600; give the file the mode a plain open() would
         os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, target)
     except BaseException:
@@ -167,6 +278,22 @@ def write_output(path, data):
         except OSError:
             pass
         raise
+
+
+def _temporary_beside(target):
+    """``(fd, path)`` of a new file ``.<name>.<random>.tmp`` in the
+    directory of ``target``, created exclusively with mode 0600 (what
+    ``tempfile.mkstemp`` does; :mod:`tempfile` itself imports shutil,
+    random and hashlib, a tenth of the command's start-up)."""
+    d, name = os.path.split(target)
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, 'O_CLOEXEC', 0)
+    for _ in range(100):
+        tmp = os.path.join(d, '.%s.%s.tmp' % (name, os.urandom(6).hex()))
+        try:
+            return os.open(tmp, flags, 0o600), tmp
+        except FileExistsError:
+            continue
+    raise FileExistsError(errno.EEXIST, 'no unused temporary name', os.path.join(d, name))
 
 
 def _umask():
@@ -236,3 +363,25 @@ def hex_color(rgba):
     """``'#rrggbb'`` of straight RGBA floats (alpha dropped)."""
     r, g, b = (max(0, min(255, int(round(float(v) * 255)))) for v in rgba[:3])
     return '#%02x%02x%02x' % (r, g, b)
+
+
+def add_languages(parser):
+    """Give ``parser`` a ``--languages`` option: the user's languages for
+    ``systemLanguage`` (default: the environment's locale, see
+    :func:`languages_of`)."""
+    parser.add_argument('--languages', metavar='LIST',
+                        help="the user's languages for systemLanguage, e.g. en,de-CH "
+                             "(default: from LC_ALL / LC_MESSAGES / LANG, else en)")
+
+
+def languages_of(args):
+    """The languages a command parses with: ``--languages``, else those of
+    the environment's locale (``LC_ALL``, ``LC_MESSAGES``, ``LANG``; ``en``
+    without one).  A malformed list is a usage error."""
+    from raster.parser.context import locale_languages, parse_languages
+    if args.languages is None:
+        return locale_languages()
+    try:
+        return parse_languages(args.languages)
+    except SVGError as e:
+        raise UsageError('--languages: %s' % e) from None

@@ -102,9 +102,19 @@ class RasterRenderer:
         self.cfg = cfg
 
     def render(self, case):
-        return self.render_fn(case['svg'], width=self.cfg['width'],
-                              font_dirs=[self.cfg['fonts_dir']],
-                              resources_dir=self.cfg['resources_dir'])
+        return self.render_fn(case['svg'], width=self.cfg['width'], fonts=self.fonts,
+                              resources_dir=self.cfg['resources_dir'], languages=('en',))
+
+    @property
+    def fonts(self):
+        """The suite's fonts only, with resvg's harness mapping (no system
+        fonts, so the numbers stay comparable between machines)."""
+        from raster.fonts import FontOptions
+        g = GENERIC_FAMILIES
+        return FontOptions(dirs=(self.cfg['fonts_dir'],), system=False,
+                           serif_family=g['serif'], sans_serif_family=g['sans-serif'],
+                           monospace_family=g['monospace'], cursive_family=g['cursive'],
+                           fantasy_family=g['fantasy'], default_family='Times New Roman')
 
 
 class ResvgRenderer:

@@ -1,6 +1,6 @@
 """svg-bbox: exact bounding boxes of an SVG document and its elements.
 
-    svg-bbox in.svg [--id ID] [--stroke]
+    svg-bbox in.svg [--id ID] [--stroke] [font options]
 
 Prints JSON ``{"units": "user", "document": [xmin, ymin, xmax, ymax],
 "elements": {id: [xmin, ymin, xmax, ymax], ...}}``.  Boxes are in the root
@@ -10,14 +10,18 @@ shape; ``elements`` holds every element with an id that draws something
 (the union of its shapes; null when it draws nothing).  Boxes are of the
 geometry (fill area) unless ``--stroke`` is given, which includes the
 stroke outlines (joins, caps, dashes).  ``--id`` reports only that element
-(an unknown id is an error).
+(an unknown id is an error).  Text elements have the exact boxes of their
+glyph outlines, laid out with the system's fonts and the font options of
+``rasterize`` (``--font-dir``, ``--font-file``, ``--no-system-fonts``,
+``--serif-family`` ..., ``--list-fonts``).
 """
 
 import json
 import sys
 
-from ._common import (Parser, add_version, base_dir_of, drawn_shapes, node_transforms, read_source, run,
-                      subtree_shapes, user_to_doc, write_text)
+from ._common import (Parser, add_font_options, add_languages, add_version, base_dir_of,
+                      drawn_shapes, font_options, languages_of, list_fonts, node_transforms,
+                      read_source, run, subtree_shapes, user_to_doc, write_text)
 
 PROG = 'svg-bbox'
 
@@ -112,18 +116,23 @@ def _fmt(b):
 def build_parser():
     ap = Parser(prog=PROG, description='Exact bounding boxes of an SVG document and of its '
                 'elements with an id, in the root user units, as JSON.')
-    ap.add_argument('input', help='SVG or SVGZ file, or - for stdin')
+    ap.add_argument('input', nargs='?', help='SVG or SVGZ file, or - for stdin')
     ap.add_argument('--id', metavar='ID', help='report only this element')
     ap.add_argument('--stroke', action='store_true', help='include stroke outlines')
     ap.add_argument('-o', '--output', default='-', help='output file (default: stdout)')
+    add_font_options(ap)
+    add_languages(ap)
     add_version(ap)
     return ap
 
 
 def _body(args):
     from raster.svg import load_svg
+    if list_fonts(args):
+        return 0
     data = read_source(args.input)
-    tree = load_svg(data, base_dir=base_dir_of(args.input))
+    tree = load_svg(data, base_dir=base_dir_of(args.input), fonts=font_options(args),
+                    languages=languages_of(args))
     result = boxes(tree, args.stroke, args.id)
     write_text(args.output, json.dumps(result, indent=1) + '\n')
     return 0

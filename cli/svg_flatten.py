@@ -1,7 +1,12 @@
 """svg-flatten: every drawn shape of an SVG document as polylines.
 
     svg-flatten in.svg [-o OUT] [--tolerance T] [--format svg|json|csv]
-                [--pixels] [--outline-strokes] [--dpi DPI]
+                [--pixels] [--outline-strokes] [--dpi DPI] [font options]
+
+Text is converted to its glyph outlines (as ``rasterize`` draws it: the
+system's fonts, and the font options of ``rasterize``: ``--font-dir``,
+``--font-file``, ``--no-system-fonts``, ``--serif-family`` ...,
+``--list-fonts``).
 
 The document is resolved first (``use``, transforms, viewBox, CSS), so the
 output holds each painted path once, flattened into straight segments.
@@ -36,8 +41,9 @@ import json
 import math
 import sys
 
-from ._common import (Parser, add_version, base_dir_of, drawn_shapes, hex_color, read_source, run,
-                      user_to_doc, write_text)
+from ._common import (Parser, add_font_options, add_languages, add_version, base_dir_of,
+                      drawn_shapes, font_options, hex_color, languages_of, list_fonts, read_source,
+                      run, user_to_doc, write_text)
 
 PROG = 'svg-flatten'
 
@@ -45,7 +51,7 @@ PROG = 'svg-flatten'
 def build_parser():
     ap = Parser(prog=PROG, description='Flatten every drawn shape of an SVG document '
                 'into polylines.')
-    ap.add_argument('input', help='SVG or SVGZ file, or - for stdin')
+    ap.add_argument('input', nargs='?', help='SVG or SVGZ file, or - for stdin')
     ap.add_argument('-o', '--output', default='-', help='output file (default: stdout)')
     ap.add_argument('--tolerance', type=float, default=0.25,
                     help='largest curve-to-polyline distance in output units (default 0.25)')
@@ -55,6 +61,8 @@ def build_parser():
     ap.add_argument('--outline-strokes', action='store_true',
                     help='replace strokes by their outline polygons')
     ap.add_argument('--dpi', type=float, default=96.0, help=argparse.SUPPRESS)
+    add_font_options(ap)
+    add_languages(ap)
     add_version(ap)
     return ap
 
@@ -186,8 +194,12 @@ def to_csv(shapes):
 
 def _body(args):
     from raster.svg import load_svg
+    if list_fonts(args):
+        return 0
     data = read_source(args.input)
-    tree = load_svg(data, dpi=args.dpi, base_dir=base_dir_of(args.input))
+    tree = load_svg(data, dpi=args.dpi, base_dir=base_dir_of(args.input),
+                    fonts=font_options(args),
+                    languages=languages_of(args))
     shapes = collect(tree, args.tolerance, args.pixels, args.outline_strokes)
     if args.format == 'json':
         text = json.dumps(shapes, indent=1) + '\n'

@@ -4,6 +4,8 @@ committed, and their reference PNGs are made by regenerate.py on request."""
 
 import os
 
+import rules
+
 HEAD = ('<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
         'width="200" height="200" viewBox="0 0 200 200">\n  <title>{title}</title>\n'
         '  <rect x="1" y="1" width="198" height="198" fill="none" stroke="#777" stroke-width="2"/>\n')
@@ -131,6 +133,20 @@ def main():
         svg = HEAD.format(title='preserveAspectRatio ' + par) + '  ' + body + '\n</svg>\n'
         with open(os.path.join(here, name + '.svg'), 'w') as f:
             f.write(svg)
+    # the rules of issue 14 (golden/rules.py): a <desc> states each rule
+    for name, (title, desc, body) in rules.CASES.items():
+        head = HEAD.format(title=title).replace(
+            '</title>\n', '</title>\n  <desc>%s</desc>\n' % desc, 1)
+        with open(os.path.join(here, name + '.svg'), 'w') as f:
+            f.write(head + '  ' + body + '\n</svg>\n')
+    for name, doc in rules.DOCS.items():
+        with open(os.path.join(here, name + '.svg'), 'w') as f:
+            f.write(doc)
+    eq = os.path.join(os.path.dirname(here), 'equivalent')
+    for name, (title, body) in rules.EQUIVALENT.items():
+        os.makedirs(eq, exist_ok=True)
+        with open(os.path.join(eq, name + '.svg'), 'w') as f:
+            f.write(HEAD.format(title=title) + '  ' + body + '\n</svg>\n')
 
 
 if __name__ == '__main__':

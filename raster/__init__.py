@@ -9,25 +9,33 @@ The front door (see README.md):
 * :func:`render` / :func:`render_image` -- an SVG document to an RGBA array or
   a PIL image;
 * :func:`svg2png` -- CairoSVG's ``svg2png`` (PNG bytes or a file), see
-  :mod:`raster.compat`.
+  :mod:`raster.compat`;
+* :class:`FontOptions` -- the fonts of text, for every function above that
+  takes ``fonts=`` (default: the system's fonts), see :mod:`raster.fonts`.
 
 The Pillow plugin (``Image.open('x.svg')``) is :mod:`raster.pillow`; it is
 registered by ``raster.pillow.register()`` or ``import raster.pillow.auto``,
 never by ``import raster``.
 
 The geometry behind them is the kernel :mod:`raster.geometry`.  Names are
-imported lazily so that ``import raster`` stays fast.
+imported lazily: ``import raster`` loads only :mod:`raster.errors` (no
+numpy), so that it stays fast.
 """
 
 from .errors import (RasterError, PathError, TransformError, CanvasError,  # noqa: F401
                      LimitError, SVGError, FormatError, RasterIOError)
-from .geometry.path import Path  # noqa: F401
-from .geometry.pens import PathBuilder, TransformPen, RecordingPen  # noqa: F401
-from .geometry.transform import Affine  # noqa: F401
 
 __version__ = '0.1.0'
 
+# Everything else is imported on first use: ``import raster`` (and so
+# ``import raster.errors`` in a command that has not parsed its arguments
+# yet) loads neither numpy nor any other module of the package.
 _LAZY = {
+    'Path': 'raster.geometry.path',
+    'PathBuilder': 'raster.geometry.pens',
+    'TransformPen': 'raster.geometry.pens',
+    'RecordingPen': 'raster.geometry.pens',
+    'Affine': 'raster.geometry.transform',
     'parse_path': 'raster.geometry.pathdata',
     'flatten': 'raster.geometry.flattening',
     'Polylines': 'raster.geometry.flattening',
@@ -45,6 +53,8 @@ _LAZY = {
     'render_image': 'raster.svg',
     'load_svg': 'raster.svg',
     'svg2png': 'raster.compat',
+    'FontOptions': 'raster.fonts',
+    'FontError': 'raster.fonts',
 }
 
 

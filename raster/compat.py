@@ -81,14 +81,15 @@ def _document(bytestring, file_obj, url):
 def _root_size_against_parent(root, vb, parent_width, parent_height):
     """Resolve percentages of the root's width/height (absent: 100 %)
     against the parent box, in place.  Without a parent size a percentage
-    is CairoSVG's zero, which means the viewBox size when there is one."""
+    (or an absent side) is CairoSVG's zero, which means the viewBox size
+    when there is one (not raster's aspect ratio from the other side)."""
     for i, (attr, parent) in enumerate((('width', parent_width), ('height', parent_height))):
         m = _PERCENT.match(root.get(attr, '100%'))
         if m is None:
             continue
         if parent is not None:
             root.set(attr, repr(float(m.group(1)) * _number('parent_' + attr, parent) / 100.0))
-        elif vb is not None and root.get(attr) is not None:
+        elif vb is not None:
             root.set(attr, repr(vb[2 + i]))
 
 
@@ -113,7 +114,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
             parent_width: float | None = None, parent_height: float | None = None,
             scale: float = 1, unsafe: bool = False, background_color: str | None = None,
             output_width: float | None = None,
-            output_height: float | None = None) -> bytes | None:
+            output_height: float | None = None, fonts=None) -> bytes | None:
     """Render an SVG document to PNG, with CairoSVG's ``svg2png`` arguments.
 
     Parameters
@@ -140,6 +141,9 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
         A CSS colour under the document (default transparent).
     output_width, output_height : float, optional
         Output size in px (see the module docstring).
+    fonts : raster.FontOptions or dict, optional
+        The fonts of text (default: the system's fonts), as for
+        :func:`raster.render`; not a CairoSVG argument.
 
     Returns
     -------
@@ -158,7 +162,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
         rounds to 0 pixels or exceeds :mod:`raster.limits`.
     """
     from .pixels.encode import encode
-    from .svg import parse_background
+    from .svg import check_dpi, font_options, parse_background
     from .parser import build_tree
     from .parser.document import load_document
     from .renderer import render_tree
@@ -168,12 +172,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
                                 parse_viewbox, viewbox_transform)
 
     bg = parse_background(background_color)
-    try:
-        d = float(dpi)
-    except (TypeError, ValueError):
-        d = math.nan
-    if not (math.isfinite(d) and d > 0):
-        raise SVGError('dpi must be a positive number, got %r' % (dpi,))
+    d = check_dpi(dpi)
     source, path = _document(bytestring, file_obj, url)
     root = load_document(source)
     vb = parse_viewbox(root.get('viewBox')) if root.get('viewBox') is not None else None
@@ -183,7 +182,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
         files = dict(base_dir=base, resources_dir=os.path.abspath(os.sep))
     else:
         files = dict(base_dir=None, resources_dir=None)     # data: URIs only
-    tree = build_tree(root, dpi=d, **files)
+    tree = build_tree(root, dpi=d, fonts=font_options(fonts), **files)
     w, h = tree.width, tree.height
     W, H = _output_box(w, h, scale, output_width, output_height)
     Wi, Hi = int(round(W)), int(round(H))
@@ -201,7 +200,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
         rect = parse_path('M0 0H%rV%rH0Z' % (W, H))
         kids.insert(0, PathNode(path=rect, fill=Fill(SolidPaint(bg))))
     out = Tree(width=float(Wi), height=float(Hi), root=Group(children=kids), ids=tree.ids)
-    png = encode(render_tree(out).to_rgba8(), 'png')
+    png = encode(render_tree(out, dtype='uint8').to_rgba8(), 'png')
     if write_to is None:
         return png
     if hasattr(write_to, 'write'):

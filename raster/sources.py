@@ -29,8 +29,6 @@ from __future__ import annotations
 
 import os
 import re
-import urllib.parse
-import urllib.request
 
 from .errors import RasterIOError, SVGError
 
@@ -87,6 +85,10 @@ def local_path(source: str | os.PathLike) -> str:
     if scheme is None:
         return path
     if scheme == 'file':
+        # (imported here: urllib.request pulls in http, email and ssl, a
+        # fifth of a command's start-up, for a plain path)
+        import urllib.parse
+        import urllib.request
         parts = urllib.parse.urlsplit(path)
         if parts.netloc not in ('', 'localhost'):
             raise RasterIOError('%s: file URL on another host (only local files are read)'

@@ -21,13 +21,14 @@ Output sizes are in device pixels; the document's natural size is its
 """
 
 import math
-import math
 import os
+import warnings
 from typing import BinaryIO, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from .errors import SVGError
+from .fonts import FontOptions
 from .parser import Options, build_tree, load_document
 from .parser.values import CURRENT_COLOR, parse_color
 from .renderer import DEFAULT_TOLERANCE, render_tree
@@ -40,7 +41,26 @@ Source = Union[str, 'os.PathLike[str]', bytes, BinaryIO]
 #: A background: a CSS colour string or 3 or 4 floats in [0, 1].
 Background = Union[None, str, Sequence[float]]
 
-__all__ = ['load_svg', 'render', 'render_image', 'render_tree', 'parse_background']
+__all__ = ['load_svg', 'render', 'render_image', 'render_tree', 'parse_background',
+           'check_dpi', 'font_options']
+
+
+def font_options(fonts=None, font_dirs=None, stacklevel=3):
+    """The :class:`~raster.fonts.FontOptions` of a front door's ``fonts``
+    argument (a FontOptions, a dict of its fields, or None for the
+    defaults: the system's fonts).
+
+    ``font_dirs`` is the deprecated spelling of
+    ``fonts=FontOptions(dirs=..., system=False)`` (only those folders, as
+    it always meant); it warns with :class:`DeprecationWarning` and cannot
+    be combined with ``fonts``."""
+    if font_dirs is not None and (not isinstance(font_dirs, (tuple, list)) or font_dirs):
+        if fonts is not None:
+            raise SVGError('give fonts= or the deprecated font_dirs=, not both')
+        warnings.warn('font_dirs= is deprecated; use fonts=raster.FontOptions(dirs=..., '
+                      'system=False)', DeprecationWarning, stacklevel=stacklevel)
+        return FontOptions(dirs=font_dirs, system=False)
+    return FontOptions.coerce(fonts)
 
 
 def _source_and_base(source):
@@ -53,9 +73,9 @@ def _source_and_base(source):
     return source, None
 
 
-def load_svg(source: Source, *, dpi: float = 96, font_dirs: Sequence[str] = (),
+def load_svg(source: Source, *, dpi: float = 96, fonts: Optional[FontOptions] = None,
              resources_dir: Optional[str] = None, base_dir: Optional[str] = None,
-             **options) -> Tree:
+             font_dirs: Optional[Sequence[str]] = None, **options) -> Tree:
     """Load and resolve an SVG document.
 
     Parameters
@@ -64,8 +84,10 @@ def load_svg(source: Source, *, dpi: float = 96, font_dirs: Sequence[str] = (),
         The document (see the module docstring).
     dpi : float
         Resolution for absolute units (``in``, ``mm``, ``pt`` ...).
-    font_dirs : sequence of str
-        Directories holding fonts for text.
+    fonts : raster.FontOptions, dict or None
+        The fonts of text: None uses the system's fonts (see
+        :class:`raster.FontOptions`: font folders and files, no system
+        fonts, generic family overrides, the default family).
     resources_dir : str or None
         Directory external files may be read from.
     base_dir : str or None
@@ -74,7 +96,8 @@ def load_svg(source: Source, *, dpi: float = 96, font_dirs: Sequence[str] = (),
     **options
         Further fields of :class:`raster.parser.Options` (``font_size``,
         ``languages``, ``tolerance``, ``max_elements``, ``max_use_depth``,
-        ``extra_css``, ``allow_files_under``).
+        ``extra_css``, ``allow_files_under``).  ``font_dirs`` is the
+        deprecated spelling of ``fonts=FontOptions(dirs=..., system=False)``.
 
     Returns
     -------
@@ -88,21 +111,32 @@ def load_svg(source: Source, *, dpi: float = 96, font_dirs: Sequence[str] = (),
         The file cannot be read, or ``source`` is a URL other than
         ``file:`` (also an :class:`OSError`).
     """
+    d = check_dpi(dpi)
+    fopts = font_options(fonts, font_dirs)
+    src, sbase = _source_and_base(source)
+    root = load_document(src)
+    if 'languages' in options:
+        options['languages'] = tuple(options['languages'])
+    opts = Options(dpi=d, fonts=fopts, resources_dir=resources_dir,
+                   base_dir=base_dir if base_dir is not None else sbase, **options)
+    return build_tree(root, opts)
+
+
+def check_dpi(dpi) -> float:
+    """``dpi`` as a positive finite float.
+
+    Raises
+    ------
+    raster.errors.SVGError
+        Anything else.
+    """
     try:
         d = float(dpi)
     except (TypeError, ValueError):
         d = math.nan
     if not (math.isfinite(d) and d > 0):
         raise SVGError('dpi must be a positive number, got %r' % (dpi,))
-    if isinstance(font_dirs, (str, os.PathLike)):
-        font_dirs = (font_dirs,)                 # one directory, not its characters
-    src, sbase = _source_and_base(source)
-    root = load_document(src)
-    if 'languages' in options:
-        options['languages'] = tuple(options['languages'])
-    opts = Options(dpi=d, font_dirs=tuple(font_dirs or ()), resources_dir=resources_dir,
-                   base_dir=base_dir if base_dir is not None else sbase, **options)
-    return build_tree(root, opts)
+    return d
 
 
 def parse_background(bg: Background) -> Optional[Tuple[float, float, float, float]]:
@@ -138,9 +172,11 @@ def parse_background(bg: Background) -> Optional[Tuple[float, float, float, floa
 
 def render(source: Source, width: Optional[int] = None, height: Optional[int] = None, *,
            zoom: Optional[float] = None, dpi: float = 96, background: Background = None,
-           id: Optional[str] = None, font_dirs: Sequence[str] = (),
+           id: Optional[str] = None, fonts: Optional[FontOptions] = None,
            resources_dir: Optional[str] = None, premultiplied: bool = False,
-           tolerance: float = DEFAULT_TOLERANCE) -> np.ndarray:
+           tolerance: float = DEFAULT_TOLERANCE, crop: bool = False,
+           font_dirs: Optional[Sequence[str]] = None,
+           languages: Sequence[str] = ('en',)) -> np.ndarray:
     """Render an SVG document to an RGBA array.
 
     Parameters
@@ -160,12 +196,18 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
     id : str or None
         Render only the element with this id (with its ancestors'
         transforms).
-    font_dirs, resources_dir :
-        See :func:`load_svg`.
+    crop : bool
+        With ``id``: the image is the element's drawn box (strokes, markers,
+        filters included) rather than the page.
+    fonts, resources_dir :
+        See :func:`load_svg` (``font_dirs`` too, deprecated).
     premultiplied : bool
         Return premultiplied colours (default: straight alpha).
     tolerance : float
         Flattening tolerance in device pixels.
+    languages : sequence of str
+        The user's languages for ``systemLanguage`` (language tags; see
+        :class:`raster.parser.Options`).
 
     Returns
     -------
@@ -186,9 +228,11 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
     ((2, 4, 4), [0, 0, 255, 255], [0, 0, 0, 0])
     """
     bg = parse_background(background)
-    tree = load_svg(source, dpi=dpi, font_dirs=font_dirs, resources_dir=resources_dir)
+    tree = load_svg(source, dpi=dpi, fonts=font_options(fonts, font_dirs),
+                    resources_dir=resources_dir,
+                    languages=tuple(languages))
     canvas = render_tree(tree, width=width, height=height, zoom=zoom, background=bg,
-                         node_id=id, tolerance=tolerance)
+                         node_id=id, tolerance=tolerance, crop=crop, dtype=np.uint8)
     return canvas.to_rgba8(premultiplied=bool(premultiplied))
 
 

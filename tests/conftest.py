@@ -8,16 +8,28 @@
   moved to the front of the run, so that the longest test overlaps the
   others instead of finishing alone at the end; serially it stays last.
 * ``pillow_registry``: a fixture restoring Pillow's plugin tables.
+* The persistent font-scan cache lives in a temporary folder for the whole
+  run (``RASTER_CACHE_DIR``, set before anything scans fonts), never in
+  the user's cache folder; worker processes inherit it.
 """
 
+import atexit
 import os
+import shutil
 import sys
+import tempfile
 
 import pytest
 
 _HERE = os.path.dirname(os.path.abspath(__file__))
 if _HERE not in sys.path:
     sys.path.insert(0, _HERE)
+
+if not os.environ.get('RASTER_TEST_CACHE_SET'):
+    _CACHE = tempfile.mkdtemp(prefix='raster-test-cache-')
+    os.environ['RASTER_CACHE_DIR'] = _CACHE
+    os.environ['RASTER_TEST_CACHE_SET'] = '1'
+    atexit.register(shutil.rmtree, _CACHE, True)
 
 
 def pytest_configure(config):

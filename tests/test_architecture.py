@@ -21,13 +21,13 @@ PACKAGES = {'raster': os.path.join(ROOT, 'raster'), 'raster_cli': os.path.join(R
 # layer of a module (by longest matching prefix) -> layers it may import
 LAYER_OF = {
     'raster.errors': 'base', 'raster.limits': 'base', 'raster.sources': 'base',
+    'raster._regex': 'base',
     'raster.geometry': 'geometry',
     'raster.pixels': 'pixels',
     'raster.tree': 'tree',
     'raster.fonts': 'fonts',
     'raster.parser': 'parser',
     'raster.renderer': 'renderer',
-    'raster._malloc': 'renderer',
     'raster.curves': 'curves',
     'raster.svg': 'front', 'raster.testing': 'front', 'raster.compat': 'front',
     'raster.pillow': 'front', 'raster': 'front',

@@ -116,3 +116,52 @@ def test_end_to_end_peers(bc, tmp_path):
     img = np.asarray(Image.open(save / 'latin_80_resvg.png').convert('RGBA'))
     assert tuple(img[20, 40]) == (0, 0, 255, 255)
     assert '| ok.svg |' in md.read_text()
+
+
+def _pcell(times, rss, size=(10, 10)):
+    return dict(wall=list(times), cpu=[t / 2 for t in times], rss_mb=list(rss), size=list(size))
+
+
+def test_process_tables_against_the_targets(bc):
+    files = ['/c/a.svg', '/c/b.svg']
+    res = {
+        ('a.svg', 2000, 'raster'): _pcell([3.0, 1.0, 2.0], [90, 100, 110]),
+        ('a.svg', 2000, 'resvg'): _pcell([1.0, 1.0, 1.0], [40, 40, 40]),
+        ('a.svg', 2000, 'cairosvg'): _pcell([4.0, 4.0, 4.0], [60, 60, 60]),
+        ('b.svg', 2000, 'raster'): _pcell([1.0, 1.0, 1.0], [50, 50, 50]),
+        ('b.svg', 2000, 'resvg'): {'error': 'exit status 1: boom'},
+        ('b.svg', 2000, 'cairosvg'): _pcell([2.0, 2.0, 2.0], [30, 30, 30]),
+    }
+    inproc = {('a.svg', 2000, 'raster'): {'wall': [0.5]}}
+    lines, summary = bc.build_process_tables(res, files, [2000], list(bc.RENDERERS), 3, inproc)
+    text = '\n'.join(lines)
+    row_a = next(line for line in lines if line.startswith('| a.svg'))
+    # medians 2000 / 1000 / 4000 ms; 2.0x the faster peer; RSS 100 / 40 = 2.5
+    assert '| 2000 | 1000 | 4000 | 2.00 | 100 / 40 / 60 | 2.50 | 500 / - / - |' in row_a
+    row_b = next(line for line in lines if line.startswith('| b.svg'))
+    assert '| error |' in row_b and '| 0.50 |' in row_b          # cairosvg is the faster peer
+    assert 'b.svg / 2000 / resvg: exit status 1: boom' in text
+    g, n = summary[(2000, 'faster_peer')]
+    assert n == 2 and math.isclose(g, 1.0)                      # sqrt(2.0 * 0.5)
+    assert 'a.svg (2.00x)' in text and 'b.svg (0.50x)' not in text
+    g, n, worst = summary[(2000, 'rss_resvg')]
+    assert n == 1 and math.isclose(worst, 2.5) and 'a.svg (2.5x)' in text
+
+
+def test_end_to_end_whole_processes(bc, tmp_path):
+    corpus = tmp_path / 'corpus'
+    corpus.mkdir()
+    (corpus / 'ok.svg').write_text(SVG % '0f0')
+    out = tmp_path / 'p.json'
+    rc = bc.main(['--corpus', str(corpus), '--renderers', 'raster,resvg', '--repeat', '2',
+                  '--widths', 'natural,60', '--mode', 'process', '--json', str(out),
+                  '--timeout', '60'])
+    assert rc == 0
+    data = json.load(open(out))
+    assert data['results'] == []                              # no in-process cells
+    res = {(r['file'], r['width'], r['renderer']): r for r in data['process']}
+    for r in ('raster', 'resvg'):
+        c = res[('ok.svg', 60, r)]
+        assert tuple(c['size']) == (60, 30) and len(c['wall']) == 2
+        assert all(m > 5 for m in c['rss_mb']) and all(t > 0 for t in c['cpu'])
+        assert tuple(res[('ok.svg', 'natural', r)]['size']) == (40, 20)

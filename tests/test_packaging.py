@@ -36,16 +36,16 @@ def test_distribution_name_and_one_version_source(pyproject):
 def test_licences_are_kept_and_listed(pyproject):
     text = open(os.path.join(REPO, 'LICENSE')).read()
     assert text.startswith('MIT License') and 'the raster developers' in text
-    ofl = 'raster/curves/NotoSans-LICENSE-OFL.txt'
+    ofl = 'raster/fonts/NotoSans-LICENSE-OFL.txt'
     assert set(pyproject['project']['license-files']) == {'LICENSE', ofl}
     body = open(os.path.join(REPO, ofl)).read()
     assert 'SIL OPEN FONT LICENSE Version 1.1' in body
     # the font's own copyright statement (name ID 0) is carried with the licence
     from fontTools.ttLib import TTFont
-    font = TTFont(os.path.join(REPO, 'raster/curves/NotoSans-Regular-ASCII.ttf'))
+    font = TTFont(os.path.join(REPO, 'raster/fonts/NotoSans-Regular-ASCII.ttf'))
     assert font['name'].getDebugName(0) in body
     # fonts and licence texts are package data (shipped in the wheel)
-    assert {'*.ttf', '*.txt'} <= set(pyproject['tool']['setuptools']['package-data']['raster.curves'])
+    assert {'*.ttf', '*.txt'} <= set(pyproject['tool']['setuptools']['package-data']['raster.fonts'])
 
 
 def test_every_package_is_listed(pyproject):

@@ -152,14 +152,17 @@ def test_dpi_scales_physical_units():
 
 
 def test_one_font_dir_as_a_string(tmp_path):
-    """``font_dirs='dir'`` is one directory, not a sequence of characters."""
-    from raster.curves import __file__ as curves_init
-    fonts = os.path.dirname(curves_init)        # holds the bundled Noto Sans subset
+    """``FontOptions(dirs='dir')`` and the deprecated ``font_dirs='dir'`` are
+    one directory, not a sequence of characters."""
+    from raster.fonts import __file__ as fonts_init
+    fonts = os.path.dirname(fonts_init)        # holds the bundled Noto Sans subset
     doc = (b'<svg xmlns="http://www.w3.org/2000/svg" width="60" height="30">'
            b'<text x="2" y="24" font-size="24" font-family="Noto Sans">Hi</text></svg>')
-    a = raster.render(doc, font_dirs=fonts)
-    b = raster.render(doc, font_dirs=[fonts])
-    assert np.array_equal(a, b) and a[..., 3].any()
+    a = raster.render(doc, fonts=raster.FontOptions(dirs=fonts, system=False))
+    b = raster.render(doc, fonts={'dirs': [fonts], 'system': False})
+    with pytest.deprecated_call():
+        c = raster.render(doc, font_dirs=fonts)
+    assert np.array_equal(a, b) and np.array_equal(a, c) and a[..., 3].any()
 
 
 def test_cli_refuses_a_url_in_one_line(tmp_path):

@@ -266,6 +266,18 @@ def _check_knots(kn, N, p):
         raise CurveError('empty domain: knot %d equals knot %d' % (p, N))
 
 
+def knot_spans(knots, degree, t):
+    """Index ``i`` of the knot span ``[u_i, u_{i+1})`` holding each
+    parameter (clamped to the non-empty spans of the domain, so the domain's
+    end belongs to the last one): (M,) int64."""
+    u = np.asarray(knots, dtype=np.float64)
+    p = int(degree)
+    ta = np.asarray(t, dtype=np.float64).reshape(-1)
+    N = len(u) - p - 1
+    nonempty = np.nonzero(u[p:N] < u[p + 1:N + 1])[0] + p
+    return np.clip(np.searchsorted(u, ta, side='right') - 1, p, nonempty[-1])
+
+
 def basis_functions(knots, degree, t, span=None):
     """Cox-de Boor basis functions for many ``t`` at once.
 
@@ -291,8 +303,7 @@ def basis_functions(knots, degree, t, span=None):
     ta = np.asarray(t, dtype=np.float64).reshape(-1)
     N = len(u) - p - 1
     if span is None:
-        nonempty = np.nonzero(u[p:N] < u[p + 1:N + 1])[0] + p
-        span = np.clip(np.searchsorted(u, ta, side='right') - 1, p, nonempty[-1])
+        span = knot_spans(u, p, ta)
     M = len(ta)
     B = np.zeros((M, len(u) - 1))
     B[np.arange(M), span] = 1.0

@@ -26,6 +26,7 @@ True
 
 import numpy as np
 
+from .base import CurveMixin
 from .checks import CurveError, as_params, as_points, shape_out
 from .bspline import BSpline
 from .rational import PiecewiseRational, check_weights, rational_derivatives
@@ -33,7 +34,7 @@ from .rational import PiecewiseRational, check_weights, rational_derivatives
 __all__ = ['NURBS']
 
 
-class NURBS:
+class NURBS(CurveMixin):
     """A NURBS curve.
 
     Parameters
@@ -160,6 +161,10 @@ class NURBS:
         w = self.control_weights()
         return bool(w.max() - w.min() > tolerance * w.max())
 
+    def segments(self):
+        """The exact rational Bezier chain (:meth:`to_rational_beziers`)."""
+        return self.to_rational_beziers()
+
     # -- evaluation ----------------------------------------------------------
     def eval(self, t):
         """Point(s): (D,) or (M, D) float64."""
@@ -182,15 +187,6 @@ class NURBS:
     def tangent(self, t):
         """First derivative: (D,) or (M, D) float64."""
         return self.derivatives(t, 1)[..., 1, :]
-
-    def slope(self, t):
-        """dy/dx: float or (M,) float64."""
-        if self.dim < 2:
-            raise CurveError('slope needs a curve of dimension >= 2')
-        d = np.atleast_2d(self.tangent(t))
-        with np.errstate(divide='ignore', invalid='ignore'):
-            s = d[:, 1] / d[:, 0]
-        return float(s[0]) if np.ndim(t) == 0 else s
 
     def basis(self, t):
         """Rational basis functions ``R_{i,p}(t) = w_i N_{i,p}(t) / sum_j w_j
@@ -258,25 +254,6 @@ class NURBS:
     def deriv(self, order=1):
         """The derivative curve, exactly, as a :class:`PiecewiseRational`."""
         return self.to_rational_beziers().deriv(order)
-
-    def extrema(self):
-        return self.to_rational_beziers().extrema()
-
-    def bounding_box(self):
-        """Exact bounding box ``(lo, hi)``: two (D,) float64 arrays."""
-        return self.to_rational_beziers().bounding_box()
-
-    def flatten(self, tolerance=0.25):
-        return self.to_rational_beziers().flatten(tolerance)
-
-    def to_path(self, tolerance=0.25):
-        return self.to_rational_beziers().to_path(tolerance)
-
-    def to_svg(self, tolerance=0.25, precision=None):
-        return self.to_rational_beziers().to_svg(tolerance, precision)
-
-    def draw(self, pen, tolerance=0.25):
-        self.to_rational_beziers().draw(pen, tolerance)
 
     def continuity(self, tolerance=1e-9):
         """Continuity at the distinct interior knots (and the closing joint

@@ -28,7 +28,10 @@ from ..geometry.pathdata import circle_path
 from ..geometry.transform import Affine
 from .checks import CurveError
 
-FONT_FILE = os.path.join(os.path.dirname(__file__), 'NotoSans-Regular-ASCII.ttf')
+# the bundled OFL font (one copy, shipped with raster.fonts as its fallback
+# face); a file path, not an import: the curve toolkit does not use raster.fonts
+FONT_FILE = os.path.join(os.path.dirname(os.path.dirname(__file__)), 'fonts',
+                         'NotoSans-Regular-ASCII.ttf')
 
 #: Colours (straight RGB in [0, 1]) of the plot layers.
 COLORS = {

@@ -40,6 +40,7 @@ from typing import Sequence, Tuple
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .base import CurveMixin
 from .checks import CurveError, as_params, as_points, as_scalar, shape_out
 from .bezier import Bezier, PiecewiseBezier
 
@@ -172,7 +173,7 @@ def rational_derivatives(hd: Sequence[np.ndarray], D: int) -> np.ndarray:
     return np.stack(out, axis=1)
 
 
-class PiecewiseRational:
+class PiecewiseRational(CurveMixin):
     """A chain of ``S`` rational Bezier segments of one degree ``n``;
     segment ``s`` covers the global parameters ``[breaks[s], breaks[s+1]]``.
 
@@ -267,6 +268,10 @@ class PiecewiseRational:
         w = self.weights
         return bool(np.all(w.max(1) - w.min(1) <= tolerance * w.max(1)))
 
+    def segments(self):
+        """The chain itself: its own exact methods carry the vocabulary."""
+        return self
+
     # -- evaluation ----------------------------------------------------------
     def eval(self, t):
         """Point(s) at global ``t``: (D,) or (M, D) float64 (the later segment
@@ -296,15 +301,6 @@ class PiecewiseRational:
         """First derivative ``R'(t)``: (D,) or (M, D) float64."""
         d = self.derivatives(t, 1)
         return d[..., 1, :]
-
-    def slope(self, t):
-        """dy/dx: float or (M,) float64 (``+-inf`` where x' = 0)."""
-        if self.dim < 2:
-            raise CurveError('slope needs a curve of dimension >= 2')
-        d = np.atleast_2d(self.tangent(t))
-        with np.errstate(divide='ignore', invalid='ignore'):
-            s = d[:, 1] / d[:, 0]
-        return float(s[0]) if np.ndim(t) == 0 else s
 
     def deriv(self, order=1):
         """The derivative curve, exactly: ``R' = (A' w - A w') / w^2``, a
@@ -472,10 +468,6 @@ class PiecewiseRational:
         return (self.to_beziers() if self.is_polynomial()
                 else self.to_beziers(tolerance)).to_path(tolerance)
 
-    def to_svg(self, tolerance=0.25, precision=None):
-        """SVG path data of :meth:`to_path`."""
-        return self.to_path(tolerance).to_svg(precision)
-
     def draw(self, pen, tolerance=0.25):
         """Send the (x, y) projection to a pen (fontTools protocol)."""
         (self.to_beziers() if self.is_polynomial()
@@ -522,7 +514,7 @@ class PiecewiseRational:
         return continuity(PiecewiseBezier(q, self.breaks), tolerance, closed=self.closed)
 
 
-class RationalBezier:
+class RationalBezier(CurveMixin):
     """A rational Bezier curve of degree ``n`` on ``t in [0, 1]``.
 
     Parameters
@@ -587,6 +579,10 @@ class RationalBezier:
         """``w(t) = sum w_i B_i(t)`` as a one-dimensional :class:`Bezier`."""
         return Bezier(self.weights[:, None])
 
+    def segments(self):
+        """The rational chain of this one segment (the vocabulary's source)."""
+        return self._chain
+
     # -- evaluation ----------------------------------------------------------
     def eval(self, t):
         """Point(s): (D,) or (M, D) float64."""
@@ -598,12 +594,6 @@ class RationalBezier:
         """Point and derivatives up to ``order``: (order+1, D) or
         (M, order+1, D)."""
         return self._chain.derivatives(t, order)
-
-    def tangent(self, t):
-        return self._chain.tangent(t)
-
-    def slope(self, t):
-        return self._chain.slope(t)
 
     def blending(self, t):
         """Rational basis functions ``R_i(t) = w_i B_i(t) / sum_j w_j
@@ -661,12 +651,6 @@ class RationalBezier:
         return RationalBezier(c.ctrl[0], self.weights)
 
     # -- geometry and conversion ----------------------------------------------
-    def extrema(self):
-        return self._chain.extrema()
-
-    def bounding_box(self):
-        return self._chain.bounding_box()
-
     def to_bezier(self):
         """The polynomial :class:`Bezier` with these control points, exact;
         only for equal weights.
@@ -683,18 +667,6 @@ class RationalBezier:
 
     def to_beziers(self, tolerance=None):
         return self._chain.to_beziers(tolerance)
-
-    def flatten(self, tolerance=0.25):
-        return self._chain.flatten(tolerance)
-
-    def to_path(self, tolerance=0.25):
-        return self._chain.to_path(tolerance)
-
-    def to_svg(self, tolerance=0.25, precision=None):
-        return self._chain.to_svg(tolerance, precision)
-
-    def draw(self, pen, tolerance=0.25):
-        self._chain.draw(pen, tolerance)
 
     def continuity(self, tolerance=1e-9):
         """A single segment has no joints: ``[]``."""

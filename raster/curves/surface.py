@@ -40,7 +40,7 @@ from numpy.typing import ArrayLike
 from ..geometry import patches
 from .checks import MAX_CURVE_POINTS, CurveError, as_points, as_scalar
 from .bezier import Bezier
-from .bspline import BSpline, basis_functions
+from .bspline import BSpline, basis_functions, knot_spans
 from .nurbs import NURBS
 from .rational import RationalBezier, check_weights
 
@@ -127,8 +127,7 @@ def basis_derivatives(knots: ArrayLike, degree: int, t: ArrayLike, order: int = 
     ta = np.asarray(t, dtype=np.float64).reshape(-1)
     N = len(u) - p - 1
     if span is None:
-        nonempty = np.nonzero(u[p:N] < u[p + 1:N + 1])[0] + p
-        span = np.clip(np.searchsorted(u, ta, side='right') - 1, p, nonempty[-1])
+        span = knot_spans(u, p, ta)
     k = int(order)
     if k == 0:
         return basis_functions(u, p, ta, span)
@@ -480,11 +479,7 @@ class NURBSSurface(_Surface):
             type(self).__name__, self.net.shape[0], self.net.shape[1], *self.degree)
 
     def _spans(self, t, direction):
-        k = self.knots[direction]
-        p = self.degree[direction]
-        N = self.net.shape[direction]
-        nonempty = np.nonzero(k[p:N] < k[p + 1:N + 1])[0] + p
-        return np.clip(np.searchsorted(k, t, side='right') - 1, p, nonempty[-1])
+        return knot_spans(self.knots[direction], self.degree[direction], t)
 
     def basis(self, direction, t, order=0):
         """B-spline basis functions (or derivatives) in ``direction`` (0: u,

@@ -50,6 +50,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..errors import LimitError, RasterError
+from .bezier import bernstein
 
 __all__ = ['PatchError', 'MAX_PATCH_DEGREE', 'bernstein_basis', 'tensor_eval', 'tensor_grid',
            'tensor_points', 'coons_net', 'mesh_patch_nets', 'bilinear_net', 'hermite_net',
@@ -141,9 +142,7 @@ def bernstein_basis(n: int, t: ArrayLike, order: int = 0) -> np.ndarray:
     if k > n:
         return out
     m = n - k
-    i = np.arange(m + 1)
-    binom = np.array([math.comb(m, j) for j in range(m + 1)], dtype=np.float64)
-    b = binom * np.power(ta, i) * np.power(1.0 - ta, m - i)
+    b = bernstein(m, ta[:, 0]).reshape(ta.shape[0], m + 1)
     for j in range(k + 1):
         out[:, j:j + m + 1] += (-1.0) ** (k - j) * math.comb(k, j) * b
     return out * (math.factorial(n) / math.factorial(m))

@@ -45,6 +45,7 @@ from typing import List, Optional, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .._regex import lazy
 from ..errors import LimitError, PathError
 from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
 
@@ -62,9 +63,9 @@ _NUM = r'[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?'
 # comma-wsp, possibly empty; written so that a run of whitespace can be
 # matched one way only (no quadratic backtracking on long blank runs)
 _SEP = _WSP + '*(?:,' + _WSP + '*)?'
-_NUM_SPLIT = re.compile('(' + _NUM + ')')
-_NUM_RE = re.compile(_NUM)
-_TOKEN_RE = re.compile(_NUM + '|[^ \\t\\n\\r\\f]')
+_NUM_SPLIT = lazy(globals(), '_NUM_SPLIT', '(' + _NUM + ')')
+_NUM_RE = lazy(globals(), '_NUM_RE', _NUM)
+_TOKEN_RE = lazy(globals(), '_TOKEN_RE', _NUM + '|[^ \\t\\n\\r\\f]')
 _CMD_LETTERS = 'MmZzLlHhVvCcSsQqTtAa'
 
 
@@ -76,13 +77,13 @@ def _atomic(name):
 
 # an arc command up to the next command letter; inside it, the three numbers
 # before each pair of flags, and the two numbers after them
-_ARC_CMD_RE = re.compile('[Aa][^%s]*' % _CMD_LETTERS)
-_ARC_FLAGS_RE = re.compile(_SEP + _atomic('a') + _SEP + _atomic('b') + _SEP
-                           + _atomic('c') + _SEP + '(?P<f1>[01])(?:' + _SEP
-                           + '(?P<f2>[01]))?')
-_ARC_TAIL_RE = re.compile(_SEP + _atomic('x') + _SEP + _atomic('y'))
-_POINTS_RE = re.compile(_WSP + '*(?:' + _atomic('n') + '(?:' + _SEP
-                        + _atomic('m') + ')*)?')
+_ARC_CMD_RE = lazy(globals(), '_ARC_CMD_RE', '[Aa][^%s]*' % _CMD_LETTERS)
+_ARC_FLAGS_RE = lazy(globals(), '_ARC_FLAGS_RE',
+                     _SEP + _atomic('a') + _SEP + _atomic('b') + _SEP + _atomic('c') + _SEP
+                     + '(?P<f1>[01])(?:' + _SEP + '(?P<f2>[01]))?')
+_ARC_TAIL_RE = lazy(globals(), '_ARC_TAIL_RE', _SEP + _atomic('x') + _SEP + _atomic('y'))
+_POINTS_RE = lazy(globals(), '_POINTS_RE',
+                  _WSP + '*(?:' + _atomic('n') + '(?:' + _SEP + _atomic('m') + ')*)?')
 
 # -- token-level grammar ---------------------------------------------------------
 # The data is reduced to one byte per token: '#' a number, b'\x00' / b'\x01'
@@ -98,19 +99,24 @@ _GROUP.update({k.lower(): v for k, v in _GROUP.items()})
 POSSESSIVE = sys.version_info >= (3, 11, 5)
 
 
-def validity_regex(possessive=POSSESSIVE):
-    """The regex of valid token strings (see :func:`_is_valid`), with
-    possessive or plain repeats (both accept the same language)."""
+def _validity_source(possessive):
     p = b'+' if possessive else b''
     cmd = (rb'(?:[MmLlTt](?:##)+%s|[HhVv]#+%s|[Cc](?:######)+%s|[SsQq](?:####)+%s'
            rb'|[Aa](?:###[\x00\x01][\x00\x01]##)+%s|[Zz])' % ((p,) * 5))
-    return re.compile(rb'(?:[Mm](?:##)+' + p + cmd + rb'*' + p + rb')?')
+    return rb'(?:[Mm](?:##)+' + p + cmd + rb'*' + p + rb')?'
 
 
-_VALID = validity_regex()
-_CMD_SPAN = re.compile(rb'([MmZzLlHhVvCcSsQqTtAa])([^MmZzLlHhVvCcSsQqTtAa]*)')
-_COMMA_AFTER_BAD = re.compile(rb'(?<![#\x00\x01]),')
-_COMMA_BEFORE_BAD = re.compile(rb',(?![#\x00\x01])')
+def validity_regex(possessive=POSSESSIVE):
+    """The regex of valid token strings (see :func:`_is_valid`), with
+    possessive or plain repeats (both accept the same language)."""
+    return re.compile(_validity_source(possessive))
+
+
+_VALID = lazy(globals(), '_VALID', _validity_source(POSSESSIVE))
+_CMD_SPAN = lazy(globals(), '_CMD_SPAN',
+                 rb'([MmZzLlHhVvCcSsQqTtAa])([^MmZzLlHhVvCcSsQqTtAa]*)')
+_COMMA_AFTER_BAD = lazy(globals(), '_COMMA_AFTER_BAD', rb'(?<![#\x00\x01]),')
+_COMMA_BEFORE_BAD = lazy(globals(), '_COMMA_BEFORE_BAD', rb',(?![#\x00\x01])')
 # token string -> 'N' (number or flag), ',' (comma) or 'x' (anything else)
 _COMMA_VIEW = bytes(78 if i in (0, 1, 35) else 44 if i == 44 else 120 for i in range(256))
 

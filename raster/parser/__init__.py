@@ -26,9 +26,7 @@ The parser never imports the renderer: the tree is the only contract.
 (20.0, 10.0, (1.0, 0.0, 0.0, 1.0))
 """
 
-import contextlib
 import dataclasses
-import gc
 import math
 from typing import Optional
 
@@ -37,17 +35,32 @@ from ..tree import Tree
 from .context import Cache, Options
 from .css import declared_styles
 from .document import load_document
-from .images import convert_image
 from .shapes import SHAPES, convert_shape
 from .structure import convert_group, convert_root, convert_svg, convert_switch, convert_use
-from .text import convert_text
 
 __all__ = ['Options', 'build_tree', 'parse', 'load_document', 'CONVERTERS']
+
+
+def convert_text(el, state, cache, parent):
+    """``text``: :func:`raster.parser.text.convert_text`, loaded with the
+    first text element (with it fonts, fontTools and HarfBuzz)."""
+    from .text import convert_text as convert
+    convert(el, state, cache, parent)
+
+
+def convert_image(el, state, cache, parent):
+    """``image``: :func:`raster.parser.images.convert_image`, loaded with
+    the first image (with it the image decoders and Pillow)."""
+    from .images import convert_image as convert
+    convert(el, state, cache, parent)
+
 
 #: Element local name -> converter ``convert(el, state, cache, parent)``.
 #: Elements not listed are never rendered directly (``defs``, ``symbol``,
 #: paint servers, ``clipPath``, ``mask``, ``marker``, ``filter``, ...) or
-#: unknown.
+#: unknown.  Families that need heavy modules (text, images) are entered
+#: as small functions importing their module on first use, so a document
+#: without them never loads it.
 CONVERTERS = dict({name: convert_shape for name in SHAPES},
                   g=convert_group, a=convert_group, switch=convert_switch, svg=convert_svg,
                   use=convert_use, text=convert_text, image=convert_image)
@@ -105,40 +118,26 @@ def build_tree(root, options: Optional[Options] = None, image_cache: Optional[di
     tol = options.tolerance
     if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
         raise SVGError('tolerance must be a positive number, got %r' % (tol,))
-    with _gc_paused():
-        found = {'id': [], 'requiredExtensions': [], 'systemLanguage': []}
-        styles = declared_styles(root, options.extra_css, found)
-        by_id = {}
-        for el in found['id']:
-            i = el.get('id')
-            if i not in by_id:
-                by_id[i] = el
-        cache = Cache(options=options, root=root, styles=styles, by_id=by_id,
-                      conditional=set(found['requiredExtensions']) | set(found['systemLanguage']),
-                      converters=CONVERTERS, parse_nested=build_tree,
-                      image_cache={} if image_cache is None else image_cache)
-        return convert_root(root, cache)
+    # (the library leaves Python's garbage collector as the application set
+    # it; the commands pause it while they run: raster_cli._common.run)
+    cache = _document_cache(root, options, {} if image_cache is None else image_cache)
+    return convert_root(root, cache)
 
 
-@contextlib.contextmanager
-def _gc_paused():
-    """Pause Python's cyclic garbage collector while a tree is built.
+def _document_cache(root, options, image_cache):
+    """The :class:`Cache` of a loaded document: its cascade, ids and
+    conditional elements."""
+    found = {'id': [], 'requiredExtensions': [], 'systemLanguage': []}
+    styles = declared_styles(root, options.extra_css, found)
+    by_id = {}
+    for el in found['id']:
+        i = el.get('id')
+        if i not in by_id:
+            by_id[i] = el
 
-    Building allocates tens of thousands of small objects (nodes, paints,
-    lists) that all stay alive, and the collector would keep scanning them
-    (a sixth of the build time of a chart).  Afterwards the objects alive
-    are moved to the oldest generation (``gc.freeze()`` then
-    ``gc.unfreeze()``, which moves lists without scanning them) rather than
-    scanned as young objects right away: the tree is long-lived.  That is
-    skipped when the application has frozen objects of its own (the pair
-    would unfreeze them) or had the collector disabled."""
-    was = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if was:
-            if gc.get_freeze_count() == 0:
-                gc.freeze()
-                gc.unfreeze()
-            gc.enable()
+    def open_document(other_root, other_options):
+        return _document_cache(other_root, other_options, image_cache)
+    return Cache(options=options, root=root, styles=styles, by_id=by_id,
+                 conditional=set(found['requiredExtensions']) | set(found['systemLanguage']),
+                 converters=CONVERTERS, parse_nested=build_tree, image_cache=image_cache,
+                 open_document=open_document)

@@ -6,9 +6,20 @@ import math
 from ..geometry.bounds import bbox as exact_bbox
 from ..errors import RasterError
 from ..geometry.transform import IDENTITY
-from ..tree import Group, PathNode, walk
+from ..tree import Group, ImageNode, PathNode, walk
 
-__all__ = ['nodes_box', 'object_box', 'layer_box', 'content_box', 'walk_all']
+__all__ = ['nodes_box', 'object_box', 'layer_box', 'content_box', 'walk_all', 'Boxed']
+
+
+class Boxed(list):
+    """A list of nodes with a known object bounding box ``box`` ((x, y, w,
+    h), or None): text, whose box comes from its font metrics, not from
+    its glyph outlines (SVG 2, 11.11: the bounding box of text is the
+    union of its glyph cells)."""
+
+    def __init__(self, nodes, box):
+        super().__init__(nodes)
+        self.box = box
 
 
 def walk_all(nodes, transform=IDENTITY):
@@ -19,12 +30,19 @@ def walk_all(nodes, transform=IDENTITY):
 
 def nodes_box(nodes, stroke_pad=False):
     """(x0, y0, x1, y1) exact fill box of the paths under ``nodes`` in
-    their parent's coordinates, widened by half of each stroke's width when
-    ``stroke_pad``; None when there is no geometry."""
+    their parent's coordinates (an image counts as its viewport rectangle),
+    widened by half of each stroke's width when ``stroke_pad``; None when
+    there is no geometry."""
     lo = [math.inf, math.inf]
     hi = [-math.inf, -math.inf]
     for n, t in walk_all(nodes):
-        if isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
+        if isinstance(n, ImageNode):
+            # an image's box is its viewport (x, y, width, height)
+            x, y, w, h = n.view_rect
+            c = t.apply([[x, y], [x + w, y], [x + w, y + h], [x, y + h]])
+            lo = [min(lo[0], float(c[:, 0].min())), min(lo[1], float(c[:, 1].min()))]
+            hi = [max(hi[0], float(c[:, 0].max())), max(hi[1], float(c[:, 1].max()))]
+        elif isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
             try:
                 x0, y0, x1, y1 = exact_bbox(n.path, t)
             except RasterError:
@@ -41,7 +59,10 @@ def nodes_box(nodes, stroke_pad=False):
 
 def object_box(nodes):
     """(x, y, w, h) object bounding box (fill box) of nodes in their
-    parent's user space, or None when there is no geometry."""
+    parent's user space, or None when there is no geometry (a
+    :class:`Boxed` list gives its own box)."""
+    if isinstance(nodes, Boxed):
+        return nodes.box
     b = nodes_box(nodes)
     return None if b is None else (b[0], b[1], b[2] - b[0], b[3] - b[1])
 

@@ -11,22 +11,71 @@ keeps state of its own between calls: everything shared lives on the
 
 import contextlib
 import math
+import os
+import re
 import types
 import warnings
 from dataclasses import dataclass, field
 from typing import Optional, Tuple
 
 from .. import limits
-from ..errors import RasterWarning, TransformError
+from ..errors import RasterWarning, SVGError, TransformError
+from ..fonts import FontOptions
 from ..geometry.transform import Affine
 
-__all__ = ['Options', 'State', 'Cache', 'SVG_NS', 'XLINK_HREF', 'NO_OWN']
+__all__ = ['Options', 'State', 'Cache', 'SVG_NS', 'XLINK_HREF', 'NO_OWN', 'locale_languages',
+           'parse_languages']
 
 SVG_NS = 'http://www.w3.org/2000/svg'
 XLINK_HREF = '{http://www.w3.org/1999/xlink}href'
 
 #: The own (non-inherited) style of an element without declarations.
 NO_OWN = types.MappingProxyType({})
+
+
+_LANG_TAG = re.compile(r'[A-Za-z]{1,8}(-[A-Za-z0-9]{1,8})*')
+
+
+def parse_languages(s):
+    """A comma-separated list of language tags (``'en,de-CH'``) as a tuple
+    of str.
+
+    Raises
+    ------
+    raster.errors.SVGError
+        An empty list or an item that is not a language tag.
+
+    >>> parse_languages('en, de-CH')
+    ('en', 'de-CH')
+    """
+    tags = tuple(t.strip() for t in str(s).split(','))
+    if not tags or not all(_LANG_TAG.fullmatch(t) for t in tags):
+        raise SVGError('invalid language list %r: expected tags such as en,de-CH' % (s,))
+    return tags
+
+
+def locale_languages(environ=None):
+    """The user's languages from the environment's locale: the first of
+    ``LC_ALL``, ``LC_MESSAGES``, ``LANG`` that is set and not empty, as a
+    language tag followed by its primary language (``de_CH.UTF-8`` ->
+    ``('de-CH', 'de')``); ``('en',)`` when none is set or the locale is
+    ``C``/``POSIX``.
+
+    >>> locale_languages({'LANG': 'de_CH.UTF-8'}), locale_languages({'LC_ALL': 'C'})
+    (('de-CH', 'de'), ('en',))
+    """
+    env = os.environ if environ is None else environ
+    for name in ('LC_ALL', 'LC_MESSAGES', 'LANG'):
+        v = env.get(name)
+        if v:
+            break
+    else:
+        return ('en',)
+    v = v.split('.')[0].split('@')[0].replace('_', '-')
+    if v in ('C', 'POSIX') or not _LANG_TAG.fullmatch(v):
+        return ('en',)
+    primary = v.split('-')[0]
+    return (v,) if primary == v else (v, primary)
 
 
 @dataclass(frozen=True)
@@ -40,8 +89,11 @@ class Options:
     font_size : float
         The ``medium`` font size in px (for ``em``/``ex`` and keywords).
     languages : tuple of str
-        User languages for ``systemLanguage`` (primary subtags compared:
-        ``'en'`` matches ``en-US``).
+        The user's languages for ``systemLanguage``, as language tags;
+        primary subtags are compared (``'en'`` matches ``en-US`` and
+        ``'en-GB'`` matches ``en``, as browsers do).  The default is English,
+        whatever the environment (:func:`locale_languages` gives the
+        environment's, as the commands use).
     tolerance : float
         Flattening tolerance in device pixels at the natural size; arcs
         become cubics ten times finer than this divided by the element's
@@ -58,8 +110,9 @@ class Options:
         Directory files may be read from (default: ``base_dir``).
     resources_dir : str or None
         A further directory files may be read from.
-    font_dirs : tuple of str
-        Directories of fonts for text.
+    fonts : raster.fonts.FontOptions
+        Where the fonts of text come from (default: the system's fonts)
+        and how generic families resolve.
     image_depth : int
         Nesting depth of SVG images (0: the outermost document; nested
         documents read no files).
@@ -74,7 +127,7 @@ class Options:
     base_dir: Optional[str] = None
     allow_files_under: Optional[str] = None
     resources_dir: Optional[str] = None
-    font_dirs: Tuple[str, ...] = ()
+    fonts: FontOptions = FontOptions()
     image_depth: int = 0
 
 
@@ -186,6 +239,10 @@ class Cache:
     image_cache : dict
         Decoded images by resolved reference, shared with nested SVG
         images (see :mod:`raster.parser.imageload`).
+    open_document : callable
+        ``open_document(root, options)`` -> the Cache of another document
+        whose elements this one references (``use href="lib.svg#id"``;
+        the parser's, passed in like ``parse_nested``).
     """
     options: Options
     root: object
@@ -201,6 +258,7 @@ class Cache:
     active: set = field(default_factory=set)
     memo: dict = field(default_factory=dict)
     image_cache: dict = field(default_factory=dict)
+    open_document: object = None
 
     def table(self, name):
         """The memo table ``name`` (created empty on first use)."""

@@ -276,11 +276,15 @@ def _expand_font(value, important):
     return [Declaration(name, got.get(name, PROPERTIES[name].initial
                                       if name in ('font-size', 'font-family')
                                       else 'normal'), important)
-            for name in _FONT_LONGHANDS]
+            for name in _FONT_LONGHANDS] + \
+        [Declaration(name, PROPERTIES[name].initial, important) for name in _FONT_RESETS]
 
 
 _FONT_LONGHANDS = ('font-style', 'font-variant', 'font-weight', 'font-stretch',
                    'font-size', 'line-height', 'font-family')
+# reset to their initial values by the shorthand without being settable in it
+# (CSS Fonts 4, section 2.8)
+_FONT_RESETS = ('font-kerning', 'font-feature-settings', 'font-variation-settings')
 
 
 def _expand(name, value, important):

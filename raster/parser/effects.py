@@ -11,13 +11,11 @@ when something needs one.
 import dataclasses
 
 from ..geometry.pathdata import rect_path
-from ..tree import BlendMode, ClipPath, Fill, Group, PathNode, SolidPaint
-from .clipmask import EMPTY, build_mask, clip_property, cut_masks
-from .filters import resolve_filter_property
+from ..tree import BlendMode, ClipPath, Fill, Group, ImageNode, PathNode, SolidPaint
 from .refs import reference
 from .style import BLACK, opacity
 
-__all__ = ['Effects', 'NO_EFFECTS', 'effects', 'wrap', 'emit', 'clip_rect']
+__all__ = ['Effects', 'NO_EFFECTS', 'effects', 'wrap', 'emit', 'clip_rect', 'ghost']
 
 
 @dataclasses.dataclass(frozen=True, slots=True)
@@ -78,6 +76,8 @@ def effects(el, own, state, cache, kids, t=None):
         if e is None:
             e = memo[o] = Effects(opacity=opacity(o))
         return e
+    # clip paths, masks and filters load with the first element that has one
+    from .clipmask import EMPTY, build_mask, clip_property, cut_masks
     mask = None
     if t is not None and not t.is_identity and ('clip-path' in own or 'mask' in own):
         state = state.sub(transform=t)
@@ -96,6 +96,7 @@ def effects(el, own, state, cache, kids, t=None):
     v = own.get('filter')
     filters = None
     if v is not None and v.strip() != 'none':
+        from .filters import resolve_filter_property
         filters = resolve_filter_property(el, v, kids, state, cache)
         if filters is None:         # invalid reference, empty filter: not rendered
             return NOT_DRAWN
@@ -113,8 +114,12 @@ def wrap(el, own, t, kids, state, cache, clip=None, keep=False):
     if not kids and own.get('filter', 'none').strip() == 'none':
         return []       # (a filter can draw for an empty element: feFlood)
     e = effects(el, own, state, cache, kids, t)
-    if not e.ok or e.opacity <= 0.0:
+    if not e.ok:
         return []
+    if e.opacity <= 0.0:
+        # invisible but rendered: it still counts in its parent's box
+        g = ghost(kids)
+        return [Group(transform=t, children=g)] if g else []
     if clip is not None:
         if e.clip is not None:      # viewport clip inside the element's clip path
             kids = [Group(clip_path=clip, children=kids)]
@@ -140,6 +145,28 @@ def emit(node, t, e, cache, parent):
     if node.id:
         cache.tree_ids[node.id] = g
     parent.append(g)
+
+
+def ghost(nodes):
+    """Unpainted copies of ``nodes`` that keep only their geometry and
+    transforms (images become their viewport rectangles): what an element
+    that is rendered but invisible (``opacity: 0``, no fill and no stroke)
+    adds to its parent's object bounding box, which ignores opacity and
+    paint (SVG 2; resvg counts such elements too).  The renderer draws
+    nothing for them."""
+    out = []
+    for n in nodes:
+        if isinstance(n, Group):
+            kids = ghost(n.children)
+            if kids:
+                out.append(Group(transform=n.transform, children=kids))
+        elif isinstance(n, PathNode):
+            if n.path is not None and len(n.path.verbs):
+                out.append(n if n.fill is None and n.stroke is None and n.markers is None
+                           else PathNode(path=n.path))
+        elif isinstance(n, ImageNode):
+            out.append(PathNode(path=rect_path(*n.view_rect)))
+    return out
 
 
 def clip_rect(x, y, w, h):

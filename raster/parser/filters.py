@@ -13,18 +13,25 @@ Semantics follow the specification and resvg where they differ:
 
 * a reference to a missing element or to a non-``filter`` element, a
   filter without primitives, a region of zero size, or
-  ``objectBoundingBox`` units on an element without a box make the element
-  **not rendered**;
+  ``objectBoundingBox`` units on an element without a box make the
+  reference unusable: it is left out of the list, and when nothing usable
+  is left the element is **not rendered** (``url(#a) url(#missing)``
+  applies ``#a``; ``url(#missing)`` alone hides the element); a syntax
+  error (a comma between the functions, an invalid function) makes the
+  whole value ignored;
 * ``feImage`` referencing an element draws it in the filtered element's
   user space translated to the subregion's origin (as resvg); an image
   (data URI or file) is fitted into the subregion with
-  ``preserveAspectRatio``;
+  ``preserveAspectRatio``; an element whose filter has an feImage
+  referencing that element itself ignores its ``filter`` property (as
+  resvg); other circular references are cut where they close;
 * a primitive in error (a bad feConvolveMatrix, a lighting primitive
   without a light or with a specular exponent outside [1, 128], invalid
   feTurbulence parameters, an empty feImage) is transparent black;
 * primitive subregions given in ``objectBoundingBox`` primitive units are
-  fractions of the filter region, except for feImage and feFlood
-  (resvg); light source positions stay user units.
+  fractions of the filter region, except for feImage and feFlood, whose
+  subregion is in fractions of the bounding box, missing values 0, 0, 1,
+  1 (resvg); light source positions stay user units.
 """
 
 import math
@@ -106,6 +113,11 @@ def resolve_filter_property(el, value, kids, state, cache):
     if not refs:
         cache.warn('filter-syntax', 'invalid filter value %r ignored' % (value,))
         return out
+    if _draws_itself(el, refs, cache):
+        cache.warn('filter-recursive', 'filter whose feImage draws the filtered element '
+                   'ignored')
+        return out
+    invalid = False
     for name, args in refs:
         if name != 'url':
             f = _filter_function(el, name, args, state, cache)
@@ -115,27 +127,66 @@ def resolve_filter_property(el, value, kids, state, cache):
             out.append(f)
             continue
         u = parse_url('url(%s)' % args)
-        tgt = cache.by_id.get(u[0]) if u is not None else None
+        if u is None:           # url() without a reference: a syntax error
+            cache.warn('filter-syntax', 'invalid filter value %r ignored' % (value,))
+            return []
+        tgt = cache.by_id.get(u[0])
         if tgt is None or local_name(tgt) != 'filter':
-            return None
+            invalid = True
+            continue
         if tgt in cache.active:
             # used inside its own feImage: the inner use is dropped (resvg)
             cache.warn('filter-recursive', 'recursive filter reference ignored')
             continue
         f = _resolve_filter(tgt, kids, state, cache)
         if f is None:
-            return None
+            invalid = True
+            continue
         out.append(f)
+    if invalid:
+        # a reference that cannot be used is left out of the list; with
+        # nothing usable left the element is not rendered (resvg)
+        cache.warn('filter-reference', 'filter reference not usable in %r' % (value,))
+        if not out:
+            return None
     return out
+
+
+def _draws_itself(el, refs, cache):
+    """True when a filter of the list has an ``feImage`` that references
+    the filtered element itself: the element then ignores its ``filter``
+    property, wherever it is drawn (as resvg; drawing it through its own
+    filter has no end).  Circular references through other elements are
+    cut where they close (the inner reference draws nothing)."""
+    i = el.get('id')
+    if not i:
+        return False
+    for name, args in refs:
+        if name != 'url':
+            continue
+        u = parse_url('url(%s)' % args)
+        tgt = cache.by_id.get(u[0]) if u is not None else None
+        if tgt is None or local_name(tgt) != 'filter':
+            continue
+        chain = href_chain(tgt, ('filter',), cache)
+        src = next((e for e in chain if any(local_name(c) for c in e)), tgt)
+        for c in src:
+            if local_name(c) == 'feImage':
+                h = (c.get('href') or c.get(XLINK_HREF) or '').strip()
+                if h == '#' + i:
+                    return True
+    return False
 
 
 def _functions(value):
     """``'url(#a) blur(2px)'`` -> ``[('url', '#a'), ('blur', '2px')]``
-    (nested parentheses kept in the arguments); None when malformed."""
+    (nested parentheses kept in the arguments); None when malformed (the
+    list is separated by white space only: a comma or a keyword between
+    the functions is a syntax error)."""
     out = []
     i, n = 0, len(value)
     while i < n:
-        if value[i].isspace() or value[i] == ',':
+        if value[i].isspace():
             i += 1
             continue
         m = _FUNCTION_RE.match(value, i)
@@ -356,11 +407,18 @@ def _resolve_primitive(el, name, region, pbox, ctx, state, cache):
     for attr, axis, i in (('x', 'x', 0), ('y', 'y', 1), ('width', 'x', 2), ('height', 'y', 3)):
         s = el.get(attr)
         v = parse_length(s, axis, ctx) if s is not None else None
-        if v is not None and pbox is not None:
+        if pbox is not None:
             # as resvg: fractions of the filter region, not of the bbox,
-            # except for feImage and feFlood
-            ref = pbox if name in ('feImage', 'feFlood') else region
-            v = ref[i] + v * ref[i + 2] if i < 2 else v * ref[i]
+            # except for feImage and feFlood, whose missing values are
+            # 0, 0, 100 %, 100 % of the bbox (not the filter region)
+            if name in ('feImage', 'feFlood'):
+                if v is None:
+                    v = 0.0 if i < 2 else 1.0
+                ref = pbox
+            else:
+                ref = region
+            if v is not None:
+                v = ref[i] + v * ref[i + 2] if i < 2 else v * ref[i]
         sub.append(v)
     subregion = tuple(None if v is None else float(v) for v in sub)
     linear = inh.get('color-interpolation-filters', 'linearRGB') == 'linearRGB'
@@ -444,7 +502,8 @@ def _resolve_primitive(el, name, region, pbox, ctx, state, cache):
             octaves = _number(el.get('numOctaves'), 1.0)
             p = F.Turbulence(base_frequency=tuple(bf), num_octaves=max(int(octaves), 0),
                              seed=int(_number(el.get('seed'), 0.0)),
-                             fractal=el.get('type') == 'fractalNoise')
+                             fractal=el.get('type') == 'fractalNoise',
+                             stitch=el.get('stitchTiles', '').strip() == 'stitch')
     elif name == 'feDisplacementMap':
         p = F.DisplacementMap(scale=_number(el.get('scale'), 0.0) * (sx + sy) / 2.0,
                               x_channel=_channel(el.get('xChannelSelector', 'A')),
@@ -559,10 +618,12 @@ def _light_of(el):
                 return F.PointLight(num('x'), num('y'), num('z'))
             cone = _number(c.get('limitingConeAngle'), None) \
                 if c.get('limitingConeAngle') is not None else None
+            # 0 is a flat cone (every direction inside it lit alike); a
+            # negative exponent is invalid: the initial 1 (resvg too)
             sexp = _number(c.get('specularExponent'), 1.0)
             return F.SpotLight(num('x'), num('y'), num('z'),
                                (num('pointsAtX'), num('pointsAtY'), num('pointsAtZ')),
-                               sexp if sexp > 0 else 1.0, cone)
+                               sexp if sexp >= 0 else 1.0, cone)
     return None
 
 

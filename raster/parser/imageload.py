@@ -60,8 +60,9 @@ from .. import limits
 from ..errors import RasterError
 from .document import load_document
 
-__all__ = ['load_image', 'fetch_image', 'image_source', 'decode_raster', 'sniff', 'parse_data_uri',
-           'ImageSource', 'ImageError', 'MAX_IMAGE_DEPTH', 'MAX_IMAGE_BYTES', 'MAX_IMAGE_PIXELS']
+__all__ = ['load_image', 'fetch_image', 'fetch_document', 'image_source', 'decode_raster',
+           'sniff', 'parse_data_uri', 'ImageSource', 'ImageError', 'MAX_IMAGE_DEPTH',
+           'MAX_IMAGE_BYTES', 'MAX_IMAGE_PIXELS']
 
 #: Deepest nesting of SVG images (an image inside an SVG image inside ...).
 MAX_IMAGE_DEPTH = 4
@@ -426,6 +427,47 @@ def load_image(href, cache, tolerance=None):
             msg = str(e).splitlines()[0] if str(e) else type(e).__name__
             r = ImageError('cannot use SVG image %s (%s)' % (_short(href, 40), msg))
         images[tkey] = r
+    if isinstance(r, ImageError):
+        raise r
+    return r
+
+
+def fetch_document(path, options, documents):
+    """The real path and root element of another local SVG document that
+    a reference (``use href="lib.svg#id"``) names, read under the same
+    rules as image files: relative to the document's directory, only below
+    the allowed directories, never from inside an SVG image.
+
+    Parameters
+    ----------
+    path : str
+        The file part of the reference (a path or a ``file:`` URL).
+    options : raster.parser.Options
+        The referencing document's options.
+    documents : dict
+        Loaded documents (and errors) by real path, shared by the
+        documents of one rendering.
+
+    Returns
+    -------
+    (str, lxml element)
+
+    Raises
+    ------
+    ImageError
+        The file is refused, missing, unreadable or not an SVG document.
+    """
+    real = _resolve_file(path, image_source(options))
+    r = documents.get(real)
+    if r is None:
+        try:
+            r = (real, load_document(_read_file(real), max_bytes=MAX_IMAGE_BYTES))
+        except ImageError as e:
+            r = e
+        except (RasterError, OSError, ValueError) as e:
+            msg = str(e).splitlines()[0] if str(e) else type(e).__name__
+            r = ImageError('cannot use document %s (%s)' % (_short(path, 40), msg))
+        documents[real] = r
     if isinstance(r, ImageError):
         raise r
     return r

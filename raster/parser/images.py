@@ -25,7 +25,7 @@ from ..errors import RasterError
 from ..geometry.pathdata import rect_path
 from ..tree import ImageNode, PathNode
 from .context import XLINK_HREF
-from .effects import effects, emit
+from .effects import NO_EFFECTS, effects, emit
 from .imageload import ImageError, load_image
 from .style import length, length_context, style_of, transform_of
 from .values import parse_length, parse_preserve_aspect_ratio, viewbox_transform
@@ -50,8 +50,7 @@ def convert_image(el, state, cache, parent):
     hidden, of zero size, or the image cannot be used (then one
     RasterWarning says why)."""
     inh, own = style_of(el, state.inh, state.own, cache)
-    if inh.get('visibility', 'visible') in ('hidden', 'collapse'):
-        return
+    hidden = inh.get('visibility', 'visible') in ('hidden', 'collapse')
     ctx = length_context(inh, state, cache)
     t = transform_of(el, own, ctx)
     if t is None:
@@ -122,7 +121,13 @@ def convert_image(el, state, cache, parent):
     # image's viewport, so effects see a rectangle standing in for the image
     proxy = [PathNode(path=rect_path(x, y, w, h))]
     e = effects(el, own, state.sub(transform=t), cache, proxy)
-    if not e.ok or e.opacity <= 0.0:
+    if not e.ok:
+        return
+    if hidden or e.opacity <= 0.0:
+        # rendered but invisible: its viewport still counts in its
+        # parent's object bounding box
+        if not state.clip:
+            emit(proxy[0], t, NO_EFFECTS, cache, parent)
         return
     if not e.composited:
         node.opacity = e.opacity        # drawn in one pass: no layer needed

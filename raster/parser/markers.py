@@ -71,8 +71,8 @@ from .convert import convert_children
 from .effects import clip_rect
 from .paint import in_space
 from .style import doc_style, length, local_name
-from .values import (parse_angle, parse_length, parse_preserve_aspect_ratio, parse_url,
-                     parse_viewbox, viewbox_transform)
+from .values import (ZERO_VIEWBOX, parse_angle, parse_length, parse_preserve_aspect_ratio,
+                     parse_url, resolve_viewbox, viewbox_transform)
 
 __all__ = ['MARKABLE', 'MarkerVertices', 'marker_vertices', 'vertex_angles', 'parse_orient',
            'marker_matrices', 'marker_transform', 'context_paint', 'build_markers']
@@ -432,15 +432,10 @@ def _resolve_marker(mk, ctx, sw, cache):
         return None
     m = _Marker()
     m.el, m.inh, m.own = mk, inh, own
-    vbs = mk.get('viewBox')
-    vb = None
-    if vbs is not None:
-        try:
-            vb = parse_viewbox(vbs)
-        except RasterError:
-            vb = None
-        if vb is None:
-            return None
+    # an invalid viewBox is ignored, a zero-sized one disables the marker
+    vb = resolve_viewbox(mk.get('viewBox'))
+    if vb is ZERO_VIEWBOX:
+        return None
     if vb is None:
         sx = sy = units
         lox, loy, vw, vh = 0.0, 0.0, mw, mh

@@ -10,13 +10,21 @@ never holds objectBoundingBox units.  Context paints (``context-fill``,
 ``context-stroke`` in ``use`` content and markers) stay servers until the
 context element's box is known (see :func:`in_space`).
 
-Gradients: ``href`` inheritance with cycles cut, stop offsets clamped and
+Mesh gradients (SVG 2 ``meshgradient``) are read by :mod:`raster.parser.mesh`
+and resolved like gradients.  Gradients: ``href`` inheritance with cycles cut, stop offsets clamped and
 made monotonic, ``stop-color``/``stop-opacity`` with ``currentColor``,
 ``transform-origin``; a gradient with one stop is that stop's solid
 colour; one without stops paints the fallback colour (else nothing).
 Patterns: ``href`` inheritance, ``patternUnits``, ``patternContentUnits``,
 ``viewBox`` with ``preserveAspectRatio``, ``patternTransform``; a
-recursive pattern paints nothing.
+recursive pattern, or one whose content draws nothing, paints nothing
+(a transparent pattern).  A paint server that cannot paint paints
+the fallback colour of the ``url()`` (``fill="url(#p) lime"``; none given:
+nothing): a gradient without stops, a pattern without content (no
+element children, itself or through ``href``), with a tile of zero (or
+negative) size or a viewBox of zero size, and a server with objectBoundingBox units (``gradientUnits``,
+``patternUnits`` or ``patternContentUnits``) on a shape whose bounding box
+has no width or no height (a horizontal line).
 """
 
 import dataclasses
@@ -31,16 +39,17 @@ from ..tree import (GradientStop, Group, LinearGradient, Pattern, RadialGradient
 from .context import SVG_NS, State
 from .convert import convert_children
 from .document import chain_attr
+from .mesh import mesh_gradient
 from .refs import href_chain
 from .style import BLACK, doc_style, local_name, number_or_percent, opacity
 from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length, parse_paint,
                      parse_preserve_aspect_ratio, parse_transform, parse_transform_origin,
-                     parse_viewbox, viewbox_transform)
+                     resolve_viewbox, viewbox_transform, ZERO_VIEWBOX)
 
 __all__ = ['paint', 'server_of', 'in_space', 'GradientServer', 'PatternServer', 'UNSUPPORTED']
 
 _P = '{%s}' % SVG_NS
-_PAINT_SERVERS = frozenset(['linearGradient', 'radialGradient', 'pattern'])
+_PAINT_SERVERS = frozenset(['linearGradient', 'radialGradient', 'pattern', 'meshgradient'])
 _SPREADS = {m.value: m for m in SpreadMethod}
 
 #: A paint server that cannot paint (no stops, empty box): use the fallback.
@@ -133,11 +142,12 @@ def in_space(p, to_space=IDENTITY, box=None):
     return dataclasses.replace(p, transform=inv @ p.transform)
 
 
-def paint(value, inh, ctx, state, cache, path=None):
+def paint(value, inh, ctx, state, cache, path=None, box=None):
     """The paint of a ``fill``/``stroke`` value for a node with geometry
-    ``path`` (its box resolves objectBoundingBox units); None when nothing
-    is painted.  Without ``path`` a server needing a box is returned as is
-    (a context paint, placed later by :func:`in_space`)."""
+    ``path`` (its box, or ``box`` (x0, y0, x1, y1) when given, resolves
+    objectBoundingBox units); None when nothing is painted.  Without
+    ``path`` a server needing a box is returned as is (a context paint,
+    placed later by :func:`in_space`)."""
     p = parse_paint(value)
     if p is None:
         return None
@@ -158,10 +168,10 @@ def paint(value, inh, ctx, state, cache, path=None):
             if isinstance(server, (GradientServer, PatternServer)):
                 if not server.needs_box():
                     return _user_space(server, cache)
-                if path is None:
+                if path is None and box is None:
                     return server
                 try:
-                    x0, y0, x1, y1 = exact_bbox(path)
+                    x0, y0, x1, y1 = box if box is not None else exact_bbox(path)
                 except RasterError:
                     x0 = x1 = 0.0
                 # a bounding box of zero width or height cannot be used
@@ -202,7 +212,13 @@ def server_of(el, name, ctx, cache):
     key = (el, ctx)
     if key in memo:
         return memo[key]
-    r = _pattern(el, ctx, cache) if name == 'pattern' else _gradient(el, name, ctx, cache)
+    if name == 'pattern':
+        r = _pattern(el, ctx, cache)
+    elif name == 'meshgradient':
+        m = mesh_gradient(el, ctx, cache)
+        r = UNSUPPORTED if m is None else GradientServer(*m)
+    else:
+        r = _gradient(el, name, ctx, cache)
     memo[key] = r
     return r
 
@@ -232,8 +248,11 @@ def _pattern(el, ctx, cache):
         if any(isinstance(c.tag, str) and c.tag.startswith(_P) for c in e):
             content_el = e
             break
+    # a pattern that cannot paint -- no content, an empty tile, a viewBox
+    # of zero size -- paints the fallback (content that draws nothing is a
+    # transparent pattern)
     if content_el is None:
-        return None
+        return UNSUPPORTED
     obb = attr('patternUnits') != 'userSpaceOnUse'
     cobb = attr('patternContentUnits') == 'objectBoundingBox'
     if obb:
@@ -247,7 +266,7 @@ def _pattern(el, ctx, cache):
         vals.append(0.0 if r is None else r)
     x, y, w, h = vals
     if not (w > 0 and h > 0):
-        return None
+        return UNSUPPORTED
     tf = IDENTITY
     ts = attr('patternTransform')
     if ts is not None:
@@ -257,11 +276,10 @@ def _pattern(el, ctx, cache):
             tf = _with_origin(el, t, ctx, cache)
     vb = par = None
     content_t = IDENTITY
-    vbs = attr('viewBox')
-    if vbs is not None:
-        vb = parse_viewbox(vbs)
-        if vb is None:
-            return None
+    vb = resolve_viewbox(attr('viewBox'))
+    if vb is ZERO_VIEWBOX:
+        return UNSUPPORTED
+    if vb is not None:
         par = parse_preserve_aspect_ratio(attr('preserveAspectRatio') or '')
         if not obb:
             content_t = viewbox_transform(vb, par, w, h)

@@ -1,33 +1,96 @@
 """References between elements: ``href`` targets, ``url(#id)`` property
-values, ``href`` chains of paint servers and filters, ``use`` cycles.
+values, ``href`` chains of paint servers and filters, ``use`` cycles, and
+``use`` references into other local SVG documents.
 
-References to other documents are not followed (one warning); a missing
-target or one of the wrong kind is ignored, as resvg does.
+A ``use`` may name an element of another SVG file (``lib.svg#id``; the
+file alone names its root ``svg``): the file is read under the rules of
+image files (relative to the document, only below the allowed
+directories, never from inside an SVG image; see
+:mod:`raster.parser.imageload`), and its elements are converted with that
+document's own style sheets and ids (SVG 1.1: selectors match the
+referenced elements in their document).  Other references to other
+documents are not followed (one warning); a missing target or one of the
+wrong kind is ignored, as resvg does.
 """
+
+import dataclasses
+import os
 
 from .context import SVG_NS, XLINK_HREF
 from .style import local_name
 from .values import parse_url
 
-__all__ = ['href_target', 'reference', 'href_chain', 'is_recursive']
+__all__ = ['href_target', 'reference', 'href_chain', 'is_recursive', 'external_target']
 
 _USE = '{%s}use' % SVG_NS
 
 
-def href_target(el, cache):
-    """The element ``el``'s ``href`` (or ``xlink:href``) names in this
-    document, or None."""
+def _href(el):
     href = el.get('href')
     if href is None:
         href = el.get(XLINK_HREF)
+    return None if href is None else href.strip()
+
+
+def href_target(el, cache, warn=True):
+    """The element ``el``'s ``href`` (or ``xlink:href``) names in this
+    document, or None (a reference to another document warns once unless
+    ``warn`` is False)."""
+    href = _href(el)
     if href is None:
         return None
-    href = href.strip()
     if not href.startswith('#'):
-        if href:
+        if href and warn:
             cache.warn('external', 'references to other documents are not supported')
         return None
     return cache.by_id.get(href[1:])
+
+
+#: Memo tables shared by a document and the documents it references.
+_SHARED = ('documents', 'document_caches', 'external_active')
+
+
+def external_target(el, cache):
+    """``(element, cache)``: the element of another local SVG document that
+    ``el``'s ``href`` names (``lib.svg#id``, or ``lib.svg`` for its root)
+    and that document's :class:`~raster.parser.context.Cache`; None when the
+    reference is local, absent or cannot be followed (one warning: a
+    refused or missing file, not SVG, no such id)."""
+    href = _href(el)
+    if not href or href.startswith('#'):
+        return None
+    file, _, frag = href.partition('#')
+    scheme = file.split(':', 1)[0].lower() if ':' in file else ''
+    if len(scheme) > 1 and scheme != 'file':
+        cache.warn('external', 'references to other documents are only followed to local '
+                               'files: %s' % href[:60])
+        return None
+    from .imageload import ImageError, fetch_document, image_source
+    opts = cache.options
+    try:
+        real, root = fetch_document(file, opts, cache.table('documents'))
+    except ImageError as e:
+        cache.warn(('external', str(e)), 'use reference not followed: %s' % e)
+        return None
+    subs = cache.table('document_caches')
+    sub = subs.get(real)
+    if sub is None:
+        roots = image_source(opts).allowed
+        sub_opts = dataclasses.replace(
+            opts, base_dir=os.path.dirname(real),
+            allow_files_under=roots[0] if roots else None,
+            resources_dir=roots[1] if len(roots) > 1 else opts.resources_dir)
+        sub = cache.open_document(root, sub_opts)
+        for name in _SHARED:
+            sub.memo[name] = cache.table(name)
+        sub.warned = cache.warned
+        subs[real] = sub
+    tgt = sub.by_id.get(frag) if frag else sub.root
+    if tgt is None:
+        cache.warn(('external-id', href), 'use reference not followed: no element %r in %s'
+                   % (frag, os.path.basename(real)))
+        return None
+    return tgt, sub
 
 
 def reference(value, kind, prop, cache):
@@ -74,7 +137,7 @@ def is_recursive(use, cache):
             return True
         memo[u] = gray
         res = False
-        tgt = href_target(u, cache)
+        tgt = href_target(u, cache, warn=False)
         if tgt is not None:
             anc = u
             while anc is not None:

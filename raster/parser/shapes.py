@@ -10,9 +10,10 @@ attributes.  What a computed style says about painting (paints that do
 not depend on the shape, stroke parameters, paint order, antialiasing)
 is worked out once per style.
 
-An invisible shape (``visibility: hidden``) paints nothing but still
-counts in its parent's object bounding box (resvg), so it is kept
-unpainted.  Inside a ``clipPath`` a shape is filled black with its
+An invisible shape (``visibility: hidden``, ``opacity: 0``, no fill and
+no stroke) paints nothing but still counts in its parent's object bounding
+box (SVG 2: the box is geometry, whatever the paint and opacity; resvg
+agrees), so it is kept unpainted.  Inside a ``clipPath`` a shape is filled black with its
 ``clip-rule``.
 """
 
@@ -25,7 +26,6 @@ from ..geometry.pathdata import (circle_path, ellipse_path, line_path, parse_pat
 from ..tree import Fill, FillRule, Group, PathNode, SolidPaint, Stroke
 from .context import SVG_NS
 from .effects import NO_EFFECTS, effects
-from .markers import build_markers
 from .paint import paint
 from .style import (BLACK, length, length_context, opacity, paint_order, style_of,
                     transform_of)
@@ -81,19 +81,23 @@ def convert_shape(el, state, cache, parent):
         fill, stroke = fill_and_stroke(inh, ctx, path, state, cache)
     markers = None
     if has_markers and not hidden and not clip_mode:
+        from .markers import build_markers      # (loaded with the first marker)
         placement = _placement_path(el, name, path, ctx, cache)
         markers = build_markers(el, name, path, placement, inh, ctx, state.sub(transform=t),
                                 cache, fill, stroke)
-    if fill is None and stroke is None and markers is None and not hidden:
-        return
+    # a shape that paints nothing (fill and stroke none, visibility hidden,
+    # opacity 0) is kept unpainted: it counts in its parent's bounding box
     i = el.get('id') or ''
     node = PathNode(id=i, path=path, fill=fill, stroke=stroke, paint_order=order,
                     markers=markers, antialias=antialias)
     e = effects(el, own, state, cache, [node], t) if own else NO_EFFECTS
     if e is not NO_EFFECTS:
-        if not e.ok or e.opacity <= 0.0:
+        if not e.ok:
             return
-        if e.opacity < 1.0 and not e.composited and markers is None \
+        if e.opacity <= 0.0:
+            node = PathNode(path=path)
+            e = NO_EFFECTS
+        elif e.opacity < 1.0 and not e.composited and markers is None \
                 and (fill is None) != (stroke is None):
             # group opacity over one paint: folded into it (the Fill or
             # Stroke was made for this node alone, so it is updated in place)
@@ -167,6 +171,10 @@ def path_data(d, tol, cache):
     return p
 
 
+#: Characters of path data parsed in one vectorized pass (see _element_paths).
+_PATHS_CHARS = 1 << 18
+
+
 def _element_paths(cache):
     """``{path element: Path}`` for the document's arc-free path data,
     parsed in one vectorized pass on first use (a map with thousands of
@@ -187,13 +195,22 @@ def _element_paths(cache):
                 if len(ds) >= 65536:
                     break
     if len(ds) >= 32:
+        # in passes of about _PATHS_CHARS characters: a pass's temporaries are
+        # some tens of bytes per character of path data
         ds = list(ds)
-        try:
-            parsed = parse_paths(ds, cache.options.tolerance)
-        except RasterError:
-            parsed = None            # one of them overflows: parsed one by one later
-        if parsed is not None:
-            memo.update(zip(ds, parsed))
+        i = 0
+        while i < len(ds):
+            j, n = i, 0
+            while j < len(ds) and (j == i or n + len(ds[j]) <= _PATHS_CHARS):
+                n += len(ds[j])
+                j += 1
+            part = ds[i:j]
+            i = j
+            try:
+                parsed = parse_paths(part, cache.options.tolerance)
+            except RasterError:
+                continue            # one of them overflows: parsed one by one later
+            memo.update(zip(part, parsed))
     paths = cache.memo['element_paths'] = {el: memo[d] for el, d in els if d in memo}
     return paths
 
@@ -301,10 +318,11 @@ def _rule(v):
     return FillRule.EVENODD if v == 'evenodd' else FillRule.NONZERO
 
 
-def fill_and_stroke(inh, ctx, path, state, cache):
+def fill_and_stroke(inh, ctx, path, state, cache, box=None):
     """The resolved ``(Fill or None, Stroke or None)`` of a shape or text
     run with computed style ``inh`` and geometry ``path`` (for
-    objectBoundingBox paints); inside a clip path, a black fill with the
+    objectBoundingBox paints, unless ``box`` (x0, y0, x1, y1) gives the
+    bounding box: text); inside a clip path, a black fill with the
     clip-rule."""
     if state.clip:
         return Fill(SolidPaint(BLACK), 1.0, _rule(inh.get('clip-rule', 'nonzero'))), None
@@ -315,12 +333,12 @@ def fill_and_stroke(inh, ctx, path, state, cache):
         return (None if fp is None else Fill(fp, fop, rule),
                 None if sp is None else Stroke(sp, params[0], params[1]))
     fill = stroke = None
-    fp = paint(inh.get('fill', 'black'), inh, ctx, state, cache, path)
+    fp = paint(inh.get('fill', 'black'), inh, ctx, state, cache, path, box)
     if fp is not None:
         fill = Fill(fp, opacity(inh.get('fill-opacity')), _rule(inh.get('fill-rule', 'nonzero')))
     sv = inh.get('stroke')
     if sv is not None:
-        sp = paint(sv, inh, ctx, state, cache, path)
+        sp = paint(sv, inh, ctx, state, cache, path, box)
         if sp is not None:
             params = _stroke_params(inh, ctx, cache)
             if params is not False:

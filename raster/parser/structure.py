@@ -21,13 +21,15 @@ from .convert import convert, convert_children
 from .css import parse_declarations
 from .effects import clip_rect, effects, wrap
 from .paint import GradientServer, PatternServer, in_space, paint
-from .refs import href_target, is_recursive
+from .refs import external_target, href_target, is_recursive
 from .style import (initial_inherited, is_displayed, length, length_context, local_name,
                     passes_conditions, style_of, transform_of)
 from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length,
-                     parse_preserve_aspect_ratio, parse_viewbox, viewbox_transform)
+                     parse_preserve_aspect_ratio, resolve_viewbox, viewbox_transform,
+                     ZERO_VIEWBOX)
 
-__all__ = ['convert_group', 'convert_switch', 'convert_svg', 'convert_use', 'convert_root']
+__all__ = ['convert_group', 'convert_switch', 'convert_svg', 'convert_use', 'convert_root',
+           'document_size']
 
 _SHAPES = frozenset(['rect', 'circle', 'ellipse', 'line', 'polyline', 'polygon', 'path'])
 _CONTAINERS = frozenset(['g', 'a', 'svg', 'switch', 'use'])
@@ -102,13 +104,12 @@ def _viewport(el, inh, own, t, state, cache, parent, x, y, w, h, content_el):
     viewBox: nested svg and symbol instances."""
     if not (w > 0 and h > 0):
         return
-    vb_attr = content_el.get('viewBox')
+    vb = resolve_viewbox(content_el.get('viewBox'))
+    if vb is ZERO_VIEWBOX:
+        return
     inner = Affine.translate(x, y)
     vw, vh = w, h
-    if vb_attr is not None:
-        vb = parse_viewbox(vb_attr)
-        if vb is None:
-            return
+    if vb is not None:
         par = parse_preserve_aspect_ratio(content_el.get('preserveAspectRatio', ''))
         inner = viewbox_transform(vb, par, w, h, x, y)
         vw, vh = vb[2], vb[3]
@@ -129,26 +130,56 @@ def _viewport(el, inh, own, t, state, cache, parent, x, y, w, h, content_el):
 
 def convert_use(el, state, cache, parent):
     """``use``: an instance of the referenced element (``symbol`` and
-    ``svg`` targets are viewports sized by the ``use`` element)."""
+    ``svg`` targets are viewports sized by the ``use`` element).  The
+    element may be in another local SVG document (``lib.svg#id``; see
+    :func:`raster.parser.refs.external_target`): it is then converted with
+    that document's cache (its style sheets and ids)."""
     e = _element(el, state, cache)
     if e is None:
         return
     inh, own, ctx, t = e
-    tgt = href_target(el, cache)
-    if tgt is None:
-        return
-    if is_recursive(el, cache):
-        cache.warn('use-cycle', 'recursive use reference ignored (id %r)' % el.get('id'))
-        return
+    ext = external_target(el, cache)
+    if ext is not None:
+        tgt, tcache = ext
+        key = (id(tcache), id(tgt))
+        active = cache.table('external_active')
+        if key in active:
+            cache.warn('use-cycle', 'recursive use reference ignored (id %r)' % el.get('id'))
+            return
+    else:
+        # (a reference to another document that cannot be followed warned)
+        tgt, tcache = href_target(el, cache, warn=False), cache
+        if tgt is None:
+            return
+        if is_recursive(el, cache):
+            cache.warn('use-cycle', 'recursive use reference ignored (id %r)' % el.get('id'))
+            return
     max_depth = cache.options.max_use_depth
     if state.use_depth >= max_depth:
         cache.warn('use-depth', 'use nesting deeper than %d ignored' % max_depth)
         return
-    x = length(el, 'x', 'x', ctx)
-    y = length(el, 'y', 'y', ctx)
     name = local_name(tgt)
     if name is None:
         return
+    if ext is None:
+        _instance(el, tgt, name, inh, own, ctx, t, state, cache, cache, parent)
+        return
+    # the element counts and limits of the whole rendering carry on in the
+    # other document's cache
+    active[key] = True
+    tcache.count, tcache.stopped = cache.count, cache.stopped
+    try:
+        _instance(el, tgt, name, inh, own, ctx, t, state, cache, tcache, parent)
+    finally:
+        active.pop(key, None)
+        cache.count, cache.stopped = tcache.count, tcache.stopped
+
+
+def _instance(el, tgt, name, inh, own, ctx, t, state, cache, tcache, parent):
+    """The content of ``use`` element ``el`` (of ``cache``'s document)
+    instantiating ``tgt`` (of ``tcache``'s)."""
+    x = length(el, 'x', 'x', ctx)
+    y = length(el, 'y', 'y', ctx)
     # the use element is the context element of its content (SVG 2)
     cfill = paint(inh.get('fill', 'black'), inh, ctx, state, cache)
     sv = inh.get('stroke')
@@ -156,9 +187,9 @@ def convert_use(el, state, cache, parent):
     st2 = state.sub(inh, own, use_depth=state.use_depth + 1, context=(cfill, cstroke))
     kids = []
     if name == 'symbol':
-        if not is_displayed(tgt, cache):
+        if not is_displayed(tgt, tcache):
             return
-        sinh, sown = style_of(tgt, inh, own, cache)
+        sinh, sown = style_of(tgt, inh, own, tcache)
         w = length(el, 'width', 'x', ctx, None)
         h = length(el, 'height', 'y', ctx, None)
         if w is None:
@@ -167,7 +198,7 @@ def convert_use(el, state, cache, parent):
             h = length(tgt, 'height', 'y', ctx, None)
         w = state.vw if w is None else w
         h = state.vh if h is None else h
-        _viewport(tgt, sinh, sown, IDENTITY, st2.sub(transform=t), cache, kids, x, y, w, h,
+        _viewport(tgt, sinh, sown, IDENTITY, st2.sub(transform=t), tcache, kids, x, y, w, h,
                   tgt)
         _rebase_context(kids, IDENTITY, inh, cfill, cstroke)
         parent.extend(wrap(el, own, t, kids, state, cache))
@@ -177,19 +208,19 @@ def convert_use(el, state, cache, parent):
     if name == 'svg':
         w = length(el, 'width', 'x', ctx, None)
         h = length(el, 'height', 'y', ctx, None)
-        if not is_displayed(tgt, cache):
+        if not is_displayed(tgt, tcache):
             return
-        if not cache.tick():
+        if not tcache.tick():
             return
-        sinh, sown = style_of(tgt, inh, own, cache)
-        sctx = length_context(sinh, st2, cache)
+        sinh, sown = style_of(tgt, inh, own, tcache)
+        sctx = length_context(sinh, st2, tcache)
         stt = transform_of(tgt, sown, sctx)
         if stt is None:
             return
-        _nested_svg(tgt, sinh, sown, sctx, stt, st2.sub(transform=tt), cache, kids,
+        _nested_svg(tgt, sinh, sown, sctx, stt, st2.sub(transform=tt), tcache, kids,
                     use_size=(w, h))
     else:
-        convert(tgt, st2.sub(transform=tt), cache, kids)
+        convert(tgt, st2.sub(transform=tt), tcache, kids)
     _rebase_context(kids, move, inh, cfill, cstroke)
     parent.extend(wrap(el, own, tt, kids, state, cache))
 
@@ -234,27 +265,63 @@ def _rebase_context(kids, move, inh, cfill, cstroke):
 
 # -- the document root ------------------------------------------------------------
 
+def _size_attr(root, name, axis, ctx):
+    """The root's ``width``/``height`` in px: None when absent or ``auto``
+    (SVG 2), :class:`~raster.errors.SVGError` when invalid."""
+    s = root.get(name)
+    if s is None or s.strip() == 'auto':
+        return None
+    v = parse_length(s, axis, ctx)
+    if v is None:
+        raise SVGError('invalid document size: width=%r height=%r'
+                       % (root.get('width'), root.get('height')))
+    return v
+
+
+def document_size(root, vb, ctx):
+    """``(w, h)`` of the root ``svg`` element from its ``width``,
+    ``height`` and viewBox ``vb`` (x, y, w, h or None); an axis is None
+    when it follows the content (no viewBox and no length for it).
+
+    A missing (or ``auto``) side takes the viewBox's aspect ratio from the
+    other side (CSS sizing with an intrinsic ratio: ``width="80"
+    viewBox="0 0 40 20"`` is 80 x 40); both missing: the viewBox size.
+    Percentages resolve against the viewBox size (else 100 x 100)."""
+    w = _size_attr(root, 'width', 'x', ctx)
+    h = _size_attr(root, 'height', 'y', ctx)
+    if vb is not None:
+        if w is None and h is None:
+            w, h = vb[2], vb[3]
+        elif w is None:
+            w = h * vb[2] / vb[3]
+        elif h is None:
+            h = w * vb[3] / vb[2]
+    return w, h
+
+
 def convert_root(root, cache):
-    """The :class:`~raster.tree.Tree` of the root ``svg`` element."""
+    """The :class:`~raster.tree.Tree` of the root ``svg`` element.
+
+    Its size is :func:`document_size`; a side that follows the content
+    (no viewBox and no length) is the far edge of the content's visual
+    bounds, from the user-space origin (the content is not moved; 100 when
+    the content does not reach past 0).  ``display: none`` on the root, or
+    a viewBox with a zero side, renders nothing at the document's size."""
     opts = cache.options
     inh0 = initial_inherited(opts.font_size)
     inh, own = style_of(root, inh0, {}, cache)
-    vb_attr = root.get('viewBox')
-    vb = parse_viewbox(vb_attr) if vb_attr is not None else None
+    vb = resolve_viewbox(root.get('viewBox'))
+    disabled = vb is ZERO_VIEWBOX
+    if disabled:
+        vb = None
     rw, rh = (vb[2], vb[3]) if vb is not None else (100.0, 100.0)
     ctx = LengthContext(font_size=inh['_fs'], width=rw, height=rh, dpi=opts.dpi)
     ws, hs = root.get('width'), root.get('height')
-    auto = ws is None and hs is None and vb is None
-    w = parse_length(ws, 'x', ctx) if ws is not None else None
-    h = parse_length(hs, 'y', ctx) if hs is not None else None
-    if ws is not None and w is None or hs is not None and h is None:
-        raise SVGError('invalid document size: width=%r height=%r' % (ws, hs))
-    if w is None:
-        w = rw
-    if h is None:
-        h = rh
-    if not (w > 0 and h > 0 and math.isfinite(w) and math.isfinite(h)):
-        raise SVGError('invalid document size: width=%r height=%r' % (ws, hs))
+    w, h = document_size(root, vb, ctx)
+    fit_w, fit_h = w is None, h is None
+    for v in (w, h):
+        if v is not None and not (v > 0 and math.isfinite(v)):
+            raise SVGError('invalid document size: width=%r height=%r' % (ws, hs))
     t_root = transform_of(root, own, ctx)
     vbt = IDENTITY
     if vb is not None:
@@ -262,23 +329,25 @@ def convert_root(root, cache):
         vbt = viewbox_transform(vb, par, w, h)
     kids = []
     rt = vbt if t_root is None else t_root @ vbt
-    vw, vh = (vb[2], vb[3]) if vb is not None else (w, h)
+    vw, vh = (vb[2], vb[3]) if vb is not None else (rw if fit_w else w, rh if fit_h else h)
     st = State(inh, own, vw, vh, rt)
-    if t_root is not None and passes_conditions(root, cache):
+    shown = is_displayed(root, cache) and not disabled
+    if shown and t_root is not None and passes_conditions(root, cache):
         convert_children(root, st, cache, kids)
     e = effects(root, own, st, cache, kids)
     if not e.ok:
         kids = []
-    bg = _root_background(root, rt, w, h) if not auto else None
+    if fit_w or fit_h:
+        box = content_box(Group(transform=rt, children=kids)) if kids else None
+        x1, y1 = (box[2], box[3]) if box is not None else (0.0, 0.0)
+        if fit_w:
+            w = x1 if x1 > 0 and math.isfinite(x1) else 100.0
+        if fit_h:
+            h = y1 if y1 > 0 and math.isfinite(y1) else 100.0
+    bg = _root_background(root, rt, w, h) if shown else None
     if bg is not None:
         kids = [bg] + kids
     group = e.group(root.get('id') or '', rt, kids)
-    if auto and kids:
-        box = content_box(group)
-        if box is not None:
-            x0, y0, x1, y1 = box
-            w, h = x1 - x0, y1 - y0
-            group.transform = Affine.translate(-x0, -y0) @ rt
     if group.id:
         cache.tree_ids.setdefault(group.id, group)
     return Tree(width=float(w), height=float(h), root=group, ids=cache.tree_ids)

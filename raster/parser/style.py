@@ -23,8 +23,11 @@ _P = '{%s}' % SVG_NS
 _PLEN = len(_P)
 BLACK = (0.0, 0.0, 0.0, 1.0)
 
-_FONT_KEYWORDS = {'xx-small': 3 / 5, 'x-small': 3 / 4, 'small': 8 / 9, 'medium': 1.0,
-                  'large': 6 / 5, 'x-large': 3 / 2, 'xx-large': 2.0, 'xxx-large': 3.0}
+# CSS 2's absolute size keywords (SVG 1.1 refers to CSS 2): a factor of
+# 1.2 between adjacent sizes, ``medium`` the options' font size (as usvg);
+# CSS Fonts 4 later gave a table (3/5 .. 2) that SVG 1.1 predates
+_FONT_KEYWORDS = {'xx-small': 1.2 ** -3, 'x-small': 1.2 ** -2, 'small': 1.2 ** -1, 'medium': 1.0,
+                  'large': 1.2, 'x-large': 1.2 ** 2, 'xx-large': 1.2 ** 3, 'xxx-large': 1.2 ** 4}
 
 
 def local_name(el):

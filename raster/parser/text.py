@@ -56,8 +56,12 @@ from ..fonts import Font, FontDB, FontError, cached, parse_font_family
 from ..geometry.path import Path
 from ..geometry.transform import Affine
 from ..tree import PathNode
+from .boxes import Boxed
 from .effects import wrap
 from .shapes import fill_and_stroke, geometry
+from .textlayout import (apply_length, apply_spacing, apply_vertical, compose, glyph_matrices,
+                         metric_boxes, position_linear, position_on_path, rotate,
+                         shape_clusters, translate, decoration_pieces)
 from .style import (is_displayed, length_context, local_name, paint_order, passes_conditions,
                     style_of, transform_of)
 from .values import parse_length, parse_length_list, parse_number_list, parse_transform
@@ -67,8 +71,6 @@ __all__ = ['convert_text', 'collapse_whitespace']
 _XML_SPACE = '{http://www.w3.org/XML/1998/namespace}space'
 _SPAN_NAMES = frozenset(['tspan', 'a'])
 _WEIGHTS = {'normal': 400, 'bold': 700}
-_DB_CACHE = {}
-_SHAPED_LIMIT = 4096    # shaped chunks remembered per build
 _SPACES = re.compile(' {2,}')
 
 
@@ -107,7 +109,7 @@ def collapse_whitespace(text, preserve=False, prev_space=True):
 class _Span:
     """Style of one element contributing characters."""
     __slots__ = ('el', 'inh', 'own', 'ctx', 'face', 'font', 'fs', 'shift', 'ls', 'ws', 'tl',
-                 'weight', 'parent', 'decor', 'vertical', 'features')
+                 'weight', 'parent', 'decor', 'vertical', 'features', 'glyph_adjust', 'index')
 
     def __init__(self, el, inh, own, ctx, parent, weight):
         self.el, self.inh, self.own, self.ctx, self.parent = el, inh, own, ctx, parent
@@ -147,8 +149,7 @@ def _font_db(cache):
     memo = cache.table('text')
     db = memo.get('fontdb')
     if db is None:
-        dirs = tuple(str(d) for d in (cache.options.font_dirs or ()))
-        db = memo['fontdb'] = cached(_DB_CACHE, dirs, lambda: FontDB(dirs), 16)
+        db = memo['fontdb'] = FontDB.for_options(cache.options.fonts)
     return db
 
 
@@ -175,14 +176,10 @@ def _build(el, state, cache, out):
         return
     wm = (inh.get('writing-mode') or 'lr-tb').strip()
     vertical = wm in ('tb', 'tb-rl', 'vertical-rl', 'vertical-lr')
-    if vertical:
-        cache.warn('text-vertical', 'vertical writing modes are approximated: every glyph is '
-               'turned a quarter turn clockwise (no upright CJK, no vertical metrics)')
     db = _font_db(cache)
-    if not db.faces:
-        cache.warn('text-nofont', 'no fonts available (font_dirs=%r); text is not rendered'
-               % (tuple(cache.options.font_dirs or ()),))
-        return
+    if db.bundled_only:
+        cache.warn('text-nofont', 'no usable fonts found; text is drawn with the bundled '
+                   'Noto Sans (ASCII only)')
     # -- collect characters ---------------------------------------------------
     chars = []          # characters after whitespace processing
     owner = []          # span index of each character
@@ -211,8 +208,10 @@ def _build(el, state, cache, out):
         sp = _Span(e, einh, eown, ectx, parent,
                    _weight(einh.get('font-weight'), parent.weight if parent else 400))
         si = len(spans)
+        sp.index = si
         spans.append(sp)
-        add_lists(e, ectx, len(chars))
+        if local_name(e) != 'textPath':         # positions on a textPath are ignored
+            add_lists(e, ectx, len(chars))
 
         def add_text(s):
             if not s:
@@ -281,13 +280,16 @@ def _build(el, state, cache, out):
             a[start:start + k] = vals[:k]
     dx, dy = arrs.get('dx'), arrs.get('dy')
     angle = np.zeros(n) if rot else None
-    for start, vals, e in rot:
+    last = 0.0
+    for start, vals, e in rot:      # document order; the last angle given repeats
         end = min(ends.get(e, n), n)
         if start >= end:
             continue
         k = min(len(vals), end - start)
         angle[start:start + k] = vals[:k]
-        angle[start + k:end] = vals[-1]
+        if k:
+            last = vals[k - 1]
+        angle[start + k:end] = last
     if math.isnan(ax[0]):
         ax[0] = 0.0
     if math.isnan(ay[0]):
@@ -307,129 +309,337 @@ def _build(el, state, cache, out):
         if tl is not None and tl.strip() != 'inherit':
             v = parse_length(tl, 'x', sp.ctx)
             sp.tl = float(v) if v is not None and v >= 0 else None
+        sp.glyph_adjust = (sp.el.get('lengthAdjust') or '').strip() == 'spacingAndGlyphs'
         sp.ws = _spacing(i.get('word-spacing'), sp.ctx)
-        # baseline-shift applies to tspans; on the text element itself it
-        # has no effect (as in resvg)
-        sp.shift = (sp.parent.shift + _baseline_shift(sp)) if sp.parent is not None else 0.0
-        decos = [sp.own.get('text-decoration', sp.el.get('text-decoration'))]
-        if sp is spans[0]:
-            decos += _ancestor_decorations(el, cache)
-        sp.decor = tuple(w for d in decos for w in _decoration(d))
         kern = (i.get('font-kerning') or 'auto').strip()
         no_kern = kern == 'none' or (i.get('kerning') or 'auto').strip() == '0'
-        sp.features = {'kern': False} if no_kern else None
+        sp.features = _features(i, no_kern)
         sp.vertical = vertical
-    sm = _SpanMetrics(spans, owner, chars)
-    # -- layout ------------------------------------------------------------------
+    for sp in spans:
+        sp.shift = _span_shift(sp, vertical)
+    decor = _decorations(el, spans, cache)
+    spacing = any(sp.ls or sp.ws for sp in spans)
+    ls = np.array([sp.ls for sp in spans]) if spacing else None
+    ws = np.array([sp.ws for sp in spans]) if spacing else None
+    # -- chunks ------------------------------------------------------------------
     brk = ~np.isnan(np.fmin(ax, ay))     # an absolute x or y
     onpath = np.full(n, -1, np.int64) if path_ranges else None
     for pi, (p0, p1, tp) in enumerate(path_ranges):
         p1 = min(p1, n)
         if p0 >= p1:
             continue
-        ax[p0:p1] = np.nan
-        ay[p0:p1] = np.nan
-        brk[p0:p1] = False
         brk[p0] = True
         if p1 < n:
             brk[p1] = True
         onpath[p0:p1] = pi
     bounds = np.flatnonzero(brk).tolist() + [n]
-    glyph_runs = []     # (span index, Path in user space)
-    under, over = [], []
+    text = ''.join(chars)
+    memo = cache.table('text_shaped')
+
+    def fallback(font, ch):
+        return _fallback_font(db, ch, font) if font is not None else None
+    pieces = []         # (span index, kind, Path) and (span index, 'glyphs', Path)
+    corners = []        # metric box corners in user space
     cur_x = cur_y = 0.0
-    # vertical text advances along y: dy moves along the line, dx across
-    # it (a positive dx to the right is a negative glyph-frame y)
-    along, across = (dy, None if dx is None else -dx) if vertical else (dx, dy)
     for c0, c1 in zip(bounds[:-1], bounds[1:]):
-        x0 = ax[c0] if not math.isnan(ax[c0]) else cur_x
-        y0 = ay[c0] if not math.isnan(ay[c0]) else cur_y
-        if len(spans) == 1:     # shaped like any chunk of the same text and style
-            shaped = _shape_single(db, ''.join(chars[c0:c1]), spans[0], cache)
-        else:
-            shaped = _shape_chunk(db, chars, owner_l, spans, c0, c1)
-        res = _place_chunk(shaped, sm, c0, c1, along, across, angle)
-        adj = _text_length_spacing(spans, sm, owner[c0:c1], res[1], res[2])
-        if adj is not None:
-            res = _place_chunk(shaped, sm, c0, c1, along, across, angle, adj)
-        gl, char_l, char_r, width, end_dy, cdy = res
-        anchor = (spans[owner_l[c0]].inh.get('text-anchor') or 'start').strip()
-        shift = 0.0
-        if anchor == 'middle':
-            shift = -width * 0.5
-        elif anchor == 'end':
-            shift = -width
-        ox, oy = x0 + shift, y0
-        cur_x, cur_y = ox + width, y0 + end_dy
-        if onpath is not None and onpath[c0] >= 0:
-            tp = path_ranges[int(onpath[c0])][2]
-            gl, end = _on_path(gl, tp, tp[2] + shift)
-            ox = oy = 0.0
-            cur_x, cur_y = end
-            char_l = char_r = None
-        elif vertical:
-            # vertical: the chunk runs down a line through (x0, y0), each
-            # glyph turned clockwise and centred on it (central baseline)
-            big = 1e7
-            tp = (np.array([[[x0, y0 - big], [x0, y0 + big]]]), np.array([0.0, 2 * big]), big)
-            gl, end = _on_path(gl, tp, big + shift)
-            ox = oy = 0.0
-            cur_x, cur_y = end
-            char_l = char_r = None
-        # glyph outlines, grouped by consecutive owner span
-        if len(gl):
-            g_span = gl.span
-            cuts = [] if len(spans) == 1 else \
-                (np.flatnonzero(g_span[1:] != g_span[:-1]) + 1).tolist()
-            for a, z in zip([0] + cuts, cuts + [len(gl)]):
-                p = _glyph_path(gl.take(slice(a, z)) if cuts else gl, ox, oy)
-                if len(p.verbs):
-                    glyph_runs.append((int(g_span[a]), p))
-        # decorations of every span carrying text-decoration, over its chars
-        for si, sp in enumerate(spans):
-            if not sp.decor or char_l is None:
-                continue
-            mask = sm.descends[si][owner[c0:c1]]
-            if not mask.any():
-                continue
-            idx = np.flatnonzero(mask)
-            f = sp.font
-            if f is None:
-                continue
-            s = sp.fs / f.upem
-            # one line piece per run of characters on the same dy level
-            cuts = np.flatnonzero((np.diff(idx) != 1) | (np.diff(cdy[idx]) != 0)) + 1
-            for grp in np.split(idx, cuts):
-                left = float(char_l[grp].min()) + ox
-                right = float(char_r[grp].max()) + ox
-                if not right > left:
-                    continue
-                base = oy + float(cdy[grp[0]]) + sp.shift + _dominant(sp)
-                for kind in sp.decor:
-                    if kind == 'underline':
-                        th = f.underline_thickness * s
-                        yc = base - f.underline_position * s
-                        under.append((si, _rect(left, yc - th / 2, right, yc + th / 2)))
-                    elif kind == 'overline':
-                        th = f.underline_thickness * s
-                        yc = base - f.ascender * s
-                        under.append((si, _rect(left, yc - th / 2, right, yc + th / 2)))
-                    else:
-                        th = f.strikeout_size * s
-                        yc = base - f.strikeout_position * s
-                        over.append((si, _rect(left, yc, right, yc + th)))
-    kids = []
-    for si, p in under + glyph_runs + over:
-        big = np.abs(p.points).max() if len(p.points) else 0.0
-        if not big <= limits.MAX_COORD:
-            if not np.isfinite(big):    # (glyph paths are not validated)
-                Path.from_arrays(p.verbs, p.points)     # raises PathError
-            cache.warn('text-coord', 'text beyond the coordinate limit is not rendered')
+        tp = path_ranges[int(onpath[c0])][2] if onpath is not None and onpath[c0] >= 0 else None
+        cx = ax[c0] if not math.isnan(ax[c0]) else None
+        cy = ay[c0] if not math.isnan(ay[c0]) else None
+        own_c = owner[c0:c1]
+        cl = shape_clusters(text[c0:c1], own_c, spans, fallback, memo)
+        if cl is None or not len(cl):
             continue
-        node = _paint_node(spans[si], p, st, cache)
-        if node is not None:
+        if vertical:
+            apply_vertical(cl)
+        if spacing:
+            apply_spacing(cl, ls, ws)
+        if not len(cl):
+            continue
+        segs = []
+        cuts = (np.flatnonzero(own_c[1:] != own_c[:-1]) + 1).tolist()
+        for a, z in zip([0] + cuts, cuts + [c1 - c0]):
+            sp = spans[int(own_c[a])]
+            if sp.tl is not None:
+                segs.append((a, z, sp.tl, sp.glyph_adjust))
+        if segs:
+            apply_length(cl, segs, tp is not None)
+        anchor = (spans[owner_l[c0]].inh.get('text-anchor') or 'start').strip()
+        sub = (lambda a: None if a is None else a[c0:c1])
+        if tp is None:
+            x0 = cur_x if cx is None else cx
+            y0 = cur_y if cy is None else cy
+            ex, ey = position_linear(cl, anchor, sub(dx), sub(dy), sub(angle), vertical)
+            base = translate(x0, y0)[None]
+            if vertical:
+                base = compose(translate(x0, y0)[None], rotate(90.0)[None])
+                ex, ey = ey, ex
+            cur_x, cur_y = x0 + ex, y0 + ey
+        else:
+            edges, cum, off = tp
+            start = off + ((cy if vertical else cx) or 0.0)
+            shifts = np.array([-spans[int(s)].shift for s in cl.span])
+            ex, ey = position_on_path(cl, (edges, cum), start, anchor, sub(dx), sub(dy),
+                                      sub(angle), -shifts)
+            base = translate(0.0, 0.0)[None]
+            cur_x, cur_y = ex, ey
+        simple = cl.m is None and cl.pm is None and not vertical
+        if simple:
+            gm, gvis = None, cl.visible[cl.g_cluster]
+        else:
+            gm, gvis = glyph_matrices(cl)
+        box = metric_boxes(cl)
+        chunk_spans = [int(own_c[a]) for a in [0] + cuts]
+        done = set()
+        for si in chunk_spans:
+            if si in done:
+                continue
+            done.add(si)
+            sp = spans[si]
+            if tp is not None:
+                sts = base
+            elif vertical:
+                sts = compose(base, translate(0.0, sp.shift)[None])
+            else:
+                sts = base.copy()
+                sts[0, 1, 2] += sp.shift
+            if len(box):
+                corners.append(_apply(sts[0], box))
+            mask = cl.span == si
+            for kind in ('overline', 'underline'):
+                p = _decoration_path(cl, mask, sp, kind, decor, sts[0], vertical)
+                if p is not None:
+                    pieces.append((si, kind, p))
+            g = np.flatnonzero(mask[cl.g_cluster] & gvis)
+            if len(g):
+                pieces.append((si, 'glyphs', (cl, g, sts[0] if gm is None else
+                                              compose(sts, gm[g]))))
+            p = _decoration_path(cl, mask, sp, 'line-through', decor, sts[0], vertical)
+            if p is not None:
+                pieces.append((si, 'line-through', p))
+    if not pieces:
+        return
+    bbox = None
+    if corners:
+        c = np.concatenate(corners)
+        if len(c):
+            lo, hi = c.min(0), c.max(0)
+            bbox = (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+    for si, kind, p in pieces:
+        if kind != 'glyphs':
+            for x0, y0, x1, y1 in [_path_extent(p[1])]:
+                if bbox is not None and x1 >= x0:
+                    bbox = (min(bbox[0], x0), min(bbox[1], y0), max(bbox[2], x1),
+                            max(bbox[3], y1))
+    kids = []
+    for si, kind, p in pieces:
+        if kind == 'glyphs':
+            cl, g, mats = p
+            nodes = _glyph_nodes(cl, g, mats, spans[si], st, cache, bbox)
+        else:
+            paint_span, path = p
+            nodes = [_paint_node(paint_span, path, st, cache, bbox, spans[si])]
+        for node in nodes:
+            if node is None:
+                continue
+            pts = node.path.points if isinstance(node, PathNode) else None
+            if pts is not None and len(pts):
+                big = np.abs(pts).max()
+                if not big <= limits.MAX_COORD:
+                    if not np.isfinite(big):    # (glyph paths are not validated)
+                        Path.from_arrays(node.path.verbs, node.path.points)   # raises PathError
+                    cache.warn('text-coord', 'text beyond the coordinate limit is not rendered')
+                    continue
             kids.append(node)
-    out.extend(wrap(el, own, t, kids, st, cache))
+    box = None if bbox is None else (bbox[0], bbox[1], bbox[2] - bbox[0], bbox[3] - bbox[1])
+    out.extend(wrap(el, own, t, Boxed(kids, box), st, cache))
+
+
+def _apply(m, pts):
+    """Points (P, 2) under one 3x3 affine."""
+    return pts @ m[:2, :2].T + m[:2, 2]
+
+
+def _path_extent(path):
+    pts = path.points
+    if not len(pts):
+        return (0.0, 0.0, -1.0, -1.0)
+    lo, hi = pts.min(0), pts.max(0)
+    return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+
+
+def _span_shift(sp, vertical):
+    """Downward shift of a span's baseline: its baseline-shift values (those
+    of the span and its ancestors inside the text element, summed) and,
+    in horizontal text, its dominant or alignment baseline."""
+    shift = 0.0
+    e = sp
+    font = sp.font
+    while e is not None and e.parent is not None:       # the text element adds nothing
+        v = e.own.get('baseline-shift', e.el.get('baseline-shift') if e.el is not None else None)
+        if v is not None:
+            shift += _baseline_shift_value(v.strip(), e, font, sp.fs)
+        e = e.parent
+    if not vertical:
+        shift += _dominant(sp)
+    return shift
+
+
+def _baseline_shift_value(v, e, font, fs):
+    if v == 'baseline' or font is None:
+        return 0.0
+    s = fs / font.upem
+    if v == 'sub':
+        return font.subscript_y * s
+    if v == 'super':
+        return -font.superscript_y * s
+    if v.endswith('%'):
+        try:
+            return -float(v[:-1]) / 100.0 * e.fs
+        except ValueError:
+            return 0.0
+    L = parse_length(v, 'other', e.ctx)
+    return 0.0 if L is None else -float(L)
+
+
+def _decorations(el, spans, cache):
+    """``{(span index, kind): span whose fill and stroke paint it}``: a
+    span is decorated by a kind declared on it, on an ancestor inside the
+    text, or on an ancestor of the text element; the paint is that of the
+    nearest span declaring it (the text element for declarations outside
+    it), as usvg resolves it."""
+    outer = set()
+    for d in _ancestor_decorations(el, cache):
+        outer.update(_decoration(d))
+    own = [set(_decoration(sp.own.get('text-decoration', sp.el.get('text-decoration')
+                                      if sp.el is not None else None))) for sp in spans]
+    if not outer and not any(own):
+        return {}
+    index = {id(sp): k for k, sp in enumerate(spans)}
+    out = {}
+    for k, sp in enumerate(spans):
+        for kind in ('underline', 'overline', 'line-through'):
+            e = sp
+            found = None
+            while e is not None:
+                j = index.get(id(e))
+                if j is not None and kind in own[j]:
+                    found = e
+                    break
+                e = e.parent
+            if found is None and kind in outer:
+                found = spans[0]
+            if found is not None:
+                out[(k, kind)] = found
+    return out
+
+
+def _decoration_path(cl, mask, sp, kind, decor, span_ts, vertical):
+    """``(paint span, Path)`` of one decoration of one span in a chunk (user
+    space), or None."""
+    paint_span = decor.get((sp.index, kind))
+    if paint_span is None or sp.font is None:
+        return None
+    widths, mats = decoration_pieces(cl, mask)
+    if not len(widths):
+        return None
+    f = sp.font
+    s = sp.fs / f.upem
+    th = f.underline_thickness * s
+    if vertical:
+        h = (f.ascender - f.descender) * s
+        off = {'underline': h / 2, 'overline': -h / 2, 'line-through': 0.0}[kind]
+    else:
+        off = {'underline': -f.underline_position * s, 'overline': -f.ascender * s,
+               'line-through': -f.strikeout_position * s}[kind]
+    ok = widths > 0
+    if not ok.any():
+        return None
+    widths = widths[ok]
+    if not isinstance(mats, tuple):
+        mats = mats[ok]
+    k = len(widths)
+    xs = np.stack([np.zeros(k), widths, widths, np.zeros(k)], 1)
+    ys = np.tile(np.array([-th / 2, -th / 2, th / 2, th / 2]) + off, (k, 1))
+    if isinstance(mats, tuple):          # translations of the pieces
+        mats = translate(mats[0][ok], mats[1][ok])
+    m = compose(span_ts[None], mats)
+    X = m[:, 0, 0, None] * xs + m[:, 0, 1, None] * ys + m[:, 0, 2, None]
+    Y = m[:, 1, 0, None] * xs + m[:, 1, 1, None] * ys + m[:, 1, 2, None]
+    pts = np.stack([X, Y], 2).reshape(-1, 2)
+    verbs = np.tile(np.array([0, 1, 1, 1, 4], np.uint8), k)
+    return paint_span, Path.from_arrays(verbs, pts)
+
+
+def _glyph_nodes(cl, g, mats, sp, st, cache, bbox):
+    """The nodes of glyphs ``g`` of a chunk (``mats``: (len(g), 3, 3)
+    transforms from font units to user space): one PathNode of their
+    outlines painted with the span's fill and stroke."""
+    path = _outline_path(cl, g, mats)
+    if path is None:
+        return []
+    return [_paint_node(sp, path, st, cache, bbox)]
+
+
+def _outline_path(cl, g, mats):
+    fi = cl.g_font[g]
+    gid = cl.g_gid[g]
+    if len(cl.fonts) == 1:
+        verbs, P, npts = cl.fonts[0].outlines(gid)
+    else:
+        cuts = (np.flatnonzero(fi[1:] != fi[:-1]) + 1).tolist()
+        parts = [cl.fonts[int(fi[a])].outlines(gid[a:z])
+                 for a, z in zip([0] + cuts, cuts + [len(fi)])]
+        verbs = np.concatenate([v for v, _, _ in parts])
+        P = np.concatenate([p for _, p, _ in parts])
+        npts = np.concatenate([c for _, _, c in parts])
+    if not len(verbs):
+        return None
+    if mats.ndim == 2:          # translated clusters: scale, flip and move each glyph
+        s = cl.g_scale[g]
+        gc = cl.g_cluster[g]
+        ox = cl.x[gc] + cl.g_x[g] * s + mats[0, 2]
+        oy = cl.y[gc] - cl.g_y[g] * s + mats[1, 2]
+        S = np.repeat(s, npts)
+        out = np.empty_like(P)
+        out[:, 0] = P[:, 0] * S + np.repeat(ox, npts)
+        out[:, 1] = np.repeat(oy, npts) - P[:, 1] * S
+        return Path(verbs, out, _checked=True)
+    M = np.repeat(mats, npts, axis=0)
+    out = np.empty_like(P)
+    out[:, 0] = M[:, 0, 0] * P[:, 0] + M[:, 0, 1] * P[:, 1] + M[:, 0, 2]
+    out[:, 1] = M[:, 1, 0] * P[:, 0] + M[:, 1, 1] * P[:, 1] + M[:, 1, 2]
+    # every outline is a valid path starting with a move: so is the whole
+    return Path(verbs, out, _checked=True)
+
+
+_FEATURE = re.compile(r"""\s*(['"])([\x20-\x7e]{4})\1(?:\s+(on|off|\d+))?\s*$""")
+
+
+def _features(inh, no_kern):
+    """HarfBuzz features of a span: ``font-feature-settings`` (CSS Fonts 4:
+    ``"tag" [on | off | integer]`` items; an invalid list is ignored as a
+    whole), ``smcp`` for ``font-variant: small-caps``, ``kern`` off for
+    ``font-kerning: none`` or ``kerning: 0``; None when there are none."""
+    feats = {}
+    v = (inh.get('font-feature-settings') or 'normal').strip()
+    if v != 'normal':
+        items = []
+        for item in v.split(','):
+            m = _FEATURE.match(item)
+            if m is None:
+                items = []
+                break
+            val = m.group(3)
+            items.append((m.group(2), 1 if val in (None, 'on') else 0 if val == 'off'
+                          else int(val)))
+        for tag, val in items:
+            feats[tag] = val
+    variant = (inh.get('font-variant') or 'normal').split()
+    if 'small-caps' in variant or (inh.get('font-variant-caps') or '').strip() == 'small-caps':
+        feats['smcp'] = 1
+    if no_kern:
+        feats['kern'] = 0
+    return feats or None
 
 
 def _parent_weight(el, cache):
@@ -524,32 +734,6 @@ def _preserved(e):
     return False
 
 
-def _rect(x0, y0, x1, y1):
-    return Path.polygon([(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
-
-
-def _baseline_shift(sp):
-    v = sp.own.get('baseline-shift', sp.el.get('baseline-shift'))
-    if v is None:
-        return 0.0
-    v = v.strip()
-    f = sp.font
-    if v == 'baseline' or f is None:
-        return 0.0
-    s = sp.fs / f.upem
-    if v == 'sub':
-        return f.subscript_y * s
-    if v == 'super':
-        return -f.superscript_y * s
-    if v.endswith('%'):
-        try:
-            return -float(v[:-1]) / 100.0 * sp.fs
-        except ValueError:
-            return 0.0
-    L = parse_length(v, 'other', sp.ctx)
-    return 0.0 if L is None else -float(L)
-
-
 def _dominant(sp):
     """Downward shift of the glyphs making the dominant baseline sit at y."""
     v = (sp.own.get('alignment-baseline') or 'auto').strip()
@@ -597,23 +781,16 @@ def _load_font(db, face, cache):
     return None
 
 
-def _fallback_font(db, ch, font, cache={}):
-    key = (id(db), ch)
-    if key in cache:
-        return cache[key]
-    r = font
-    for face in db.fallback_faces(font.face):
-        try:
-            f = Font.load(face)
-        except RasterError:
-            continue
-        if f.has_char(ch):
-            r = f
-            break
-    if len(cache) > 10000:
-        cache.clear()
-    cache[key] = r
-    return r
+def _fallback_font(db, ch, font):
+    """The font to draw character ``ch`` with when ``font`` has no glyph
+    for it (``font`` itself when no face has one)."""
+    face = db.fallback_face(font.face, ch)
+    if face is None:
+        return font
+    try:
+        return Font.load(face)
+    except RasterError:
+        return font
 
 
 def _text_path_geometry(tp_el, ctx, cache):
@@ -657,37 +834,6 @@ def _text_path_geometry(tp_el, ctx, cache):
     return edges, cum, off
 
 
-def _on_path(glyphs, tp, offset):
-    """Move chunk-local glyphs onto a text path: each glyph's horizontal
-    middle goes to the point at arc length ``offset + x + advance / 2``,
-    the glyph turned to the path's direction there; glyphs off the path's
-    ends are dropped.  Returns ``(glyphs, end point)``."""
-    edges, cum, _ = tp
-    total = cum[-1]
-    if not len(glyphs):
-        return glyphs, tuple(edges[-1, 1])
-    gx, gy, adv = glyphs.x, glyphs.y, glyphs.adv
-    mid = offset + gx + adv * 0.5
-    keep = (mid >= 0) & (mid <= total)
-    i = np.clip(np.searchsorted(cum, mid, 'right') - 1, 0, len(edges) - 1)
-    a, bpt = edges[i, 0], edges[i, 1]
-    seg = cum[i + 1] - cum[i]
-    tt = np.where(seg > 0, (mid - cum[i]) / np.where(seg > 0, seg, 1.0), 0.0)
-    P = a + (bpt - a) * tt[:, None]
-    th = np.arctan2(bpt[:, 1] - a[:, 1], bpt[:, 0] - a[:, 0])
-    c, s = np.cos(th), np.sin(th)
-    lx, ly = -adv * 0.5, gy
-    ox = P[:, 0] + c * lx - s * ly
-    oy = P[:, 1] + s * lx + c * ly
-    deg = np.degrees(th)
-    rot = deg if glyphs.rot is None else deg + glyphs.rot
-    out = glyphs.replace(x=ox, y=oy, rot=rot).take(keep)
-    # the text after the path continues where the last glyph ends (also
-    # when it fell off the path's end: extrapolated along the last edge)
-    end = (float(P[-1, 0] + c[-1] * adv[-1] * 0.5), float(P[-1, 1] + s[-1] * adv[-1] * 0.5))
-    return out, end
-
-
 def _span_fonts(db, cache):
     """A function ``(font-family value, weight, style, stretch) -> (face,
     Font or None)`` with its answers remembered for the whole document: a
@@ -704,375 +850,16 @@ def _span_fonts(db, cache):
     return fonts_of
 
 
-class _SpanMetrics:
-    """Arrays of one text element used by the layout of all its chunks.
-
-    Attributes
-    ----------
-    owner : (n,) int64 ndarray
-        Span index of every character.
-    single : bool
-        The element has one span only.
-    fs, ys, ls : (S,) float64 ndarray, or float when ``single``
-        Per span: font size, downward shift of the baseline (baseline-shift
-        and dominant baseline), letter spacing.
-    extra : (n,) float64 ndarray
-        Spacing after every character: letter spacing (not for cursive
-        scripts, whose joins it would break, as resvg does) plus word
-        spacing after spaces.
-    no_extra : bool
-        ``extra`` is all zero.
-    descends : (S, S) bool ndarray
-        ``descends[i, j]``: span ``j`` is span ``i`` or nested in it.
-    """
-
-    def __init__(self, spans, owner, chars):
-        self.owner = owner
-        n = len(chars)
-        self.single = len(spans) == 1
-        if self.single:         # numbers broadcast like the arrays
-            sp = spans[0]
-            self.fs, self.ys, self.ls = sp.fs, sp.shift + _dominant(sp), sp.ls
-        else:
-            self.fs = np.array([sp.fs for sp in spans])
-            self.ys = np.array([sp.shift + _dominant(sp) for sp in spans])
-            self.ls = np.array([sp.ls for sp in spans])
-        self.no_extra = not any(sp.ls or sp.ws for sp in spans)
-        if self.no_extra:
-            self.extra = np.zeros(n)
-        else:
-            ws = np.array([sp.ws for sp in spans])
-            cps = np.fromiter(map(ord, chars), np.int64, n)
-            ls = np.array([sp.ls for sp in spans])[owner]
-            if cps.max() >= _CURSIVE[0][0]:
-                cursive = np.zeros(n, bool)
-                for lo, hi in _CURSIVE:
-                    cursive |= (cps >= lo) & (cps <= hi)
-                ls = np.where(cursive, 0.0, ls)
-            self.extra = ls + np.where((cps == 0x20) | (cps == 0xA0), ws[owner], 0.0)
-        if len(spans) == 1:
-            self.descends = np.ones((1, 1), bool)
-            return
-        index = {id(sp): k for k, sp in enumerate(spans)}
-        self.descends = np.zeros((len(spans), len(spans)), bool)
-        for j, sp in enumerate(spans):
-            while sp is not None:
-                self.descends[index[id(sp)], j] = True
-                sp = sp.parent
-
-
-def _text_length_spacing(spans, sm, own_idx, char_l, char_r):
-    """Extra spacing after each character of a chunk that stretches the
-    elements with ``textLength`` to that length (``lengthAdjust`` spacing),
-    or None when no element asks for it.
-
-    ``sm`` is the element's :class:`_SpanMetrics`, ``own_idx`` ((m,) int64)
-    the span of each character of the chunk, ``char_l``/``char_r`` ((m,)
-    float64) their horizontal extents."""
-    if len(own_idx) < 2 or all(sp.tl is None for sp in spans):
-        return None
-    if sm.single:
-        natural = float(char_r.max() - char_l.min())
-        return np.full(len(own_idx), (spans[0].tl - natural) / (len(own_idx) - 1))
-    adj = None
-    # the owners and their ancestors
-    present = np.flatnonzero(sm.descends[:, own_idx].any(axis=1)).tolist()
-    for si in present:
-        tl = spans[si].tl
-        if tl is None:
-            continue
-        idx = np.flatnonzero(sm.descends[si][own_idx])
-        if len(idx) < 2:
-            continue
-        natural = float(char_r[idx].max() - char_l[idx].min())
-        if adj is None:
-            adj = np.zeros(len(own_idx))
-        # every character, the last one too, gets the same extra (resvg)
-        adj[idx] += (tl - natural) / (len(idx) - 1)
-    return adj
-
-
-_CURSIVE = ((0x0600, 0x08FF), (0xFB50, 0xFDFF), (0xFE70, 0xFEFF), (0x0700, 0x074F),
-            (0x07C0, 0x07FF), (0x1800, 0x18AF))
-
-
-class _Shaped:
-    """The glyphs of one chunk as shaped, before spacing and positions.
-
-    Attributes
-    ----------
-    fonts : list of Font
-        Fonts used; ``fi`` indexes it.
-    fi, gid, j : (G,) int64 ndarray
-        Font, glyph id and (chunk-local) character of every glyph, in
-        visual order run by run.
-    xa, xo, yo : (G,) float64 ndarray
-        Advance and offsets in font units (y up).
-    upem : float or (G,) float64 ndarray
-        Units per em of each glyph's font (one number for one font).
-    rtl : list of (g0, g1, k)
-        Glyph ranges of right-to-left runs and the run's first character.
-    gaps : list of (k, e, g)
-        Character ranges without any font, and the number of glyphs before.
-    simple : bool
-        One glyph per character in logical order (``j == arange(m)``).
-    """
-    __slots__ = ('fonts', 'fi', 'gid', 'j', 'xa', 'xo', 'yo', 'upem', 'rtl', 'gaps', 'simple')
-
-
-def _shape_chunk(db, chars, owner, spans, c0, c1):
-    """Shape characters ``c0:c1`` of one chunk (``chars``: sequence of all
-    characters, ``owner``: list of their span indices); returns a
-    :class:`_Shaped` (shared: not to be modified)."""
-    m = c1 - c0
-    # font of each character (fallback for missing glyphs)
-    fonts = [spans[o].font for o in owner[c0:c1]]
-    text = chars[c0:c1]
-    for k, ch in enumerate(text):
-        f = fonts[k]
-        if f is not None and not f.has_char(ch) and ch not in ' \u00a0' and ord(ch) >= 32:
-            fonts[k] = _fallback_font(db, ch, f)
-    sh = _Shaped()
-    sh.fonts, sh.rtl, sh.gaps = [], [], []
-    parts = []          # (font index, Shaped arrays, characters)
-    index = {}
-    ng = 0
-    k = 0
-    # runs of one font are shaped together even across spans (kerning and
-    # ligatures across tspan boundaries, as usvg does); each glyph is later
-    # scaled by the font size of its own span
-    while k < m:
-        f = fonts[k]
-        e = k + 1
-        if text[k] == ' ':
-            # leading/trailing spaces are shaped on their own: between
-            # right-to-left text and the end of an LTR chunk they stay at
-            # the visual end (a minimal stand-in for the bidi algorithm)
-            while e < m and fonts[e] is f and text[e] == ' ':
-                e += 1
-        else:
-            while e < m and fonts[e] is f:
-                e += 1
-            while e - 1 > k and text[e - 1] == ' ':
-                e -= 1
-        if f is None:
-            sh.gaps.append((k, e, ng))
-            k = e
-            continue
-        r = f.shape_arrays(''.join(text[k:e]), spans[owner[c0 + k]].features)
-        cl = r.cluster
-        fidx = index.get(id(f))
-        if fidx is None:
-            fidx = index[id(f)] = len(sh.fonts)
-            sh.fonts.append(f)
-        parts.append((fidx, r, cl + k if k else cl))
-        # a right-to-left run comes back in visual order: its spacing adds
-        # up from the left, i.e. from its logically last character
-        if len(cl) > 1 and cl[0] > cl[-1]:
-            sh.rtl.append((ng, ng + len(cl), k))
-        ng += len(cl)
-        k = e
-    sh.simple = not sh.gaps and all(r.ordered for _, r, _ in parts)
-    if len(parts) == 1:
-        fidx, r, sh.j = parts[0]
-        sh.gid, pos = r.gid, r.pos
-        sh.fi = np.zeros(ng, np.int64)
-    elif parts:
-        sh.gid = np.concatenate([r.gid for _, r, _ in parts])
-        pos = np.concatenate([r.pos for _, r, _ in parts])
-        sh.j = np.concatenate([j for _, _, j in parts])
-        sh.fi = np.repeat([fi for fi, _, _ in parts], [len(r.gid) for _, r, _ in parts])
-    else:
-        sh.gid = sh.j = sh.fi = np.zeros(0, np.int64)
-        pos = np.zeros((0, 4))
-    sh.xa, sh.xo, sh.yo = pos[:, 0], pos[:, 2], pos[:, 3]
-    if len(sh.fonts) == 1:
-        sh.upem = sh.fonts[0].upem
-    else:
-        sh.upem = np.array([f.upem for f in sh.fonts])[sh.fi] if sh.fonts else np.zeros(0)
-    return sh
-
-
-def _shape_single(db, text, span, cache):
-    """The :class:`_Shaped` glyphs of a chunk ``text`` owned by the one
-    span ``span``, remembered for the whole document (at most
-    ``_SHAPED_LIMIT`` chunks): documents repeat short strings."""
-    memo = cache.table('text_shaped')
-    key = (text, span.font, span.features is None)
-    return cached(memo, key, lambda: _shape_chunk(db, text, [0] * len(text), [span], 0, len(text)),
-                  _SHAPED_LIMIT)
-
-
-class _Glyphs:
-    """Positioned glyphs of a chunk, as (G,) arrays: ``span`` (int64, span
-    index), ``font`` (int64, index into ``fonts``), ``gid`` (int64), ``x``,
-    ``y`` (float64, glyph origin), ``s`` (float64, font units to user
-    units; a float when all glyphs share it), ``rot`` (float64, degrees
-    about the origin; None: all zero), ``adv`` (float64, advance)."""
-    FIELDS = ('span', 'font', 'gid', 'x', 'y', 's', 'rot', 'adv')
-    __slots__ = FIELDS + ('fonts',)
-
-    def __init__(self, fonts, span, font, gid, x, y, s, rot, adv):
-        self.fonts = fonts
-        self.span, self.font, self.gid, self.x, self.y = span, font, gid, x, y
-        self.s, self.rot, self.adv = s, rot, adv
-
-    def __len__(self):
-        return len(self.gid)
-
-    def take(self, idx):
-        """The glyphs selected by a slice, mask or index array."""
-        return _Glyphs(self.fonts, *(a if a is None or np.ndim(a) == 0 else a[idx] for a in
-                                     (getattr(self, name) for name in self.FIELDS)))
-
-    def replace(self, **arrays):
-        """A copy with some arrays replaced."""
-        return _Glyphs(self.fonts, *(arrays.get(name, getattr(self, name))
-                                     for name in self.FIELDS))
-
-
-def _place_chunk(sh, sm, c0, c1, dx, dy, angle, adjust=None):
-    """Position the shaped glyphs ``sh`` of characters ``c0:c1`` of one
-    chunk at origin (0, 0).
-
-    ``sm`` is the element's :class:`_SpanMetrics`; ``dx``/``dy``/``angle``
-    ((n,) float64, or None for all zero) the per-character shifts along
-    and across the line and rotations of the element; ``adjust``
-    ((c1 - c0,) float64 or None) extra spacing after each character
-    (``textLength``).
-
-    Returns ``(glyphs, char_left, char_right, width, total_dy, cum_dy)``:
-    :class:`_Glyphs` in chunk coordinates (x right, y down, baseline at
-    y = 0 plus dy/baseline shifts; only glyphs of a positive size), the
-    horizontal extent of every character ((m,) float64), the chunk
-    advance, and the accumulated dy ((m,) float64).
-    """
-    m = c1 - c0
-    no_extra = sm.no_extra and adjust is None
-    extra = sm.extra[c0:c1]          # spacing added after each character
-    if adjust is not None:
-        extra = extra + adjust
-    ex_before = np.zeros(m)          # spacing of earlier characters
-    if not no_extra:
-        np.cumsum(extra[:-1], out=ex_before[1:])
-    dxcum = None if dx is None else np.cumsum(dx[c0:c1])
-    before = ex_before if dx is None else dxcum + ex_before
-    cdy = np.zeros(m) if dy is None else np.cumsum(dy[c0:c1])
-    own = sm.owner[c0:c1]
-    j = sh.j
-    simple = sh.simple and not sh.rtl
-    if simple:                       # glyph g is character g
-        g_span, before_j, cdy_j = own, before, cdy
-        angle_j = None if angle is None else angle[c0:c1]
-    else:
-        g_span, before_j, cdy_j = own[j], before[j], cdy[j]
-        angle_j = None if angle is None else angle[c0:c1][j]
-    if sm.single:
-        s, ys = sm.fs / sh.upem, sm.ys
-    else:
-        s, ys = sm.fs[g_span] / sh.upem, sm.ys[g_span]
-    adv = sh.xa * s
-    pen = np.zeros(len(j) + 1)       # pen before each glyph, then the end
-    np.cumsum(adv, out=pen[1:])
-    for g0, g1, k in sh.rtl:
-        # right to left: the spacing of a character is added when the
-        # (visually preceding) glyphs of the next character begin
-        jj = j[g0:g1]
-        inc = np.zeros(g1 - g0)
-        inc[0] = ex_before[k]
-        inc[1:] = np.where(jj[1:] != jj[:-1], extra[jj[:-1]], 0.0)
-        vis = np.cumsum(inc)
-        before_j[g0:g1] = vis if dx is None else dxcum[jj] + vis
-    # (with no spacing and no dx, before_j is zero: adding it changes nothing)
-    lo = pen[:-1] if no_extra and dx is None and simple else pen[:-1] + before_j
-    if dy is not None:
-        ys = cdy_j + ys
-    glyphs = _Glyphs(sh.fonts, g_span, sh.fi, sh.gid, lo + sh.xo * s, ys - sh.yo * s,
-                     s, angle_j, adv)
-    keep = s > 0
-    if np.ndim(keep) == 0:
-        if not keep:
-            glyphs = glyphs.take(slice(0, 0))
-    elif not keep.all():
-        glyphs = glyphs.take(keep)
-    if simple:
-        char_l, char_r = lo, lo + adv
-    else:
-        char_l = np.full(m, np.nan)
-        char_r = np.full(m, np.nan)
-        np.fmin.at(char_l, j, lo)
-        np.fmax.at(char_r, j, lo + adv)
-        for k, e, g in sh.gaps:
-            char_l[k:e] = char_r[k:e] = pen[g] + before[k:e]
-        # characters merged into a cluster take their neighbours' extent
-        for arr in (char_l, char_r):
-            good = ~np.isnan(arr)
-            if not good.any():
-                arr[:] = 0.0
-            elif not good.all():
-                idx = np.where(good, np.arange(m), -1)
-                np.maximum.accumulate(idx, out=idx)
-                idx[idx < 0] = np.flatnonzero(good)[0]
-                arr[:] = arr[idx]
-    # the letter spacing after the last character is not part of the advance
-    ls_last = sm.ls if sm.single else float(sm.ls[own[-1]])
-    width = float(pen[-1]) + (0.0 if no_extra else float(extra.sum())) - ls_last
-    if dx is not None:
-        width += float(dx[c0:c1].sum())
-    return glyphs, char_l, char_r, width, float(cdy[-1]), cdy
-
-
-def _glyph_path(glyphs, ox, oy):
-    """One Path of glyph outlines: each outline (font units, y up) scaled by
-    its ``s`` with y flipped, turned by its ``rot`` and moved to its origin
-    plus ``(ox, oy)``.  The outlines come from each font's packed outline
-    arrays (:meth:`raster.fonts.Font.outlines`) in one gather per run of
-    glyphs of one font.  The points are not checked for being finite."""
-    fi = glyphs.font
-    if not len(fi):
-        return Path.empty()
-    if len(glyphs.fonts) == 1:
-        verbs, P, npts = glyphs.fonts[0].outlines(glyphs.gid)
-    else:
-        cuts = (np.flatnonzero(fi[1:] != fi[:-1]) + 1).tolist()
-        parts = [glyphs.fonts[int(fi[a])].outlines(glyphs.gid[a:z])
-                 for a, z in zip([0] + cuts, cuts + [len(fi)])]
-        verbs = np.concatenate([v for v, _, _ in parts])
-        P = np.concatenate([p for _, p, _ in parts])
-        npts = np.concatenate([c for _, _, c in parts])
-    if not len(verbs):
-        return Path.empty()
-    s = glyphs.s
-    if glyphs.rot is not None and glyphs.rot.any():
-        S = s if isinstance(s, float) else np.repeat(s, npts)
-        X = P[:, 0] * S
-        Y = -P[:, 1] * S
-        R = np.radians(np.repeat(glyphs.rot, npts))
-        c, s_ = np.cos(R), np.sin(R)
-        out = np.empty_like(P)
-        out[:, 0] = c * X - s_ * Y
-        out[:, 1] = s_ * X + c * Y
-    elif isinstance(s, float):
-        out = P * np.array([s, -s])     # (x s, -y s): y flipped
-    else:
-        S = np.repeat(s, npts)
-        out = np.empty_like(P)
-        out[:, 0] = P[:, 0] * S
-        out[:, 1] = P[:, 1] * -S
-    off = np.empty((len(npts), 2))
-    off[:, 0] = glyphs.x + ox
-    off[:, 1] = glyphs.y + oy
-    out += np.repeat(off, npts, axis=0)
-    # every outline is a valid path starting with a move: so is the whole
-    return Path(verbs, out, _checked=True)
-
-
-def _paint_node(sp, path, st, cache):
+def _paint_node(sp, path, st, cache, box=None, vis_span=None):
+    """A PathNode of ``path`` painted with the fill and stroke of span
+    ``sp`` (objectBoundingBox units resolved against the text's ``box``,
+    x0 y0 x1 y1); None when hidden (``visibility`` of ``vis_span``, default
+    ``sp``) or not painted."""
     inh = sp.inh
-    vis = inh.get('visibility', 'visible')
+    vis = (vis_span or sp).inh.get('visibility', 'visible')
     if vis in ('hidden', 'collapse'):
         return None
-    fill, stroke = fill_and_stroke(inh, sp.ctx, path, st, cache)
+    fill, stroke = fill_and_stroke(inh, sp.ctx, path, st, cache, box=box)
     if fill is None and stroke is None:
         return None
     return PathNode(id='', path=path, fill=fill, stroke=stroke,

@@ -22,6 +22,7 @@ import math
 import re
 from typing import NamedTuple, Optional
 
+from .._regex import lazy
 from ..errors import SVGError
 from ..geometry.transform import Affine
 
@@ -30,7 +31,8 @@ __all__ = [
     'LengthContext', 'NAMED_COLORS',
     'parse_color', 'parse_paint', 'parse_number', 'parse_number_list',
     'parse_length', 'parse_length_list', 'parse_angle', 'parse_transform',
-    'parse_transform_origin', 'parse_viewbox', 'parse_preserve_aspect_ratio',
+    'parse_transform_origin', 'parse_viewbox', 'resolve_viewbox', 'ZERO_VIEWBOX',
+    'parse_preserve_aspect_ratio',
     'viewbox_transform', 'parse_url', 'DEFAULT_ASPECT_RATIO',
     'parse_opacity', 'parse_font_size', 'FONT_SIZE_KEYWORDS', 'PAINT_CURRENT',
     'DEFAULT_CONTEXT',
@@ -54,8 +56,8 @@ def _check_str(s, what):
 #: fraction), optional exponent.  The exponent needs digits, so ``1em`` is the
 #: number 1 followed by the unit ``em``.
 NUMBER = r'[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?'
-_NUM_RE = re.compile(NUMBER)
-_NUM_FULL = re.compile(r'\s*(' + NUMBER + r')\s*')
+_NUM_RE = lazy(globals(), '_NUM_RE', NUMBER)
+_NUM_FULL = lazy(globals(), '_NUM_FULL', r'\s*(' + NUMBER + r')\s*')
 _WS = ' \t\r\n\f'
 
 
@@ -233,9 +235,9 @@ NAMED_COLORS = {
 }
 del _NAMED
 
-_HEX_RE = re.compile(r'#([0-9a-fA-F]+)')
-_FUNC_RE = re.compile(r'([a-zA-Z]+)\s*\((.*)\)', re.S)
-_ARG_RE = re.compile(r'(' + NUMBER + r')(%|deg|rad|grad|turn)?', re.I)
+_HEX_RE = lazy(globals(), '_HEX_RE', r'#([0-9a-fA-F]+)')
+_FUNC_RE = lazy(globals(), '_FUNC_RE', r'([a-zA-Z]+)\s*\((.*)\)', re.S)
+_ARG_RE = lazy(globals(), '_ARG_RE', r'(' + NUMBER + r')(%|deg|rad|grad|turn)?', re.I)
 
 
 def _clamp01(v):
@@ -431,7 +433,8 @@ class Paint(NamedTuple):
 PAINT_NONE = Paint('none')
 PAINT_CURRENT = Paint('current')
 
-_URL_RE = re.compile(r'url\(\s*(?:"([^"]*)"|\'([^\']*)\'|([^)\s]*))\s*\)', re.I)
+_URL_RE = lazy(globals(), '_URL_RE',
+               r'url\(\s*(?:"([^"]*)"|\'([^\']*)\'|([^)\s]*))\s*\)', re.I)
 
 
 def parse_url(s):
@@ -528,7 +531,7 @@ class LengthContext(NamedTuple):
 
 DEFAULT_CONTEXT = LengthContext()
 
-_LEN_RE = re.compile(r'\s*(' + NUMBER + r')([a-zA-Z]*|%)\s*')
+_LEN_RE = lazy(globals(), '_LEN_RE', r'\s*(' + NUMBER + r')([a-zA-Z]*|%)\s*')
 _ABS_UNITS = {'': 1.0, 'px': 1.0, 'in': None, 'cm': 1 / 2.54, 'mm': 1 / 25.4,
               'pt': 1 / 72, 'pc': 1 / 6}
 # CSS's `Q` (quarter-millimetre) unit is not an SVG length unit: resvg
@@ -593,7 +596,7 @@ def parse_length(s, axis='x', ctx=None):
     return v
 
 
-_LEN_ITEM_RE = re.compile(r'(' + NUMBER + r')([a-zA-Z]+|%)?')
+_LEN_ITEM_RE = lazy(globals(), '_LEN_ITEM_RE', r'(' + NUMBER + r')([a-zA-Z]+|%)?')
 
 
 def parse_length_list(s, axis='other', ctx=None):
@@ -624,7 +627,7 @@ def parse_length_list(s, axis='other', ctx=None):
     return out
 
 
-_OPACITY_RE = re.compile(r'\s*(' + NUMBER + r')(%?)\s*')
+_OPACITY_RE = lazy(globals(), '_OPACITY_RE', r'\s*(' + NUMBER + r')(%?)\s*')
 
 
 def parse_opacity(s):
@@ -701,7 +704,8 @@ def parse_font_size(s, parent_size=12.0, ctx=None, medium=12.0):
     return v
 
 
-_ANGLE_RE = re.compile(r'\s*(' + NUMBER + r')(deg|rad|grad|turn)?\s*', re.I)
+_ANGLE_RE = lazy(globals(), '_ANGLE_RE', r'\s*(' + NUMBER + r')(deg|rad|grad|turn)?\s*',
+                 re.I)
 _ANGLE_UNITS = {'': 1.0, 'deg': 1.0, 'rad': 180 / math.pi, 'grad': 0.9, 'turn': 360.0}
 
 
@@ -724,8 +728,8 @@ def parse_angle(s):
 # transforms
 # --------------------------------------------------------------------------
 
-_TF_RE = re.compile(r'[ \t\r\n]*(matrix|translate|scale|rotate|skewX|skewY)'
-                    r'[ \t\r\n]*\(([^()]*)\)[ \t\r\n]*')
+_TF_RE = lazy(globals(), '_TF_RE', r'[ \t\r\n]*(matrix|translate|scale|rotate|skewX|skewY)'
+              r'[ \t\r\n]*\(([^()]*)\)[ \t\r\n]*')
 _TF_NARGS = {'matrix': (6,), 'translate': (1, 2), 'scale': (1, 2),
              'rotate': (1, 3), 'skewX': (1,), 'skewY': (1,)}
 
@@ -746,7 +750,8 @@ def _tf_one(name, args):
     return Affine.skew_y(args[0])
 
 
-_CSS_TF_RE = re.compile(r'[ \t\r\n]*([a-zA-Z]+)[ \t\r\n]*\(([^()]*)\)[ \t\r\n]*')
+_CSS_TF_RE = lazy(globals(), '_CSS_TF_RE',
+                  r'[ \t\r\n]*([a-zA-Z]+)[ \t\r\n]*\(([^()]*)\)[ \t\r\n]*')
 _ANGLE_FUNCS = {'rotate', 'skew', 'skewx', 'skewy'}
 _LENGTH_FUNCS = {'translate', 'translatex', 'translatey'}
 _CSS_NARGS = {'matrix': (6,), 'translate': (1, 2), 'translatex': (1,),
@@ -809,13 +814,14 @@ def _css_tf_one(name, a):
 # The one-function lists that real documents are full of (chart and map
 # generators emit ``translate(x,y)`` per element): parsed without building
 # intermediate transforms.  Anything else takes the general path below.
-_TF_SIMPLE_RE = re.compile(r'[ \t\r\n]*(translate|scale|matrix)[ \t\r\n]*'
-                           r'\(([^()]*)\)[ \t\r\n]*')
+_TF_SIMPLE_RE = lazy(globals(), '_TF_SIMPLE_RE', r'[ \t\r\n]*(translate|scale|matrix)[ \t\r\n]*'
+                     r'\(([^()]*)\)[ \t\r\n]*')
 
 
 # ``translate(x[ y])`` with plain separators: one regular expression
 # reads it all (a subset of what the paths below accept, same values).
-_TF_TRANSLATE_RE = re.compile(
+_TF_TRANSLATE_RE = lazy(
+    globals(), '_TF_TRANSLATE_RE',
     r'[ \t\r\n]*translate[ \t\r\n]*\([ \t\r\n\f]*(' + NUMBER + r')'
     r'(?:(?:[ \t\r\n\f]+,?|,)[ \t\r\n\f]*(' + NUMBER + r'))?[ \t\r\n\f]*\)[ \t\r\n]*')
 
@@ -1004,10 +1010,8 @@ def parse_viewbox(s):
     -------
     (float, float, float, float) or None
         ``None`` on a syntax error, a wrong count, or a width or height that
-        is zero or negative.  SVG: a negative size is an error and a zero size
-        disables rendering of the element; resvg renders neither, so the tree
-        builder treats ``None`` from a present ``viewBox`` as "do not render"
-        (and a missing attribute as "no viewBox").
+        is zero or negative (see :func:`resolve_viewbox` for what each
+        means to an element).
 
     >>> parse_viewbox('0,0 100 50'), parse_viewbox('0 0 0 10')
     ((0.0, 0.0, 100.0, 50.0), None)
@@ -1015,6 +1019,37 @@ def parse_viewbox(s):
     v = parse_number_list(s)
     if v is None or len(v) != 4 or v[2] <= 0 or v[3] <= 0:
         return None
+    return tuple(v)
+
+
+#: What :func:`resolve_viewbox` returns for a viewBox with a zero side.
+ZERO_VIEWBOX = 'zero'
+
+
+def resolve_viewbox(s):
+    """What a ``viewBox`` attribute value (or None when absent) does to its
+    element.
+
+    Returns
+    -------
+    (float, float, float, float), None or ZERO_VIEWBOX
+        The box; None when absent or invalid -- a syntax error, a count
+        other than four, a negative width or height: SVG 2 says such a
+        value invalidates the attribute, so the element is drawn as if it
+        had none (resvg does the same); :data:`ZERO_VIEWBOX` when the width
+        or height is zero, which disables rendering of the element (SVG 1.1
+        and 2; resvg draws it as if it had no viewBox).
+
+    >>> resolve_viewbox('0 0 10 5'), resolve_viewbox('0 0 -10 5'), resolve_viewbox('0 0 0 5')
+    ((0.0, 0.0, 10.0, 5.0), None, 'zero')
+    """
+    if s is None:
+        return None
+    v = parse_number_list(s)
+    if v is None or len(v) != 4 or v[2] < 0 or v[3] < 0:
+        return None
+    if v[2] == 0 or v[3] == 0:
+        return ZERO_VIEWBOX
     return tuple(v)
 
 

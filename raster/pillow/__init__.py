@@ -25,12 +25,13 @@ Another size or resolution:
   ``w`` x ``h`` with the aspect ratio kept, drawn at that size rather than
   scaled from the natural one (Pillow's ``thumbnail()`` calls ``draft``, so
   thumbnails of SVGs are drawn crisply);
-* ``register(dpi=..., font_dirs=..., resources_dir=..., background=...)``
+* ``register(dpi=..., fonts=..., resources_dir=..., background=...)``
   sets the defaults ``Image.open`` uses.
 
 ``im.info['dpi']`` is the resolution at which the document keeps its
 physical size (``dpi`` times the scale of the natural size).  Text is drawn
-with the fonts of ``font_dirs`` only; images referenced by file are read
+with the fonts of ``fonts`` (a :class:`raster.FontOptions`; default: the
+system's fonts); images referenced by file are read
 from the document's directory (and ``resources_dir``) when it was opened
 by path.
 """
@@ -43,6 +44,7 @@ import os
 from PIL import Image, ImageFile
 
 from ..errors import RasterError, SVGError
+from ..fonts import FontOptions
 
 __all__ = ['FORMAT', 'SvgImageFile', 'register', 'open']
 
@@ -51,7 +53,7 @@ FORMAT = 'SVG'
 EXTENSIONS = ('.svg', '.svgz')
 MIME = 'image/svg+xml'
 
-_BUILT_IN = {'dpi': 96.0, 'font_dirs': (), 'resources_dir': None, 'background': None}
+_BUILT_IN = {'dpi': 96.0, 'fonts': None, 'resources_dir': None, 'background': None}
 _defaults = dict(_BUILT_IN)      # what Image.open uses (set by register())
 # options of one raster.pillow.open() call, seen by SvgImageFile._open
 _pending = contextvars.ContextVar('raster_pillow_options', default=None)
@@ -65,10 +67,11 @@ def _accept(prefix: bytes) -> bool:
     return prefix.lstrip(b'\xef\xbb\xbf \t\r\n')[:1] == b'<'
 
 
-def _options(dpi=None, font_dirs=None, resources_dir=None, background=None, base=None):
+def _options(dpi=None, fonts=None, resources_dir=None, background=None, base=None,
+             font_dirs=None):
     """Checked options, unset ones taken from ``base`` (default: the
     built-in defaults)."""
-    from ..svg import parse_background
+    from ..svg import font_options, parse_background
     o = dict(_BUILT_IN if base is None else base)
     if dpi is not None:
         try:
@@ -78,9 +81,8 @@ def _options(dpi=None, font_dirs=None, resources_dir=None, background=None, base
         if not (d > 0 and d != float('inf')):
             raise SVGError('dpi must be a positive number, got %r' % (dpi,))
         o['dpi'] = d
-    if font_dirs is not None:
-        o['font_dirs'] = ((font_dirs,) if isinstance(font_dirs, (str, os.PathLike))
-                          else tuple(font_dirs))
+    if fonts is not None or font_dirs is not None:
+        o['fonts'] = font_options(fonts, font_dirs, stacklevel=4)
     if resources_dir is not None:
         o['resources_dir'] = resources_dir
     if background is not None:
@@ -116,7 +118,7 @@ class SvgImageFile(ImageFile.ImageFile):
         base = (os.path.dirname(os.path.abspath(path))
                 if isinstance(path, str) and path and os.path.isfile(path) else None)
         self._svg_tree = build_tree(root, base_dir=base, dpi=opts['dpi'],
-                                    font_dirs=opts['font_dirs'],
+                                    fonts=FontOptions.coerce(opts['fonts']),
                                     resources_dir=opts['resources_dir'])
         self._svg_dpi = opts['dpi']
         self._svg_background = opts['background']
@@ -157,7 +159,7 @@ class SvgImageFile(ImageFile.ImageFile):
             from ..renderer import render_tree
             width, height, zoom = self._svg_request
             canvas = render_tree(tree, width=width, height=height, zoom=zoom,
-                                 background=self._svg_background)
+                                 background=self._svg_background, dtype='uint8')
             self.load_prepare()
             self.frombytes(canvas.to_rgba8().tobytes())
             if self.fp is not None and getattr(self, '_exclusive_fp', False):
@@ -167,8 +169,8 @@ class SvgImageFile(ImageFile.ImageFile):
         return super().load()
 
 
-def register(*, dpi: float | None = None, font_dirs=None, resources_dir: str | None = None,
-             background=None) -> None:
+def register(*, dpi: float | None = None, fonts=None, resources_dir: str | None = None,
+             background=None, font_dirs=None) -> None:
     """Register the SVG plugin with Pillow (``Image.open`` then opens SVG and
     SVGZ); the keywords set the options it opens with, unset ones being the
     built-in defaults.
@@ -177,8 +179,9 @@ def register(*, dpi: float | None = None, font_dirs=None, resources_dir: str | N
     ----------
     dpi : float, optional
         Resolution for absolute units (default 96).
-    font_dirs : str or sequence of str, optional
-        Directories of fonts for text.
+    fonts : raster.FontOptions or dict, optional
+        The fonts of text (default: the system's fonts); ``font_dirs`` is
+        its deprecated spelling (see :func:`raster.load_svg`).
     resources_dir : str, optional
         A directory images may be read from besides the document's own.
     background : str or tuple, optional
@@ -188,7 +191,7 @@ def register(*, dpi: float | None = None, font_dirs=None, resources_dir: str | N
     built-in ones).
     """
     global _defaults
-    _defaults = _options(dpi, font_dirs, resources_dir, background)
+    _defaults = _options(dpi, fonts, resources_dir, background, font_dirs=font_dirs)
     Image.register_open(FORMAT, SvgImageFile, _accept)
     Image.register_extensions(FORMAT, list(EXTENSIONS))
     Image.register_mime(FORMAT, MIME)
@@ -196,7 +199,7 @@ def register(*, dpi: float | None = None, font_dirs=None, resources_dir: str | N
 
 def open(fp, *, width: int | None = None, height: int | None = None,
          zoom: float | None = None, dpi: float | None = None, background=None,
-         font_dirs=None, resources_dir=None) -> SvgImageFile:
+         fonts=None, resources_dir=None, font_dirs=None) -> SvgImageFile:
     """Open an SVG or SVGZ document as a Pillow image of a chosen size.
 
     Parameters
@@ -208,7 +211,7 @@ def open(fp, *, width: int | None = None, height: int | None = None,
         the natural size.
     zoom : float, optional
         Scale of the natural size (instead of width/height).
-    dpi, background, font_dirs, resources_dir :
+    dpi, background, fonts, resources_dir :
         As for :func:`register`; unset ones are the registered defaults.
 
     Returns
@@ -226,7 +229,8 @@ def open(fp, *, width: int | None = None, height: int | None = None,
         A bad size or zoom.
     """
     from ..sources import local_path
-    opts = _options(dpi, font_dirs, resources_dir, background, base=_defaults)
+    opts = _options(dpi, fonts, resources_dir, background, base=_defaults,
+                    font_dirs=font_dirs)
     if isinstance(fp, (str, os.PathLike)):
         path = local_path(fp)
         f = _open_file(path)

@@ -1,9 +1,12 @@
-"""A premultiplied float32 RGBA canvas: fills, source-over compositing, PNG.
+"""A premultiplied RGBA canvas: fills, source-over compositing, PNG.
 
 Pixel (row ``i``, column ``j``) of a canvas covers ``[j, j+1] x [i, i+1]`` in
-device space (x right, y down).  :attr:`Canvas.data` is ``(H, W, 4)`` float32
-holding *premultiplied* red, green, blue and alpha in [0, 1].  Colours passed
-in are *straight* (not premultiplied) RGB or RGBA in [0, 1].
+device space (x right, y down).  :attr:`Canvas.data` is ``(H, W, 4)``
+holding *premultiplied* red, green, blue and alpha: float32 in [0, 1] (the
+default), or uint8 in 0..255 for an *8-bit canvas* (``dtype=np.uint8``, a
+quarter of the memory, as resvg's pixmaps: every fill and composite is
+computed in float32 and rounded to the nearest of the 256 levels).  Colours
+passed in are *straight* (not premultiplied) RGB or RGBA in [0, 1].
 
 >>> import numpy as np
 >>> from raster.pixels.scan import Mask
@@ -37,6 +40,12 @@ _SMALL = 1024
 
 # Pixels per block of rows in fill / composite (bounds temporaries).
 _BLOCK = 1 << 14
+
+# Pixel storage types of a canvas.
+_DTYPES = (np.dtype(np.float32), np.dtype(np.uint8))
+_U8 = np.dtype(np.uint8)
+_S255 = np.float32(255.0)
+_HALF = np.float32(0.5)
 
 
 def _color(color, opacity):
@@ -134,6 +143,32 @@ def _spread4(k, lanes):
     return out.view(np.float32).reshape(r, 4 * c)
 
 
+def _over8(reg, row, k4, f=None, t=None):
+    """``reg += k4 (row - reg)`` on uint8 ``reg`` (levels 0..255), in float32,
+    rounded half up: ``row`` and ``k4`` are float32 broadcasting to
+    ``reg``'s shape (``row`` in levels); ``f``, ``t``: optional float32
+    scratch of that shape."""
+    if f is None:
+        f = reg.astype(np.float32)
+    else:
+        np.copyto(f, reg)
+    t = np.subtract(row, f, out=t)
+    t *= k4
+    t += f
+    t += _HALF
+    np.copyto(reg, t, casting='unsafe')      # truncation of values >= 0: rounding
+
+
+def _quantize(dst, values):
+    """Store float32 premultiplied ``values`` in [0, 1] into the uint8
+    array ``dst`` (of the same shape), rounded to the nearest level and
+    clamped to 0..255."""
+    v = np.multiply(values, _S255, dtype=np.float32)
+    v += _HALF
+    np.clip(v, 0.0, 255.0, out=v)
+    np.copyto(dst, v, casting='unsafe')
+
+
 def _demultiply(flat):
     """Divide the colour of (n, 4) float32 pixels in [0, 1] by their alpha,
     in place, where 0 < alpha < 1 (other pixels are left as they are)."""
@@ -156,7 +191,7 @@ def _demultiply(flat):
 
 
 class Canvas:
-    """Premultiplied RGBA float32 pixel buffer.
+    """Premultiplied RGBA pixel buffer, float32 or 8-bit.
 
     Parameters
     ----------
@@ -165,29 +200,56 @@ class Canvas:
     background : sequence of 3 or 4 float, optional
         Straight RGB(A) colour in [0, 1] to start from; transparent black
         when omitted.
+    dtype : numpy.float32 or numpy.uint8
+        Storage: float32 (exact to float precision, 16 bytes a pixel) or
+        uint8 (4 bytes a pixel; each fill, composite and store rounds to
+        1/255).
 
     Attributes
     ----------
-    data : (height, width, 4) float32 ndarray
-        Premultiplied RGBA in [0, 1].
+    data : (height, width, 4) float32 or uint8 ndarray
+        Premultiplied RGBA, in [0, 1] (float32) or in 0..255 (uint8).
 
     Raises
     ------
     CanvasError
         Size not a positive whole number, a side above
         :data:`raster.limits.MAX_SIDE` or more than
-        :data:`raster.limits.MAX_PIXELS` pixels; malformed background.
+        :data:`raster.limits.MAX_PIXELS` pixels; malformed background; a
+        dtype other than float32 and uint8.
 
-    >>> Canvas(3, 2).data.shape
-    (2, 3, 4)
+    >>> Canvas(3, 2).data.shape, Canvas(3, 2, dtype=np.uint8).data.dtype
+    ((2, 3, 4), dtype('uint8'))
+    >>> Canvas(1, 1, (1, 0.5, 0), dtype=np.uint8).data.tolist()
+    [[[255, 128, 0, 255]]]
     """
 
-    def __init__(self, width, height, background=None):
+    def __init__(self, width, height, background=None, dtype=np.float32):
         self.width, self.height = check_canvas_size(width, height)
-        self.data = np.zeros((self.height, self.width, 4), np.float32)
+        try:
+            dt = np.dtype(dtype)
+        except TypeError:
+            dt = None
+        if dt not in _DTYPES:
+            raise CanvasError('canvas dtype must be float32 or uint8, got %r' % (dtype,))
+        self.data = np.zeros((self.height, self.width, 4), dt)
         if background is not None:
             r, g, b, a = _color(background, 1.0)
-            self.data[...] = (r * a, g * a, b * a, a)
+            px = np.array([r * a, g * a, b * a, a], np.float32)
+            if dt == _U8:
+                _quantize(self.data[:1, :1], px.reshape(1, 1, 4))
+                px = self.data[0, 0].copy()
+            self.data[...] = px
+
+    @property
+    def dtype(self):
+        """The storage type, ``numpy.dtype('float32')`` or ``('uint8')``."""
+        return self.data.dtype
+
+    @property
+    def nbytes(self):
+        """Bytes held by the pixels."""
+        return self.data.nbytes
 
     @property
     def shape(self):
@@ -232,6 +294,9 @@ class Canvas:
         alpha, vec = _paint(color, opacity)
         if alpha == 0.0:
             return
+        eight = self.data.dtype == _U8
+        if eight:
+            vec = vec * _S255           # the colour in levels
         cov = np.asarray(mask.data, np.float32)
         if cov.ndim != 2:
             raise CanvasError('mask data must be 2-D, got shape %r' % (cov.shape,))
@@ -256,6 +321,9 @@ class Canvas:
                 reg, k4, row = self.data[dst_sl], k[..., None].copy(), vec
             if alpha != 1.0:
                 k4 *= alpha
+            if eight:
+                _over8(reg, row, k4)
+                return
             t = row - reg
             t *= k4
             reg += t
@@ -289,6 +357,7 @@ class Canvas:
         step = max(1, _BLOCK // max(1, w))
         nb = min(step, k.shape[0]) * w
         tmp = np.empty(4 * nb, np.float32)
+        ftmp = np.empty(4 * nb, np.float32) if eight else None
         lanes = np.empty((nb, 2), np.uint64)
         vt = _row_of(vec, nb)
         for i0 in range(0, k.shape[0], step):
@@ -304,6 +373,10 @@ class Canvas:
             k4 = _spread4(kk, lanes)
             reg = region[i0:i0 + step, c0:c1].reshape(rows, n4, copy=False)
             t = tmp[:rows * n4].reshape(rows, n4)
+            if eight:
+                _over8(reg, vt[:rows * n4].reshape(rows, n4), k4,
+                       ftmp[:rows * n4].reshape(rows, n4), t)
+                continue
             np.subtract(vt[:rows * n4].reshape(rows, n4), reg, out=t)
             t *= k4
             reg += t
@@ -314,18 +387,27 @@ class Canvas:
 
         ``covered`` ((h, w) bool) is ``k != 0`` and ``nnz`` its count.
         Pixels of full coverage (``k == 1``) take the colour ``vec`` ((4,)
-        float32, alpha 1) by a masked copy, without reading the canvas; the
-        partly covered ones (edges) are blended by :meth:`_fill_pixels`.
+        float32, alpha 1; in levels on an 8-bit canvas, rounded there) by a
+        masked copy, without reading the canvas; the partly covered ones
+        (edges) are blended by :meth:`_fill_pixels`.
         """
         h, w = k.shape
         full = k == 1.0
         nfull = np.count_nonzero(full)
-        # the bool mask repeated to the 4 lanes of each pixel: each byte
-        # times 0x01010101 fills a uint32 with 4 copies of it
-        full4 = full.view(np.uint8).astype(np.uint32)
-        full4 *= np.uint32(0x01010101)
-        reg = self.data[dst_sl].reshape(h, 4 * w, copy=False)
-        np.copyto(reg, _row_of(vec, w)[:4 * w], where=full4.view(np.bool_).reshape(h, 4 * w))
+        if self.data.dtype == _U8:
+            # a pixel is one uint32: the colour (the blend of coverage 1,
+            # rounded) copied where the coverage is full
+            px = np.floor(vec + _HALF).astype(np.uint8).view(np.uint32)
+            reg = self.data[dst_sl].view(np.uint32)[..., 0]
+            np.copyto(reg, px, where=full)
+        else:
+            # the bool mask repeated to the 4 lanes of each pixel: each byte
+            # times 0x01010101 fills a uint32 with 4 copies of it
+            full4 = full.view(np.uint8).astype(np.uint32)
+            full4 *= np.uint32(0x01010101)
+            reg = self.data[dst_sl].reshape(h, 4 * w, copy=False)
+            np.copyto(reg, _row_of(vec, w)[:4 * w],
+                      where=full4.view(np.bool_).reshape(h, 4 * w))
         if nfull < nnz:
             covered &= ~full
             self._fill_pixels(np.flatnonzero(covered), k, dst_sl, np.float32(1.0), vec)
@@ -344,6 +426,10 @@ class Canvas:
         n = len(idx)
         k4 = _spread4(kk.reshape(1, n), np.empty((n, 2), np.uint64)).reshape(n, 4)
         t = _tile4(vec, n).reshape(n, 4)
+        if reg.dtype == _U8:
+            _over8(reg, t, k4, t=t)
+            flat[pix] = reg
+            return
         t -= reg
         t *= k4
         reg += t
@@ -354,8 +440,9 @@ class Canvas:
 
         Parameters
         ----------
-        src_premul : (h, w, 4) array_like of float32
-            Premultiplied RGBA; ``src_premul[0, 0]`` lands on canvas pixel
+        src_premul : (h, w, 4) array_like of float32, or uint8 ndarray
+            Premultiplied RGBA, floats in [0, 1] or uint8 levels (the data
+            of an 8-bit layer); ``src_premul[0, 0]`` lands on canvas pixel
             (row ``y0``, column ``x0``).  Parts off the canvas are ignored.
         x0, y0 : int
         opacity : float
@@ -366,7 +453,10 @@ class Canvas:
         >>> c.data.tolist()
         [[[0.5, 0.0, 0.5, 1.0]]]
         """
-        src = np.asarray(src_premul, dtype=np.float32)
+        src = np.asarray(src_premul)
+        levels = src.dtype == _U8
+        if not levels:
+            src = src.astype(np.float32, copy=False)
         if src.ndim != 3 or src.shape[2] != 4:
             raise CanvasError('layer must have shape (h, w, 4), got %r' % (src.shape,))
         try:
@@ -385,25 +475,91 @@ class Canvas:
         dst_sl, src_sl = win
         s = src[src_sl]
         region = self.data[dst_sl]
+        eight = region.dtype == _U8
         # region = region * (1 - alpha) + s, with the factor spread to the 4
-        # lanes of each pixel (see _spread4) so the loops stay long
+        # lanes of each pixel (see _spread4) so the loops stay long (on an
+        # 8-bit canvas in float32 levels, rounded)
         w = s.shape[1]
         step = max(1, _BLOCK // max(1, w))
         lanes = np.empty((min(step, s.shape[0]) * w, 2), np.uint64)
         one = np.float32(1.0)
         for i0 in range(0, s.shape[0], step):
             ss = s[i0:i0 + step]
-            if op != 1.0:
+            if levels:
+                ss = np.multiply(ss, np.float32(op / 255.0), dtype=np.float32)
+            elif op != 1.0:
                 ss = ss * np.float32(op)
             reg = region[i0:i0 + step]
-            keep = _spread4(np.subtract(one, ss[..., 3]), lanes)
-            reg *= keep.reshape(reg.shape)
+            keep = _spread4(np.subtract(one, ss[..., 3]), lanes).reshape(reg.shape)
+            if eight:
+                f = reg.astype(np.float32)
+                f *= keep
+                f += ss * _S255
+                f += _HALF
+                np.clip(f, 0.0, 255.0, out=f)
+                np.copyto(reg, f, casting='unsafe')
+                continue
+            reg *= keep
             reg += ss
 
     def store(self, y0, y1, x0, x1, pixels):
         """Replace canvas pixels ``[y0:y1, x0:x1]`` by ``pixels`` ((y1-y0,
-        x1-x0, 4) premultiplied RGBA; the window must lie on the canvas)."""
-        self.data[y0:y1, x0:x1] = pixels
+        x1-x0, 4) premultiplied RGBA floats in [0, 1]; the window must lie
+        on the canvas; rounded to levels on an 8-bit canvas)."""
+        if self.data.dtype == _U8:
+            _quantize(self.data[y0:y1, x0:x1], pixels)
+        else:
+            self.data[y0:y1, x0:x1] = pixels
+
+    def scale(self, factor):
+        """Multiply every pixel (all four channels) by ``factor`` ((H, W)
+        float32 in [0, 1]: a clip path's coverage, a mask's values);
+        rounded on an 8-bit canvas.
+
+        >>> c = Canvas(2, 1, (1, 1, 1), dtype=np.uint8)
+        >>> c.scale(np.array([[0.5, 0.25]], np.float32)); c.data[0, :, 3].tolist()
+        [128, 64]
+        """
+        f = np.asarray(factor, np.float32)
+        if f.shape != (self.height, self.width):
+            raise CanvasError('factor must have shape %r, got %r'
+                              % ((self.height, self.width), f.shape))
+        if self.data.dtype != _U8:
+            self.data *= f[..., None]
+            return
+        step = max(1, _BLOCK // self.width)
+        for y in range(0, self.height, step):
+            reg = self.data[y:y + step]
+            v = np.multiply(reg, f[y:y + step, :, None], dtype=np.float32)
+            v += _HALF
+            np.copyto(reg, v, casting='unsafe')
+
+    def combine(self, weights):
+        """``sum(weights[c] * channel c)`` per pixel, channels R, G, B, A in
+        [0, 1]: (H, W) float32 (the alpha, ``(0, 0, 0, 1)``, or the
+        luminance of a mask), computed in blocks of rows.
+
+        >>> c = Canvas(1, 1, (1, 0, 0, 0.5), dtype=np.uint8)     # levels (128, 0, 0, 128)
+        >>> c.combine((1, 0, 0, 0)) == c.combine((0, 0, 0, 1)) == np.float32(128 / 255)
+        array([[ True]])
+        """
+        w = np.asarray(weights, np.float32).reshape(4)
+        if self.data.dtype == _U8:
+            w = w / _S255
+        out = np.empty((self.height, self.width), np.float32)
+        step = max(1, _BLOCK // self.width)
+        for y in range(0, self.height, step):
+            np.dot(self.data[y:y + step].astype(np.float32, copy=False), w, out=out[y:y + step])
+        return out
+
+    def read(self, y0, y1, x0, x1):
+        """A float32 copy of canvas pixels ``[y0:y1, x0:x1]``:
+        ((y1-y0, x1-x0, 4) premultiplied RGBA in [0, 1]; levels divided by
+        255 on an 8-bit canvas)."""
+        d = self.data[y0:y1, x0:x1]
+        if d.dtype == _U8:
+            return np.divide(d, _S255, dtype=np.float32)
+        return d.copy()
 
     def to_rgba8(self, premultiplied=False):
         """8-bit RGBA image, (H, W, 4) uint8.
@@ -413,7 +569,8 @@ class Canvas:
         become (0, 0, 0, 0).  Rounding is to nearest, values are clamped to
         [0, 255].  Computed in float32, in blocks of rows that stay in
         cache; only pixels with 0 < alpha < 1 are divided (alpha 1 leaves
-        the colour as it is, alpha 0 gives 0).
+        the colour as it is, alpha 0 gives 0).  An 8-bit canvas is
+        demultiplied from its levels: ``c * 255 / a`` rounded.
 
         >>> c = Canvas(2, 1)
         >>> c.data[0] = [[0.25, 0.0, 0.0, 0.5], [0.2, 0.4, 0.6, 1.0]]
@@ -421,15 +578,29 @@ class Canvas:
         [[[128, 0, 0, 128], [51, 102, 153, 255]]]
         >>> c.to_rgba8(premultiplied=True)[0, 0].tolist()
         [64, 0, 0, 128]
+        >>> c8 = Canvas(1, 1, dtype=np.uint8)
+        >>> c8.data[0, 0] = [64, 0, 0, 128]
+        >>> c8.to_rgba8().tolist()
+        [[[128, 0, 0, 128]]]
         """
+        return self.rgba8_rows(0, self.height, premultiplied)
+
+    def rgba8_rows(self, y0, y1, premultiplied=False):
+        """Rows ``y0:y1`` of :meth:`to_rgba8`: ((y1-y0), W, 4) uint8 (what
+        an encoder writing a strip at a time reads, without an image of the
+        whole canvas)."""
         H, W = self.height, self.width
-        flat = self.data.reshape(-1, 4)
-        out = np.empty((H * W, 4), np.uint8)
+        y0, y1 = max(0, int(y0)), min(H, int(y1))
+        n = max(0, y1 - y0) * W
+        flat = self.data.reshape(-1, 4)[y0 * W:y0 * W + n]
+        if self.data.dtype == _U8:
+            return self._rows8(flat, premultiplied).reshape(-1, W, 4)
+        out = np.empty((n, 4), np.uint8)
         step = max(1, 2 * _BLOCK // W) * W          # pixels per block
-        buf = np.empty((min(step, H * W), 4), np.float32)
+        buf = np.empty((min(step, max(n, 1)), 4), np.float32)
         zero, one = np.float32(0.0), np.float32(1.0)
         s255, half = np.float32(255.0), np.float32(0.5)
-        for p0 in range(0, H * W, step):
+        for p0 in range(0, n, step):
             src = flat[p0:p0 + step]
             b = buf[:len(src)]
             np.multiply(src, s255, out=b)
@@ -459,7 +630,28 @@ class Canvas:
                 # little-endian uint32 the alpha byte is the top one
                 px = o.view('<u4').reshape(-1)
                 np.multiply(px, px >= np.uint32(1 << 24), out=px)
-        return out.reshape(H, W, 4)
+        return out.reshape(-1, W, 4)
+
+    @staticmethod
+    def _rows8(flat, premultiplied):
+        """:meth:`rgba8_rows` of an 8-bit canvas's (n, 4) uint8 pixels."""
+        out = flat.copy()
+        if premultiplied:
+            return out
+        a = out[:, 3]
+        idx = np.flatnonzero((a != 0) & (a != 255))
+        if len(idx):
+            sub = out[idx].astype(np.float32)
+            c = sub[:, :3]
+            c *= _S255
+            c /= sub[:, 3:]
+            c += _HALF
+            np.minimum(c, _S255, out=c)
+            out[idx] = sub.astype(np.uint8)     # (c is a view of sub; truncation: rounding)
+        # alpha 0: colour 0 (as little-endian uint32 the alpha byte is the top one)
+        px = out.view('<u4').reshape(-1)
+        np.multiply(px, px >= np.uint32(1 << 24), out=px)
+        return out
 
     def to_image(self):
         """The canvas as a ``PIL.Image.Image`` in mode RGBA (straight alpha)."""

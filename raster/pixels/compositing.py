@@ -211,9 +211,10 @@ def composite(a, b, operator='over', k=(0.0, 0.0, 0.0, 0.0)):
 
 
 def blend_layer(target, src, x0, y0, opacity, mode):
-    """Composite the premultiplied layer ``src`` (h, w, 4) at (x0, y0) onto
+    """Composite the premultiplied layer ``src`` ((h, w, 4) floats in [0, 1],
+    or uint8 levels) at (x0, y0) onto
     ``target`` (a :class:`~raster.pixels.canvas.Canvas` or a view with the
-    same ``width``/``height``/``data``/``composite``/``store``) with
+    same ``width``/``height``/``read``/``composite``/``store``) with
     ``opacity`` and a blend mode: ``S (1 - Da) + D (1 - Sa) + Sa Da B(Dc, Sc)``
     (``normal``: plain source-over)."""
     fn = SEPARABLE.get(mode) or NON_SEPARABLE.get(mode)
@@ -225,6 +226,7 @@ def blend_layer(target, src, x0, y0, opacity, mode):
     cx1, cy1 = min(x0 + w, target.width), min(y0 + h, target.height)
     if cx1 <= cx0 or cy1 <= cy0:
         return
-    s = src[cy0 - y0:cy1 - y0, cx0 - x0:cx1 - x0].astype(np.float64) * opacity
-    d = target.data[cy0:cy1, cx0:cx1].astype(np.float64)
+    s = src[cy0 - y0:cy1 - y0, cx0 - x0:cx1 - x0].astype(np.float64)
+    s *= opacity / 255.0 if src.dtype == np.uint8 else opacity      # (uint8: an 8-bit layer)
+    d = target.read(cy0, cy1, cx0, cx1).astype(np.float64)
     target.store(cy0, cy1, cx0, cx1, _blend64(s, d, fn))

@@ -179,16 +179,26 @@ def _perlin_tables(seed):
     return r
 
 
-def _noise2(lattice, grad, vx, vy):
-    """Perlin noise of the four channels at points (vx, vy): (4, N)."""
+def _noise2(lattice, grad, vx, vy, stitch=None):
+    """Perlin noise of the four channels at points (vx, vy): (4, N).
+    ``stitch`` is ``(width, wrap_x, height, wrap_y)`` of the reference's
+    stitching: lattice columns at or past ``wrap_x`` are taken ``width``
+    columns back (rows likewise), so the noise repeats across the tile."""
     t = vx + 4096.0
     ix = t.astype(np.int64)
-    bx0, rx0 = ix & 255, t - ix
-    bx1 = (bx0 + 1) & 255
+    rx0 = t - ix
+    bx0, bx1 = ix, ix + 1
     t = vy + 4096.0
     iy = t.astype(np.int64)
-    by0, ry0 = iy & 255, t - iy
-    by1 = (by0 + 1) & 255
+    ry0 = t - iy
+    by0, by1 = iy, iy + 1
+    if stitch is not None:
+        sw, wx, sh, wy = stitch
+        bx0 = np.where(bx0 >= wx, bx0 - sw, bx0)
+        bx1 = np.where(bx1 >= wx, bx1 - sw, bx1)
+        by0 = np.where(by0 >= wy, by0 - sh, by0)
+        by1 = np.where(by1 >= wy, by1 - sh, by1)
+    bx0, bx1, by0, by1 = bx0 & 255, bx1 & 255, by0 & 255, by1 & 255
     rx1, ry1 = rx0 - 1.0, ry0 - 1.0
     i, j = lattice[bx0], lattice[bx1]
     b00, b10 = lattice[i + by0], lattice[j + by0]
@@ -205,8 +215,18 @@ def _noise2(lattice, grad, vx, vy):
     return a_ + sy * (b_ - a_)
 
 
-def turbulence(x, y, base_freq, octaves, seed, fractal):
-    """feTurbulence (without stitching) at user-space points.
+def _stitch_frequency(f, size):
+    """The base frequency nearest ``f`` (by ratio) that fits a whole
+    number of lattice cells in ``size`` (Filter Effects' reference)."""
+    if f == 0 or not size > 0:
+        return f
+    lo = math.floor(size * f) / size
+    hi = math.ceil(size * f) / size
+    return lo if lo > 0 and f / lo < hi / f else hi
+
+
+def turbulence(x, y, base_freq, octaves, seed, fractal, tile=None):
+    """feTurbulence at user-space points.
 
     Parameters
     ----------
@@ -217,6 +237,11 @@ def turbulence(x, y, base_freq, octaves, seed, fractal):
     fractal : bool
         True for ``fractalNoise`` (``(sum + 1) / 2``), False for
         ``turbulence`` (sum of absolute values).
+    tile : (x, y, w, h) or None
+        ``stitchTiles="stitch"``: the tile (the primitive subregion, user
+        units) that the noise repeats across without seams -- the base
+        frequencies are adjusted to whole numbers of lattice cells per tile
+        and the lattice wraps at the tile's far edges, octave by octave.
 
     Returns
     -------
@@ -224,14 +249,24 @@ def turbulence(x, y, base_freq, octaves, seed, fractal):
     """
     lattice, grad = _perlin_tables(int(seed))
     h, w = x.shape
-    vx = x.ravel() * base_freq[0]
-    vy = y.ravel() * base_freq[1]
+    fx, fy = float(base_freq[0]), float(base_freq[1])
+    stitch = None
+    if tile is not None:
+        tx, ty, tw, th = (float(v) for v in tile)
+        fx, fy = _stitch_frequency(fx, tw), _stitch_frequency(fy, th)
+        sw, sh = int(tw * fx + 0.5), int(th * fy + 0.5)
+        stitch = (sw, int(tx * fx + 4096 + sw), sh, int(ty * fy + 4096 + sh))
+    vx = x.ravel() * fx
+    vy = y.ravel() * fy
     total = np.zeros((4, vx.size))
     ratio = 1.0
     for _ in range(octaves):                 # loop over octaves, not pixels
-        n = _noise2(lattice, grad, vx, vy)
+        n = _noise2(lattice, grad, vx, vy, stitch)
         total += (n if fractal else np.abs(n)) / ratio
         vx, vy, ratio = vx * 2.0, vy * 2.0, ratio * 2.0
+        if stitch is not None:
+            sw, wx, sh, wy = stitch
+            stitch = (2 * sw, 2 * wx - 4096, 2 * sh, 2 * wy - 4096)
     if fractal:
         total = (total + 1.0) / 2.0
     return np.clip(total.T.reshape(h, w, 4), 0.0, 1.0).astype(np.float32)

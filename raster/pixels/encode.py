@@ -39,10 +39,10 @@ from typing import Sequence
 import numpy as np
 
 from ..errors import FormatError
-from .png import DEFAULT_LEVEL, encode_png
+from .png import DEFAULT_LEVEL, STRIP_PIXELS, encode_png, encode_png_strips
 
 __all__ = ['FORMATS', 'EXTENSIONS', 'DEFAULT_JPEG_QUALITY', 'format_name', 'format_of_path',
-           'flatten', 'encode']
+           'flatten', 'encode', 'encode_canvas']
 
 #: Formats :func:`encode` writes.
 FORMATS = ('png', 'jpeg', 'webp', 'tiff', 'bmp')
@@ -157,6 +157,51 @@ def _dpi_pair(dpi):
     return xy
 
 
+def _check_options(fmt, quality, compress_level):
+    if quality is not None:
+        if fmt not in _QUALITY:
+            raise FormatError('quality applies to JPEG and WebP, not %s' % fmt.upper())
+        quality = _int_option('quality', quality, 1, 100)
+    if compress_level is not None:
+        if fmt != 'png':
+            raise FormatError('compression level applies to PNG, not %s' % fmt.upper())
+        compress_level = _int_option('compression level', compress_level, 0, 9)
+    return quality, compress_level
+
+
+def encode_canvas(canvas, format: str = 'png', *,
+                  dpi: float | tuple[float, float] | None = None, quality: int | None = None,
+                  compress_level: int | None = None,
+                  matte: Sequence[float] = (1.0, 1.0, 1.0)) -> bytes:
+    """:func:`encode` of a canvas's straight-alpha 8-bit image
+    (:meth:`~raster.pixels.canvas.Canvas.to_rgba8`), the same bytes; a PNG
+    is written a strip of rows at a time
+    (:func:`raster.pixels.png.encode_png_strips`), without an 8-bit copy of
+    the whole canvas.
+
+    Parameters
+    ----------
+    canvas : raster.pixels.canvas.Canvas
+    format, dpi, quality, compress_level, matte :
+        As for :func:`encode`.
+
+    Raises
+    ------
+    FormatError
+        As :func:`encode`.
+    """
+    fmt = format_name(format)
+    quality, compress_level = _check_options(fmt, quality, compress_level)
+    if fmt != 'png':
+        return encode(canvas.to_rgba8(), fmt, dpi=dpi, quality=quality, matte=matte)
+    xy = _dpi_pair(dpi) if dpi is not None else None
+    W, H = canvas.width, canvas.height
+    step = max(1, STRIP_PIXELS // W)
+    strips = (canvas.rgba8_rows(y, y + step) for y in range(0, H, step))
+    return encode_png_strips(W, H, strips, DEFAULT_LEVEL if compress_level is None
+                             else compress_level, xy)
+
+
 def encode(rgba: np.ndarray, format: str = 'png', *,
            dpi: float | tuple[float, float] | None = None, quality: int | None = None,
            compress_level: int | None = None,
@@ -194,14 +239,7 @@ def encode(rgba: np.ndarray, format: str = 'png', *,
     """
     fmt = format_name(format)
     a = _check_rgba(rgba)
-    if quality is not None:
-        if fmt not in _QUALITY:
-            raise FormatError('quality applies to JPEG and WebP, not %s' % fmt.upper())
-        quality = _int_option('quality', quality, 1, 100)
-    if compress_level is not None:
-        if fmt != 'png':
-            raise FormatError('compression level applies to PNG, not %s' % fmt.upper())
-        compress_level = _int_option('compression level', compress_level, 0, 9)
+    quality, compress_level = _check_options(fmt, quality, compress_level)
     xy = _dpi_pair(dpi) if dpi is not None else None
     if fmt == 'png':
         return encode_png(a, DEFAULT_LEVEL if compress_level is None else compress_level, xy)

@@ -1,11 +1,10 @@
 r"""SVG 2 mesh gradients: the colours of a mesh of Coons patches at pixel
 centres.
 
-This is the pixel half of ``<meshgradient>``; the SVG half (parsing
-``meshrow``/``meshpatch``/``stop`` path data into patch boundaries, corner
-colours from ``stop-color``/``stop-opacity``, ``gradientUnits`` and
-``gradientTransform`` mapped to device space, clipping to the painted shape)
-lives with the parser and renderer.  The entry point is
+This is the pixel half of ``<meshgradient>``; the SVG half (``meshrow``/
+``meshpatch``/``stop`` path data into patch boundaries and corner colours)
+is :mod:`raster.parser.mesh`, and the renderer maps the patches to device
+space and clips them to the painted shape (:func:`raster.renderer.paint.mesh_colors`).  The entry point is
 :func:`mesh_gradient`.
 
 Input, all in device space:

@@ -8,15 +8,19 @@ import numpy as np
 
 from .scan import Mask
 
-__all__ = ['ClipRect']
+__all__ = ['ClipRect', 'STRIP_PIXELS']
+
+#: Pixels of a window multiplied by the rectangle's coverage at a time.
+STRIP_PIXELS = 1 << 18
 
 
 class ClipRect:
     """A canvas seen through an axis-aligned device rectangle ``box``
     (x0, y0, x1, y1): :meth:`fill`, :meth:`composite` and :meth:`store`
     act on the canvas with the source multiplied by the rectangle's exact
-    area coverage of each pixel (the product of its x and y overlaps).
-    ``width``, ``height`` and ``data`` are the canvas's."""
+    area coverage of each pixel (the product of its x and y overlaps);
+    :meth:`read` reads the canvas.  ``width``, ``height`` and ``data`` are
+    the canvas's."""
 
     def __init__(self, canvas, box):
         self.canvas = canvas
@@ -37,17 +41,31 @@ class ClipRect:
     def data(self):
         return self.canvas.data
 
+    def read(self, y0, y1, x0, x1):
+        """The canvas's :meth:`~raster.pixels.canvas.Canvas.read`."""
+        return self.canvas.read(y0, y1, x0, x1)
+
     def _window(self, x0, y0, h, w):
-        """(a0, b0, a1, b1, cov): the window's part inside the rectangle in
-        canvas pixels and the coverage there, or None."""
+        """(a0, b0, a1, b1): the window's part inside the rectangle in
+        canvas pixels, or None."""
         if self.empty:
             return None
         a0, b0 = max(x0, self.X0), max(y0, self.Y0)
         a1, b1 = min(x0 + w, self.X1), min(y0 + h, self.Y1)
         if a1 <= a0 or b1 <= b0:
             return None
-        cov = self.cy[b0 - self.Y0:b1 - self.Y0, None] * self.cx[None, a0 - self.X0:a1 - self.X0]
-        return a0, b0, a1, b1, cov
+        return a0, b0, a1, b1
+
+    def _strips(self, win):
+        """``(b0, b1, coverage)`` of strips of rows of the window ``win``
+        (at most :data:`STRIP_PIXELS` pixels each): what is multiplied and
+        composited at a time, so temporaries stay a strip's size."""
+        a0, b0, a1, b1 = win
+        step = max(1, STRIP_PIXELS // (a1 - a0))
+        cx = self.cx[None, a0 - self.X0:a1 - self.X0]
+        for r0 in range(b0, b1, step):
+            r1 = min(r0 + step, b1)
+            yield r0, r1, self.cy[r0 - self.Y0:r1 - self.Y0, None] * cx
 
     def fill(self, mask, color, opacity=1.0):
         if mask is None:
@@ -56,18 +74,26 @@ class ClipRect:
         win = self._window(int(mask.x0), int(mask.y0), h, w)
         if win is None:
             return
-        a0, b0, a1, b1, cov = win
-        k = mask.data[b0 - mask.y0:b1 - mask.y0, a0 - mask.x0:a1 - mask.x0] * cov
-        self.canvas.fill(Mask(k, a0, b0), color, opacity)
+        a0, _, a1, _ = win
+        for r0, r1, cov in self._strips(win):
+            k = mask.data[r0 - mask.y0:r1 - mask.y0, a0 - mask.x0:a1 - mask.x0] * cov
+            self.canvas.fill(Mask(k, a0, r0), color, opacity)
 
     def composite(self, src, x0=0, y0=0, opacity=1.0):
-        src = np.asarray(src, np.float32)
+        """The canvas's :meth:`~raster.pixels.canvas.Canvas.composite` of
+        ``src`` (floats in [0, 1] or uint8 levels) times the coverage."""
+        src = np.asarray(src)
+        if src.dtype != np.uint8:
+            src = src.astype(np.float32, copy=False)
         win = self._window(int(x0), int(y0), src.shape[0], src.shape[1])
         if win is None:
             return
-        a0, b0, a1, b1, cov = win
-        s = src[b0 - y0:b1 - y0, a0 - x0:a1 - x0] * cov[..., None]
-        self.canvas.composite(s, a0, b0, opacity)
+        a0, _, a1, _ = win
+        for r0, r1, cov in self._strips(win):
+            if src.dtype == np.uint8:
+                cov = cov / np.float32(255.0)
+            s = src[r0 - y0:r1 - y0, a0 - x0:a1 - x0] * cov[..., None]
+            self.canvas.composite(s, a0, r0, opacity)
 
     def store(self, y0, y1, x0, x1, out):
         """Replace canvas pixels [y0:y1, x0:x1] by ``out`` (h, w, 4) as
@@ -75,7 +101,8 @@ class ClipRect:
         win = self._window(x0, y0, y1 - y0, x1 - x0)
         if win is None:
             return
-        a0, b0, a1, b1, cov = win
-        new = out[b0 - y0:b1 - y0, a0 - x0:a1 - x0]
-        old = self.canvas.data[b0:b1, a0:a1]
-        self.canvas.store(b0, b1, a0, a1, old + (new - old) * cov[..., None])
+        a0, _, a1, _ = win
+        for r0, r1, cov in self._strips(win):
+            new = out[r0 - y0:r1 - y0, a0 - x0:a1 - x0]
+            old = self.canvas.read(r0, r1, a0, a1)
+            self.canvas.store(r0, r1, a0, a1, old + (new - old) * cov[..., None])

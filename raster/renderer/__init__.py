@@ -21,16 +21,18 @@ tree, the geometry kernel and the pixel layer; never the parser.
 """
 
 import math
-from typing import Optional, Tuple
+from typing import NamedTuple, Optional, Tuple
 
-from .. import _malloc, limits
+from .. import limits
 from ..errors import CanvasError, SVGError
 from ..pixels.canvas import Canvas
 from ..geometry.transform import IDENTITY, Affine
 from ..tree import Group, Tree
+from ..tree.extent import drawn_box
 from .draw import Renderer
 
-__all__ = ['render_tree', 'output_size', 'DEFAULT_TOLERANCE', 'Renderer']
+__all__ = ['render_tree', 'output_size', 'output_geometry', 'OutputGeometry', 'find_node', 'DEFAULT_TOLERANCE',
+           'Renderer']
 
 #: Default flattening tolerance in device pixels.  The renderer flattens
 #: into straddled polylines (:func:`raster.geometry.flattening.flatten`
@@ -121,7 +123,8 @@ def output_size(doc_width: float, doc_height: float, width: Optional[int] = None
 def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] = None,
                 zoom: Optional[float] = None,
                 background: Optional[Tuple[float, float, float, float]] = None,
-                node_id: Optional[str] = None, tolerance: float = DEFAULT_TOLERANCE) -> Canvas:
+                node_id: Optional[str] = None, tolerance: float = DEFAULT_TOLERANCE,
+                crop: bool = False, dtype='float32') -> Canvas:
     """Render a resolved tree.
 
     Parameters
@@ -136,33 +139,70 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
         transforms of its ancestors.
     tolerance : float
         Flattening tolerance in device pixels (> 0).
+    crop : bool
+        With ``node_id``: the output is the node's exact drawn box
+        (:func:`raster.tree.extent.drawn_box`: strokes, markers and filter
+        regions included, clip paths and masks applied) instead of the
+        page, and ``width``/``height``/``zoom`` size that box (resvg's
+        ``--export-id``).
+    dtype : 'float32' or 'uint8' (or the numpy types)
+        Storage of the output canvas: float32 (16 bytes a pixel), or 8-bit
+        (4 bytes a pixel, each composite onto it rounded to 1/255 as in
+        resvg; what :func:`raster.svg.render` and the ``rasterize`` command
+        use).  Group layers, clip paths and masks are float32 either way.
 
     Returns
     -------
     raster.pixels.canvas.Canvas
-        Premultiplied float32 RGBA canvas of the output size.
+        Premultiplied RGBA canvas of the output size.
 
     Raises
     ------
     CanvasError
         Bad output size (see :func:`output_size`) or tolerance.
     SVGError
-        ``tree`` is not a Tree, or ``node_id`` names no node of it.
+        ``tree`` is not a Tree, ``node_id`` names no node of it, or the
+        node to crop to draws nothing.
     """
     if not isinstance(tree, Tree):
         raise SVGError('render_tree needs a raster.tree.Tree, got %s' % type(tree).__name__)
-    _malloc.tune()
     tol = _positive('tolerance', tolerance)
-    w, h, sx, sy = output_size(tree.width, tree.height, width, height, zoom)
-    canvas = Canvas(w, h, background)
-    base = Affine.scale(sx, sy)
+    g = output_geometry(tree, width, height, zoom, node_id, crop)
+    canvas = Canvas(g.width, g.height, background, dtype)
+    Renderer(tol, canvas.dtype).draw(g.node, g.transform, canvas)
+    return canvas
+
+
+class OutputGeometry(NamedTuple):
+    """What :func:`render_tree` draws and where: ``node``, the output size
+    ``width`` x ``height`` in pixels, ``transform`` (the node's parent
+    coordinates to device pixels) and ``scale``, the (x, y) scale of the
+    output over document px (over the cropped box's size when cropping)."""
+    node: object
+    width: int
+    height: int
+    transform: Affine
+    scale: Tuple[float, float]
+
+
+def output_geometry(tree: Tree, width: Optional[int] = None, height: Optional[int] = None,
+                    zoom: Optional[float] = None, node_id: Optional[str] = None,
+                    crop: bool = False) -> OutputGeometry:
+    """The :class:`OutputGeometry` of a render (arguments as for
+    :func:`render_tree`)."""
     if node_id is None:
-        node, t = tree.root, base
+        node, t = tree.root, IDENTITY
     else:
         node, t = find_node(tree, node_id)
-        t = base @ t
-    Renderer(tol).draw(node, t, canvas)
-    return canvas
+    if crop and node_id is not None:
+        box = drawn_box(node, t, tolerance=0.01)
+        if box is None or not (box[2] > box[0] and box[3] > box[1]):
+            raise SVGError('element %r draws nothing to crop to' % (node_id,))
+        w, h, sx, sy = output_size(box[2] - box[0], box[3] - box[1], width, height, zoom)
+        t = Affine.translate(-box[0], -box[1]) @ t
+    else:
+        w, h, sx, sy = output_size(tree.width, tree.height, width, height, zoom)
+    return OutputGeometry(node, w, h, Affine.scale(sx, sy) @ t, (sx, sy))
 
 
 def find_node(tree: Tree, node_id: str):

@@ -37,10 +37,10 @@ __all__ = ['Masks', 'BATCH_VERBS', 'BATCH_AREA']
 
 #: Verbs per batch of fills and hairlines (a quarter of it for strokes):
 #: bounds the batch's geometry.
-BATCH_VERBS = 100_000
+BATCH_VERBS = 5_000
 
 #: Mask pixels per batch (the masks of a batch are held until drawn).
-BATCH_AREA = 4_000_000
+BATCH_AREA = 1_000_000
 
 _ABSENT = object()
 

@@ -12,7 +12,6 @@ import numpy as np
 
 from ..geometry.path import CLOSE, LINE, MOVE
 from ..tree import Group, ImageNode, PathNode
-from .filters import filter_box
 
 __all__ = ['pixel_box', 'node_box', 'group_box', 'stroke_reach', 'device_area', 'clip_rect']
 
@@ -73,6 +72,7 @@ def node_box(n, t):
     if isinstance(n, Group):
         ct = t @ n.transform
         if n.filters:
+            from .filters import filter_box     # (loaded with the first filter)
             return filter_box(n.filters, ct)
         box = group_box(n, ct)
         if box is not None and n.mask is not None:

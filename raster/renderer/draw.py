@@ -28,27 +28,27 @@ from ..errors import LimitError, RasterError, RasterWarning
 from ..geometry.path import Path
 from ..pixels.canvas import Canvas
 from ..pixels.compositing import blend_layer
-from ..pixels.scan import path_coverage
+from ..pixels.scan import Mask, path_coverage
 from ..pixels.views import ClipRect
 from ..geometry.transform import Affine
-from ..tree import (Group, ImageNode, LinearGradient, MaskType, PaintItem, PathNode, Pattern,
-                    RadialGradient, SolidPaint)
+from ..tree import (Group, ImageNode, LinearGradient, MaskType, MeshGradient, PaintItem, PathNode,
+                    Pattern, RadialGradient, SolidPaint)
 from .batch import Masks
 from .bounds import clip_rect, group_box, pixel_box
-from .filters import apply_filters, filter_box, filter_pixel_box
-from .paint import draw_pixels, gradient_colors, sample
+from .paint import STRIP_PIXELS, draw_pixels, gradient_colors, mesh_colors, sample
 
 __all__ = ['Renderer']
-
-_BLACK = (0.0, 0.0, 0.0, 1.0)
 
 
 class Renderer:
     """Draws tree nodes onto canvases with flattening ``tolerance`` (device
-    pixels)."""
+    pixels).  The layers it makes (groups, masks, SVG images) have the
+    storage ``dtype`` (float32, or uint8 when drawing onto an 8-bit canvas:
+    a quarter of the memory); clip coverage is one float32 channel."""
 
-    def __init__(self, tolerance):
+    def __init__(self, tolerance, dtype=np.float32):
         self.tol = tolerance
+        self.dtype = np.dtype(dtype)
         self.masks = Masks(tolerance)
         self._limit_warned = False
 
@@ -87,6 +87,8 @@ class Renderer:
         # the layer: the group's box, or its filter region (effects draw
         # outside the content)
         if g.filters:
+            # the filter machinery loads with the first filter drawn
+            from .filters import filter_box, filter_layer, filter_pixel_box
             px = filter_pixel_box(filter_box(g.filters, ct), canvas.width, canvas.height)
         else:
             box = group_box(g, ct)
@@ -94,17 +96,17 @@ class Renderer:
         if px is None:
             return
         x0, y0, x1, y1 = px
-        layer = Canvas(x1 - x0, y1 - y0)
+        layer = Canvas(x1 - x0, y1 - y0, dtype=self.dtype)
         lt = Affine.translate(-x0, -y0) @ ct
         self.masks.plan(g.children, lt, layer)
         for c in g.children:
             self.node(c, lt, layer)
         if g.filters:
-            layer.data[...] = apply_filters(g.filters, layer.data, lt, draw=self._draw_new)
+            filter_layer(g.filters, layer, lt, draw=self._draw_new)
         if g.clip_path is not None:
-            layer.data *= self.clip_coverage(g.clip_path, lt, layer.width, layer.height)[..., None]
+            layer.scale(self.clip_coverage(g.clip_path, lt, layer.width, layer.height))
         if g.mask is not None:
-            layer.data *= self.mask_values(g.mask, lt, layer.width, layer.height)[..., None]
+            layer.scale(self.mask_values(g.mask, lt, layer.width, layer.height))
         blend_layer(canvas, layer.data, x0, y0, float(g.opacity), g.blend_mode)
 
     def _draw_new(self, node, m, w, h):
@@ -118,60 +120,69 @@ class Renderer:
     def clip_coverage(self, clip, t, w, h):
         """(h, w) float32 coverage of a ClipPath with CTM ``t`` (the
         clipped group's user space to layer pixels)."""
-        layer = Canvas(w, h)
-        self._clip_node(clip.root, t @ clip.transform, layer)
-        cov = layer.data[..., 3].copy()
+        cov = np.zeros((h, w), np.float32)
+        self._clip_node(clip.root, t @ clip.transform, cov)
         if clip.clip_path is not None:
             cov *= self.clip_coverage(clip.clip_path, t, w, h)
         return cov
 
-    def _clip_node(self, n, t, layer):
-        """Inside a clip path only geometry counts: paths are filled black
-        with their rule (which carries ``clip-rule``) whatever their paint;
-        a clip path on a child still restricts that child."""
+    def _clip_node(self, n, t, cov):
+        """Inside a clip path only geometry counts: the coverage of each path
+        (with its rule, which carries ``clip-rule``, whatever its paint) is
+        united with ``cov`` ((h, w) float32, in place) as alpha composites:
+        ``cov + k (1 - cov)``; a clip path on a child still restricts that
+        child."""
         if isinstance(n, Group):
+            ct = t @ n.transform
             if n.clip_path is not None:
-                ct = t @ n.transform
-                sub = Canvas(layer.width, layer.height)
+                sub = np.zeros_like(cov)
                 for c in n.children:
                     self._clip_node(c, ct, sub)
-                sub.data *= self.clip_coverage(n.clip_path, ct, layer.width,
-                                               layer.height)[..., None]
-                layer.composite(sub.data)
+                h, w = cov.shape
+                sub *= self.clip_coverage(n.clip_path, ct, w, h)
+                sub *= 1.0 - cov
+                cov += sub
                 return
-            ct = t @ n.transform
             for c in n.children:
-                self._clip_node(c, ct, layer)
+                self._clip_node(c, ct, cov)
         elif isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
             rule = n.fill.rule if n.fill is not None else 'nonzero'
+            h, w = cov.shape
             try:
-                m = path_coverage(n.path, layer.width, layer.height, rule, n.antialias,
-                                  tolerance=self.tol, transform=t, straddle=True)
+                m = path_coverage(n.path, w, h, rule, n.antialias, tolerance=self.tol,
+                                  transform=t, straddle=True)
             except LimitError as e:
                 self._left_out(e)
                 return
             if m is not None:
-                layer.fill(m, _BLACK, 1.0)
+                _unite(cov, m)
 
     def mask_values(self, mask, t, w, h):
         """(h, w) float32 values of a Mask with CTM ``t``."""
-        layer = Canvas(w, h)
+        layer = Canvas(w, h, dtype=self.dtype)
         self.node(mask.root, t, layer)
-        d = layer.data
         if mask.kind == MaskType.ALPHA:
-            m = d[..., 3].copy()
+            m = layer.combine((0.0, 0.0, 0.0, 1.0))
         else:
             # luminance of the premultiplied colour = luminance * alpha
-            m = (0.2125 * d[..., 0] + 0.7154 * d[..., 1] + 0.0721 * d[..., 2]).astype(np.float32)
+            m = layer.combine((0.2125, 0.7154, 0.0721, 0.0))
+        del layer
         x, y, rw, rh = mask.rect
-        rect = Path.polygon([(x, y), (x + rw, y), (x + rw, y + rh), (x, y + rh)])
-        rc = path_coverage(rect, w, h, 'nonzero', True, tolerance=self.tol, transform=t)
-        if rc is None:
-            return np.zeros((h, w), np.float32)
-        m *= rc.full(w, h)
+        if t.b == 0.0 and t.c == 0.0:
+            # an axis-aligned rectangle: exact-area coverage, separable
+            x0, x1 = sorted((t.a * x + t.e, t.a * (x + rw) + t.e))
+            y0, y1 = sorted((t.d * y + t.f, t.d * (y + rh) + t.f))
+            _times_rect(m, x0, y0, x1, y1)
+        else:
+            rect = Path.polygon([(x, y), (x + rw, y), (x + rw, y + rh), (x, y + rh)])
+            rc = path_coverage(rect, w, h, 'nonzero', True, tolerance=self.tol, transform=t)
+            if rc is None:
+                return np.zeros((h, w), np.float32)
+            _times_mask(m, rc)
         if mask.mask is not None:
             m *= self.mask_values(mask.mask, t, w, h)
-        return np.clip(m, 0.0, 1.0)
+        np.clip(m, 0.0, 1.0, out=m)
+        return m
 
     # -- paths ---------------------------------------------------------------
     def path(self, n, t, canvas):
@@ -214,22 +225,46 @@ class Renderer:
 
     def paint(self, canvas, mask, paint, opacity, t):
         """Composite ``paint`` (in the user space that ``t`` maps to the
-        canvas) through coverage ``mask`` with ``opacity``."""
+        canvas) through coverage ``mask`` with ``opacity``.  Gradient and
+        pattern colours are made and composited a strip of rows at a time
+        (:data:`raster.renderer.paint.STRIP_PIXELS`)."""
         if isinstance(paint, SolidPaint):
             canvas.fill(mask, paint.color, opacity)
             return
         if isinstance(paint, (LinearGradient, RadialGradient)):
-            src = gradient_colors(paint, mask, t)
+            def colors(m):
+                return gradient_colors(paint, m, t)
+        elif isinstance(paint, MeshGradient):
+            def colors(m):
+                return mesh_colors(paint, m, t, self.tol)
         elif isinstance(paint, Pattern):
-            src = self.pattern(paint, mask, t)
+            tile = self.pattern_tile(paint, t)
+            if tile is None:
+                return
+
+            def colors(m):
+                return _sample_tile(tile, m)
         else:
             return
-        if src is not None:
-            canvas.composite(src, mask.x0, mask.y0, opacity)
+        h, w = mask.data.shape
+        step = max(1, STRIP_PIXELS // max(1, w))
+        for r0 in range(0, h, step):
+            m = mask if h <= step else Mask(mask.data[r0:r0 + step], mask.x0, mask.y0 + r0)
+            src = colors(m)
+            if src is not None:
+                canvas.composite(src, m.x0, m.y0, opacity)
 
     def pattern(self, p, mask, t):
         """Premultiplied (h, w, 4) colours of a pattern over the mask window,
-        multiplied by the coverage; None when the tile is empty.
+        multiplied by the coverage; None when the tile is empty (see
+        :meth:`pattern_tile`)."""
+        tile = self.pattern_tile(p, t)
+        return None if tile is None else _sample_tile(tile, mask)
+
+    def pattern_tile(self, p, t):
+        """``(tile pixels, device -> tile transform)`` of a pattern painting
+        a node whose user space ``t`` maps to the canvas; None when the tile
+        is empty.
 
         The tile is rendered once into a raster at device resolution and
         sampled (bilinear, wrapping) through the inverse of the tile-to-device
@@ -253,11 +288,7 @@ class Renderer:
             inv = (tile_to_dev @ Affine.scale(1.0 / sx, 1.0 / sy)).inverse()
         except RasterError:
             return None
-        hh, ww = mask.data.shape
-        jj, ii = np.meshgrid(np.arange(ww) + mask.x0 + 0.5, np.arange(hh) + mask.y0 + 0.5)
-        uv = inv.apply(np.stack([jj, ii], -1))
-        col = sample(tile.data, uv[..., 0], uv[..., 1], smooth=True, wrap=True)
-        return (col * mask.data[..., None]).astype(np.float32)
+        return tile.data, inv
 
     # -- images ----------------------------------------------------------------
     def image(self, n, t, canvas):
@@ -281,7 +312,7 @@ class Renderer:
         if px is None:
             return
         x0, y0, x1, y1 = px
-        layer = Canvas(x1 - x0, y1 - y0)
+        layer = Canvas(x1 - x0, y1 - y0, dtype=self.dtype)
         lt = Affine.translate(-x0, -y0)
         self.node(g, lt @ it, layer)
         rect = Path.polygon([(x, y), (x + w, y), (x + w, y + h), (x, y + h)])
@@ -289,5 +320,60 @@ class Renderer:
                            tolerance=self.tol, transform=lt @ t)
         if rc is None:
             return
-        layer.data *= rc.full(layer.width, layer.height)[..., None]
+        layer.scale(rc.full(layer.width, layer.height))
         canvas.composite(layer.data, x0, y0, n.opacity)
+
+
+def _sample_tile(tile, mask):
+    """Premultiplied (h, w, 4) float32 colours of a pattern tile
+    ``(pixels, device -> tile transform)`` (see
+    :meth:`Renderer.pattern_tile`) at the pixel centres of the mask window,
+    multiplied by the coverage."""
+    pix, inv = tile
+    hh, ww = mask.data.shape
+    jj, ii = np.meshgrid(np.arange(ww) + mask.x0 + 0.5, np.arange(hh) + mask.y0 + 0.5)
+    uv = inv.apply(np.stack([jj, ii], -1))
+    col = sample(pix, uv[..., 0], uv[..., 1], smooth=True, wrap=True)
+    return (col * mask.data[..., None]).astype(np.float32)
+
+
+def _unite(cov, m):
+    """``cov += k (1 - cov)`` over the window of Mask ``m`` (coverage ``k``)
+    inside ``cov`` ((h, w) float32): the alpha of source-over."""
+    h, w = cov.shape
+    mh, mw = m.data.shape
+    cx0, cy0 = max(m.x0, 0), max(m.y0, 0)
+    cx1, cy1 = min(m.x0 + mw, w), min(m.y0 + mh, h)
+    if cx1 <= cx0 or cy1 <= cy0:
+        return
+    k = m.data[cy0 - m.y0:cy1 - m.y0, cx0 - m.x0:cx1 - m.x0]
+    reg = cov[cy0:cy1, cx0:cx1]
+    reg += k * (1.0 - reg)
+
+
+def _times_mask(m, rc):
+    """``m *= coverage`` of Mask ``rc``, in place ((h, w) float32; zero
+    outside the mask's window), without a canvas-sized copy of the mask."""
+    h, w = m.shape
+    rh, rw = rc.data.shape
+    cx0, cy0 = max(rc.x0, 0), max(rc.y0, 0)
+    cx1, cy1 = min(rc.x0 + rw, w), min(rc.y0 + rh, h)
+    if cx1 <= cx0 or cy1 <= cy0:
+        m[...] = 0.0
+        return
+    m[:cy0] = 0.0
+    m[cy1:] = 0.0
+    m[:, :cx0] = 0.0
+    m[:, cx1:] = 0.0
+    m[cy0:cy1, cx0:cx1] *= rc.data[cy0 - rc.y0:cy1 - rc.y0, cx0 - rc.x0:cx1 - rc.x0]
+
+
+def _times_rect(m, x0, y0, x1, y1):
+    """``m *= coverage`` of the device rectangle [x0, x1] x [y0, y1], in
+    place ((h, w) float32): the exact area of the rectangle in each pixel,
+    the product of its x and y overlaps."""
+    h, w = m.shape
+    cx = np.clip(np.minimum(x1, np.arange(1, w + 1)) - np.maximum(x0, np.arange(w)), 0, 1)
+    cy = np.clip(np.minimum(y1, np.arange(1, h + 1)) - np.maximum(y0, np.arange(h)), 0, 1)
+    m *= cy.astype(np.float32)[:, None]
+    m *= cx.astype(np.float32)[None, :]

@@ -9,7 +9,11 @@ primitive's result is limited to its subregion.  Transforms: an
 axis-aligned CTM (scale + translate) is exact.  Under rotation or skew the
 region is the device bounding box of the transformed user-space region;
 blur radii and offsets are scaled by the lengths of the CTM matrix's rows
-(not rotated): an approximation, the one resvg makes.  Colour: results
+(not rotated), and turbulence runs along the device axes at that scale: an
+approximation, the one resvg makes.  Offsets (feOffset, feDropShadow) move
+by whole device pixels, truncated toward zero as resvg does (a 7.5 px offset
+moves 7 px).  ``stitchTiles="stitch"`` tiles the
+turbulence across its primitive subregion (user space).  Colour: results
 carry their colour space; an input is converted to the primitive's space
 (``linear``) on unpremultiplied values, and the final result back to sRGB.
 """
@@ -25,7 +29,7 @@ from ..pixels.effects import FilterImage
 from ..geometry.transform import Affine
 from ..tree import filter as F
 
-__all__ = ['apply_filters', 'filter_box', 'filter_pixel_box']
+__all__ = ['apply_filters', 'filter_layer', 'filter_box', 'filter_pixel_box']
 
 _UNBOUNDED = 1e9
 
@@ -117,30 +121,126 @@ class _Run:
     transform ``t`` (user space to region pixels), the scales ``sx``,
     ``sy`` of lengths, the blur tolerance, the region's pixel ``shape``
     and the ``draw`` callback."""
-    __slots__ = ('t', 'sx', 'sy', 'tol', 'shape', 'draw')
+    __slots__ = ('t', 'sx', 'sy', 'tol', 'shape', 'draw', 'urect')
 
     def __init__(self, t, sx, sy, tol, shape, draw):
         self.t, self.sx, self.sy, self.tol, self.shape, self.draw = t, sx, sy, tol, shape, draw
+        self.urect = None           # the current primitive's subregion, user space
 
 
 def _apply_one(f, data, t, tol, draw=None):
+    r = _filter_image(f, data, t, tol, draw)
+    if r is None:
+        return np.zeros_like(data)
+    img, (rx0, ry0, rx1, ry1) = r
+    img = img.data
     h, w = data.shape[:2]
+    if (rx0, ry0, rx1, ry1) == (0, 0, w, h):
+        return img.copy() if np.may_share_memory(img, data) else img
+    result = np.zeros_like(data)
+    result[ry0:ry1, rx0:rx1] = img
+    return result
+
+
+def filter_layer(filters, layer, t, draw=None):
+    """:func:`apply_filters` on a :class:`~raster.pixels.canvas.Canvas`
+    layer, in place.
+
+    The filters work on float32 pixels read from the layer once; the last
+    filter's result is written back a strip of rows at a time, an image of
+    one colour (a blurred shadow) from its alpha channel alone, so an
+    8-bit layer is never held as two float32 copies.
+
+    Parameters
+    ----------
+    filters : sequence of raster.tree.filter.Filter
+    layer : raster.pixels.canvas.Canvas
+    t, draw :
+        As for :func:`apply_filters`.
+    """
+    w, h = layer.width, layer.height
+    data = _layer_source(layer) if len(filters) == 1 else None
+    if data is None:
+        data = fx.check_image(layer.read(0, h, 0, w), 'layer')
+    for f in filters[:-1]:
+        data = _apply_one(f, data, t, None, draw)
+    r = _filter_image(filters[-1], data, t, None, draw)
+    del data
+    layer.data[...] = 0
+    if r is None:
+        return
+    img, (rx0, ry0, rx1, ry1) = r
+    step = max(1, _STRIP_PIXELS // max(1, rx1 - rx0))
+    colour = None if not img.solid else np.append(img.colour, np.float32(1.0))
+    for y in range(0, ry1 - ry0, step):
+        if colour is not None:
+            px = img.alpha[y:y + step, :, None] * colour
+        else:
+            px = img.data[y:y + step]
+        layer.store(ry0 + y, ry0 + y + len(px), rx0, rx1, px)
+
+
+#: Pixels of a filter result written into a layer at a time (filter_layer).
+_STRIP_PIXELS = 1 << 18
+#: Largest difference (levels) between an 8-bit layer's colour channels and
+#: its brightest pixel's straight colour times its alpha for the layer to
+#: count as painted in that one colour (the rounding of two levels).
+_SOLID_LEVELS = 1.0
+
+
+def _layer_source(layer):
+    """An 8-bit layer painted in one colour (a shadow's shape) as a
+    FilterImage of its alpha channel and that colour, found without a
+    float32 copy of the layer; None for anything else."""
+    d = layer.data
+    if d.dtype != np.uint8:
+        return None
+    flat = d.reshape(-1, 4)
+    i = int(np.argmax(flat[:, 3]))
+    am = int(flat[i, 3])
+    c = np.zeros(3, np.float32) if am == 0 else (flat[i, :3] / np.float32(am))
+    step = max(1, (1 << 14) // max(1, layer.width))       # blocks that stay in cache
+    for y in range(0, layer.height, step):
+        blk = d[y:y + step].astype(np.float32)
+        a = blk[..., 3]
+        for k in range(3):
+            if np.abs(blk[..., k] - a * c[k]).max() > _SOLID_LEVELS:
+                return None
+    return FilterImage(alpha=np.divide(d[..., 3], np.float32(255), dtype=np.float32),
+                       colour=np.clip(c, 0.0, 1.0).astype(np.float32))
+
+
+def _filter_image(f, data, t, tol, draw=None):
+    """One filter on ``data`` ((H, W, 4) float32, or a one-colour
+    FilterImage of that size): ``(FilterImage in sRGB, (x0, y0, x1, y1)
+    pixel region)`` (transparent outside the region), or None when the
+    region is empty."""
+    solid = isinstance(data, FilterImage)
+    h, w = (data.alpha if solid else data).shape[:2]
     rx0, ry0, rx1, ry1 = _pixel_rect(_device_box(f.region, t), w, h)
     if rx1 <= rx0 or ry1 <= ry0:
-        return np.zeros_like(data)
+        return None
     rt = Affine.translate(-rx0, -ry0) @ t
     rw, rh = rx1 - rx0, ry1 - ry0
-    src = np.ascontiguousarray(data[ry0:ry1, rx0:rx1])
+    if solid:
+        src_alpha = np.ascontiguousarray(data.alpha[ry0:ry1, rx0:rx1])
+    else:
+        src = np.ascontiguousarray(data[ry0:ry1, rx0:rx1])
+        src_alpha = src[..., 3]
     full = (0, 0, rw, rh)
     # resvg's scale of a transform: the lengths of the matrix rows
     run = _Run(rt, math.hypot(t.a, t.c), math.hypot(t.b, t.d), fx.check_tolerance(tol),
-               src.shape, draw)
+               (rh, rw, 4), draw)
     sources = {}                      # SourceGraphic / SourceAlpha, made on first use
 
     def source(name):
         if name not in sources:
-            img = FilterImage.of(src) if name is F.Source.GRAPHIC else \
-                FilterImage(alpha=src[..., 3], colour=np.zeros(3, np.float32))
+            if name is not F.Source.GRAPHIC:
+                img = FilterImage(alpha=src_alpha, colour=np.zeros(3, np.float32))
+            elif solid:
+                img = FilterImage(alpha=src_alpha, colour=data.colour)
+            else:
+                img = FilterImage.of(src)
             sources[name] = (img, False, full)
         return sources[name]
 
@@ -157,9 +257,11 @@ def _apply_one(f, data, t, tol, draw=None):
         ins = [get(i) for i in p.inputs]
         if f.region is None:
             sub = full
+            run.urect = None
         else:
             urect = tuple(b if v is None else v for v, b in zip(p.subregion, f.region))
             sub = _pixel_rect(_device_box(urect, rt), rw, rh)
+            run.urect = urect
         lin = p.linear
         imgs = [fx.convert_space(i[0], i[1], lin) for i in ins]
         img = _PRIMITIVES[type(p)](p, imgs, ins, sub, lin, run)
@@ -177,12 +279,7 @@ def _apply_one(f, data, t, tol, draw=None):
         prev = (img.clip(sub), out_lin, area)
         if p.result:
             named[p.result] = prev
-    img = fx.convert_space(prev[0], prev[1], False).data
-    if (rx0, ry0, rx1, ry1) == (0, 0, w, h):
-        return img.copy() if np.may_share_memory(img, data) else img
-    result = np.zeros_like(data)
-    result[ry0:ry1, rx0:rx1] = img
-    return result
+    return fx.convert_space(prev[0], prev[1], False), (rx0, ry0, rx1, ry1)
 
 
 # -- the primitives ------------------------------------------------------------------
@@ -201,7 +298,7 @@ def _gaussian_blur(p, imgs, ins, sub, lin, run):
 def _offset(p, imgs, ins, sub, lin, run):
     dx, dy = p.dx * run.sx, p.dy * run.sy
     fx.check_finite(dx, dy)
-    dx, dy = int(round(dx)), int(round(dy))
+    dx, dy = int(dx), int(dy)
     if imgs[0].solid:
         return FilterImage(alpha=fx.shift(imgs[0].alpha, dx, dy), colour=imgs[0].colour)
     return fx.shift(imgs[0].data, dx, dy)
@@ -236,16 +333,29 @@ def _displacement_map(p, imgs, ins, sub, lin, run):
 
 
 def _turbulence(p, imgs, ins, sub, lin, run):
+    t = run.t
+    if t.b == 0 and t.c == 0:
+        m = t                               # scale and translation: exact
+    elif run.sx > 0 and run.sy > 0:
+        # rotated or skewed: the noise runs along the device axes, scaled
+        # by the lengths of the CTM's rows, like the other primitives'
+        # lengths (resvg's approximation); the region is axis-aligned too
+        m = Affine(run.sx, 0.0, 0.0, run.sy, t.e, t.f)
+    else:
+        return None
     try:
-        inv = run.t.inverse()
+        inv = m.inverse()
     except RasterError:
         return None
     shape = run.shape
     jj, ii = np.meshgrid(np.arange(shape[1], dtype=np.float64),
                          np.arange(shape[0], dtype=np.float64))
     pts = inv.apply(np.stack([jj, ii], -1))
+    tile = None
+    if p.stitch and run.urect is not None:
+        tile = run.urect
     col = fx.turbulence(pts[..., 0], pts[..., 1], p.base_frequency, p.num_octaves, p.seed,
-                        p.fractal)
+                        p.fractal, tile)
     return fx.premultiply(col[..., :3], col[..., 3:4])
 
 
@@ -323,7 +433,7 @@ def _drop_shadow(p, imgs, ins, sub, lin, run):
         a = fx.blur_array(a, *fx.blur_plans(max(s_x, 0.0), max(s_y, 0.0), run.tol))
     dx, dy = p.dx * run.sx, p.dy * run.sy
     fx.check_finite(dx, dy)
-    a = fx.shift(a, int(round(dx)), int(round(dy)))
+    a = fx.shift(a, int(dx), int(dy))
     c = p.color
     col = np.array(c[:3], np.float32)
     if lin:

@@ -17,15 +17,20 @@ window actually drawn only.
 import math
 
 import numpy as np
-from PIL import Image
 
 from ..errors import RasterError
 from ..geometry.path import Path
 from ..pixels.scan import path_coverage
 from ..geometry.transform import Affine
+from ..pixels.mesh import mesh_gradient
 from ..tree import LinearGradient
 
-__all__ = ['gradient_colors', 'draw_pixels', 'sample', 'resample_window']
+__all__ = ['gradient_colors', 'mesh_colors', 'draw_pixels', 'sample', 'resample_window', 'STRIP_PIXELS']
+
+#: Pixels of an image, gradient or pattern window computed and composited at
+#: a time (the float32 colours of a strip are what is held, not those of the
+#: whole window).
+STRIP_PIXELS = 1 << 18
 
 _F32 = np.float32
 
@@ -122,12 +127,55 @@ def gradient_colors(paint, mask, t):
         s = _radial_param(paint, px, py)
         if s is None:
             return _solid(cols[-1], cover)
+        if s.dtype == np.float64:
+            # outside the cone of a focal circle not inside the end circle
+            outside = np.isnan(s)
+            if outside.any():
+                cover = np.where(outside.reshape(cover.shape) if flat is None else
+                                 _scatter(outside, flat, cover.shape), 0, cover).astype(_F32)
+                s = np.where(outside, 0.0, s)
     s = _spread(s, paint.spread)
     if flat is None:
         return stop_colors(s, offs, cols, cover).astype(_F32, copy=False)
     out = np.zeros((h * w, 4), _F32)
     out[flat] = stop_colors(s, offs, cols, np.ravel(cover)[flat])
     return out.reshape(h, w, 4)
+
+
+def _scatter(values, flat, shape):
+    """(h, w) bool array: ``values`` at the flat indices ``flat``, False
+    elsewhere."""
+    out = np.zeros(shape[0] * shape[1], bool)
+    out[flat] = values
+    return out.reshape(shape)
+
+
+def mesh_colors(paint, mask, t, tolerance):
+    """Premultiplied colours of a mesh gradient over a coverage mask's
+    window, multiplied by the coverage (None: nothing painted).
+
+    Parameters
+    ----------
+    paint : raster.tree.MeshGradient
+        In the painted node's user space.
+    mask : raster.pixels.scan.Mask
+    t : Affine
+        User units -> device pixels.
+    tolerance : float
+        Device pixels: each painted pixel shows the colour of a mesh point
+        within it of its centre (:func:`raster.pixels.mesh.mesh_gradient`).
+    """
+    cover = np.asarray(mask.data, _F32)
+    h, w = cover.shape
+    if h == 0 or w == 0 or not cover.any():
+        return None
+    m = t @ paint.transform
+    dev = m.apply(np.asarray(paint.patches).reshape(-1, 2)).reshape(-1, 12, 2)
+    col = mesh_gradient(dev, paint.colors, (int(mask.x0), int(mask.y0), w, h),
+                        interpolation=paint.interpolation.value, shape=paint.shape,
+                        tolerance=tolerance)
+    col *= cover[..., None]
+    return col
 
 
 def _solid(color, cover):
@@ -323,7 +371,9 @@ def _radial_param(p, px, py):
     Returns
     -------
     (...) float ndarray or None
-        None when the end radius is not positive.
+        None when the end radius is not positive; NaN where the point is on
+        no circle of positive radius (outside the cone that a focal circle
+        not inside the end circle makes: transparent, SVG 2 and canvas).
     """
     cx, cy, r, fx, fy, fr = p.cx, p.cy, p.r, p.fx, p.fy, p.fr
     if r <= 0:
@@ -361,7 +411,10 @@ def _radial_param(p, px, py):
         with np.errstate(divide='ignore', invalid='ignore'):
             s = c / (2.0 * b)
         ok = (fr + s * dr >= 0) & np.isfinite(s)
-        return np.where(ok, s, 0.0)
+        return np.where(ok, s, np.nan)
+    # the focal circle not inside the end circle: the gradient is a cone
+    # touching both circles, and a point on no circle of the cone (or only
+    # on circles of negative radius) is left transparent (NaN)
     disc = b * b - a * c
     sq = np.sqrt(np.maximum(disc, 0.0))
     s1 = (b + sq) / a
@@ -369,19 +422,20 @@ def _radial_param(p, px, py):
     hi = np.maximum(s1, s2)
     lo = np.minimum(s1, s2)
     s = np.where(fr + hi * dr >= 0, hi, lo)
-    return np.where(disc >= 0, s, 0.0)
+    return np.where((disc >= 0) & (fr + s * dr >= 0), s, np.nan)
 
 
 # ---------------------------------------------------------------------------
 # Raster images
 # ---------------------------------------------------------------------------
 
-#: Pillow filters by name, and the source margin (pixels) each one reads
-#: around a sample position.  resvg draws smooth images with a bicubic
-#: (Mitchell) filter; Pillow has only the sharper Catmull-Rom-like cubic,
-#: which lands further from the suite's references than bilinear does.
-_FILTERS = {'nearest': (Image.Resampling.NEAREST, 1),
-            'bilinear': (Image.Resampling.BILINEAR, 2)}
+#: Pillow filters by name (``PIL.Image.Resampling`` members, looked up
+#: when Pillow is loaded, with the first image), and the source margin
+#: (pixels) each one reads around a sample position.  resvg draws smooth
+#: images with a bicubic (Mitchell) filter; Pillow has only the sharper
+#: Catmull-Rom-like cubic, which lands further from the suite's references
+#: than bilinear does.
+_FILTERS = {'nearest': ('NEAREST', 1), 'bilinear': ('BILINEAR', 2)}
 #: Largest edge padding (source pixels) of a resampled crop; only images
 #: drawn more than this many times smaller than their size could show it.
 _MAX_PAD = 512
@@ -442,11 +496,15 @@ def draw_pixels(n, t, canvas, tol):
                * cm.data[ay0 - cm.y0:ay1 - cm.y0, ax0 - cm.x0:ax1 - cm.x0])
         x0, y0 = ax0, ay0
     h, w = cov.shape
-    col = resample_window(pix, inv, x0, y0, w, h, 'bilinear' if n.smooth else 'nearest')
-    if col is None:
-        return
-    _apply_coverage(col, cov)
-    canvas.composite(col, x0, y0, n.opacity)
+    flt = 'bilinear' if n.smooth else 'nearest'
+    step = max(1, STRIP_PIXELS // w)
+    for r0 in range(0, h, step):        # strips of rows: bounded temporaries
+        k = cov[r0:r0 + step]
+        col = resample_window(pix, inv, x0, y0 + r0, w, len(k), flt)
+        if col is None:
+            continue
+        _apply_coverage(col, k)
+        canvas.composite(col, x0, y0 + r0, n.opacity)
 
 
 def _apply_coverage(col, cov):
@@ -505,7 +563,9 @@ def resample_window(pix, inv, x0, y0, w, h, filter='bilinear'):
     (h, w, 4) float32 ndarray or None
         Premultiplied RGBA in [0, 1]; None when the window is empty.
     """
+    from PIL import Image
     resample, margin = _FILTERS[filter]
+    resample = Image.Resampling[resample]
     ih, iw = pix.shape[:2]
     if w <= 0 or h <= 0:
         return None
@@ -584,6 +644,7 @@ def _pil(rgba, mode):
     """A Pillow image of (h, w, 4) uint8 pixels: ``mode`` 'RGBa' for
     premultiplied ones, 'RGBA' for straight ones (nearest only: Pillow
     premultiplies 'RGBA' itself for the other filters)."""
+    from PIL import Image
     rgba = np.ascontiguousarray(rgba)
     return Image.frombuffer(mode, (rgba.shape[1], rgba.shape[0]), rgba, 'raw', mode, 0, 1)
 

@@ -30,12 +30,21 @@ Modules: :mod:`.nodes` (Tree, Group, PathNode, ImageNode), :mod:`.paint`
 """
 
 from .paint import (RGBA, SolidPaint, GradientStop, LinearGradient, RadialGradient, Pattern,
-                    Paint, SpreadMethod, Fill, FillRule, Stroke, PaintItem, DEFAULT_PAINT_ORDER)
+                    MeshGradient, MeshInterpolation, Paint, SpreadMethod, Fill, FillRule, Stroke,
+                    PaintItem, DEFAULT_PAINT_ORDER)
 from .effects import BlendMode, MaskType, ClipPath, Mask
 from .nodes import Node, Group, PathNode, ImageNode, Tree, walk
-from . import filter
 
 __all__ = ['RGBA', 'SolidPaint', 'GradientStop', 'LinearGradient', 'RadialGradient', 'Pattern',
-           'Paint', 'SpreadMethod', 'Fill', 'FillRule', 'Stroke', 'PaintItem', 'DEFAULT_PAINT_ORDER',
+           'MeshGradient', 'MeshInterpolation', 'Paint', 'SpreadMethod', 'Fill', 'FillRule', 'Stroke', 'PaintItem', 'DEFAULT_PAINT_ORDER',
            'BlendMode', 'MaskType', 'ClipPath', 'Mask', 'Node', 'Group', 'PathNode',
            'ImageNode', 'Tree', 'walk', 'filter']
+
+
+def __getattr__(name):
+    # the filter classes (a module of ~30 dataclasses) load with the first
+    # document that has a filter: ``raster.tree.filter`` on first use
+    if name == 'filter':
+        import importlib
+        return importlib.import_module(__name__ + '.filter')
+    raise AttributeError('module %r has no attribute %r' % (__name__, name))

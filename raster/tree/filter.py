@@ -255,11 +255,14 @@ class SpecularLighting(Primitive):
 
 @dataclass(slots=True)
 class Turbulence(Primitive):
-    """feTurbulence (no inputs) in the filtered group's user space."""
+    """feTurbulence (no inputs) in the filtered group's user space;
+    ``stitch`` (``stitchTiles="stitch"``): the noise tiles its primitive
+    subregion seamlessly."""
     base_frequency: Tuple[float, float] = (0.0, 0.0)
     num_octaves: int = 1
     seed: int = 0
     fractal: bool = False
+    stitch: bool = False
 
 
 @dataclass(slots=True)

@@ -16,8 +16,8 @@ from ..geometry.rules import FillRule
 from ..geometry.transform import IDENTITY, Affine
 
 __all__ = ['RGBA', 'SolidPaint', 'GradientStop', 'LinearGradient', 'RadialGradient', 'Pattern',
-           'Paint', 'SpreadMethod', 'Fill', 'Stroke', 'PaintItem', 'DEFAULT_PAINT_ORDER',
-           'FillRule']
+           'MeshGradient', 'MeshInterpolation', 'Paint', 'SpreadMethod', 'Fill', 'Stroke',
+           'PaintItem', 'DEFAULT_PAINT_ORDER', 'FillRule']
 
 #: Straight-alpha colour, four floats in [0, 1].
 RGBA = Tuple[float, float, float, float]
@@ -100,7 +100,33 @@ class Pattern:
     id: str = ''
 
 
-Paint = Union[SolidPaint, LinearGradient, RadialGradient, Pattern]
+class MeshInterpolation(StrChoice):
+    """``meshgradient/@type``: how colours are interpolated in a patch."""
+    BILINEAR = 'bilinear'
+    BICUBIC = 'bicubic'
+
+
+@dataclass(slots=True, frozen=True, eq=False)
+class MeshGradient:
+    """An SVG 2 mesh gradient: ``rows x cols`` Coons patches in the gradient
+    space that ``transform`` maps to the painted node's user space.
+
+    ``patches`` is a (P, 12, 2) float64 array (P = rows * cols, row-major):
+    each patch's boundary as four cubic edges, point 0 the top-left corner,
+    0-3 the top edge, 3-6 the right, 6-9 the bottom (right to left), 9, 10,
+    11, 0 the left (bottom to top); ``colors`` is (P, 4, 4) straight RGBA at
+    the corners top-left, top-right, bottom-right, bottom-left
+    (:func:`raster.pixels.mesh.mesh_gradient` paints them).  Outside the
+    patches the gradient is transparent."""
+    patches: object
+    colors: object
+    shape: Tuple[int, int]
+    interpolation: MeshInterpolation = MeshInterpolation.BILINEAR
+    transform: Affine = IDENTITY
+    id: str = ''
+
+
+Paint = Union[SolidPaint, LinearGradient, RadialGradient, Pattern, MeshGradient]
 
 
 @dataclass(slots=True)

@@ -165,11 +165,16 @@ def test_rasterize_sizes(tmp_path, opts, size):
 def test_rasterize_background_and_id(tmp_path):
     src = write(tmp_path, 'a.svg', SQUARE)
     out = str(tmp_path / 'a.png')
-    assert rasterize.main([src, out, '--background', 'rgb(0, 255, 0)', '--id', 'b']) == 0
+    assert rasterize.main([src, out, '--background', 'rgb(0, 255, 0)', '--id', 'b',
+                           '--id-page']) == 0
     img = png(out)
     assert img[0, 0].tolist() == [0, 255, 0, 255]
     assert img[5, 5].tolist() == [0, 255, 0, 255]          # red rect not rendered
     assert img[4, 14].tolist() == [0, 0, 255, 255]         # with its group's translate
+    # without --id-page: the 4 x 4 blue square alone
+    assert rasterize.main([src, out, '--background', 'rgb(0, 255, 0)', '--id', 'b']) == 0
+    img = png(out)
+    assert img.shape == (4, 4, 4) and (img == (0, 0, 255, 255)).all()
 
 
 def test_rasterize_svgz_and_dpi(tmp_path):
@@ -502,3 +507,96 @@ def test_output_to_a_directory_is_an_error(tmp_path, capsys):
     assert rasterize.main([src, str(d)]) == 1
     assert one_error_line(capsys.readouterr().err, 'rasterize')
     assert list(d.iterdir()) == []
+
+
+# -- --id crops to the element ---------------------------------------------------------------
+
+SPRITES = (b'<svg xmlns="http://www.w3.org/2000/svg" width="200" height="100">'
+           b'<g transform="translate(10 10)"><rect id="a" x="10" y="10" width="30" height="20" '
+           b'fill="red" stroke="black" stroke-width="4"/></g>'
+           b'<circle id="b" cx="150" cy="50" r="20" fill="blue"/>'
+           b'<g id="c" filter="url(#f)"><rect x="100" y="5" width="10" height="10" fill="green"/></g>'
+           b'<filter id="f" x="-0.5" y="-0.5" width="2" height="2">'
+           b'<feGaussianBlur stdDeviation="2"/></filter>'
+           b'<g id="empty"/><rect id="none" width="5" height="5" fill="none"/></svg>')
+
+
+@pytest.mark.parametrize('eid,size', [('a', (34, 24)),     # 30 x 20 plus half the 4 px stroke
+                                      ('b', (40, 40)),     # the circle's box
+                                      ('c', (20, 20))])    # the filter region, not the 10 px rect
+def test_id_crops_to_what_the_element_draws(tmp_path, eid, size):
+    src = write(tmp_path, 'sprites.svg', SPRITES)
+    out = str(tmp_path / 'o.png')
+    assert rasterize.main([src, out, '--id', eid]) == 0
+    assert Image.open(out).size == size
+
+
+def test_id_crop_equals_the_page_render_there(tmp_path):
+    """The cropped rect (box 18..52 x 18..42 in the page, its group's
+    translation included) has the page render's pixels of that window."""
+    src = write(tmp_path, 'sprites.svg', SPRITES)
+    crop, page = str(tmp_path / 'c.png'), str(tmp_path / 'p.png')
+    assert rasterize.main([src, crop, '--id', 'a']) == 0
+    assert rasterize.main([src, page, '--id', 'a', '--id-page']) == 0
+    c, p = png(crop), png(page)
+    assert p.shape == (100, 200, 4) and c.shape == (24, 34, 4)
+    assert np.array_equal(c, p[18:42, 18:52])
+    assert p[:, 60:].max() == 0                          # the other elements hidden
+
+
+def test_id_crop_is_scaled_by_zoom_and_width_and_records_the_dpi(tmp_path):
+    src = write(tmp_path, 'sprites.svg', SPRITES)
+    out = str(tmp_path / 'o.png')
+    assert rasterize.main([src, out, '--id', 'b', '--zoom', '2', '--dpi', '96']) == 0
+    im = Image.open(out)
+    assert im.size == (80, 80) and round(im.info['dpi'][0]) == 192
+    assert rasterize.main([src, out, '--id', 'b', '--width', '100']) == 0
+    assert Image.open(out).size == (100, 100)
+
+
+@pytest.mark.parametrize('eid', ['empty', 'none'])
+def test_id_of_an_element_that_draws_nothing_is_an_error(tmp_path, capsys, eid):
+    src = write(tmp_path, 'sprites.svg', SPRITES)
+    out = tmp_path / 'o.png'
+    assert rasterize.main([src, str(out), '--id', eid]) == 1
+    assert one_error_line(capsys.readouterr().err, 'rasterize') and not out.exists()
+
+
+LANG_DOC = (b'<svg xmlns="http://www.w3.org/2000/svg" width="30" height="10"><switch>'
+            b'<rect systemLanguage="de" width="30" height="10" fill="#0000ff"/>'
+            b'<rect systemLanguage="en" width="30" height="10" fill="#00ff00"/>'
+            b'<rect width="30" height="10" fill="#ff0000"/></switch></svg>')
+
+
+@pytest.mark.parametrize('env, opts, colour', [
+    ({'LANG': 'de_DE.UTF-8'}, [], (0, 0, 255)),
+    ({'LANG': 'en_US.UTF-8'}, [], (0, 255, 0)),
+    ({'LC_ALL': 'C'}, [], (0, 255, 0)),                 # C: English
+    ({}, [], (0, 255, 0)),                               # nothing set: English
+    ({'LANG': 'fr_FR'}, [], (255, 0, 0)),                # neither: the fallback child
+    ({'LC_MESSAGES': 'de_AT', 'LANG': 'en_US'}, [], (0, 0, 255)),
+    ({'LC_ALL': 'fr_FR', 'LC_MESSAGES': 'de_AT'}, [], (255, 0, 0)),
+    ({'LANG': 'de_DE.UTF-8'}, ['--languages', 'en'], (0, 255, 0)),
+    ({}, ['--languages', 'de-CH,en'], (0, 0, 255)),      # primary subtags: de-CH is de
+    ({}, ['--languages', 'fr, de'], (0, 0, 255)),
+])
+def test_languages_option_and_locale_default(tmp_path, monkeypatch, env, opts, colour):
+    for k in ('LC_ALL', 'LC_MESSAGES', 'LANG'):
+        monkeypatch.delenv(k, raising=False)
+    for k, v in env.items():
+        monkeypatch.setenv(k, v)
+    src = write(tmp_path, 'l.svg', LANG_DOC)
+    out = str(tmp_path / 'l.png')
+    assert rasterize.main([src, out] + opts) == 0
+    assert tuple(png(out)[5, 5, :3]) == colour
+    res = str(tmp_path / 'l.json')
+    assert svg_flatten.main([src, '-o', res, '--format', 'json'] + opts) == 0
+    assert svg_bbox.main([src, '-o', res] + opts) == 0
+
+
+@pytest.mark.parametrize('main', [rasterize.main, svg_flatten.main, svg_bbox.main])
+def test_bad_languages_list_is_a_usage_error(tmp_path, main, capsys):
+    src = write(tmp_path, 'l.svg', LANG_DOC)
+    args = [src, str(tmp_path / 'o.png')] if main is rasterize.main else [src]
+    assert main(args + ['--languages', 'de_CH,,x']) == 2
+    assert 'languages' in capsys.readouterr().err

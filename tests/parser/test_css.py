@@ -93,9 +93,11 @@ def test_marker_shorthand():
 
 def test_font_shorthand():
     d = dict((x.name, x.value) for x in parse_declarations("font: 50px 'Noto Sans'"))
+    # the shorthand also resets the properties it cannot set (CSS Fonts 4, 2.8)
     assert d == {'font-style': 'normal', 'font-variant': 'normal', 'font-weight': 'normal',
                  'font-stretch': 'normal', 'font-size': '50px', 'line-height': 'normal',
-                 'font-family': "'Noto Sans'"}
+                 'font-family': "'Noto Sans'", 'font-kerning': 'auto',
+                 'font-feature-settings': 'normal', 'font-variation-settings': 'normal'}
     d = dict((x.name, x.value) for x in parse_declarations(
         'font: italic bold condensed 12pt/1.5 Arial, sans-serif'))
     assert d['font-style'] == 'italic' and d['font-weight'] == 'bold'

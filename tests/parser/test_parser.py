@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as hs
 
+import raster
 from raster.errors import RasterWarning, SVGError
 from raster.parser import build_tree
 from raster.parser.document import load_document
@@ -60,11 +61,44 @@ def test_size_from_viewbox_and_percent():
     assert (t.width, t.height) == (15, 10)
 
 
-def test_no_size_uses_content_bounds():
+def test_no_size_reaches_the_content_from_the_origin():
+    # no width, height or viewBox: the far edges of the content, which is
+    # not moved (resvg does the same; the origin stays the viewport's corner)
     t = tree_of('<rect x="10" y="20" width="30" height="40"/>', '')
-    assert (t.width, t.height) == (30, 40)
+    assert (t.width, t.height) == (40, 60)
     n, m = only_path(t)
-    assert box(n, m) == (0, 0, 30, 40)
+    assert box(n, m) == (10, 20, 40, 60)
+    # strokes count: nothing drawn is cut off
+    t = tree_of('<rect x="10" y="20" width="30" height="40" stroke="black" stroke-width="4"/>',
+                'width="auto"')
+    assert (t.width, t.height) == (42, 62)
+    # content left of or above the origin only: the 100 px default
+    t = tree_of('<rect x="-50" y="-50" width="30" height="40"/>', '')
+    assert (t.width, t.height) == (100, 100)
+
+
+@pytest.mark.parametrize('attrs, size', [
+    ('width="80" viewBox="0 0 40 20"', (80, 40)),            # the ratio gives the height
+    ('height="80" viewBox="0 0 40 20"', (160, 80)),
+    ('width="80" height="auto" viewBox="0 0 40 20"', (80, 40)),
+    ('width="auto" height="auto" viewBox="0 0 40 20"', (40, 20)),
+    ('width="50%" viewBox="0 0 40 20"', (20, 10)),            # percent of the viewBox
+    ('width="80" height="50%" viewBox="0 0 40 20"', (80, 10)),
+    ('width="80" viewBox="0 0 40 20" preserveAspectRatio="none"', (80, 40)),
+    ('width="80"', (80, 25)),                  # no viewBox: the other side from the content
+    ('height="auto" width="30"', (30, 25)),
+])
+def test_a_missing_side_follows_the_ratio_or_the_content(attrs, size):
+    t = tree_of('<rect x="5" y="5" width="20" height="20"/>', attrs)
+    assert (t.width, t.height) == pytest.approx(size)
+
+
+def test_display_none_on_the_root_draws_nothing_at_its_size():
+    t = tree_of('<rect width="20" height="20"/>', 'width="50" height="40" display="none"')
+    assert (t.width, t.height) == (50, 40)
+    assert [n for n, _ in walk(t.root) if isinstance(n, PathNode)] == []
+    t = tree_of('<rect width="20" height="20"/>', 'width="50" height="40" style="display: none"')
+    assert [n for n, _ in walk(t.root) if isinstance(n, PathNode)] == []
 
 
 @pytest.mark.parametrize('attrs', ['width="-50" height="10"', 'width="0" height="10"',
@@ -387,10 +421,9 @@ def test_switch_and_system_language():
 
 
 def test_unknown_and_unsupported_elements_skipped():
-    with pytest.warns(RasterWarning, match='text'):
-        t = build_tree(load_document(
-            b'<svg xmlns="http://www.w3.org/2000/svg" width="5" height="5"><text>hi</text>'
-            b'<foo><rect width="1" height="1"/></foo><rect id="k" width="1" height="1"/></svg>'))
+    t = build_tree(load_document(
+        b'<svg xmlns="http://www.w3.org/2000/svg" width="5" height="5">'
+        b'<foo><rect width="1" height="1"/></foo><rect id="k" width="1" height="1"/></svg>'))
     assert [n.id for n, _ in paths(t)] == ['k']
 
 
@@ -828,32 +861,17 @@ def test_identity_transforms_add_no_group():
     assert len(t.root.children) == 3 and t.ids['r'] is t.root.children[2]
 
 
-def test_garbage_collector_is_paused_only_during_the_build():
+def test_the_garbage_collector_is_left_alone(monkeypatch):
+    """The library never changes the application's collector state (the
+    commands pause it themselves: tests/cli/test_process.py)."""
     import gc
-    assert gc.isenabled() and gc.get_freeze_count() == 0
-    t = tree_of('<rect width="1" height="1"/>')
-    assert gc.isenabled() and gc.get_freeze_count() == 0
-    # the new tree went to the oldest generation, unscanned
-    assert any(o is t.root for o in gc.get_objects(generation=2))
-    with pytest.raises(SVGError):
-        tree_of('', 'width="0" height="10"')
-    assert gc.isenabled()
-    gc.disable()
-    try:
-        tree_of('<rect width="1" height="1"/>')
-        assert not gc.isenabled()         # left as the caller had it
-    finally:
-        gc.enable()
-    # objects the application froze stay frozen
-    keep = [[i] for i in range(10)]
-    gc.freeze()
-    try:
-        n = gc.get_freeze_count()
-        tree_of('<rect width="1" height="1"/>')
-        assert gc.get_freeze_count() == n and gc.isenabled()
-    finally:
-        gc.unfreeze()
-    del keep
+    calls = []
+    for name in ('disable', 'enable', 'freeze', 'unfreeze', 'set_threshold', 'collect'):
+        monkeypatch.setattr(gc, name, lambda *a, _n=name: calls.append(_n))
+    t = tree_of('<rect width="1" height="1"/><text>x</text><g opacity="0.5"><circle r="2"/></g>')
+    raster.render(b'<svg xmlns="http://www.w3.org/2000/svg" width="4" height="4">'
+                  b'<rect width="2" height="2"/></svg>')
+    assert calls == [] and len(t.root.children) == 3
 
 
 def test_conditional_attributes_found_in_one_pass():
@@ -863,3 +881,150 @@ def test_conditional_attributes_found_in_one_pass():
                 '<switch><rect systemLanguage="de" width="4" height="4"/>'
                 '<rect id="y" width="5" height="5"/></switch>')
     assert [box(n) for n, _ in paths(t)] == [(0.0, 0.0, 3.0, 3.0), (0.0, 0.0, 5.0, 5.0)]
+
+
+@pytest.mark.parametrize('vb, drawn', [('0 0 10 -10', True), ('0 0 10', True), ('a b c d', True),
+                                       ('0 0 0 10', False), ('0 0 10 0', False)])
+def test_invalid_viewbox_is_ignored_and_a_zero_one_disables(vb, drawn):
+    # SVG 2: an invalid viewBox is as if absent; a zero width or height
+    # disables rendering -- on nested svg, symbol instances and markers alike
+    for body in ('<svg width="50" height="50" viewBox="%s"><rect width="10" height="10"/></svg>',
+                 '<symbol id="s" viewBox="%s"><rect width="10" height="10"/></symbol>'
+                 '<use href="#s" width="50" height="50"/>',
+                 '<marker id="m" viewBox="%s" markerWidth="4" markerHeight="4">'
+                 '<rect width="10" height="10"/></marker>'
+                 '<path d="M20 20 H80" fill="none" stroke="red" marker-end="url(#m)"/>'):
+        t = tree_of(body % vb)
+        nodes = [n for n, _ in walk(t.root)]
+        nodes += [m for n in nodes if isinstance(n, PathNode) and n.markers is not None
+                  for m, _ in walk(n.markers)]
+        filled = [n for n in nodes if isinstance(n, PathNode) and n.fill is not None]
+        assert bool(filled) == drawn, body
+
+
+@pytest.mark.parametrize('pattern, fallback', [
+    ('<pattern id="p" width="20" height="20" patternUnits="userSpaceOnUse"/>', True),
+    ('<pattern id="q" width="20" height="20" patternUnits="userSpaceOnUse"/>'
+     '<pattern id="p" href="#q" height="30"/>', True),
+    ('<pattern id="p" width="0" height="20"><rect width="5" height="5"/></pattern>', True),
+    ('<pattern id="p" width="10" height="-1"><rect width="5" height="5"/></pattern>', True),
+    ('<pattern id="p" width="10" height="10" viewBox="0 0 10 0"><rect width="5" height="5"/>'
+     '</pattern>', True),
+    # content that draws nothing is a transparent pattern, not a failure
+    ('<pattern id="p" width="10" height="10" patternUnits="userSpaceOnUse"><g/></pattern>',
+     False),
+])
+def test_a_pattern_that_cannot_paint_takes_the_fallback(pattern, fallback):
+    t = tree_of(pattern + '<rect width="50" height="50" fill="url(#p) #00ff00"/>')
+    fills = [n.fill for n, _ in walk(t.root) if isinstance(n, PathNode)]
+    if fallback:
+        assert len(fills) == 1 and fills[0].paint == SolidPaint((0.0, 1.0, 0.0, 1.0))
+    else:
+        assert all(f is None or not isinstance(f.paint, SolidPaint) for f in fills)
+
+
+@pytest.mark.parametrize('units', ['', 'patternUnits="userSpaceOnUse" '
+                                       'patternContentUnits="objectBoundingBox"'])
+def test_object_bounding_box_pattern_on_a_line_takes_the_fallback(units):
+    t = tree_of('<pattern id="p" width="0.5" height="0.5" %s><rect width="5" height="5"/>'
+                '</pattern><path d="M10 10 H90" stroke="url(#p) #0000ff"/>' % units)
+    (n, _), = [(n, m) for n, m in walk(t.root) if isinstance(n, PathNode)]
+    assert n.stroke.paint == SolidPaint((0.0, 0.0, 1.0, 1.0))
+
+
+@pytest.mark.parametrize('invisible', [
+    '<rect x="0" y="0" width="100" height="80" opacity="0"/>',
+    '<rect x="0" y="0" width="100" height="80" fill="none"/>',
+    '<rect x="0" y="0" width="100" height="80" fill="url(#nothing)"/>',
+    '<rect x="0" y="0" width="100" height="80" visibility="hidden"/>',
+    '<g opacity="0"><rect x="0" y="0" width="100" height="80" fill="blue"/></g>',
+    '<use href="#r" opacity="0"/>',
+    '<image width="100" height="80" opacity="0" preserveAspectRatio="xMinYMin meet" '
+    'href="data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAQAAAADCAYAAAC09K7GAAAAKUlEQVR4nGN4'
+    'Zun2/+Ovd/9X3Lrz37V67n8GZM4zS7f/DMicj7/e/QcAllEj4JIVAnkAAAAASUVORK5CYII="/>',
+])
+def test_invisible_children_count_in_the_object_bounding_box(invisible):
+    # the clip path's objectBoundingBox rectangle scales with the group's box,
+    # which is 0..100 x 0..80 whatever the invisible child paints
+    from raster.parser.boxes import object_box
+    t = tree_of('<defs><rect id="r" width="100" height="80"/><clipPath id="c" '
+                'clipPathUnits="objectBoundingBox"><rect width="1" height="1"/></clipPath></defs>'
+                '<g id="g" clip-path="url(#c)">%s<rect x="40" y="30" width="20" height="20" '
+                'fill="red"/></g>' % invisible)
+    g = t.ids['g']
+    assert object_box(g.children) == pytest.approx((0, 0, 100, 80))
+    cp = g.clip_path
+    (clip_rect_node, m), = [(n, m) for n, m in walk(cp.root, cp.transform)
+                            if isinstance(n, PathNode)]
+    assert box(clip_rect_node, m) == pytest.approx((0, 0, 100, 80))
+
+
+def _external_docs(tmp_path):
+    lib = tmp_path / 'doc' / 'lib'
+    lib.mkdir(parents=True)
+    (lib / 'a.svg').write_text(
+        '<svg xmlns="http://www.w3.org/2000/svg"><style>.c { fill: #00ff00 }</style>'
+        '<rect id="r" class="c" width="10" height="10"/><use id="u" href="b.svg#r2"/>'
+        '<use id="loop" href="b.svg#back"/>'
+        '<g id="many">%s</g></svg>' % ''.join('<rect width="1" height="1"/>' for _ in range(50)))
+    (lib / 'b.svg').write_text('<svg xmlns="http://www.w3.org/2000/svg"><rect id="r2" x="5" '
+                               'width="3" height="3" fill="blue"/><use id="back" '
+                               'href="a.svg#loop"/></svg>')
+    (tmp_path / 'outside.svg').write_text('<svg xmlns="http://www.w3.org/2000/svg"><rect '
+                                          'id="o" width="9" height="9"/></svg>')
+    return tmp_path / 'doc'
+
+
+def _filled(t):
+    return [n for n, _ in walk(t.root) if isinstance(n, PathNode) and n.fill is not None]
+
+
+def test_use_of_an_element_in_another_local_file(tmp_path):
+    doc = _external_docs(tmp_path)
+    root = load_document(b'<svg xmlns="http://www.w3.org/2000/svg"><use href="lib/a.svg#r" '
+                         b'x="20"/><use href="lib/a.svg#u"/></svg>')
+    t = build_tree(root, base_dir=str(doc))
+    (a, ma), (b, mb) = [(n, m) for n, m in walk(t.root) if isinstance(n, PathNode)]
+    # styled by the other file's style sheet, placed by the use; chains follow
+    assert a.fill.paint == SolidPaint((0.0, 1.0, 0.0, 1.0)) and box(a, ma) == (20, 0, 30, 10)
+    assert b.fill.paint == SolidPaint((0.0, 0.0, 1.0, 1.0)) and box(b, mb) == (5, 0, 8, 3)
+    assert not t.ids.get('r')               # the other file's ids are not this tree's
+
+
+@pytest.mark.parametrize('href', ['../outside.svg#o', 'lib/a.svg#missing', 'lib/a.svg#loop',
+                                  'http://localhost/a.svg#r', 'lib/nofile.svg#r'])
+def test_external_use_references_that_are_not_followed(tmp_path, href):
+    doc = _external_docs(tmp_path)
+    root = load_document(('<svg xmlns="http://www.w3.org/2000/svg"><use href="%s"/></svg>'
+                          % href).encode())
+    with pytest.warns(RasterWarning):
+        t = build_tree(root, base_dir=str(doc))
+    assert _filled(t) == []
+
+
+def test_external_use_counts_against_the_element_limit(tmp_path):
+    doc = _external_docs(tmp_path)
+    root = load_document(('<svg xmlns="http://www.w3.org/2000/svg">%s</svg>'
+                          % ('<use href="lib/a.svg#many"/>' * 10)).encode())
+    with pytest.warns(RasterWarning, match='more than 120 nodes'):
+        t = build_tree(root, base_dir=str(doc), max_elements=120)
+    assert len(_filled(t)) < 120
+
+
+def test_external_use_is_refused_inside_svg_images(tmp_path):
+    doc = _external_docs(tmp_path)
+    root = load_document(b'<svg xmlns="http://www.w3.org/2000/svg"><use href="lib/a.svg#r"/>'
+                         b'</svg>')
+    with pytest.warns(RasterWarning, match='refused'):
+        t = build_tree(root, base_dir=str(doc), image_depth=1)
+    assert _filled(t) == []
+
+
+@pytest.mark.parametrize('user, listed, passes', [
+    (('en',), 'en', True), (('en',), 'en-GB', True), (('en',), 'EN-gb', True),
+    (('en-GB',), 'en', True), (('en-GB',), 'en-US', True), (('zh',), 'zh-Hant-TW', True),
+    (('de', 'en'), 'fr, en', True), (('de',), 'fr, en', False), (('en',), 'eng', False),
+])
+def test_system_language_compares_primary_subtags(user, listed, passes):
+    t = tree_of('<rect systemLanguage="%s" width="5" height="5"/>' % listed, languages=user)
+    assert bool([n for n, _ in walk(t.root) if isinstance(n, PathNode)]) == passes

@@ -9,7 +9,7 @@ from PIL import Image
 
 from raster.geometry.bounds import bbox
 from raster.errors import RasterWarning
-from raster.fonts import Font, FontDB
+from raster.fonts import Font, FontDB, FontOptions
 from raster.geometry.path import Path
 from raster.svg import load_svg, render
 from raster.parser.text import collapse_whitespace
@@ -18,15 +18,18 @@ from raster.testing import compare_images
 
 from _shared import SUITE_FONTS as FONTS, SUITE_ROOT as SUITE
 NS = 'xmlns="http://www.w3.org/2000/svg"'
+#: The suite's fonts only (no system fonts: the tests do not depend on the
+#: machine).
+SUITE_FONTS = FontOptions(dirs=FONTS, system=False)
 
 
 def doc(body, extra=''):
     return ('<svg %s width="400" height="200" %s>%s</svg>' % (NS, extra, body)).encode()
 
 
-def text_paths(body, font_dirs=(FONTS,)):
+def text_paths(body, fonts=SUITE_FONTS):
     """(path, abs transform, node) of every PathNode of a document."""
-    tree = load_svg(doc(body), font_dirs=font_dirs)
+    tree = load_svg(doc(body), fonts=fonts)
     return [(n.path.transform(t), n) for n, t in walk(tree.root) if isinstance(n, PathNode)]
 
 
@@ -179,19 +182,24 @@ def test_text_in_clip_path_clips():
     img = render(doc('<clipPath id="c"><text x="0" y="150" font-size="200" '
                      'font-family="Noto Sans">I</text></clipPath>'
                      '<rect width="400" height="200" fill="blue" clip-path="url(#c)"/>'),
-                 font_dirs=[FONTS])
+                 fonts=SUITE_FONTS)
     assert img[100, 2, 3] == 0 and img[100, 300, 3] == 0
     assert (img[:, :, 3] == 255).sum() > 1000
 
 
 # -- robustness -------------------------------------------------------------------
 
-def test_missing_font_dir_warns_and_renders_rest(tmp_path):
-    body = '<rect width="10" height="10" fill="red"/><text x="20" y="50">Hi</text>'
-    with pytest.warns(RasterWarning, match='no fonts'):
-        img = render(doc(body), font_dirs=[str(tmp_path / 'missing')])
+def test_no_usable_font_draws_with_the_bundled_font_and_warns_once(tmp_path):
+    body = ('<rect width="10" height="10" fill="red"/><text x="20" y="50">Hi</text>'
+            '<text x="20" y="80">there</text>')
+    fonts = FontOptions(dirs=str(tmp_path / 'missing'), system=False)
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter('always')
+        img = render(doc(body), fonts=fonts)
+    msgs = [str(x.message) for x in w if issubclass(x.category, RasterWarning)]
+    assert len(msgs) == 1 and 'bundled' in msgs[0]
     assert tuple(img[5, 5]) == (255, 0, 0, 255)
-    assert img[:, 15:].max() == 0
+    assert img[30:55, 15:].max() > 0         # "Hi" is drawn
 
 
 @pytest.mark.parametrize('body', [
@@ -207,7 +215,7 @@ def test_missing_font_dir_warns_and_renders_rest(tmp_path):
 def test_bad_or_unsupported_text_never_raises(body):
     with warnings.catch_warnings():
         warnings.simplefilter('ignore')
-        img = render(doc('<rect width="5" height="5"/>' + body), font_dirs=[FONTS])
+        img = render(doc('<rect width="5" height="5"/>' + body), fonts=SUITE_FONTS)
     assert img[2, 2, 3] == 255
 
 
@@ -233,7 +241,7 @@ def test_suite_case_matches_resvg_reference(case):
     ref = np.asarray(Image.open(svg[:-4] + '.png').convert('RGBA'))
     with warnings.catch_warnings():
         warnings.simplefilter('ignore')
-        img = render(svg, width=ref.shape[1], font_dirs=[FONTS])
+        img = render(svg, width=ref.shape[1], fonts=SUITE_FONTS)
     r = compare_images(ref, img)
     assert r.passed, r.reason
 
@@ -292,11 +300,11 @@ def test_font_variation_settings_change_outline():
 
 
 def test_vertical_writing_mode_is_quarter_turn_of_central_baseline_text():
-    """writing-mode=tb at the origin: every point (x, y) of the same text
-    laid out horizontally on its central baseline maps to (-y, x)."""
+    """writing-mode=tb at the origin: every point (x, y) of the same Latin
+    text laid out horizontally on its central baseline maps to (-y, x)
+    (rotated characters: no upright one in "Hi")."""
     plain = text_paths('<text font-family="Noto Sans" dominant-baseline="central">Hi</text>')
-    with pytest.warns(RasterWarning, match='vertical'):
-        vert = text_paths('<text font-family="Noto Sans" writing-mode="tb">Hi</text>')
+    vert = text_paths('<text font-family="Noto Sans" writing-mode="tb">Hi</text>')
     x, y = plain[0][0].points.T
     np.testing.assert_allclose(vert[0][0].points, np.c_[-y, x], atol=1e-9)
 
@@ -309,7 +317,7 @@ def test_unusable_font_warns_and_falls_back(tmp_path):
         shutil.copy(os.path.join(FONTS, fn), tmp_path / fn)
     with pytest.warns(RasterWarning, match='not usable'):
         ps = text_paths('<text x="10" y="50" font-family="Noto Color Emoji">A</text>',
-                        font_dirs=(str(tmp_path),))
+                        fonts=FontOptions(dirs=str(tmp_path), system=False))
     ref = text_paths('<text x="10" y="50" font-family="Noto Sans">A</text>')
     assert len(ps) == 1 and ps[0][0] == ref[0][0]
 
@@ -410,7 +418,7 @@ def per_glyph_reference(spans, x, y, ls=0.0, ws=0.0, dx=(), rotate=()):
 
 @pytest.mark.parametrize('spans, attrs', [
     ([('Hello, World', 'Noto Sans', 40)], {}),
-    ([('AVAWAY office', 'Noto Serif', 23.5)], {'letter-spacing': 2.5, 'word-spacing': 4}),
+    ([('AVAWAY orbit', 'Noto Serif', 23.5)], {'letter-spacing': 2.5, 'word-spacing': 4}),
     ([('AB', 'CFF Outlines and SBIX', 50), ('BA', 'CFF Outlines and SBIX', 25)], {}),
     ([('Ab', 'Noto Sans', 30), ('cd', 'Noto Sans', 15), ('ef', 'Noto Serif', 20)],
      {'dx': [1, 2, 3], 'rotate': [15, -30, 45]}),
@@ -440,63 +448,35 @@ def test_glyph_paths_equal_per_glyph_construction(spans, attrs):
             np.testing.assert_allclose(p.points, pts, rtol=0, atol=1e-9)
 
 
-def test_glyph_path_of_mixed_fonts_scales_and_turns_equals_per_glyph():
-    """_glyph_path on glyphs of two fonts (as with fallback fonts), with
-    per-glyph or shared scales and with or without rotations, equals the
-    outlines transformed one by one."""
-    import math
-    from raster.parser.text import _Glyphs, _glyph_path
-    db = FontDB([FONTS])
-    fonts = [Font.load(db.match(['Noto Sans'])), Font.load(db.match(['Amiri']))]
-    rng = np.random.default_rng(8)
-    G = 40
-    fi = np.repeat([0, 1, 0, 1], [10, 5, 20, 5])
-    gid = np.array([rng.integers(1, len(fonts[f].glyph_order)) for f in fi])
-    x, y = rng.uniform(-300, 300, (2, G))
-    scales = rng.uniform(0.005, 0.05, G)
-    angles = rng.uniform(-180, 180, G)
-    for s in (scales, 0.02):
-        for rot in (None, angles):
-            g = _Glyphs(fonts, np.zeros(G, np.int64), fi, gid, x, y, s, rot, np.zeros(G))
-            p = _glyph_path(g, 3.5, -7.25)
-            verbs, pts = [], []
-            for k in range(G):
-                o = fonts[fi[k]].outline(int(gid[k]))
-                sk = s if np.ndim(s) == 0 else s[k]
-                th = 0.0 if rot is None else math.radians(rot[k])
-                X, Y = o.points[:, 0] * sk, -o.points[:, 1] * sk
-                X, Y = math.cos(th) * X - math.sin(th) * Y, math.sin(th) * X + math.cos(th) * Y
-                verbs.append(o.verbs)
-                pts.append(np.c_[X + x[k] + 3.5, Y + y[k] - 7.25])
-            np.testing.assert_array_equal(p.verbs, np.concatenate(verbs))
-            np.testing.assert_allclose(p.points, np.concatenate(pts), rtol=0, atol=1e-9)
+def test_letter_spacing_is_per_cluster_as_usvg():
+    """A ligature is one cluster: letter-spacing is added once after it
+    (usvg's rule), and never after the chunk's last cluster."""
+    serif = Font.load(FontDB([FONTS]).match(['Noto Serif']))
+    assert len(serif.shape('ffi')) == 1            # Noto Serif has an ffi ligature
+    a = ink('<text x="10" y="50" font-family="Noto Serif" font-size="40">ffio</text>')
+    b = ink('<text x="10" y="50" font-family="Noto Serif" font-size="40" '
+            'letter-spacing="7">ffio</text>')
+    assert b[2] - a[2] == pytest.approx(7.0, abs=1e-6)      # one gap: ffi|o
 
 
-def test_per_build_shaping_memo_is_bounded(monkeypatch, noto):
-    """Shaped chunks are remembered per build, at most _SHAPED_LIMIT (+1)
-    of them; evicted ones shape again the same."""
-    import types
-    import raster.parser.text as T
-    from raster.parser.context import Cache, Options
-    monkeypatch.setattr(T, '_SHAPED_LIMIT', 3)
-    b = Cache(Options(), None, {}, {}, set(), {}, None)
-    db = FontDB([FONTS])
-    span = types.SimpleNamespace(font=noto, features=None)
-    words = ['w%d' % i for i in range(20)] + ['w1', 'w2']
-    for w in words:
-        sh = T._shape_single(db, w, span, b)
-        assert len(b.table('text_shaped')) <= 4
-        assert sh.gid.tolist() == [g[0] for g in noto.shape(w)]
-        assert T._shape_single(db, w, span, b) is sh
-    # the same text in another font or without kerning is another chunk
-    serif = Font.load(db.match(['Noto Serif']))
-    other = T._shape_single(db, 'w1', types.SimpleNamespace(font=serif, features=None), b)
-    assert other.fonts == [serif]
-    assert other.gid.tolist() == [g[0] for g in serif.shape('w1')]
-    nokern = T._shape_single(db, 'AV',
-                             types.SimpleNamespace(font=noto, features={'kern': False}), b)
-    assert nokern.xa.tolist() == [g[2] for g in noto.shape('AV', {'kern': False})]
-    assert nokern.xa.tolist() != T._shape_single(db, 'AV', span, b).xa.tolist()
+def test_shaping_memo_is_bounded_and_shared():
+    """Chunks are shaped once per font and text in a document; the memo
+    table is emptied beyond its bound and shapes again the same."""
+    from raster.parser import textlayout as L
+    font = Font.load(FontDB([FONTS]).match(['Noto Sans']))
+    memo = {}
+    runs = [(0, 3, False)]
+    r = L._shape_runs(font, 'AVA', runs, None, memo)
+    assert L._shape_runs(font, 'AVA', runs, None, memo) is r
+    assert r[0].tolist() == [g[0] for g in font.shape('AVA')]
+    nok = L._shape_runs(font, 'AVA', runs, {'kern': 0}, memo)
+    assert nok[2].tolist() != r[2].tolist()         # kerning changes the advances
+    for i in range(5000):
+        w = 'w%d' % i
+        L._shape_runs(font, w, [(0, len(w), False)], None, memo)
+        assert len(memo) <= 4097
+    again = L._shape_runs(font, 'AVA', runs, None, memo)
+    assert [a.tolist() for a in again] == [a.tolist() for a in r]
 
 
 def test_same_string_in_other_fonts_of_one_document():

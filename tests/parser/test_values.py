@@ -16,7 +16,8 @@ from raster.parser.values import (
     CURRENT_COLOR, PAINT_NONE, LengthContext, Paint, parse_angle, parse_color,
     parse_font_size, parse_length, parse_length_list, parse_number,
     parse_number_list, parse_opacity, parse_paint, parse_preserve_aspect_ratio,
-    parse_transform, parse_transform_origin, parse_url, parse_viewbox,
+    parse_transform, parse_transform_origin, parse_url, parse_viewbox, resolve_viewbox,
+    ZERO_VIEWBOX,
     viewbox_transform)
 
 from _shared import SUITE_TESTS as SUITE
@@ -436,6 +437,17 @@ def test_viewbox():
     assert parse_viewbox(' -10,-20 , 1e2 50 ') == (-10, -20, 100, 50)
     for s in ('0 0 0 50', '0 0 100 -1', '0 0 100', '0 0 100 50 1', 'a b c d', ''):
         assert parse_viewbox(s) is None, s
+
+
+def test_resolve_viewbox_ignores_invalid_and_disables_zero():
+    # SVG 2: an invalid value (syntax, count, negative side) invalidates the
+    # attribute; a zero side disables rendering of the element
+    assert resolve_viewbox(None) is None
+    assert resolve_viewbox('-10,-20 , 1e2 50') == (-10, -20, 100, 50)
+    for s in ('0 0 100 -1', '0 0 -1 0', '0 0 100', '0 0 100 50 1', 'a b c d', ''):
+        assert resolve_viewbox(s) is None, s
+    for s in ('0 0 0 50', '0 0 100 0', '1 1 0 0'):
+        assert resolve_viewbox(s) is ZERO_VIEWBOX, s
 
 
 def test_preserve_aspect_ratio_parse():

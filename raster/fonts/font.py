@@ -1,103 +1,30 @@
-"""Font discovery and CSS font matching.
+"""A loaded face: shaping with HarfBuzz (uharfbuzz), outlines with fontTools.
 
-Fonts are looked for only in the directories a caller names (nothing is
-taken from the system unless ``system=True`` is passed to :class:`FontDB`).
-Every ``.ttf``, ``.otf``, ``.ttc`` and ``.otc`` file is read with fontTools
-for its family names, weight (``OS/2.usWeightClass``), style (italic or
-oblique from ``OS/2.fsSelection``/``head.macStyle``) and stretch
-(``OS/2.usWidthClass``, 1..9).  Scans are cached by path and modification
-time, so building many documents with the same font directory is cheap.
-
-Matching follows CSS Fonts level 3 (section 5.2) in a reduced form: the
-first family of a ``font-family`` list that exists wins; within it the
-closest stretch, then the style (italic, else oblique, else normal), then
-the weight by the CSS rule (400 prefers 500 next, 500 prefers 400, lighter
-weights look lighter first, heavier ones heavier first).  Generic families
-are mapped to concrete families (:data:`GENERIC_FAMILIES`, the mapping the
-resvg test harness uses).  When nothing matches, :data:`DEFAULT_FAMILY` is
-tried, then the serif family, then any font.
-
->>> parse_font_family('"Noto Sans", Arial ,serif')
-['Noto Sans', 'Arial', 'serif']
->>> db = FontDB([])
->>> db.match(['serif']) is None
-True
+:meth:`Font.load` keeps loaded fonts per process (keyed by path, face
+index and modification time).  Fonts given as bytes (``@font-face`` with a
+``data:`` URI) are registered with :func:`register_memory_font` under a
+``memory:`` key and load like files.
 """
 
+import hashlib
 import io
 import os
-import re
-import warnings
-from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
 
-from .errors import RasterError, RasterWarning
-from .geometry.path import Path
-from .geometry.pens import PathBuilder
+from ..errors import RasterError
+from ..geometry.path import Path
+from ..geometry.pens import PathBuilder
+from .files import FontError, FontFace, check_font_data, quiet_fonttools, read_font_bytes, sfnt_bytes
 
-__all__ = ['FontError', 'FontFace', 'FontDB', 'Font', 'parse_font_family',
-           'GENERIC_FAMILIES', 'DEFAULT_FAMILY', 'FONT_EXTENSIONS']
+__all__ = ['Font', 'Shaped', 'register_memory_font', 'memory_font_data']
 
-#: Generic CSS families and the concrete family each maps to.
-GENERIC_FAMILIES = {'serif': 'Noto Serif', 'sans-serif': 'Noto Sans', 'cursive': 'Yellowtail',
-                    'fantasy': 'Sedgwick Ave Display', 'monospace': 'Noto Mono'}
-
-#: Family used when no family of a list is available (usvg's default).
-DEFAULT_FAMILY = 'Times New Roman'
-
-#: File name endings scanned for fonts (lower case).
-FONT_EXTENSIONS = ('.ttf', '.otf', '.ttc', '.otc')
-
-_SYSTEM_DIRS = ('/usr/share/fonts', '/usr/local/share/fonts', '~/.fonts',
-                '~/.local/share/fonts', '/Library/Fonts', '/System/Library/Fonts',
-                'C:/Windows/Fonts')
-
-_STRETCH = {'ultra-condensed': 1, 'extra-condensed': 2, 'condensed': 3,
-            'semi-condensed': 4, 'normal': 5, 'semi-expanded': 6, 'expanded': 7,
-            'extra-expanded': 8, 'ultra-expanded': 9}
-
-
-class FontError(RasterError):
-    """A font file cannot be read or used (corrupt file, no outlines)."""
-
-
-@dataclass(frozen=True)
-class FontFace:
-    """One face of a font file.
-
-    Attributes
-    ----------
-    path : str
-        File path.
-    index : int
-        Face index inside a collection (0 for plain files).
-    families : tuple of str
-        Family names (typographic family first, then the legacy family),
-        lower-cased for comparison is done by :class:`FontDB`.
-    weight : int
-        ``usWeightClass`` (100..900).
-    style : str
-        ``'normal'``, ``'italic'`` or ``'oblique'``.
-    stretch : int
-        ``usWidthClass`` (1 ultra-condensed .. 5 normal .. 9 ultra-expanded).
-    """
-    path: str
-    index: int
-    families: tuple
-    weight: int = 400
-    style: str = 'normal'
-    stretch: int = 5
-
-
-_SCAN_CACHE = {}      # (path, mtime_ns, size) -> tuple of FontFace
 _FONT_CACHE = {}      # (path, index, mtime_ns) -> Font
+_MEMORY = {}          # 'memory:<sha1>' -> sfnt bytes
 
-#: Bounds of the caches: font descriptions matched per :class:`FontDB`,
-#: shaped strings per :class:`Font`, and outline points packed per
-#: :class:`Font` (the packed outlines start over beyond it).
-_MATCH_LIMIT = 4096
+#: Bounds of the caches: shaped strings per :class:`Font`, and outline
+#: points packed per :class:`Font` (the packed outlines start over beyond it).
 _SHAPE_LIMIT = 4096
 _ATLAS_MAX_POINTS = 1 << 22
 #: Glyph sequences of up to ``_RUN_GLYPHS`` glyphs have their gathered
@@ -106,9 +33,7 @@ _RUN_GLYPHS = 32
 _RUN_LIMIT = 1024
 
 
-def cached(cache, key, make, limit):
-    """``cache[key]``, made by ``make()`` when missing; the dict is emptied
-    once it holds more than ``limit`` entries (a bound, not an LRU)."""
+def _cached(cache, key, make, limit):
     value = cache.get(key)
     if value is None:
         value = make()
@@ -118,202 +43,37 @@ def cached(cache, key, make, limit):
     return value
 
 
-def parse_font_family(value):
-    """Split a CSS ``font-family`` value into a list of names.
+def register_memory_font(data):
+    """Register font ``data`` (bytes: sfnt, WOFF or WOFF2, checked) and
+    return its ``memory:`` key (the same data gives the same key).
 
-    Quoted names keep their inner spaces; unquoted names have runs of
-    whitespace collapsed.  Empty entries are dropped.
-
-    >>> parse_font_family("'Times New Roman',  Noto   Serif, monospace")
-    ['Times New Roman', 'Noto Serif', 'monospace']
+    Raises
+    ------
+    FontError
+        Not a usable font container.
     """
-    out = []
-    for m in re.finditer(r'\s*(?:"([^"]*)"|\'([^\']*)\'|([^,]*))\s*(?:,|$)', value or ''):
-        q = m.group(1) if m.group(1) is not None else m.group(2)
-        if q is not None:
-            name = q.strip()
-        else:
-            name = ' '.join((m.group(3) or '').split())
-        if name:
-            out.append(name)
-    return out
+    key = 'memory:' + hashlib.sha1(data).hexdigest()
+    if key not in _MEMORY:
+        kind = check_font_data(data)
+        if len(_MEMORY) > 64:
+            _MEMORY.clear()
+        _MEMORY[key] = sfnt_bytes(data, kind)
+    return key
 
 
-def _read_faces(path):
-    from fontTools.ttLib import TTFont, TTCollection
-    low = path.lower()
-    if low.endswith(('.ttc', '.otc')):
-        coll = TTCollection(path, lazy=True)
-        fonts = list(coll.fonts)
-    else:
-        fonts = [TTFont(path, lazy=True)]
-    try:
-        return _faces_of(path, fonts)
-    finally:
-        for f in fonts:
-            f.close()
+def memory_font_data(key):
+    """The sfnt bytes registered under ``key``, or None."""
+    return _MEMORY.get(key)
 
 
-def _faces_of(path, fonts):
-    faces = []
-    for index, f in enumerate(fonts):
-        if 'name' not in f:
-            continue
-        name = f['name']
-        fams = []
-        for nid in (16, 1):
-            rec = name.getDebugName(nid)
-            if rec and rec not in fams:
-                fams.append(rec)
-        if not fams:
-            continue
-        weight, style, stretch = 400, 'normal', 5
-        if 'OS/2' in f:
-            os2 = f['OS/2']
-            weight = int(os2.usWeightClass) or 400
-            if weight < 10:             # some old fonts store 1..9
-                weight *= 100
-            stretch = min(max(int(os2.usWidthClass), 1), 9)
-            sel = int(os2.fsSelection)
-            if sel & 1:
-                style = 'italic'
-            elif sel & (1 << 9):
-                style = 'oblique'
-        elif 'head' in f and int(f['head'].macStyle) & 2:
-            style = 'italic'
-        faces.append(FontFace(path, index, tuple(fams), weight, style, stretch))
-    return tuple(faces)
-
-
-def _scan_file(path):
-    try:
-        s = os.stat(path)
-    except OSError:
-        return ()
-    key = (path, s.st_mtime_ns, s.st_size)
-    r = _SCAN_CACHE.get(key)
-    if r is None:
-        try:
-            r = _read_faces(path)
-        except Exception as e:      # fontTools raises many kinds on bad files
-            warnings.warn('font file %s ignored: %s' % (path, e), RasterWarning, stacklevel=3)
-            r = ()
-        _SCAN_CACHE[key] = r
-    return r
-
-
-class FontDB:
-    """The fonts of some directories, and CSS matching over them.
-
-    Parameters
-    ----------
-    dirs : sequence of str
-        Directories scanned recursively (missing ones are skipped).
-    system : bool
-        Also scan the usual system font directories.
-    generic : dict, optional
-        Generic family -> family name; defaults to :data:`GENERIC_FAMILIES`.
-
-    >>> FontDB(['/nonexistent']).faces
-    []
-    """
-
-    def __init__(self, dirs=(), system=False, generic=None):
-        self.generic = dict(GENERIC_FAMILIES if generic is None else generic)
-        self.faces = []
-        roots = [str(d) for d in (dirs or ())]
-        if system:
-            roots += [os.path.expanduser(d) for d in _SYSTEM_DIRS]
-        seen = set()
-        for root in roots:
-            if not os.path.isdir(root):
-                continue
-            for dirpath, dirnames, filenames in os.walk(root):
-                dirnames.sort()
-                for fn in sorted(filenames):
-                    if not fn.lower().endswith(FONT_EXTENSIONS):
-                        continue
-                    p = os.path.join(dirpath, fn)
-                    if p in seen:
-                        continue
-                    seen.add(p)
-                    self.faces.extend(_scan_file(p))
-        self._by_family = {}
-        self._matches = {}      # (families, weight, style, stretch) -> FontFace
-        for f in self.faces:
-            for fam in f.families:
-                lst = self._by_family.setdefault(fam.lower(), [])
-                if f not in lst:
-                    lst.append(f)
-
-    def family_faces(self, family):
-        """Faces of one family name (generic names resolved), maybe empty."""
-        fam = self.generic.get(family.lower(), family) if family.lower() in self.generic else family
-        return self._by_family.get(fam.lower(), [])
-
-    def match(self, families, weight=400, style='normal', stretch='normal'):
-        """The best :class:`FontFace` for a CSS font description, or None.
-
-        Parameters
-        ----------
-        families : sequence of str
-            ``font-family`` list (see :func:`parse_font_family`).
-        weight : int
-            100..900.
-        style : str
-            'normal', 'italic' or 'oblique'.
-        stretch : str or int
-            CSS keyword or 1..9.
-        """
-        if not self.faces:
-            return None
-        if isinstance(stretch, str):
-            stretch = _STRETCH.get(stretch, 5)
-        key = (tuple(families), int(weight), style, int(stretch))
-        return cached(self._matches, key, lambda: self._match(*key), _MATCH_LIMIT)
-
-    def _match(self, families, weight, style, stretch):
-        for fam in list(families) + [DEFAULT_FAMILY, 'serif']:
-            cands = self.family_faces(fam)
-            if cands:
-                return _best(cands, weight, style, stretch)
-        return _best(self.faces, weight, style, stretch)
-
-    def fallback_faces(self, face):
-        """Other faces to try for characters ``face`` has no glyph for, in
-        a fixed order (same style first)."""
-        return [f for f in self.faces if f != face]
-
-
-def _best(cands, weight, style, stretch):
-    # stretch: closest, narrower first when desired <= normal
-    def sdist(f):
-        d = f.stretch - stretch
-        if stretch <= 5:
-            return (d > 0, abs(d))
-        return (d < 0, abs(d))
-    best_s = min(sdist(f) for f in cands)
-    cands = [f for f in cands if sdist(f) == best_s]
-    order = {'italic': ('italic', 'oblique', 'normal'),
-             'oblique': ('oblique', 'italic', 'normal')}.get(style, ('normal', 'oblique', 'italic'))
-    for s in order:
-        sub = [f for f in cands if f.style == s]
-        if sub:
-            cands = sub
-            break
-
-    def wkey(f):
-        w = f.weight
-        if w == weight:
-            return (0, 0)
-        if 400 <= weight <= 500 and weight < w <= 500:
-            return (1, w - weight)
-        if weight < 400 or (weight <= 500 and w < weight):
-            # lighter first (descending), then heavier (ascending)
-            return (2, weight - w) if w < weight else (3, w - weight)
-        # heavier first (ascending), then lighter (descending)
-        return (2, w - weight) if w > weight else (3, weight - w)
-    return min(cands, key=wkey)
+def _font_data(path):
+    if path.startswith('memory:'):
+        data = _MEMORY.get(path)
+        if data is None:
+            raise FontError('font data %s is no longer registered' % path)
+        return data
+    data = read_font_bytes(path)
+    return sfnt_bytes(data)
 
 
 class Font:
@@ -339,17 +99,31 @@ class Font:
         from fontTools.ttLib import TTFont
         self.face = face
         try:
-            with open(face.path, 'rb') as fh:
-                data = fh.read()
-            self.tt = TTFont(io.BytesIO(data), fontNumber=face.index, lazy=True)
-            self.glyph_set = self.tt.getGlyphSet()
-            self.glyph_order = self.tt.getGlyphOrder()
-            self.hb_face = hb.Face(hb.Blob(data), face.index)
-            self.hb_font = hb.Font(self.hb_face)
-        except Exception as e:
+            data = _font_data(face.path)
+        except FontError as e:
             raise FontError('cannot load font %s: %s' % (face.path, e)) from None
+        with quiet_fonttools():
+            try:
+                self.tt = TTFont(io.BytesIO(data), fontNumber=face.index, lazy=True)
+                self.glyph_set = self.tt.getGlyphSet()
+                self.glyph_order = self.tt.getGlyphOrder()
+                self.upem = float(self.tt['head'].unitsPerEm)
+                if not 16 <= self.upem <= 16384:
+                    raise FontError('unitsPerEm %g out of range' % self.upem)
+                self.hb_face = hb.Face(hb.Blob(data), face.index)
+                self.hb_font = hb.Font(self.hb_face)
+                self._init_metrics()
+            except Exception as e:      # fontTools raises many kinds on bad fonts
+                raise FontError('cannot load font %s: %s'
+                                % (face.path, ' '.join(str(e).split()) or type(e).__name__)) \
+                    from None
+        self._data = data
+        self._axes = None
+        self._color = None
+        self._reset_caches()
+
+    def _init_metrics(self):
         tt = self.tt
-        self.upem = float(tt['head'].unitsPerEm)
         hhea = tt['hhea'] if 'hhea' in tt else None
         os2 = tt['OS/2'] if 'OS/2' in tt else None
         self.ascender = float(hhea.ascent if hhea else 0.8 * self.upem)
@@ -368,8 +142,6 @@ class Font:
         self.subscript_y = float(os2.ySubscriptYOffset) if os2 else 0.15 * self.upem
         self.superscript_y = float(os2.ySuperscriptYOffset) if os2 else 0.45 * self.upem
         self._cmap = tt.getBestCmap() or {}
-        self._axes = None
-        self._reset_caches()
 
     def _reset_caches(self):
         """Empty the per-font caches: shaped strings (see
@@ -435,11 +207,14 @@ class Font:
     def load(cls, face):
         """The cached :class:`Font` of a face (cache keyed by path, index and
         modification time).  Raises :class:`FontError`."""
-        try:
-            mt = os.stat(face.path).st_mtime_ns
-        except OSError as e:
-            raise FontError('cannot read font %s: %s' % (face.path, e.strerror)) from None
-        return cached(_FONT_CACHE, (face.path, face.index, mt), lambda: cls(face), 64)
+        if face.path.startswith('memory:'):
+            mt = 0
+        else:
+            try:
+                mt = os.stat(face.path).st_mtime_ns
+            except OSError as e:
+                raise FontError('cannot read font %s: %s' % (face.path, e.strerror)) from None
+        return _cached(_FONT_CACHE, (face.path, face.index, mt), lambda: cls(face), 64)
 
     def has_char(self, ch):
         """True when the font maps the character to a glyph."""
@@ -457,7 +232,7 @@ class Font:
         r = self.shape_arrays(text, features)
         return list(zip(r.gid.tolist(), r.cluster.tolist(), *(r.pos.astype(np.int64).T.tolist())))
 
-    def shape_arrays(self, text, features=None):
+    def shape_arrays(self, text, features=None, direction=None):
         """Shape ``text`` like :meth:`shape`, as arrays; cached per font by
         ``(text, features)`` (at most ``_SHAPE_LIMIT`` strings).
 
@@ -469,16 +244,20 @@ class Font:
             ``pos`` (G, 4) float64 x_advance, y_advance, x_offset, y_offset
             in font units (y up), glyphs in visual order; ``ordered`` is
             True when there is one glyph per character in logical order.
-            The arrays are read-only.
+            The arrays are read-only.  ``direction`` (``'ltr'``, ``'rtl'``,
+            ``'ttb'``) overrides HarfBuzz's guess (the bidi level of a run).
         """
-        key = (text, tuple(sorted(features.items())) if features else ())
-        return cached(self._shaped, key, lambda: self._shape(text, features), _SHAPE_LIMIT)
+        key = (text, tuple(sorted(features.items())) if features else (), direction)
+        return _cached(self._shaped, key, lambda: self._shape(text, features, direction),
+                       _SHAPE_LIMIT)
 
-    def _shape(self, text, features):
+    def _shape(self, text, features, direction=None):
         import uharfbuzz as hb
         buf = hb.Buffer()
         buf.add_codepoints([ord(c) for c in text])
         buf.guess_segment_properties()
+        if direction is not None:
+            buf.direction = direction
         hb.shape(self.hb_font, buf, features or {})
         infos = buf.glyph_infos
         gid = np.array([i.codepoint for i in infos], np.int64)

@@ -1,0 +1,76 @@
+"""What the commands do to their own process: Python's garbage collector
+is paused while a command's body runs and restored afterwards (the
+library never touches it: tests/parser/test_parser.py)."""
+
+import gc
+
+import pytest
+
+from raster_cli import _common
+from raster_cli.rasterize import main as rasterize
+
+SVG = b'<svg xmlns="http://www.w3.org/2000/svg" width="6" height="4"><rect width="3" height="4"/></svg>'
+
+
+def test_collector_paused_restores_the_state():
+    assert gc.isenabled()
+    with _common.collector_paused():
+        assert not gc.isenabled()
+    assert gc.isenabled()
+    gc.disable()
+    try:
+        with _common.collector_paused():
+            assert not gc.isenabled()
+        assert not gc.isenabled()          # left as the caller had it
+    finally:
+        gc.enable()
+    with pytest.raises(KeyError):
+        with _common.collector_paused():
+            raise KeyError('x')
+    assert gc.isenabled()
+
+
+def test_a_command_body_runs_with_the_collector_paused(monkeypatch, tmp_path):
+    seen = []
+    real = _common.read_source
+
+    def spy(path):
+        seen.append(gc.isenabled())
+        return real(path)
+    monkeypatch.setattr('raster_cli.rasterize.read_source', spy)
+    src = tmp_path / 'a.svg'
+    src.write_bytes(SVG)
+    assert rasterize([str(src), str(tmp_path / 'a.png')]) == 0
+    assert seen == [False] and gc.isenabled()
+    # a failing run restores it too
+    assert rasterize([str(tmp_path / 'missing.svg'), str(tmp_path / 'b.png')]) == 1
+    assert gc.isenabled()
+
+
+def run_code(code, env_extra=None):
+    import os
+    import subprocess
+    import sys
+    env = {k: v for k, v in os.environ.items() if k != 'OPENBLAS_NUM_THREADS'}
+    env.update(env_extra or {})
+    return subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
+                          env=env, check=True).stdout.split()
+
+
+BLAS = '''
+import os, sys
+from raster_cli import _common
+sys.argv = ['rasterize', '--version']
+try:
+    _common.run('rasterize', lambda a: 0, _common.Parser(prog='rasterize'), %s)
+except SystemExit:
+    pass
+print(os.environ.get('OPENBLAS_NUM_THREADS', '-'))
+'''
+
+
+def test_from_the_command_line_numpy_gets_one_blas_thread():
+    assert run_code(BLAS % 'None') == ['1']
+    assert run_code(BLAS % 'None', {'OPENBLAS_NUM_THREADS': '3'}) == ['3']   # the user's
+    assert run_code(BLAS % '[]') == ['-']          # called with arguments: not a command line
+    assert run_code('import numpy\n' + BLAS % 'None') == ['-']    # numpy already loaded

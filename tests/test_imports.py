@@ -1,0 +1,130 @@
+"""What a document makes raster import (issue 17): the modules behind text,
+filters, images and the other element families load with the first
+element that needs them, so a plain document renders without fontTools,
+uharfbuzz, the filter machinery or Pillow, and the commands import nothing
+heavy (not even numpy) before they have parsed their arguments.
+
+Each check runs in a fresh interpreter and lists the modules it ended with;
+the positive checks (a filter loads the filter modules, text loads the
+fonts, an image loads Pillow) show that the listing sees them."""
+
+import base64
+import io
+import json
+import os
+import subprocess
+import sys
+import textwrap
+
+import pytest
+from PIL import Image
+
+from _shared import SUITE_FONTS
+
+#: Loaded only by documents that need them.
+HEAVY = ('fontTools', 'uharfbuzz', 'PIL', 'raster.fonts.font', 'raster.fonts.matching',
+         'raster.fonts.discovery', 'raster.fonts.color', 'raster.parser.text',
+         'raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
+         'raster.tree.filter', 'raster.parser.images', 'raster.parser.imageload',
+         'raster.parser.markers', 'raster.parser.clipmask')
+FILTERS = ('raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
+           'raster.tree.filter')
+
+SVG = '<svg xmlns="http://www.w3.org/2000/svg" width="20" height="10">%s</svg>'
+RECT = '<rect x="2" y="2" width="6" height="6" fill="red" stroke="blue"/>'
+
+
+def modules_after(code):
+    """Sorted names in ``sys.modules`` after running ``code`` in a fresh
+    interpreter (which prints nothing else)."""
+    prog = code + '\nimport sys, json\nprint(json.dumps(sorted(sys.modules)))\n'
+    out = subprocess.run([sys.executable, '-c', prog], capture_output=True, text=True,
+                         check=True, cwd=os.path.dirname(os.path.abspath(__file__)))
+    return set(json.loads(out.stdout.strip().splitlines()[-1]))
+
+
+def loaded(mods, names):
+    """The entries of ``names`` that are modules (or packages) in ``mods``."""
+    return sorted(n for n in names if any(m == n or m.startswith(n + '.') for m in mods))
+
+
+def render_code(doc, **kw):
+    return textwrap.dedent('''
+        import raster
+        img = raster.render(%r%s)
+        assert img.shape[2] == 4
+    ''') % (doc.encode(), ''.join(', %s=%r' % kv for kv in kw.items()))
+
+
+def test_import_raster_loads_no_numpy():
+    mods = modules_after('import raster, raster.errors')
+    assert 'numpy' not in mods
+    assert loaded(mods, ('raster.geometry', 'raster.parser', 'raster.renderer')) == []
+
+
+def test_a_plain_document_loads_nothing_heavy():
+    mods = modules_after(render_code(SVG % (RECT + '<g opacity="0.5">%s</g>' % RECT)))
+    assert 'raster.renderer.draw' in mods and 'lxml.etree' in mods
+    assert loaded(mods, HEAVY) == []
+
+
+def test_the_command_on_a_plain_document_loads_nothing_heavy(tmp_path):
+    src = tmp_path / 'in.svg'
+    src.write_text(SVG % RECT)
+    mods = modules_after(textwrap.dedent('''
+        from raster_cli.rasterize import main
+        assert main([%r, %r]) == 0
+    ''') % (str(src), str(tmp_path / 'out.png')))
+    assert 'raster.renderer.draw' in mods
+    # nor the network and temporary-file modules of the standard library
+    assert loaded(mods, HEAVY + ('urllib.request', 'http', 'email', 'tempfile', 'shutil')) == []
+    assert (tmp_path / 'out.png').read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'
+
+
+@pytest.mark.parametrize('argv', [['--version'], ['--help'], [], ['in.svg']])
+def test_the_command_imports_no_numpy_before_its_arguments_are_read(argv):
+    mods = modules_after(textwrap.dedent('''
+        import contextlib, io
+        from raster_cli.rasterize import main
+        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+            try:
+                main(%r)
+            except SystemExit:
+                pass
+    ''') % (argv,))
+    assert loaded(mods, ('numpy', 'lxml', 'raster.parser', 'raster.renderer')) == []
+
+
+def test_a_filter_loads_the_filter_modules():
+    doc = SVG % ('<filter id="f"><feGaussianBlur stdDeviation="1"/></filter>'
+                 '<rect width="6" height="6" filter="url(#f)"/>')
+    mods = modules_after(render_code(doc))
+    assert loaded(mods, FILTERS) == sorted(FILTERS)
+    assert loaded(mods, ('fontTools', 'uharfbuzz', 'PIL')) == []
+
+
+def test_text_loads_the_fonts():
+    doc = SVG % '<text x="1" y="8" font-family="Noto Sans" font-size="8">Hi</text>'
+    mods = modules_after(render_code(doc, font_dirs=[SUITE_FONTS]))
+    assert loaded(mods, ('fontTools', 'uharfbuzz', 'raster.fonts', 'raster.parser.text')) == [
+        'fontTools', 'raster.fonts', 'raster.parser.text', 'uharfbuzz']
+    assert loaded(mods, FILTERS) == []
+
+
+def test_an_image_loads_pillow():
+    buf = io.BytesIO()
+    Image.new('RGBA', (2, 2), (0, 255, 0, 255)).save(buf, 'PNG')
+    uri = 'data:image/png;base64,' + base64.b64encode(buf.getvalue()).decode()
+    doc = SVG % ('<image width="4" height="4" href="%s"/>' % uri)
+    mods = modules_after(render_code(doc))
+    assert 'PIL' in mods and 'raster.parser.images' in mods
+    assert loaded(mods, FILTERS + ('fontTools', 'uharfbuzz')) == []
+
+
+def test_markers_and_clip_paths_load_their_modules():
+    doc = SVG % ('<marker id="m" markerWidth="2" markerHeight="2"><rect width="1" height="1"/>'
+                 '</marker><clipPath id="c"><circle cx="5" cy="5" r="4"/></clipPath>'
+                 '<path d="M1 1h8v8" stroke="black" marker-end="url(#m)" clip-path="url(#c)"/>')
+    mods = modules_after(render_code(doc))
+    assert loaded(mods, ('raster.parser.markers', 'raster.parser.clipmask')) == [
+        'raster.parser.clipmask', 'raster.parser.markers']
