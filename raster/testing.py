@@ -428,9 +428,13 @@ def capsule_spans(points, r: float):
     a, b = p[:-1], p[1:]
 
     def fn(ys):
-        S, L = len(a), len(ys)
-        seg = np.repeat(np.arange(S), L)
-        li = np.tile(np.arange(L), S)
+        # the lines each segment's capsule can reach
+        y0 = np.minimum(a[:, 1], b[:, 1]) - r
+        y1 = np.maximum(a[:, 1], b[:, 1]) + r
+        i0 = np.searchsorted(ys, y0, 'left')
+        cnt = np.searchsorted(ys, y1, 'right') - i0
+        seg = np.repeat(np.arange(len(a)), cnt)
+        li = np.repeat(i0, cnt) + np.arange(int(cnt.sum())) - np.repeat(np.cumsum(cnt) - cnt, cnt)
         y = ys[li]
         ax, ay, bx, by = a[seg, 0], a[seg, 1], b[seg, 0], b[seg, 1]
         lo = np.full(len(seg), np.inf)
@@ -471,7 +475,10 @@ def capsule_spans(points, r: float):
             return li, lo, hi
         first = np.r_[True, li[1:] != li[:-1]]
         grp = np.cumsum(first) - 1
-        run_hi = np.maximum.accumulate(hi + grp * 1e12) - grp * 1e12   # running max per line
+        # running maximum of hi within each line: lines lifted apart by more
+        # than any interval's extent
+        lift = grp * (hi.max() - lo.min() + 1.0)
+        run_hi = np.maximum.accumulate(hi + lift) - lift
         new = first.copy()
         new[1:] |= lo[1:] > run_hi[:-1]
         k = np.cumsum(new) - 1
