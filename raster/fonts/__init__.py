@@ -15,7 +15,7 @@
 * :mod:`raster.fonts.color` -- colour glyphs (COLRv0, COLRv1, sbix,
   CBDT/CBLC, SVG) as neutral layer descriptions.
 
->>> from raster.fonts import parse_font_family
+>>> from raster.fonts import parse_font_family       # a lazy name: not a global yet
 >>> parse_font_family('"Noto Sans", Arial ,serif')
 ['Noto Sans', 'Arial', 'serif']
 """
