@@ -32,8 +32,9 @@ random walk, stroked 2 px, on 1000x1000).  Modes:
   peak RSS of ``--repeat`` rounds.  Time an installed copy (``pip install
   .`` into a separate venv compiles the bytecode) with ``--rasterize``.
 * ``inprocess``: one fresh worker process per renderer and case imports
-  the renderer, renders once to warm up, then times ``--repeat`` renders to
-  PNG bytes (median wall time) and reports its peak RSS.
+  the renderer, renders once to warm up, then times ``--repeat`` renders
+  (parse and render to PNG bytes; median wall time) and reports its peak
+  RSS (VmHWM).
 
 Inputs are generated with seeded RNGs into a temporary folder.  The machine
 (CPU, cores, load average, versions) is printed with the tables.
@@ -278,8 +279,12 @@ for _ in range(repeat):
     t0 = time.perf_counter()
     fn()
     ts.append(time.perf_counter() - t0)
-print(json.dumps({'wall': statistics.median(ts),
-                  'rss_mb': resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
+# VmHWM: this process's own peak (ru_maxrss would carry the parent's peak
+# over the exec on Linux)
+hwm = [l for l in open('/proc/self/status') if l.startswith('VmHWM')]
+rss = (int(hwm[0].split()[1]) if hwm
+       else resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)
+print(json.dumps({'wall': statistics.median(ts), 'rss_mb': rss / 1024}))
 '''
 
 
