@@ -722,6 +722,9 @@ def main(argv=None):
                     help='comma-separated fnmatch patterns or substrings of file names')
     ap.add_argument('--widths', default='natural,2000',
                     help="comma-separated output widths; 'natural' = the document's size")
+    ap.add_argument('--inprocess-widths', default=None, metavar='WIDTHS',
+                    help='widths of the in-process mode when it should run fewer than --widths '
+                    '(e.g. natural,2000 beside a whole-process run that includes 8000)')
     ap.add_argument('--renderers', default=','.join(RENDERERS))
     ap.add_argument('--repeat', type=int, default=3, help='timed renders per cell (median)')
     ap.add_argument('--timeout', type=float, default=60.0,
@@ -754,15 +757,22 @@ def main(argv=None):
     bad = [r for r in renderers if r not in RENDERERS]
     if bad:
         ap.error('unknown renderer(s): %s' % ', '.join(bad))
-    widths = []
-    for w in args.widths.split(','):
-        w = w.strip()
-        if w == 'natural':
-            widths.append(None)
-        elif w.isdigit() and int(w) > 0:
-            widths.append(int(w))
-        else:
-            ap.error('bad width %r' % w)
+    def parse_widths(text):
+        out = []
+        for w in text.split(','):
+            w = w.strip()
+            if w == 'natural':
+                out.append(None)
+            elif w.isdigit() and int(w) > 0:
+                out.append(int(w))
+            else:
+                ap.error('bad width %r' % w)
+        return out
+    widths = parse_widths(args.widths)
+    inproc_widths = widths if args.inprocess_widths is None else parse_widths(args.inprocess_widths)
+    bad = [w for w in inproc_widths if w not in widths]
+    if bad:
+        ap.error('--inprocess-widths must be among --widths')
     if args.rasterize is None:
         args.rasterize = os.path.join(os.path.dirname(args.python), 'rasterize')
     modes = ('process', 'inprocess') if args.mode == 'both' else (args.mode,)
@@ -815,7 +825,7 @@ def main(argv=None):
                                 _med(res['rss_mb']), res['size'][0], res['size'][1],
                                 len(res['wall']))
                         print('%-40s %-8s %-9s process    %s' % (name, wkey, r, msg), flush=True)
-                if 'inprocess' not in modes:
+                if 'inprocess' not in modes or width not in inproc_widths:
                     continue
                 for r in renderers:
                     res = run_cell(r, svg, width, args, tmpdir)
@@ -853,8 +863,10 @@ def _report(args, argv, info, proc, inproc, files, widths, renderers, repeat):
     if inproc:
         if proc:
             lines += ['', '## In process (warm renders after a warm-up, one worker per cell)']
+        present = {k[1] for k in inproc}
+        inproc_widths = [w for w in widths if (w or 'natural') in present]
         for metric in metrics:
-            lines += build_tables(inproc, files, widths, renderers, repeat, metric)[0]
+            lines += build_tables(inproc, files, inproc_widths, renderers, repeat, metric)[0]
     print('\n'.join(lines))
     if args.markdown:
         with open(args.markdown, 'w') as f:

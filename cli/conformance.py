@@ -34,6 +34,8 @@ from multiprocessing import connection as mpconn
 
 import numpy as np
 
+from raster.testing import SUITE_GENERIC_FAMILIES
+
 from ._common import add_version
 
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -42,8 +44,7 @@ DEFAULT_RATCHET = os.path.join(REPO_ROOT, 'tests', 'conformance_ratchet.json')
 WIDTH = 300
 STATUSES = ('pass', 'fail', 'error', 'timeout')
 # Generic font families the suite's references were made with (resvg harness).
-GENERIC_FAMILIES = {'serif': 'Noto Serif', 'sans-serif': 'Noto Sans', 'cursive': 'Yellowtail',
-                    'fantasy': 'Sedgwick Ave Display', 'monospace': 'Noto Mono'}
+GENERIC_FAMILIES = SUITE_GENERIC_FAMILIES
 
 
 class HarnessError(Exception):
@@ -109,12 +110,8 @@ class RasterRenderer:
     def fonts(self):
         """The suite's fonts only, with resvg's harness mapping (no system
         fonts, so the numbers stay comparable between machines)."""
-        from raster.fonts import FontOptions
-        g = GENERIC_FAMILIES
-        return FontOptions(dirs=(self.cfg['fonts_dir'],), system=False,
-                           serif_family=g['serif'], sans_serif_family=g['sans-serif'],
-                           monospace_family=g['monospace'], cursive_family=g['cursive'],
-                           fantasy_family=g['fantasy'], default_family='Times New Roman')
+        from raster.testing import suite_fonts
+        return suite_fonts(self.cfg['fonts_dir'])
 
 
 class ResvgRenderer:

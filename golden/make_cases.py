@@ -111,6 +111,73 @@ CASES = {
     'image-svg-data-uri': ('SVG image from a data URI', '<image x="30" y="30" width="140" height="140" href="data:image/svg+xml;utf8,%3Csvg xmlns=%27http://www.w3.org/2000/svg%27 viewBox=%270 0 10 10%27%3E%3Ccircle cx=%275%27 cy=%275%27 r=%274%27 fill=%27%23ff006e%27/%3E%3C/svg%3E"/>'),
 }
 
+# Text cases: drawn with the resvg suite's fonts and its harness's generic
+# families (golden/regenerate.py and tests/test_golden.py use
+# raster.testing.suite_fonts), one rule per file, several files per rule.
+SANS = 'font-family="Noto Sans"'
+TEXT_CASES = {
+    # --- bidi -----------------------------------------------------------------
+    'text-bidi-arabic-in-latin': ('bidi: an Arabic word inside Latin text is reordered right to left (one font with both scripts)', '<text x="10" y="100" font-family="Amiri" font-size="22">one سلام two</text>'),
+    'text-bidi-numbers-in-arabic': ('bidi: European digits inside Arabic keep left-to-right order', '<text x="190" y="100" font-family="Amiri" font-size="24" text-anchor="end">العدد 123 هنا</text>'),
+    'text-bidi-arabic-tspans': ('bidi: an Arabic run over tspans of different fills keeps its visual order and joining', '<text x="20" y="100" font-family="Amiri" font-size="36">ab <tspan fill="#d62828">سلا</tspan><tspan fill="#1d3557">م</tspan> cd</text>'),
+    'text-bidi-mixed-anchor-middle': ('bidi: mixed runs anchored at the middle', '<text x="100" y="100" font-family="Amiri" font-size="20" text-anchor="middle">A مرحبا B عالم C</text>'),
+    # --- shaping across tspans ---------------------------------------------------
+    'text-tspan-kerning-across': ('shaping across tspans: kerning between A and V of different tspans', '<text x="20" y="80" ' + SANS + ' font-size="48">A<tspan fill="#e63946">V</tspan>A<tspan fill="#457b9d">W</tspan></text><text x="20" y="150" ' + SANS + ' font-size="48">AVAW</text>'),
+    'text-tspan-arabic-joining': ('shaping across tspans: Arabic letters join across a tspan boundary', '<text x="100" y="110" font-family="Amiri" font-size="48" text-anchor="middle">بي<tspan fill="#2a9d8f">ت</tspan>نا</text>'),
+    'text-tspan-font-size-change': ('shaping across tspans: a tspan of another size continues the pen', '<text x="10" y="110" ' + SANS + ' font-size="30">Ab<tspan font-size="50" fill="#e76f51">Cd</tspan>Ef</text>'),
+    'text-tspan-dy-chain': ('tspans with dy lists move each character', '<text x="20" y="100" ' + SANS + ' font-size="28">a<tspan dy="-10 -10 20">bcd</tspan><tspan dy="15" fill="#264653">e</tspan>f</text>'),
+    # --- vertical writing ----------------------------------------------------------
+    'text-vertical-latin': ('writing-mode tb: Latin letters turned with the line', '<text x="100" y="20" ' + SANS + ' font-size="28" writing-mode="tb">Hello</text>'),
+    'text-vertical-cjk-upright': ('writing-mode tb: Japanese set upright', '<text x="100" y="20" font-family="Mplus 1p" font-size="30" writing-mode="tb">日本語です</text>'),
+    'text-vertical-mixed': ('writing-mode tb: CJK upright, Latin rotated', '<text x="100" y="15" font-family="Mplus 1p" font-size="24" writing-mode="tb">漢字ABC混合</text>'),
+    'text-vertical-letter-spacing': ('writing-mode tb with letter-spacing', '<text x="100" y="15" font-family="Mplus 1p" font-size="22" writing-mode="tb" letter-spacing="6">縦書き文字</text>'),
+    # --- textLength and lengthAdjust -------------------------------------------------
+    'text-textlength-spacing-stretch': ('textLength longer than the text, lengthAdjust spacing', '<text x="20" y="80" ' + SANS + ' font-size="24" textLength="160">Hello</text><line x1="20" y1="90" x2="180" y2="90" stroke="#999"/>'),
+    'text-textlength-spacing-shrink': ('textLength shorter than the text, lengthAdjust spacing', '<text x="20" y="80" ' + SANS + ' font-size="24" textLength="90">Hello world</text><line x1="20" y1="90" x2="110" y2="90" stroke="#999"/>'),
+    'text-textlength-glyphs-stretch': ('textLength with lengthAdjust spacingAndGlyphs stretches the glyphs', '<text x="20" y="100" ' + SANS + ' font-size="32" textLength="160" lengthAdjust="spacingAndGlyphs">Wide</text>'),
+    'text-textlength-glyphs-shrink': ('textLength with lengthAdjust spacingAndGlyphs squeezes the glyphs', '<text x="20" y="100" ' + SANS + ' font-size="32" textLength="80" lengthAdjust="spacingAndGlyphs">Narrowed</text>'),
+    'text-textlength-tspan': ('textLength on a tspan', '<text x="20" y="100" ' + SANS + ' font-size="22">ab<tspan textLength="100" fill="#e63946">cd</tspan>ef</text>'),
+    # --- decorations -------------------------------------------------------------------
+    'text-decoration-kinds': ('underline, overline and line-through (baselines chosen so that the 1 px lines of Noto Sans at 20 px fall half on two pixel rows)', '<text x="20" y="60" ' + SANS + ' font-size="20" text-decoration="underline">Under</text><text x="20" y="110.38" ' + SANS + ' font-size="20" text-decoration="overline">Over</text><text x="20" y="160.44" ' + SANS + ' font-size="20" text-decoration="line-through">Through</text>'),
+    'text-decoration-declaring-element-paint': ('a decoration is painted with the fill and stroke of the element that declares it', '<text x="15" y="100" ' + SANS + ' font-size="30" fill="#1d3557" text-decoration="underline">ab<tspan fill="#e63946">cd</tspan>ef</text>'),
+    'text-decoration-tspan-own': ('a tspan declaring its own decoration paints it with its fill', '<text x="15" y="100" ' + SANS + ' font-size="30" fill="#1d3557">ab<tspan fill="#e63946" text-decoration="line-through">cd</tspan>ef</text>'),
+    'text-decoration-from-group': ('text-decoration on an ancestor group decorates the text', '<g text-decoration="underline overline" fill="#2a9d8f"><text x="20" y="100" ' + SANS + ' font-size="30">Group</text></g>'),
+    'text-decoration-stroked': ('a decorated text with a stroke: the line is stroked too', '<text x="20" y="100" ' + SANS + ' font-size="40" fill="#ffb703" stroke="#023047" stroke-width="1.5" text-decoration="underline">Stroke</text>'),
+    # --- baselines -------------------------------------------------------------------------
+    'text-baseline-shift-sub-super': ('baseline-shift sub and super', '<line x1="10" y1="100" x2="190" y2="100" stroke="#bbb"/><text x="15" y="100" ' + SANS + ' font-size="28">x<tspan baseline-shift="super" font-size="18">2</tspan>+y<tspan baseline-shift="sub" font-size="18">i</tspan></text>'),
+    'text-baseline-shift-length-percent': ('baseline-shift as a length and a percentage', '<line x1="10" y1="100" x2="190" y2="100" stroke="#bbb"/><text x="15" y="100" ' + SANS + ' font-size="28">a<tspan baseline-shift="10">b</tspan>c<tspan baseline-shift="-30%">d</tspan>e</text>'),
+    'text-dominant-baseline-values': ('dominant-baseline auto, middle, central, hanging, text-before-edge', '<line x1="5" y1="100" x2="195" y2="100" stroke="#bbb"/><g ' + SANS + ' font-size="20"><text x="5" y="100">Ab</text><text x="42" y="100" dominant-baseline="middle">Ab</text><text x="80" y="100" dominant-baseline="central">Ab</text><text x="118" y="100" dominant-baseline="hanging">Ab</text><text x="156" y="100" dominant-baseline="text-before-edge">Ab</text></g>'),
+    'text-alignment-baseline-tspan': ('alignment-baseline on tspans', '<line x1="5" y1="100" x2="195" y2="100" stroke="#bbb"/><text x="10" y="100" ' + SANS + ' font-size="22">a<tspan alignment-baseline="middle">b</tspan>c<tspan alignment-baseline="hanging">d</tspan>e<tspan alignment-baseline="central">f</tspan></text>'),
+    # --- small caps and features -------------------------------------------------------------
+    'text-small-caps': ('font-variant small-caps (the font\'s smcp feature)', '<text x="15" y="80" font-family="Source Sans Pro" font-size="30" font-variant="small-caps">Small Caps</text><text x="15" y="140" font-family="Source Sans Pro" font-size="30">Small Caps</text>'),
+    'text-font-feature-settings': ('font-feature-settings turning ligatures off', '<text x="15" y="80" font-family="Source Sans Pro" font-size="36">office fjord</text><text x="15" y="140" font-family="Source Sans Pro" font-size="36" font-feature-settings="\'liga\' 0">office fjord</text>'),
+    'text-font-kerning-none': ('font-kerning none', '<text x="15" y="80" ' + SANS + ' font-size="44">AVATAR</text><text x="15" y="150" ' + SANS + ' font-size="44" font-kerning="none">AVATAR</text>'),
+    # --- font matching and fallback -------------------------------------------------------------
+    'text-font-weights': ('font-weight 300 to 900 over Noto Sans Light, Regular, Bold and Black', '<g ' + SANS + ' font-size="24"><text x="10" y="35" font-weight="300">Weight 300</text><text x="10" y="65" font-weight="400">Weight 400</text><text x="10" y="95" font-weight="500">Weight 500</text><text x="10" y="125" font-weight="600">Weight 600</text><text x="10" y="155" font-weight="800">Weight 800</text><text x="10" y="185" font-weight="900">Weight 900</text></g>'),
+    'text-font-relative-weights': ('font-weight bolder and lighter', '<desc>CSS Fonts 4, 2.2: lighter than 700 is 400, bolder than 300 is 400.  resvg takes 100 off for lighter (600: the bold face), so the reference is made from golden/equivalent/text-font-relative-weights.svg with the computed weights written out.</desc><g ' + SANS + ' font-size="22"><text x="10" y="60" font-weight="bold">bold <tspan font-weight="lighter">lighter</tspan></text><text x="10" y="120" font-weight="300">light <tspan font-weight="bolder">bolder</tspan></text></g>'),
+    'text-font-italic': ('font-style italic picks the italic face', '<text x="15" y="80" ' + SANS + ' font-size="30" font-style="italic">Italic text</text><text x="15" y="140" ' + SANS + ' font-size="30" font-style="oblique">Oblique</text>'),
+    'text-font-generic-families': ('the generic families serif, sans-serif, monospace, cursive and fantasy', '<g font-size="22"><text x="10" y="35" font-family="serif">serif text</text><text x="10" y="70" font-family="sans-serif">sans-serif text</text><text x="10" y="105" font-family="monospace">monospace text</text><text x="10" y="140" font-family="cursive">cursive text</text><text x="10" y="175" font-family="fantasy">fantasy text</text></g>'),
+    'text-font-family-list': ('the first available family of a list is used', '<g font-size="24"><text x="10" y="60" font-family="No Such Font, Noto Serif">Second</text><text x="10" y="120" font-family="\'Missing One\', \'Missing Two\', Noto Mono">Third</text></g>'),
+    'text-font-fallback-per-character': ('characters the chosen font lacks come from other fonts: Devanagari and Arabic after Latin', '<text x="10" y="100" ' + SANS + ' font-size="24">Aa नमस्ते سلام</text>'),
+    'text-font-default-family': ('text without font-family uses the default family', '<text x="20" y="100" font-size="30">Default</text>'),
+    'text-font-variation-weight': ('a variable font at several weights', '<g font-family="Roboto Flex" font-size="26"><text x="10" y="50" font-weight="200">Flex 200</text><text x="10" y="100" font-weight="500">Flex 500</text><text x="10" y="150" font-weight="900">Flex 900</text></g>'),
+    # --- colour glyphs ---------------------------------------------------------------------------
+    'text-color-colrv1': ('COLRv1 glyphs: layers, gradients and transforms', '<text x="100" y="110" font-family="Noto Color Emoji COLR" font-size="36" text-anchor="middle">🐶🐝🌓🥳</text>'),
+    'text-color-colrv1-large': ('one COLRv1 glyph, large', '<text x="100" y="150" font-family="Noto Color Emoji COLR" font-size="120" text-anchor="middle">🥳</text>'),
+    'text-color-colrv0': ('COLRv0 glyphs with plain glyphs', '<text x="100" y="110" font-family="Noto Znamenny Musical Notation" font-size="40" text-anchor="middle">𜽜𜼽 𜽱𜼆</text>'),
+    'text-color-cbdt': ('a CBDT bitmap glyph', '<text x="100" y="130" font-family="Noto Color Emoji" font-size="80" text-anchor="middle">😀</text>'),
+    'text-color-svg-glyphs': ('SVG glyphs of an OpenType-SVG font', '<text x="100" y="120" font-family="Twitter Color Emoji" font-size="50" text-anchor="middle">😀🦀</text>'),
+    'text-color-zwj-sequence': ('an emoji ZWJ sequence shaped into one glyph', '<text x="60" y="120" font-family="Twitter Color Emoji" font-size="70">🏳️‍🌈</text>'),
+    'text-color-emoji-fallback': ('emoji taken from a colour font after a text font', '<text x="15" y="110" font-family="Noto Sans, Twitter Color Emoji" font-size="26">Hi 😀 there 🦀</text>'),
+    'text-color-vertical': ('colour glyphs in vertical text stay upright', '<text x="100" y="15" font-family="Twitter Color Emoji" font-size="40" writing-mode="tb">😀😁🦀</text>'),
+    'text-color-rotate': ('colour glyphs turned by rotate', '<text x="30" y="110" font-family="Noto Color Emoji COLR" font-size="40" rotate="0 20 -30 45">🐶🐝🌓🥳</text>'),
+    # --- @font-face (stand-in references: resvg ignores @font-face) -------------------------------------
+    'text-fontface-file': ('@font-face with a font file next to the document', '<desc>resvg ignores @font-face: the reference is golden/equivalent/text-fontface-file.svg, the same text in the installed family (Yellowtail) the file holds.</desc><style>@font-face { font-family: "Doc Script"; src: url(fonts/yellowtail-subset.ttf) format("truetype"); }</style><text x="20" y="110" font-family="Doc Script" font-size="48">Hello</text>'),
+    'text-fontface-woff2-data': ('@font-face with a WOFF2 data URI', None),
+    'text-fontface-local-and-weight': ('@font-face local() with a weight descriptor', '<desc>resvg ignores @font-face: the reference is golden/equivalent/text-fontface-local-and-weight.svg, where the family is the installed Noto Sans Black that local() names.</desc><style>@font-face { font-family: "Heavy"; src: local("Nope"), local("NotoSans-Black"); font-weight: 700; }</style><text x="20" y="110" font-family="Heavy" font-size="40" font-weight="bold">Heavy</text>'),
+}
+
+
 PAR_CASES = {
     'structure-preserveaspectratio-xMidYMid-meet': 'xMidYMid meet',
     'structure-preserveaspectratio-xMinYMax-meet': 'xMinYMax meet',
@@ -119,12 +186,77 @@ PAR_CASES = {
 }
 
 
+SUITE_FONTS = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..',
+                                           '..', 'shared', 'resvg-suite', 'fonts'))
+#: Stand-in documents for the references of cases resvg cannot draw (see
+#: golden/regenerate.py): the @font-face family replaced by the installed one.
+STANDINS = {
+    'text-fontface-file': [('font-family="Doc Script"', 'font-family="Yellowtail"')],
+    'text-fontface-woff2-data': [('font-family="Inline Script"', 'font-family="Yellowtail"')],
+    'text-fontface-local-and-weight': [('font-family="Heavy"', 'font-family="Noto Sans"'),
+                                       ('font-weight="bold"', 'font-weight="900"')],
+    'text-font-relative-weights': [('font-weight="lighter"', 'font-weight="400"'),
+                                   ('font-weight="bolder"', 'font-weight="400"')],
+}
+
+
+def subset_font(dst):
+    """golden/cases/fonts/yellowtail-subset.ttf: Yellowtail (Apache 2.0,
+    its licence beside it) cut down to the letters of 'Hello'."""
+    import shutil
+    from fontTools import subset
+    os.makedirs(os.path.dirname(dst), exist_ok=True)
+    opts = subset.Options()
+    opts.name_IDs = ['*']
+    font = subset.load_font(os.path.join(SUITE_FONTS, 'Yellowtail-Regular.ttf'), opts)
+    sub = subset.Subsetter(opts)
+    sub.populate(text='Hello ')
+    sub.subset(font)
+    subset.save_font(font, dst, opts)
+    shutil.copy(os.path.join(SUITE_FONTS, 'Yellowtail-LICENSE-Apache2.txt'),
+                os.path.join(os.path.dirname(dst), 'Yellowtail-LICENSE-Apache2.txt'))
+
+
+def woff2_data_uri(path):
+    import base64
+    import io
+    from fontTools.ttLib import TTFont
+    tt = TTFont(path)
+    tt.flavor = 'woff2'
+    buf = io.BytesIO()
+    tt.save(buf)
+    return 'data:font/woff2;base64,' + base64.b64encode(buf.getvalue()).decode()
+
+
 def main():
     here = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'cases')
     os.makedirs(here, exist_ok=True)
     for name, (title, body) in CASES.items():
         with open(os.path.join(here, name + '.svg'), 'w') as f:
             f.write(HEAD.format(title=title) + '  ' + body + '\n</svg>\n')
+    font = os.path.join(here, 'fonts', 'yellowtail-subset.ttf')
+    subset_font(font)
+    standins = os.path.join(os.path.dirname(here), 'equivalent')
+    os.makedirs(standins, exist_ok=True)
+    for name, (title, body) in TEXT_CASES.items():
+        if name == 'text-fontface-woff2-data':
+            body = ('<desc>resvg ignores @font-face: the reference is golden/equivalent/%s.svg, '
+                    'the same text in the installed family (Yellowtail) the WOFF2 data holds '
+                    '(a subset of Yellowtail, Apache 2.0: golden/cases/fonts).</desc><style>'
+                    '@font-face { font-family: "Inline Script"; src: url(%s) format("woff2"); }'
+                    '</style><text x="20" y="110" font-family="Inline Script" font-size="48">'
+                    'Hello</text>' % (name, woff2_data_uri(font)))
+        svg = HEAD.format(title=title) + '  ' + body + '\n</svg>\n'
+        with open(os.path.join(here, name + '.svg'), 'w') as f:
+            f.write(svg)
+        if name in STANDINS:
+            import re
+            stand = re.sub(r'<style>.*?</style>', '', svg, flags=re.S)
+            stand = re.sub(r'<desc>.*?</desc>', '', stand, flags=re.S)
+            for old, new in STANDINS[name]:
+                stand = stand.replace(old, new)
+            with open(os.path.join(standins, name + '.svg'), 'w') as f:
+                f.write(stand)
     for name, par in PAR_CASES.items():
         body = ('<svg x="20" y="40" width="160" height="120" viewBox="0 0 100 50" preserveAspectRatio="%s">'
                 '<rect x="0.5" y="0.5" width="99" height="49" fill="#edf2f4" stroke="#777"/>'
@@ -142,6 +274,10 @@ def main():
     for name, doc in rules.DOCS.items():
         with open(os.path.join(here, name + '.svg'), 'w') as f:
             f.write(doc)
+    for name, text in rules.CSS_FILES.items():
+        os.makedirs(os.path.join(here, 'lib'), exist_ok=True)
+        with open(os.path.join(here, 'lib', name), 'w') as f:
+            f.write(text)
     eq = os.path.join(os.path.dirname(here), 'equivalent')
     for name, (title, body) in rules.EQUIVALENT.items():
         os.makedirs(eq, exist_ok=True)

@@ -611,3 +611,271 @@ CASES['filter-offset-whole-pixels'] = (
     '<rect x="20" y="20" width="60" height="60" fill="#e76f51" filter="url(#o)"/>'
     '<rect x="100" y="20" width="80" height="80" filter="url(#t)"/>'
     '<rect x="30.5" y="120.5" width="60" height="60" fill="#2a9d8f" filter="url(#d)"/>')
+
+
+# --- CSS selectors (Selectors 4 structural pseudo-classes, :lang, :not) -------
+# resvg's CSS engine knows :first-child (and little else of these): the
+# references are equivalents with the colours written out.
+
+def _row(y, n=8, attrs='', start=0):
+    return ''.join('<rect x="%d" y="%d" width="18" height="18"%s/>' % (10 + 22 * i, y, attrs)
+                   for i in range(start, n))
+
+
+CASES.update({
+    'css-nth-child': (
+        ':nth-child(an+b), :nth-last-child, :first-child, :last-child',
+        'Eight squares in one group: odd positions teal, 3n+2 orange (5 is both: the later '
+        'rule wins at equal specificity), the second from the end outlined, the first and '
+        'last half transparent.  Second row: -n+3 (the first three) dark, even yellow; a '
+        'comment between siblings does not count.',
+        '<style>#row rect { fill: #ccc } #row > rect:nth-child(odd) { fill: #2a9d8f } '
+        '#row > rect:nth-child(3n+2) { fill: #e76f51 } #row > :nth-last-child(2) { stroke: '
+        '#264653; stroke-width: 4 } #row > rect:first-child, #row > rect:last-child { '
+        'fill-opacity: 0.5 } #r2 > * { fill: #ccc } #r2 > :nth-child(-n+3) { fill: #264653 } '
+        '#r2 > :NTH-CHILD( even ) { fill: #e9c46a }</style>'
+        '<g id="row">' + _row(30) + '</g>'
+        '<g id="r2">' + _row(80, 3) + '<!-- a comment -->' + _row(80, 8, start=3) + '</g>'),
+    'css-of-type': (
+        ':first-of-type, :last-of-type, :nth-of-type, :only-of-type',
+        'Children rect, circle, rect, circle, rect, ellipse: the first of each type teal, '
+        'the last of each type outlined, the second rect orange, the only ellipse yellow '
+        '(a later rule than :first-of-type).',
+        '<style>#types > * { fill: #ccc } #types > :first-of-type { fill: #2a9d8f } '
+        '#types > :last-of-type { stroke: #264653; stroke-width: 3 } #types > '
+        'rect:nth-of-type(2) { fill: #e76f51 } #types > :only-of-type { fill: #e9c46a }</style>'
+        '<g id="types"><rect x="10" y="60" width="18" height="18"/><!-- c -->'
+        '<circle cx="49" cy="69" r="9"/><rect x="62" y="60" width="18" height="18"/>'
+        '<circle cx="101" cy="69" r="9"/><rect x="114" y="60" width="18" height="18"/>'
+        '<ellipse cx="153" cy="69" rx="12" ry="8"/></g>'),
+    'css-empty-root-not-only-child': (
+        ':empty, :root, :not(), :only-child',
+        'Top: a rect without children teal (:empty), one with a title orange.  Then a rect '
+        'that is a child of the root dark (:root > rect.top), one in a group not.  Then '
+        ':only-child yellow (one circle in its group; two in the other stay grey).  Bottom: '
+        'rect:not(.a, #b) teal, the .a and #b rects stay grey.',
+        '<style>#e > rect:empty { fill: #2a9d8f } #e > rect:not(:empty) { fill: #e76f51 } '
+        ':root > rect.top { fill: #264653 } g.solo > :only-child, g.duo > :only-child { fill: '
+        '#e9c46a } #e2 > rect:not(.a, #b) { fill: #2a9d8f }</style>'
+        '<g id="e"><rect x="20" y="20" width="30" height="30"/><rect x="60" y="20" width="30" '
+        'height="30"><title>not empty</title></rect></g>'
+        '<rect class="top" x="20" y="70" width="30" height="30" fill="#ccc"/>'
+        '<g><rect class="top" x="60" y="70" width="30" height="30" fill="#ccc"/></g>'
+        '<g class="solo"><circle cx="125" cy="85" r="15" fill="#ccc"/></g>'
+        '<g class="duo"><circle cx="160" cy="40" r="12" fill="#ccc"/><circle cx="160" cy="85" '
+        'r="12" fill="#ccc"/></g>'
+        '<g id="e2"><rect class="a" x="20" y="130" width="30" height="30" fill="#ccc"/>'
+        '<rect id="b" x="60" y="130" width="30" height="30" fill="#ccc"/>'
+        '<rect x="100" y="130" width="30" height="30" fill="#ccc"/></g>'),
+    'css-lang': (
+        ':lang() matches the nearest xml:lang or lang, and its subtags',
+        ':lang(de) orange, :lang(en) teal: a rect in a group of xml:lang="de-CH", one '
+        'in a group of lang="en", one of xml:lang="de" inside an English group (its own wins), '
+        'one of xml:lang="fr" (grey), one with no language anywhere (grey), and '
+        ':lang("en-US", x) with a quoted range (dark).',
+        '<style>#L rect { fill: #ccc } #L rect:lang(de) { fill: #e76f51 } #L rect:lang(en) { '
+        'fill: #2a9d8f } #L rect:lang("en-US", x) { fill: #264653 }</style>'
+        '<g id="L"><g xml:lang="de-CH"><rect x="20" y="20" width="40" height="40"/></g>'
+        '<g lang="en"><rect x="80" y="20" width="40" height="40"/>'
+        '<rect xml:lang="de" x="140" y="20" width="40" height="40"/></g>'
+        '<rect xml:lang="fr" x="20" y="80" width="40" height="40"/>'
+        '<rect x="80" y="80" width="40" height="40"/>'
+        '<g xml:lang="en-us"><rect x="140" y="80" width="40" height="40"/></g></g>'),
+    'css-import': (
+        '@import of local style sheets',
+        'lib/import-main.css (url() form) imports lib/import-nested.css before its own rules '
+        '(teal wins over the nested red for .i1; .i2 orange from the nested sheet; '
+        'lib/import-nested.css importing import-main.css again is a cycle, skipped).  A '
+        'screen import applies (.i3 dark), a print import does not (.i4 stays grey), an '
+        'import after a rule is ignored (.i5 stays grey).',
+        '<style>@import url(lib/import-main.css); @import "lib/import-screen.css" screen; '
+        '@import \'lib/import-print.css\' print;</style>'
+        '<style>rect { stroke: #777 } @import "lib/import-late.css";</style>'
+        '<rect class="i1" x="20" y="20" width="40" height="40" fill="#ccc"/>'
+        '<rect class="i2" x="80" y="20" width="40" height="40" fill="#ccc"/>'
+        '<rect class="i3" x="140" y="20" width="40" height="40" fill="#ccc"/>'
+        '<rect class="i4" x="20" y="80" width="40" height="40" fill="#ccc"/>'
+        '<rect class="i5" x="80" y="80" width="40" height="40" fill="#ccc"/>'),
+})
+
+
+def _rect(x, y, fill, extra=''):
+    return '<rect x="%g" y="%g" width="18" height="18" fill="%s"%s/>' % (x, y, fill, extra)
+
+
+_X = [10 + 22 * i for i in range(8)]
+EQUIVALENT.update({
+    'css-nth-child': (
+        'equivalent: the colours written out',
+        _rect(_X[0], 30, '#2a9d8f', ' fill-opacity="0.5"') + _rect(_X[1], 30, '#e76f51')
+        + _rect(_X[2], 30, '#2a9d8f') + _rect(_X[3], 30, '#ccc') + _rect(_X[4], 30, '#e76f51')
+        + _rect(_X[5], 30, '#ccc') + _rect(_X[6], 30, '#2a9d8f', ' stroke="#264653" stroke-width="4"')
+        + _rect(_X[7], 30, '#e76f51', ' fill-opacity="0.5"')
+        + ''.join(_rect(_X[i], 80, '#e9c46a' if i % 2 else '#264653' if i < 3 else '#ccc')
+                  for i in range(8))),
+    'css-of-type': (
+        'equivalent: the colours written out',
+        '<rect x="10" y="60" width="18" height="18" fill="#2a9d8f"/>'
+        '<circle cx="49" cy="69" r="9" fill="#2a9d8f"/>'
+        '<rect x="62" y="60" width="18" height="18" fill="#e76f51"/>'
+        '<circle cx="101" cy="69" r="9" fill="#ccc" stroke="#264653" stroke-width="3"/>'
+        '<rect x="114" y="60" width="18" height="18" fill="#ccc" stroke="#264653" stroke-width="3"/>'
+        '<ellipse cx="153" cy="69" rx="12" ry="8" fill="#e9c46a" stroke="#264653" '
+        'stroke-width="3"/>'),
+    'css-empty-root-not-only-child': (
+        'equivalent: the colours written out',
+        '<rect x="20" y="20" width="30" height="30" fill="#2a9d8f"/>'
+        '<rect x="60" y="20" width="30" height="30" fill="#e76f51"/>'
+        '<rect x="20" y="70" width="30" height="30" fill="#264653"/>'
+        '<rect x="60" y="70" width="30" height="30" fill="#ccc"/>'
+        '<circle cx="125" cy="85" r="15" fill="#e9c46a"/>'
+        '<circle cx="160" cy="40" r="12" fill="#ccc"/><circle cx="160" cy="85" r="12" fill="#ccc"/>'
+        '<rect x="20" y="130" width="30" height="30" fill="#ccc"/>'
+        '<rect x="60" y="130" width="30" height="30" fill="#ccc"/>'
+        '<rect x="100" y="130" width="30" height="30" fill="#2a9d8f"/>'),
+    'css-lang': (
+        'equivalent: the colours written out',
+        '<rect x="20" y="20" width="40" height="40" fill="#e76f51"/>'
+        '<rect x="80" y="20" width="40" height="40" fill="#2a9d8f"/>'
+        '<rect x="140" y="20" width="40" height="40" fill="#e76f51"/>'
+        '<rect x="20" y="80" width="40" height="40" fill="#ccc"/>'
+        '<rect x="80" y="80" width="40" height="40" fill="#ccc"/>'
+        '<rect x="140" y="80" width="40" height="40" fill="#264653"/>'),
+    'css-import': (
+        'equivalent: the imported rules applied by hand',
+        '<g stroke="#777"><rect x="20" y="20" width="40" height="40" fill="#2a9d8f"/>'
+        '<rect x="80" y="20" width="40" height="40" fill="#e76f51"/>'
+        '<rect x="140" y="20" width="40" height="40" fill="#264653"/>'
+        '<rect x="20" y="80" width="40" height="40" fill="#ccc"/>'
+        '<rect x="80" y="80" width="40" height="40" fill="#ccc"/></g>'),
+})
+
+#: style sheets the css-import case reads (written by make_cases.py into lib/)
+CSS_FILES = {
+    'import-main.css': '@import "import-nested.css";\n.i1 { fill: #2a9d8f }\n',
+    'import-nested.css': '@import url("import-main.css");\n.i1 { fill: red }\n'
+                         '.i2 { fill: #e76f51 }\n',
+    'import-screen.css': '.i3 { fill: #264653 }\n',
+    'import-print.css': '.i4 { fill: red }\n',
+    'import-late.css': '.i5 { fill: red }\n',
+}
+
+
+# --- shape-rendering crispEdges / optimizeSpeed ------------------------------
+# resvg turns anti-aliasing off for the path: a stroke thinner than a pixel is
+# outlined at its own width and filled at full opacity where it covers pixel
+# centres (no one-pixel hairline at a fraction of the opacity), so a thin
+# slanted line breaks into runs; a centre on a right or bottom edge is inside.
+
+CASES.update({
+    'crisp-thin-strokes': (
+        'crispEdges on strokes thinner than a pixel',
+        'Strokes of 0.4 and 0.3 px with shape-rendering crispEdges are aliased at full '
+        'opacity: horizontal lines whose band covers a row of pixel centres are solid '
+        '(y = 20.3 +- 0.2 reaches the centre 20.5 on its bottom edge), slanted lines and a '
+        'thin circle break where they miss the centres; a 1 px line is one column.',
+        '<g shape-rendering="crispEdges" fill="none" stroke="#264653">'
+        '<path d="M20 20.3 H180" stroke-width="0.4"/><path d="M20 30.5 H180" stroke-width="0.4"/>'
+        '<path d="M20 40 L180 60" stroke-width="0.4"/><path d="M20 50 L180 190" stroke-width="0.3"/>'
+        '<path d="M20.5 70 V190" stroke-width="1"/>'
+        '<circle cx="110" cy="120" r="40" stroke-width="0.5"/></g>'),
+    'crisp-fills-on-pixel-centres': (
+        'crispEdges fills whose edges pass through pixel centres',
+        'Aliased fills cover the pixels whose centres are inside; a centre exactly on a left '
+        'or top edge is outside, on a right or bottom edge inside (resvg rounds edge ends to '
+        'the nearest pixel boundary).  Rectangles with edges on centres, a triangle, a '
+        'circle.',
+        '<g shape-rendering="crispEdges"><rect x="20.5" y="20.5" width="40" height="30" '
+        'fill="#2a9d8f"/><rect x="70.3" y="20.6" width="30.4" height="20.2" fill="#e76f51"/>'
+        '<rect x="110.5" y="20" width="60" height="40.5" fill="#264653"/>'
+        '<path d="M20.5 80.5 L90.5 80.5 L20.5 150.5 Z" fill="#e9c46a"/>'
+        '<circle cx="140" cy="120" r="30.5" fill="#2a9d8f"/></g>'),
+    'optimizespeed-thin-strokes': (
+        'optimizeSpeed turns anti-aliasing off as crispEdges does',
+        'shape-rendering optimizeSpeed on a 0.4 px stroke and a filled ellipse: aliased at '
+        'full opacity, inherited from the group; geometricPrecision next to it stays '
+        'anti-aliased.',
+        '<g shape-rendering="optimizeSpeed"><path d="M20 30.5 H180 M20 40 L180 70" '
+        'fill="none" stroke="#264653" stroke-width="0.4"/><ellipse cx="60" cy="120" rx="40" '
+        'ry="25" fill="#e76f51"/></g><g shape-rendering="geometricPrecision"><path d="M20 '
+        '170.5 H180" stroke="#264653" stroke-width="0.4"/><ellipse cx="150" cy="120" rx="40" '
+        'ry="25" fill="#e76f51"/></g>'),
+})
+
+
+# --- stroke caps and joins where control points coincide with end points -------
+
+CASES.update({
+    'stroke-coincident-controls-caps': (
+        'caps of curves whose first or last control points coincide with an end',
+        'The tangent at an end comes from the next distinct control point: C with both '
+        'first controls on the start (square caps along the chord to the end), C with the '
+        'last control on the end (butt caps), a dashed curve of that kind.',
+        '<path d="M30 30 C30 30 30 30 90 60" fill="none" stroke="#264653" stroke-width="20" '
+        'stroke-linecap="square"/><path d="M120 30 C120 30 180 90 180 90" fill="none" '
+        'stroke="#264653" stroke-width="20"/><path d="M20 190 C20 190 60 150 60 150" '
+        'fill="none" stroke="#e9c46a" stroke-width="10" stroke-dasharray="20 8" '
+        'stroke-linecap="square"/><path d="M110 190 Q110 190 190 140" fill="none" '
+        'stroke="#2a9d8f" stroke-width="12" stroke-linecap="square"/>'),
+    'stroke-coincident-controls-joins': (
+        'joins at curves whose controls coincide with the join point',
+        'Miter joins between a curve whose last control is its end and a line, two '
+        'quadratics with controls on their ends, and a degenerate cubic (all points equal) '
+        'between two curves, which adds no join of its own.',
+        '<path d="M30 170 C 90 170 120 100 120 100 L 180 160" fill="none" stroke="#e76f51" '
+        'stroke-width="20"/><path d="M20 110 Q 60 110 60 110 Q60 110 100 60" fill="none" '
+        'stroke="#264653" stroke-width="18"/><path d="M120 60 C 150 50 160 80 160 80 C 160 '
+        '80 160 80 160 80 C 160 80 170 60 190 50" fill="none" stroke="#2a9d8f" '
+        'stroke-width="14"/>'),
+})
+
+
+# --- transform-origin and transform-box ------------------------------------------
+
+CASES.update({
+    'transform-origin-keywords-lengths': (
+        'transform-origin with keywords, percentages and lengths (view-box)',
+        'The reference box is the viewport (transform-box view-box, the default): "center" '
+        'is (100, 100), "right 25%" (200, 50), "30px 40" a length pair, "bottom left" '
+        'keywords in either order, a CSS transform with its origin from a style sheet.',
+        '<style>.css { transform: rotate(-20deg); transform-origin: 150px 150px }</style>'
+        '<rect x="20" y="20" width="40" height="30" fill="#2a9d8f" transform="rotate(15)" '
+        'transform-origin="center"/><rect x="120" y="20" width="50" height="30" '
+        'fill="#e76f51" transform="scale(0.8)" transform-origin="right 25%"/><rect x="20" '
+        'y="80" width="50" height="30" fill="#264653" transform="rotate(20)" '
+        'transform-origin="30px 40"/><rect x="90" y="80" width="40" height="30" '
+        'fill="#e9c46a" transform="scale(0.7)" transform-origin="bottom left"/><rect '
+        'class="css" x="120" y="130" width="50" height="40" fill="#2a9d8f"/>'),
+    'transform-box-fill-box': (
+        'transform-box fill-box: the origin in the element’s own box',
+        'With transform-box: fill-box (a property: set from CSS), percentages and keywords '
+        'of transform-origin refer to the element’s bounding box and lengths start at its '
+        'corner: each square turns about its own centre, a group scales about the centre of '
+        'its content, an offset of 10px 5px from the corner.  resvg ignores transform-box, '
+        'so the reference is the same drawing with the origins written into the transforms.',
+        '<style>.fb { transform-box: fill-box } .cb { transform-box: content-box } .sb { '
+        'transform-box: stroke-box }</style><rect x="20" y="20" width="40" height="40" '
+        'fill="#ccc"/><rect class="fb" x="20" y="20" width="40" height="40" fill="#264653" '
+        'transform="rotate(30)" transform-origin="center"/><rect class="cb" x="120" y="20" '
+        'width="60" height="40" fill="#e76f51" transform="scale(0.5)" transform-origin="right '
+        'bottom"/><g class="fb" transform="rotate(45)" transform-origin="50% 50%"><rect '
+        'x="20" y="110" width="30" height="30" fill="#2a9d8f"/><rect x="50" y="140" width="30" '
+        'height="30" fill="#e9c46a"/></g><rect class="sb" x="120" y="120" width="40" '
+        'height="40" fill="none" stroke="#264653" stroke-width="20" transform="scale(0.5)" '
+        'transform-origin="0 0"/><rect class="fb" x="100" y="80" width="40" height="20" '
+        'fill="#2a9d8f" transform="rotate(90)" transform-origin="10px 5px"/>'),
+})
+
+EQUIVALENT.update({
+    'transform-box-fill-box': (
+        'equivalent: the origins written into the transforms',
+        '<rect x="20" y="20" width="40" height="40" fill="#ccc"/><rect x="20" y="20" '
+        'width="40" height="40" fill="#264653" transform="rotate(30 40 40)"/><rect x="120" '
+        'y="20" width="60" height="40" fill="#e76f51" transform="translate(180 60) scale(0.5) '
+        'translate(-180 -60)"/><g transform="rotate(45 50 140)"><rect x="20" y="110" '
+        'width="30" height="30" fill="#2a9d8f"/><rect x="50" y="140" width="30" height="30" '
+        'fill="#e9c46a"/></g><rect x="120" y="120" width="40" height="40" fill="none" '
+        'stroke="#264653" stroke-width="20" transform="translate(110 110) scale(0.5) '
+        'translate(-110 -110)"/><rect x="100" y="80" width="40" height="20" fill="#2a9d8f" '
+        'transform="rotate(90 110 85)"/>'),
+})

@@ -44,7 +44,8 @@ import numpy as np
 from .errors import RasterError
 
 __all__ = ['CRITERION', 'COARSE_RADIUS', 'FINE_RADIUS', 'Comparison', 'ComparisonError',
-           'compare_images', 'premultiply8', 'range_diff', 'diff_strip', 'over_white']
+           'compare_images', 'premultiply8', 'range_diff', 'diff_strip', 'over_white',
+           'SUITE_GENERIC_FAMILIES', 'SUITE_DEFAULT_FAMILY', 'suite_fonts']
 
 #: Pass thresholds: ``T``/``F`` for the coarse check (costs beyond a 5x5
 #: window above ``T`` on at most ``F`` percent of the pixels), ``T2``/``F2``
@@ -55,6 +56,28 @@ CRITERION = {'T': 24, 'F': 0.05, 'T2': 32, 'F2': 1.5}
 COARSE_RADIUS = 2
 #: Neighbourhood radius of the fine check (3x3 window).
 FINE_RADIUS = 1
+
+
+#: The generic families of resvg's test harness (its fontconfig mapping
+#: over the resvg suite's fonts), and the family of text without a
+#: ``font-family`` (usvg's default): what the conformance harness and the
+#: golden text cases render with, so that their references are reproducible.
+SUITE_GENERIC_FAMILIES = {'serif': 'Noto Serif', 'sans-serif': 'Noto Sans',
+                          'cursive': 'Yellowtail', 'fantasy': 'Sedgwick Ave Display',
+                          'monospace': 'Noto Mono'}
+SUITE_DEFAULT_FAMILY = 'Times New Roman'
+
+
+def suite_fonts(fonts_dir):
+    """The :class:`raster.FontOptions` of the resvg suite's fonts only (the
+    folder ``fonts_dir``, no system fonts) with the harness's generic
+    families (:data:`SUITE_GENERIC_FAMILIES`) and default family."""
+    from .fonts import FontOptions
+    g = SUITE_GENERIC_FAMILIES
+    return FontOptions(dirs=(fonts_dir,), system=False, serif_family=g['serif'],
+                       sans_serif_family=g['sans-serif'], monospace_family=g['monospace'],
+                       cursive_family=g['cursive'], fantasy_family=g['fantasy'],
+                       default_family=SUITE_DEFAULT_FAMILY)
 
 
 class ComparisonError(RasterError, ValueError):

@@ -165,3 +165,26 @@ def test_end_to_end_whole_processes(bc, tmp_path):
         assert tuple(c['size']) == (60, 30) and len(c['wall']) == 2
         assert all(m > 5 for m in c['rss_mb']) and all(t > 0 for t in c['cpu'])
         assert tuple(res[('ok.svg', 'natural', r)]['size']) == (40, 20)
+
+
+def test_inprocess_widths_subset(bc, tmp_path):
+    """--inprocess-widths: the whole-process cells at every width, the
+    in-process cells only at the widths named; a width outside --widths is
+    refused with a usage error."""
+    corpus = tmp_path / 'corpus'
+    corpus.mkdir()
+    (corpus / 'ok.svg').write_text(SVG % '00f')
+    out = tmp_path / 'b.json'
+    md = tmp_path / 'b.md'
+    rc = bc.main(['--corpus', str(corpus), '--renderers', 'raster', '--repeat', '1',
+                  '--widths', 'natural,60', '--inprocess-widths', 'natural', '--json', str(out),
+                  '--markdown', str(md), '--timeout', '60'])
+    assert rc == 0
+    data = json.load(open(out))
+    assert sorted(str(r['width']) for r in data['process']) == ['60', 'natural']
+    assert [r['width'] for r in data['results']] == ['natural']
+    text = md.read_text()
+    assert 'Whole process, width 60 px' in text
+    assert 'Width: natural size' in text and 'Width: 60 px' not in text
+    with pytest.raises(SystemExit):
+        bc.main(['--corpus', str(corpus), '--widths', 'natural', '--inprocess-widths', '2000'])

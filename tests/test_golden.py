@@ -1,7 +1,10 @@
 """Golden images: every golden/cases/*.svg rendered by raster must match its
 reference PNG (made by resvg through golden/regenerate.py, on request only)
 under the conformance criterion of raster.testing.  A failure writes an
-expected|diff|actual strip to tests/_failures/golden/<case>.png."""
+expected|diff|actual strip to tests/_failures/golden/<case>.png.
+
+Text is drawn with the resvg suite's fonts and its harness's generic
+families (raster.testing.suite_fonts), as the references are."""
 
 import os
 
@@ -10,7 +13,9 @@ import pytest
 from PIL import Image
 
 import raster
-from raster.testing import compare_images, diff_strip
+from raster.testing import compare_images, diff_strip, suite_fonts
+
+from _shared import SUITE_FONTS
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASES = os.path.join(HERE, '..', 'golden', 'cases')
@@ -27,7 +32,7 @@ def test_every_case_has_a_reference():
 def test_golden(name):
     svg = os.path.join(CASES, name + '.svg')
     expected = np.asarray(Image.open(os.path.join(CASES, name + '.png')).convert('RGBA'))
-    actual = raster.render(svg)
+    actual = raster.render(svg, fonts=suite_fonts(SUITE_FONTS))
     result = compare_images(expected, actual)
     if not result.passed:
         os.makedirs(FAILURES, exist_ok=True)

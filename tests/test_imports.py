@@ -24,6 +24,7 @@ from _shared import SUITE_FONTS
 #: Loaded only by documents that need them.
 HEAVY = ('fontTools', 'uharfbuzz', 'PIL', 'raster.fonts.font', 'raster.fonts.matching',
          'raster.fonts.discovery', 'raster.fonts.color', 'raster.parser.text',
+         'raster.parser.fontface',
          'raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
          'raster.tree.filter', 'raster.parser.images', 'raster.parser.imageload',
          'raster.parser.markers', 'raster.parser.clipmask')

@@ -17,6 +17,7 @@ from ..errors import RasterError
 from ..geometry.path import Path
 from ..geometry.pens import PathBuilder
 from .files import FontError, FontFace, check_font_data, quiet_fonttools, read_font_bytes, sfnt_bytes
+from .color import ColorFont
 
 __all__ = ['Font', 'Shaped', 'register_memory_font', 'memory_font_data']
 
@@ -105,7 +106,9 @@ class Font:
         with quiet_fonttools():
             try:
                 self.tt = TTFont(io.BytesIO(data), fontNumber=face.index, lazy=True)
-                self.glyph_set = self.tt.getGlyphSet()
+                # a bitmap-only font (CBDT, sbix without outlines) has empty outlines
+                self.glyph_set = self.tt.getGlyphSet() if any(
+                    t in self.tt for t in ('glyf', 'CFF ', 'CFF2')) else None
                 self.glyph_order = self.tt.getGlyphOrder()
                 self.upem = float(self.tt['head'].unitsPerEm)
                 if not 16 <= self.upem <= 16384:
@@ -148,6 +151,22 @@ class Font:
         :meth:`shape_arrays`) and packed outlines (see :meth:`outlines`)."""
         self._shaped = {}
         self._atlas = _GlyphAtlas(self._draw_glyph, len(self.glyph_order))
+
+    @property
+    def color(self):
+        """The font's colour glyphs (:class:`~raster.fonts.color.ColorFont`),
+        or None when it has no usable colour tables."""
+        if self._color is None:
+            cf = False
+            if any(t in self.tt for t in ('COLR', 'SVG ', 'sbix', 'CBDT')):
+                try:
+                    cf = ColorFont(self)
+                except FontError:
+                    cf = False
+                if cf and cf.mask is None:
+                    cf = False
+            self._color = cf
+        return self._color or None
 
     @property
     def axes(self):
@@ -195,7 +214,8 @@ class Font:
             f._variants = {}
             f.hb_font = hb.Font(self.hb_face)
             f.hb_font.set_variations(loc)
-            f.glyph_set = self.tt.getGlyphSet(location=loc)
+            f.glyph_set = None if self.glyph_set is None else \
+                self.tt.getGlyphSet(location=loc)
             f.location = loc
             f._reset_caches()
             if len(cache) > 64:
@@ -299,6 +319,8 @@ class Font:
         """(verbs, points) of one glyph drawn through fontTools (empty
         arrays for a glyph that cannot be drawn)."""
         from fontTools.pens.recordingPen import DecomposingRecordingPen
+        if self.glyph_set is None:
+            return Path.empty().verbs, Path.empty().points
         try:
             name = self.glyph_order[gid]
             rec = DecomposingRecordingPen(self.glyph_set)     # components drawn in place

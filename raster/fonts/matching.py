@@ -412,11 +412,13 @@ class FontDB:
 
     # -- per-character fallback -----------------------------------------------------
 
-    def has_char(self, face, cp):
-        """True when ``face`` maps codepoint ``cp`` (coverage from the scan
-        cache, else from the font itself)."""
+    def coverage(self, face):
+        """The characters ``face`` maps, as a sorted (2K,) int64 array of
+        inclusive ranges ``lo0, hi0, lo1, hi1, ...`` (from the scan cache,
+        else from the font itself; empty when it cannot be read)."""
         ranges = self._coverage.get(face)
         if ranges is None:
+            import numpy as np
             ranges = self._scan.coverage(face)
             if ranges is None:
                 try:
@@ -424,8 +426,12 @@ class FontDB:
                     ranges = cover[face.index] if face.index < len(cover) else []
                 except Exception:       # unreadable now: covers nothing
                     ranges = []
-            import numpy as np
             ranges = self._coverage[face] = np.asarray(ranges, np.int64)
+        return ranges
+
+    def has_char(self, face, cp):
+        """True when ``face`` maps codepoint ``cp`` (see :meth:`coverage`)."""
+        ranges = self.coverage(face)
         if not len(ranges):
             return False
         import numpy as np
@@ -463,6 +469,67 @@ class FontDB:
         """Other faces, in the order :meth:`fallback_face` tries them."""
         same = [f for f in self.faces if f != face and f.generic == face.generic]
         return same + [f for f in self.faces if f != face and f.generic != face.generic]
+
+    # -- document fonts --------------------------------------------------------------
+
+    def local_face(self, name):
+        """The face whose full name or PostScript name is ``name`` (case
+        insensitive; ``@font-face`` ``local()``), or None."""
+        table = self.__dict__.get('_local')
+        if table is None:
+            table = {}
+            for f in self.faces:
+                for n in (f.full_name, f.postscript_name):
+                    if n and n.lower() not in table:
+                        table[n.lower()] = f
+            self._local = table
+        return table.get(name.strip().lower())
+
+    def with_faces(self, faces, coverage):
+        """This FontDB with more faces: a document's ``@font-face`` fonts.
+
+        Parameters
+        ----------
+        faces : sequence of FontFace
+            Their families hide installed families of the same name (CSS
+            Fonts: the document's faces come first); per-character fallback
+            tries them after the installed faces.
+        coverage : sequence of list of int
+            Each face's characters as flat inclusive ranges
+            (:func:`~raster.fonts.files.coverage_ranges`).
+
+        Returns
+        -------
+        FontDB
+            ``self`` for no faces; otherwise a derived FontDB, the same one
+            for the same faces (remembered, a few per FontDB).
+        """
+        import copy
+        import numpy as np
+        key = tuple(faces)
+        if not key:
+            return self
+        memo = self.__dict__.setdefault('_derived', {})
+        db = memo.get(key)
+        if db is None:
+            db = copy.copy(self)
+            db._derived = {}
+            db._local = None
+            db._set_faces(self.faces + [f for f in key if f not in self.faces])
+            own = {}
+            for f in key:
+                for fam in f.families:
+                    lst = own.setdefault(fam.lower(), [])
+                    if f not in lst:
+                        lst.append(f)
+            db._by_family.update(own)
+            db._coverage = dict(self._coverage)
+            for f, ranges in zip(key, coverage):
+                db._coverage[f] = np.asarray(ranges, np.int64)
+            if len(memo) > 16:
+                memo.clear()
+            memo[key] = db
+        return db
 
     # -- listing ----------------------------------------------------------------------
 

@@ -124,11 +124,45 @@ def build_tree(root, options: Optional[Options] = None, image_cache: Optional[di
     return convert_root(root, cache)
 
 
+def _import_loader(options):
+    """The ``load`` of :func:`raster.parser.css.declared_styles` for a
+    document parsed with ``options``: local style sheets read by
+    :func:`raster.parser.imageload.fetch_stylesheet`, chains at most
+    ``MAX_IMPORT_DEPTH`` deep, at most ``MAX_IMPORTS`` sheets, a sheet
+    importing itself (directly or not) skipped; each refusal one warning."""
+    count = [0]
+
+    def loader(base_dir, chain):
+        def load(href):
+            # (imported here: a document without @import loads none of it)
+            import warnings
+            from ..errors import RasterWarning
+            from .imageload import MAX_IMPORT_DEPTH, MAX_IMPORTS, ImageError, fetch_stylesheet
+            if len(chain) >= MAX_IMPORT_DEPTH or count[0] >= MAX_IMPORTS:
+                warnings.warn('style sheet not imported: more than %d imports or %d levels: %s'
+                              % (MAX_IMPORTS, MAX_IMPORT_DEPTH, href[:60]), RasterWarning,
+                              stacklevel=2)
+                return None
+            try:
+                real, text, base = fetch_stylesheet(href, base_dir, options)
+            except ImageError as e:
+                warnings.warn('style sheet not imported: %s' % e, RasterWarning, stacklevel=2)
+                return None
+            if real is not None and real in chain:
+                warnings.warn('style sheet not imported: import cycle through %s' % href[:60],
+                              RasterWarning, stacklevel=2)
+                return None
+            count[0] += 1
+            return text, loader(base, chain + ((real,) if real else ()))
+        return load
+    return loader(None, ())
+
+
 def _document_cache(root, options, image_cache):
     """The :class:`Cache` of a loaded document: its cascade, ids and
     conditional elements."""
     found = {'id': [], 'requiredExtensions': [], 'systemLanguage': []}
-    styles = declared_styles(root, options.extra_css, found)
+    styles = declared_styles(root, options.extra_css, found, _import_loader(options))
     by_id = {}
     for el in found['id']:
         i = el.get('id')

@@ -11,9 +11,16 @@ What is supported
   XML), ``*``, ``.class``, ``#id``, attribute selectors ``[a]``, ``[a=v]``,
   ``[a~=v]``, ``[a|=v]``, ``[a^=v]``, ``[a$=v]``, ``[a*=v]`` (value quoted or
   not, optional ``i`` flag), combinators descendant (whitespace), child
-  ``>``, adjacent sibling ``+`` and general sibling ``~``, the pseudo-class
-  ``:first-child``.  Any other pseudo-class or pseudo-element parses but
-  never matches.
+  ``>``, adjacent sibling ``+`` and general sibling ``~``, the pseudo-classes
+  ``:root``, ``:first-child``, ``:last-child``, ``:only-child``,
+  ``:nth-child(an+b)``, ``:nth-last-child()``, ``:first-of-type``,
+  ``:last-of-type``, ``:only-of-type``, ``:nth-of-type()``,
+  ``:nth-last-of-type()`` (``odd``, ``even``, ``an+b``; no ``of S``),
+  ``:empty`` (no element children and no text), ``:lang(ranges)`` (the
+  nearest ``xml:lang`` or ``lang`` of the element or an ancestor, equal to a
+  range or beginning with it and ``-``) and ``:not(selector list)``.  Any
+  other pseudo-class or pseudo-element parses but never matches; a bad
+  ``an+b`` or ``:not()`` argument drops the rule.
 * Specificity ``(ids, classes + attributes + pseudo-classes, types)`` with
   source order breaking ties.
 
@@ -56,7 +63,7 @@ from typing import NamedTuple
 from ..errors import SVGError
 from .properties import PROPERTIES, PRESENTATION_ATTRIBUTES
 
-__all__ = ['CSSError', 'Declaration', 'Rule', 'Selector', 'parse_stylesheet',
+__all__ = ['CSSError', 'Declaration', 'Rule', 'Selector', 'parse_stylesheet', 'font_face_rules',
            'parse_declarations', 'parse_selector', 'parse_selector_list', 'declared_styles',
            'select', 'SVG_NS']
 
@@ -315,25 +322,31 @@ def _unescape(s):
 
 
 class _Compound:
-    """A compound selector: tag, id, classes, attribute tests, pseudos."""
+    """A compound selector: tag, id, classes, attribute tests, pseudo-classes."""
 
-    __slots__ = ('tag', 'id', 'classes', 'attrs', 'first_child', 'never')
+    __slots__ = ('tag', 'id', 'classes', 'attrs', 'pseudos', 'never')
 
     def __init__(self):
         self.tag = None        # None = any
         self.id = None
         self.classes = ()
         self.attrs = ()        # (name, op, value, case_insensitive)
-        self.first_child = False
+        self.pseudos = ()      # (kind, argument): see _PSEUDO_TESTS
         self.never = False     # an unsupported pseudo-class
 
     def specificity(self):
-        return (1 if self.id is not None else 0,
-                len(self.classes) + len(self.attrs) + self.first_child
-                + self.never,
-                1 if self.tag is not None else 0)
+        b = len(self.classes) + len(self.attrs) + self.never
+        a = c = 0
+        for kind, arg in self.pseudos:
+            if kind == 'not':        # the most specific selector of its list
+                sa, sb, sc = max(s.specificity for s in arg)
+                a, b, c = a + sa, b + sb, c + sc
+            else:
+                b += 1
+        return (a + (1 if self.id is not None else 0), b,
+                c + (1 if self.tag is not None else 0))
 
-    def matches(self, el, local):
+    def matches(self, el, local, memo=None):
         if self.never:
             return False
         if self.tag is not None and self.tag != local:
@@ -370,13 +383,142 @@ class _Compound:
                 ok = bool(val) and val in v
             if not ok:
                 return False
-        if self.first_child:
-            prev = el.getprevious()
-            while prev is not None:
-                if isinstance(prev.tag, str):
-                    return False
-                prev = prev.getprevious()
+        for kind, arg in self.pseudos:
+            if not _PSEUDO_TESTS[kind](el, arg, memo):
+                return False
         return True
+
+
+# --- structural pseudo-classes (Selectors level 4, without ``of S``) -------
+
+_NTH_RE = re.compile(r'^([+-]?)(\d*)n\s*(?:([+-])\s*(\d+))?$', re.I)
+
+
+def _parse_nth(text):
+    """``an+b`` of ``:nth-child()``: ``odd``, ``even``, an integer,
+    ``[+-][a]n[ [+-] b]``; return ``(a, b)``."""
+    t = text.strip().lower()
+    if t == 'odd':
+        return 2, 1
+    if t == 'even':
+        return 2, 0
+    if re.fullmatch(r'[+-]?\d+', t):
+        return 0, int(t)
+    m = _NTH_RE.match(t)
+    if m is None:
+        raise CSSError('bad an+b argument %r' % text)
+    sign, a, bsign, b = m.groups()
+    a = int(a) if a else 1
+    if sign == '-':
+        a = -a
+    b = int(b) if b else 0
+    if bsign == '-':
+        b = -b
+    return a, b
+
+
+def _nth_ok(ab, pos):
+    """Whether the 1-based position ``pos`` is ``a*n + b`` for some n >= 0."""
+    a, b = ab
+    if a == 0:
+        return pos == b
+    n, r = divmod(pos - b, a)
+    return r == 0 and n >= 0
+
+
+def _positions(el, memo):
+    """``(position, count, type position, type count)`` of ``el`` among
+    its parent's element children (1-based), computed once per parent
+    when ``memo`` is given (linear in the number of siblings)."""
+    parent = el.getparent()
+    if parent is None:
+        return 1, 1, 1, 1
+    table = memo.get(('pos', parent)) if memo is not None else None
+    if table is None:
+        table = {}
+        kids = [k for k in parent if isinstance(k.tag, str)]
+        by_type = {}
+        for k in kids:
+            by_type.setdefault(k.tag, []).append(k)
+        n = len(kids)
+        for i, k in enumerate(kids):
+            table[k] = [i + 1, n, 0, 0]
+        for group in by_type.values():
+            m = len(group)
+            for i, k in enumerate(group):
+                t = table[k]
+                t[2], t[3] = i + 1, m
+        if memo is not None:
+            memo[('pos', parent)] = table
+    return table[el]
+
+
+def _lang_of(el):
+    while el is not None:
+        v = el.get('{http://www.w3.org/XML/1998/namespace}lang')
+        if v is None:
+            v = el.get('lang')
+        if v is not None:
+            return v.strip().lower()
+        el = el.getparent()
+    return None
+
+
+def _lang_test(el, ranges, memo):
+    lang = _lang_of(el)
+    if lang is None:
+        return False
+    return any(lang == r or lang.startswith(r + '-') or r == '*' for r in ranges)
+
+
+def _empty_test(el, arg, memo):
+    if el.text:
+        return False
+    for k in el:
+        if isinstance(k.tag, str) or k.tail:
+            return False
+    return True
+
+
+def _not_test(el, sels, memo):
+    for s in sels:
+        sub = None
+        if memo is not None and s._backtracks:      # one memo per inner selector
+            sub = memo.get(('not', s))
+            if sub is None:
+                sub = memo[('not', s)] = {}
+        if s.matches(el, sub):
+            return False
+    return True
+
+
+_PSEUDO_TESTS = {
+    'root': lambda el, arg, memo: el.getparent() is None,
+    'first-child': lambda el, arg, memo: _prev_element(el) is None,
+    'last-child': lambda el, arg, memo: _next_element(el) is None,
+    'only-child': lambda el, arg, memo: _prev_element(el) is None and _next_element(el) is None,
+    'nth-child': lambda el, ab, memo: _nth_ok(ab, _positions(el, memo)[0]),
+    'nth-last-child': lambda el, ab, memo: _nth_ok(ab, _nth_last(_positions(el, memo), 0)),
+    'first-of-type': lambda el, arg, memo: _positions(el, memo)[2] == 1,
+    'last-of-type': lambda el, arg, memo: (lambda p: p[2] == p[3])(_positions(el, memo)),
+    'only-of-type': lambda el, arg, memo: _positions(el, memo)[3] == 1,
+    'nth-of-type': lambda el, ab, memo: _nth_ok(ab, _positions(el, memo)[2]),
+    'nth-last-of-type': lambda el, ab, memo: _nth_ok(ab, _nth_last(_positions(el, memo), 2)),
+    'empty': _empty_test,
+    'lang': _lang_test,
+    'not': _not_test,
+}
+
+# pseudo-classes taking an ``an+b`` argument, without an argument, and the
+# ones that need the sibling positions (and so a matching memo)
+_NTH_PSEUDOS = frozenset({'nth-child', 'nth-last-child', 'nth-of-type', 'nth-last-of-type'})
+_PLAIN_PSEUDOS = frozenset({'root', 'first-child', 'last-child', 'only-child', 'first-of-type',
+                            'last-of-type', 'only-of-type', 'empty'})
+_POSITIONAL = _NTH_PSEUDOS | {'first-of-type', 'last-of-type', 'only-of-type', 'not'}
+
+
+def _nth_last(p, i):
+    return p[i + 1] - p[i] + 1
 
 
 def _local(el):
@@ -388,6 +530,13 @@ def _prev_element(el):
     p = el.getprevious()
     while p is not None and not isinstance(p.tag, str):
         p = p.getprevious()
+    return p
+
+
+def _next_element(el):
+    p = el.getnext()
+    while p is not None and not isinstance(p.tag, str):
+        p = p.getnext()
     return p
 
 
@@ -403,6 +552,10 @@ class Selector:
 
     __slots__ = ('text', 'parts', 'specificity', '_backtracks')
 
+    # _backtracks counts descendant and general-sibling combinators, plus
+    # one for pseudo-classes that read sibling positions: a selector with
+    # any gets a matching memo for a whole pass
+
     def __init__(self, text, parts):
         # parts: [compound, (combinator, compound), ...] read right to left:
         # parts[0] is the rightmost compound (the subject).
@@ -415,7 +568,9 @@ class Selector:
             a, b, c = a + sa, b + sb, c + sc
         self.specificity = (a, b, c)
         # number of descendant / general-sibling combinators
-        self._backtracks = sum(1 for p in parts[1:] if p[0] in ' ~')
+        self._backtracks = sum(1 for p in parts[1:] if p[0] in ' ~') + any(
+            k in _POSITIONAL for p in parts
+            for k, _ in (p if isinstance(p, _Compound) else p[1]).pseudos)
 
     def __repr__(self):
         return 'Selector(%r)' % self.text
@@ -453,7 +608,7 @@ class Selector:
         """
         if not isinstance(el.tag, str):
             return False
-        if memo is None and self._backtracks > 1:
+        if memo is None and self._backtracks:
             memo = {}
         return self._match(el, 0, memo)
 
@@ -470,7 +625,7 @@ class Selector:
     def _match1(self, el, i, memo):
         parts = self.parts
         comp = parts[i] if i == 0 else parts[i][1]
-        if not comp.matches(el, _local(el)):
+        if not comp.matches(el, _local(el), memo):
             return False
         if i + 1 == len(parts):
             return True
@@ -521,7 +676,7 @@ def _parse_compound(text, pos):
     comp = _Compound()
     n = len(text)
     start = pos
-    classes, attrs = [], []
+    classes, attrs, pseudos = [], [], []
     if pos < n and text[pos] == '*':
         pos += 1
     else:
@@ -569,10 +724,23 @@ def _parse_compound(text, pos):
                 end = _scan_to(text, pos + 1, ')')
                 if end >= n:
                     raise CSSError('unclosed pseudo-class argument in %r' % text)
+                arg = text[pos + 1:end]
                 pos = end + 1
-                comp.never = True
-            elif name == 'first-child' and not double:
-                comp.first_child = True
+                if double:
+                    comp.never = True
+                elif name in _NTH_PSEUDOS:
+                    pseudos.append((name, _parse_nth(arg)))
+                elif name == 'not':
+                    pseudos.append(('not', parse_selector_list(arg.strip())))
+                elif name == 'lang':
+                    ranges = tuple(r.strip().strip('"\'').lower() for r in arg.split(','))
+                    if not all(ranges):
+                        raise CSSError('bad :lang() argument in %r' % text)
+                    pseudos.append(('lang', ranges))
+                else:
+                    comp.never = True
+            elif name in _PLAIN_PSEUDOS and not double:
+                pseudos.append((name, None))
             else:
                 comp.never = True
         else:
@@ -581,6 +749,7 @@ def _parse_compound(text, pos):
         raise CSSError('expected a selector at %r' % text[start:start + 20])
     comp.classes = tuple(classes)
     comp.attrs = tuple(attrs)
+    comp.pseudos = tuple(pseudos)
     return comp, pos
 
 
@@ -654,17 +823,60 @@ class Rule(NamedTuple):
     order: int
 
 
-def parse_stylesheet(text, start_order=0):
+_IMPORT_RE = re.compile(
+    r'@import\s*(?:url\(\s*(?:"((?:[^"\\]|\\.)*)"|\'((?:[^\'\\]|\\.)*)\'|([^)\s"\']*))\s*\)'
+    r'|"((?:[^"\\]|\\.)*)"|\'((?:[^\'\\]|\\.)*)\')\s*(.*)$', re.I | re.S)
+
+
+def parse_import(rule):
+    """The target and media list of an ``@import`` rule (its text up to,
+    not including, the ``;``): ``(href, media)``, or None when it is not a
+    well-formed import.  ``media`` is the lower-cased, trimmed rest.
+
+    >>> parse_import('@import url("a b.css") screen'), parse_import("@import 'x.css'")
+    (('a b.css', 'screen'), ('x.css', ''))
+    """
+    m = _IMPORT_RE.match(rule.strip())
+    if m is None:
+        return None
+    href = next(g for g in m.groups()[:5] if g is not None)
+    return _unescape(href), m.group(6).strip().lower()
+
+
+def media_applies(media):
+    """Whether a media query list applies to a static picture: empty,
+    or one of its queries is ``all`` or ``screen`` (optionally with
+    ``only``).  Queries with features (``screen and (...)``) are not
+    evaluated and do not apply."""
+    if not media:
+        return True
+    for q in media.split(','):
+        words = q.split()
+        if words[:1] == ['only']:
+            words = words[1:]
+        if words in (['all'], ['screen']):
+            return True
+    return False
+
+
+def parse_stylesheet(text, start_order=0, load=None):
     """Parse a stylesheet into rules, one per selector.
 
     At-rules are skipped with their blocks; rules whose selector does not
-    parse are dropped; bad declarations are skipped.
+    parse are dropped; bad declarations are skipped.  ``@import`` rules
+    before the first rule are followed when ``load`` is given and their
+    media list applies (:func:`media_applies`): the imported sheet's rules
+    come where the import stands, before the rules that follow it.
 
     Parameters
     ----------
     text : str
     start_order : int
         Order number of the first rule (to chain several sheets).
+    load : callable, optional
+        ``load(href)`` -> ``(text, load)`` of the imported sheet (``load``
+        for its own imports, relative to it), or None when it is not
+        used.  The caller bounds depth, cycles and what may be read.
 
     Returns
     -------
@@ -680,6 +892,7 @@ def parse_stylesheet(text, start_order=0):
     rules = []
     order = start_order
     pos, n = 0, len(text)
+    imports_allowed = True      # @import only before any other rule
     while pos < n:
         while pos < n and text[pos].isspace():
             pos += 1
@@ -689,9 +902,23 @@ def parse_stylesheet(text, start_order=0):
             end = _scan_to(text, pos, ';{}')
             if end < n and text[end] == '{':
                 pos = _skip_block(text, end)
-            else:
-                pos = end + 1
+                imports_allowed = False
+                continue
+            head = text[pos:end]
+            pos = end + 1
+            if head[:7].lower() == '@import':
+                ref = parse_import(head) if imports_allowed and load is not None else None
+                if ref is not None and media_applies(ref[1]):
+                    got = load(ref[0])
+                    if got is not None:
+                        sub = parse_stylesheet(got[0], order, got[1])
+                        rules.extend(sub)
+                        if sub:
+                            order = sub[-1].order + 1
+            elif head[:8].lower() != '@charset':
+                imports_allowed = False
             continue
+        imports_allowed = False
         if text[pos] == '}':  # stray closing brace
             pos += 1
             continue
@@ -800,7 +1027,7 @@ def _sort_declarations(decls, props, normal, important):
     return important
 
 
-def declared_styles(root, extra_css='', found=None):
+def declared_styles(root, extra_css='', found=None, load=None):
     """The cascaded (declared) style of every element of a document.
 
     Parameters
@@ -816,6 +1043,9 @@ def declared_styles(root, extra_css='', found=None):
         elements that have that (non-presentation) attribute.  The tree
         builder learns ids and conditional attributes this way, without a
         second pass over the document.
+    load : callable, optional
+        Follows ``@import`` rules of the document's style sheets (see
+        :func:`parse_stylesheet`); without it imports are skipped.
 
     Returns
     -------
@@ -839,9 +1069,10 @@ def declared_styles(root, extra_css='', found=None):
     rules = []
     for el in root.iter('{%s}style' % SVG_NS, 'style'):
         if _is_style_element(el):
-            rules.extend(parse_stylesheet(''.join(el.itertext()), len(rules)))
+            rules.extend(parse_stylesheet(''.join(el.itertext()),
+                                          rules[-1].order + 1 if rules else 0, load))
     if extra_css:
-        rules.extend(parse_stylesheet(extra_css, len(rules) + 1_000_000))
+        rules.extend(parse_stylesheet(extra_css, (rules[-1].order if rules else 0) + 1_000_000))
     index = _Index(rules) if rules else None
     # one matching cache per selector with descendant/sibling combinators,
     # shared by all elements of this pass (see Selector.matches)
@@ -882,4 +1113,47 @@ def declared_styles(root, extra_css='', found=None):
         if simp:
             d.update(simp)
         out[el] = d
+    return out
+
+
+# --------------------------------------------------------------------------
+# @font-face
+# --------------------------------------------------------------------------
+
+def font_face_rules(root):
+    """The ``@font-face`` rules of a document's ``<style>`` elements, in
+    document order: a list of ``{descriptor: value}`` dicts (names lower
+    case, values trimmed, later declarations winning).  Only top-level
+    rules are found (not inside ``@media``); the text layout resolves them
+    (:mod:`raster.parser.fontface`).
+
+    >>> from lxml import etree
+    >>> root = etree.fromstring('<svg xmlns="http://www.w3.org/2000/svg"><style>'
+    ...     '@font-face { font-family: "A B"; src: url(a.woff2) format("woff2") }'
+    ...     'text { fill: red }</style></svg>')
+    >>> font_face_rules(root)
+    [{'font-family': '"A B"', 'src': 'url(a.woff2) format("woff2")'}]
+    """
+    out = []
+    for el in root.iter('{%s}style' % SVG_NS, 'style'):
+        if not _is_style_element(el):
+            continue
+        text = ''.join(el.itertext())
+        if '@font-face' not in text.lower():
+            continue
+        text = _strip_comments(text)
+        pos, n = 0, len(text)
+        while pos < n:
+            at = text.find('@', pos)
+            if at < 0:
+                break
+            end = _scan_to(text, at, ';{}')
+            if end >= n or text[end] != '{':
+                pos = end + 1
+                continue
+            close = _skip_block(text, end)
+            if text[at + 1:end].strip().lower() == 'font-face':
+                body = text[end + 1:close - 1]
+                out.append({d.name: d.value for d in _parse_declarations(body)})
+            pos = close
     return out

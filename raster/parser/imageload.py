@@ -60,12 +60,18 @@ from .. import limits
 from ..errors import RasterError
 from .document import load_document
 
-__all__ = ['load_image', 'fetch_image', 'fetch_document', 'image_source', 'decode_raster',
-           'sniff', 'parse_data_uri', 'ImageSource', 'ImageError', 'MAX_IMAGE_DEPTH',
-           'MAX_IMAGE_BYTES', 'MAX_IMAGE_PIXELS']
+__all__ = ['load_image', 'load_svg_data', 'fetch_image', 'fetch_document', 'fetch_stylesheet',
+           'read_reference', 'is_network_reference', 'image_source', 'decode_raster', 'sniff',
+           'parse_data_uri', 'ImageSource', 'ImageError', 'MAX_IMAGE_DEPTH', 'MAX_IMAGE_BYTES',
+           'MAX_IMAGE_PIXELS', 'MAX_IMPORT_DEPTH', 'MAX_IMPORTS']
 
 #: Deepest nesting of SVG images (an image inside an SVG image inside ...).
 MAX_IMAGE_DEPTH = 4
+
+#: Deepest chain of CSS ``@import`` rules followed (a sheet importing a
+#: sheet importing ...), and most style sheets imported by one document.
+MAX_IMPORT_DEPTH = 8
+MAX_IMPORTS = 64
 
 #: Largest encoded image (file or decoded data URI) read, in bytes.
 MAX_IMAGE_BYTES = 64 * 1024 * 1024
@@ -156,19 +162,21 @@ def _under(path, root):
         return False
 
 
-def _resolve_file(href, source):
-    """Real path of a file reference, checked against the allowed dirs."""
+def _resolve_file(href, source, what='image'):
+    """Real path of a file reference, checked against the allowed dirs
+    (``what`` names the kind of file in messages)."""
     if href[:5].lower() == 'file:':
         p = urllib.parse.urlparse(href)
         if p.netloc not in ('', 'localhost'):
             raise ImageError('file URL on another host refused: %s' % _short(href))
         href = urllib.parse.unquote(p.path)
     if not source.files:
-        raise ImageError('file reference inside an SVG image refused: %s' % _short(href))
+        raise ImageError('%s file reference inside an SVG image refused: %s'
+                         % (what, _short(href)))
     base = source.base_dir
     if not os.path.isabs(href):
         if base is None:
-            raise ImageError('relative image path with no base directory: %s' % _short(href))
+            raise ImageError('relative %s path with no base directory: %s' % (what, _short(href)))
         cand = os.path.join(base, href)
     else:
         cand = href
@@ -179,22 +187,23 @@ def _resolve_file(href, source):
             cand = cand2
     real = os.path.realpath(cand)
     if not any(_under(real, root) for root in source.allowed):
-        raise ImageError('image file outside the allowed directories refused: %s'
-                         % _short(href))
+        raise ImageError('%s file outside the allowed directories refused: %s'
+                         % (what, _short(href)))
     if not os.path.isfile(real):
-        raise ImageError('image file not found: %s' % _short(href))
+        raise ImageError('%s file not found: %s' % (what, _short(href)))
     return real
 
 
-def _read_file(path):
+def _read_file(path, what='image'):
     try:
         with open(path, 'rb') as f:
             data = f.read(MAX_IMAGE_BYTES + 1)
     except OSError as e:
-        raise ImageError('cannot read image file %s (%s)'
-                         % (_short(path), e.strerror or e)) from None
+        raise ImageError('cannot read %s file %s (%s)'
+                         % (what, _short(path), e.strerror or e)) from None
     if len(data) > MAX_IMAGE_BYTES:
-        raise ImageError('image file larger than %d bytes: %s' % (MAX_IMAGE_BYTES, _short(path)))
+        raise ImageError('%s file larger than %d bytes: %s' % (what, MAX_IMAGE_BYTES,
+                                                               _short(path)))
     return data
 
 
@@ -318,6 +327,21 @@ def _load_svg(data, source, cache, tolerance):
     return cache.parse_nested(root, opts, cache.image_cache)
 
 
+def load_svg_data(data, cache, tolerance=None):
+    """Parse SVG document bytes that come from no file (a font's SVG
+    glyph document) into a Tree, like an SVG image one nesting level
+    deeper: self-contained (no files are read).
+
+    Raises
+    ------
+    ImageError or RasterError
+        Nested too deep, or not a usable document.
+    """
+    if tolerance is None:
+        tolerance = cache.options.tolerance
+    return _load_svg(data, ImageSource(None, (), False), cache, tolerance)
+
+
 def fetch_image(href, source=ImageSource(), images=None):
     """Fetch the image an ``href`` names and decode it when it is a raster
     image.
@@ -346,15 +370,50 @@ def fetch_image(href, source=ImageSource(), images=None):
     return _fetch(href, source, {} if images is None else images)[1:]
 
 
-def _fetch(href, source, cache):
-    """(key, kind, payload): payload is read-only pixels for raster kinds,
-    the document bytes for 'svg'.  Results and errors are cached by key."""
-    href = href.strip()
+def _scheme(href):
+    """The lower-case URL scheme of a stripped reference: '' for a path,
+    'network' for a protocol-relative URL or a UNC path."""
     scheme = urllib.parse.urlsplit(href).scheme.lower() if ':' in href else ''
     if len(scheme) == 1:        # a Windows drive letter
         scheme = ''
     if href.startswith('//') or href.startswith('\\\\'):
         scheme = 'network'      # protocol-relative URL or UNC path
+    return scheme
+
+
+def is_network_reference(href):
+    """True for a reference that would need the network (``http:``,
+    ``https:``, ``ftp:``, ``//host/...``): never fetched."""
+    return _scheme(href.strip()) in ('http', 'https', 'ftp', 'network')
+
+
+def read_reference(href, source, what='font'):
+    """The bytes a ``data:`` URI or a file reference names, under the rules
+    images are read by (see the module docstring): a file only from an
+    allowed directory, at most :data:`MAX_IMAGE_BYTES` bytes; network URLs
+    are refused.  ``what`` names the kind of resource in messages.
+
+    Raises
+    ------
+    ImageError
+        Refused, missing, unreadable or too large.
+    """
+    href = href.strip()
+    scheme = _scheme(href)
+    if scheme == 'data':
+        return parse_data_uri(href)[1]
+    if scheme in ('', 'file'):
+        return _read_file(_resolve_file(href, source, what), what)
+    if scheme in ('http', 'https', 'ftp', 'network'):
+        raise ImageError('network %s reference not fetched: %s' % (what, _short(href)))
+    raise ImageError('%s URL with scheme %r is not supported: %s' % (what, scheme, _short(href)))
+
+
+def _fetch(href, source, cache):
+    """(key, kind, payload): payload is read-only pixels for raster kinds,
+    the document bytes for 'svg'.  Results and errors are cached by key."""
+    href = href.strip()
+    scheme = _scheme(href)
     if scheme == 'data':
         key = ('data', href)
     elif scheme in ('', 'file'):
@@ -471,6 +530,53 @@ def fetch_document(path, options, documents):
     if isinstance(r, ImageError):
         raise r
     return r
+
+
+def fetch_stylesheet(href, base_dir, options):
+    """A style sheet that a CSS ``@import`` names: read under the rules of
+    image files (relative to ``base_dir``, the importing sheet's
+    directory; only below the allowed directories; never the network;
+    never from inside an SVG image), or decoded from a ``data:`` URI.
+
+    Parameters
+    ----------
+    href : str
+        The import's URL (a path, ``file:`` or ``data:`` URL).
+    base_dir : str or None
+        Directory of the importing sheet (None: the document's).
+    options : raster.parser.Options
+        The document's options.
+
+    Returns
+    -------
+    (str or None, str, str or None)
+        The sheet's real path (None for a ``data:`` URI), its text (UTF-8,
+        undecodable bytes replaced) and the directory its own imports
+        resolve against.
+
+    Raises
+    ------
+    ImageError
+        The sheet is refused, missing, unreadable or too large.
+    """
+    href = href.strip()
+    scheme = urllib.parse.urlsplit(href).scheme.lower() if ':' in href else ''
+    if len(scheme) == 1:
+        scheme = ''
+    if href.startswith('//') or href.startswith('\\\\'):
+        scheme = 'network'
+    if scheme == 'data':
+        return None, parse_data_uri(href)[1].decode('utf-8', 'replace'), base_dir
+    if scheme not in ('', 'file'):
+        raise ImageError('style sheet URL not fetched: %s' % _short(href))
+    source = image_source(options)
+    if base_dir is not None:
+        source = source._replace(base_dir=base_dir)
+    try:
+        real = _resolve_file(href, source)
+    except ImageError as e:
+        raise ImageError(str(e).replace('image file', 'style sheet', 1)) from None
+    return real, _read_file(real).decode('utf-8', 'replace'), os.path.dirname(real)
 
 
 def image_source(options):

@@ -67,6 +67,8 @@ def external_target(el, cache):
         return None
     from .imageload import ImageError, fetch_document, image_source
     opts = cache.options
+    # (imported here: documents without such references never load it)
+    from .imageload import ImageError, fetch_document, image_source
     try:
         real, root = fetch_document(file, opts, cache.table('documents'))
     except ImageError as e:

@@ -20,6 +20,7 @@ agrees), so it is kept unpainted.  Inside a ``clipPath`` a shape is filled black
 import math
 
 from ..errors import RasterError
+from ..geometry.bounds import bbox as exact_bbox
 from ..geometry.stroking import LineCap, LineJoin, StrokeStyle
 from ..geometry.pathdata import (circle_path, ellipse_path, line_path, parse_path, parse_paths,
                        polyline_path, rect_path)
@@ -27,7 +28,7 @@ from ..tree import Fill, FillRule, Group, PathNode, SolidPaint, Stroke
 from .context import SVG_NS
 from .effects import NO_EFFECTS, effects
 from .paint import paint
-from .style import (BLACK, length, length_context, opacity, paint_order, style_of,
+from .style import (BLACK, length, length_context, opacity, origin_box, paint_order, style_of,
                     transform_of)
 from .values import parse_length, parse_length_list, parse_number, parse_paint
 
@@ -81,6 +82,25 @@ def convert_shape(el, state, cache, parent):
         stroke = None if sp is None else Stroke(sp, params[0], params[1])
     else:
         fill, stroke = fill_and_stroke(inh, ctx, path, state, cache)
+    kind = origin_box(el, own)
+    if kind is not None:
+        # transform-box fill-box / stroke-box: the origin is placed in the
+        # shape's own box (the stroke box as the fill box widened by half
+        # the stroke width)
+        try:
+            x0, y0, x1, y1 = exact_bbox(path)
+        except RasterError:
+            return
+        pad = 0.5 * stroke.style.width if kind == 'stroke' and stroke is not None else 0.0
+        t = transform_of(el, own, ctx, (x0 - pad, y0 - pad, x1 - x0 + 2 * pad, y1 - y0 + 2 * pad))
+        if t is None:
+            return
+        ident = t.is_identity
+        try:
+            if not ident:
+                state.check(t)
+        except RasterError:
+            return
     markers = None
     if has_markers and not hidden and not clip_mode:
         from .markers import build_markers      # (loaded with the first marker)

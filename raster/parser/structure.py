@@ -15,7 +15,7 @@ from ..errors import RasterError, SVGError
 from ..geometry.pathdata import rect_path
 from ..geometry.transform import IDENTITY, Affine
 from ..tree import Fill, Group, PathNode, SolidPaint, Tree
-from .boxes import content_box, layer_box, walk_all
+from .boxes import content_box, layer_box, object_box, walk_all
 from .context import State
 from .convert import convert, convert_children
 from .css import parse_declarations
@@ -23,7 +23,7 @@ from .effects import clip_rect, effects, wrap
 from .paint import GradientServer, PatternServer, in_space, paint
 from .refs import external_target, href_target, is_recursive
 from .style import (initial_inherited, is_displayed, length, length_context, local_name,
-                    passes_conditions, style_of, transform_of)
+                    origin_box, passes_conditions, style_of, transform_of)
 from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length,
                      parse_preserve_aspect_ratio, resolve_viewbox, viewbox_transform,
                      ZERO_VIEWBOX)
@@ -56,6 +56,17 @@ def convert_group(el, state, cache, parent):
     inh, own, ctx, t = e
     kids = []
     convert_children(el, state.sub(inh, own, transform=t), cache, kids)
+    kind = origin_box(el, own)
+    if kind is not None:
+        # transform-box fill-box / stroke-box: the origin in the group's
+        # own box, its content's object (or visual) bounding box
+        b = object_box(kids) if kind == 'fill' else content_box(Group(children=kids))
+        if b is not None and kind == 'stroke':
+            b = (b[0], b[1], b[2] - b[0], b[3] - b[1])
+        if b is not None:
+            t = transform_of(el, own, ctx, b)
+            if t is None:
+                return
     parent.extend(wrap(el, own, t, kids, state, cache))
 
 

@@ -167,9 +167,29 @@ def length(el, name, axis, ctx, default=0.0):
     return default if v is None else v
 
 
-def transform_of(el, own, ctx):
+_OWN_BOXES = {'fill-box': 'fill', 'content-box': 'fill', 'stroke-box': 'stroke',
+              'border-box': 'stroke'}
+
+
+def origin_box(el, own):
+    """``'fill'`` or ``'stroke'`` when the element's ``transform-origin``
+    refers to its own bounding box (``transform-box`` ``fill-box`` or
+    ``stroke-box``; ``content-box`` and ``border-box`` stand for them on
+    SVG elements, CSS Transforms 1), it has a transform and an origin;
+    else None (the reference box is the viewport, ``view-box``)."""
+    kind = _OWN_BOXES.get(own.get('transform-box', 'view-box').strip().lower())
+    if kind is None or own.get('transform-origin') is None:
+        return None
+    if own.get('transform') is None and el.get('transform') is None:
+        return None
+    return kind
+
+
+def transform_of(el, own, ctx, box=None):
     """The element's transform (``transform-origin`` applied); None when it
-    is singular.  An identity is always the object ``IDENTITY``."""
+    is singular.  An identity is always the object ``IDENTITY``.  ``box``
+    ``(x, y, w, h)`` is the reference box of the origin when it is not the
+    viewport (see :func:`origin_box`)."""
     s = own.get('transform')
     if s is None:
         s = el.get('transform')
@@ -184,7 +204,7 @@ def transform_of(el, own, ctx):
         return IDENTITY
     o = own.get('transform-origin')
     if o is not None:
-        p = parse_transform_origin(o, ctx)
+        p = parse_transform_origin(o, ctx, box)
         if p is not None and (p[0] or p[1]):
             t = Affine.translate(p[0], p[1]) @ t @ Affine.translate(-p[0], -p[1])
             if t.is_identity:

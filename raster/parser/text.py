@@ -53,14 +53,17 @@ from .. import limits
 from ..errors import RasterError
 from ..geometry.flattening import flatten
 from ..fonts import Font, FontDB, FontError, cached, parse_font_family
+from ..fonts.matching import best_face
 from ..geometry.path import Path
+from ..geometry.pathdata import rect_path
 from ..geometry.transform import Affine
-from ..tree import PathNode
+from ..tree import PathNode, SolidPaint
+from .fontface import document_font_db
 from .boxes import Boxed
 from .effects import wrap
 from .shapes import fill_and_stroke, geometry
 from .textlayout import (apply_length, apply_spacing, apply_vertical, compose, glyph_matrices,
-                         metric_boxes, position_linear, position_on_path, rotate,
+                         metric_boxes, position_linear, position_on_path, rotate, scale,
                          shape_clusters, translate, decoration_pieces)
 from .style import (is_displayed, length_context, local_name, paint_order, passes_conditions,
                     style_of, transform_of)
@@ -109,7 +112,8 @@ def collapse_whitespace(text, preserve=False, prev_space=True):
 class _Span:
     """Style of one element contributing characters."""
     __slots__ = ('el', 'inh', 'own', 'ctx', 'face', 'font', 'fs', 'shift', 'ls', 'ws', 'tl',
-                 'weight', 'parent', 'decor', 'vertical', 'features', 'glyph_adjust', 'index')
+                 'weight', 'parent', 'decor', 'vertical', 'features', 'glyph_adjust', 'index',
+                 'key', 'families', 'style', 'stretch')
 
     def __init__(self, el, inh, own, ctx, parent, weight):
         self.el, self.inh, self.own, self.ctx, self.parent = el, inh, own, ctx, parent
@@ -146,10 +150,12 @@ def _spacing(value, ctx):
 
 
 def _font_db(cache):
+    """The document's FontDB: its options' fonts and its ``@font-face``
+    fonts (:mod:`raster.parser.fontface`), made once per document."""
     memo = cache.table('text')
     db = memo.get('fontdb')
     if db is None:
-        db = memo['fontdb'] = FontDB.for_options(cache.options.fonts)
+        db = memo['fontdb'] = document_font_db(FontDB.for_options(cache.options.fonts), cache)
     return db
 
 
@@ -300,7 +306,10 @@ def _build(el, state, cache, out):
         i = sp.inh
         style = (i.get('font-style') or 'normal').strip()
         stretch = (i.get('font-stretch') or 'normal').strip()
-        sp.face, sp.font = fonts_of(i.get('font-family', ''), sp.weight, style, stretch)
+        family = i.get('font-family', '')
+        sp.families = _families(family)
+        sp.style, sp.stretch = style, stretch
+        sp.face, sp.font = fonts_of(family, sp.weight, style, stretch)
         if sp.font is not None and sp.font.axes:
             sp.font = sp.font.variant(_variations(sp, style, stretch))
         sp.ls = _spacing(i.get('letter-spacing'), sp.ctx)
@@ -317,6 +326,8 @@ def _build(el, state, cache, out):
         sp.vertical = vertical
     for sp in spans:
         sp.shift = _span_shift(sp, vertical)
+        sp.key = (sp.font, None if sp.features is None else tuple(sorted(sp.features.items())),
+                  sp.fs, sp.ls, sp.ws, sp.tl, sp.glyph_adjust, sp.shift, sp.families)
     decor = _decorations(el, spans, cache)
     spacing = any(sp.ls or sp.ws for sp in spans)
     ls = np.array([sp.ls for sp in spans]) if spacing else None
@@ -335,123 +346,418 @@ def _build(el, state, cache, out):
     bounds = np.flatnonzero(brk).tolist() + [n]
     text = ''.join(chars)
     memo = cache.table('text_shaped')
+    fallbacks = cache.table('text_fallback')
 
-    def fallback(font, ch):
-        return _fallback_font(db, ch, font) if font is not None else None
-    pieces = []         # (span index, kind, Path) and (span index, 'glyphs', Path)
+    def fallback(font, ch, sp):
+        if font is None:
+            return None
+        k = (font, ch, sp.families, sp.weight, sp.style, sp.stretch)
+        f = fallbacks.get(k)
+        if f is None:
+            f = fallbacks[k] = _fallback_font(db, ch, font, sp, cache)
+        return f
+    env = _ChunkEnv(spans, decor, vertical, spacing, ls, ws, fallback, memo)
+    pieces = []         # (span index, kind, Path) in user space
     corners = []        # metric box corners in user space
     cur_x = cur_y = 0.0
     for c0, c1 in zip(bounds[:-1], bounds[1:]):
         tp = path_ranges[int(onpath[c0])][2] if onpath is not None and onpath[c0] >= 0 else None
-        cx = ax[c0] if not math.isnan(ax[c0]) else None
-        cy = ay[c0] if not math.isnan(ay[c0]) else None
         own_c = owner[c0:c1]
-        cl = shape_clusters(text[c0:c1], own_c, spans, fallback, memo)
-        if cl is None or not len(cl):
-            continue
-        if vertical:
-            apply_vertical(cl)
-        if spacing:
-            apply_spacing(cl, ls, ws)
-        if not len(cl):
-            continue
-        segs = []
-        cuts = (np.flatnonzero(own_c[1:] != own_c[:-1]) + 1).tolist()
-        for a, z in zip([0] + cuts, cuts + [c1 - c0]):
-            sp = spans[int(own_c[a])]
-            if sp.tl is not None:
-                segs.append((a, z, sp.tl, sp.glyph_adjust))
-        if segs:
-            apply_length(cl, segs, tp is not None)
         anchor = (spans[owner_l[c0]].inh.get('text-anchor') or 'start').strip()
         sub = (lambda a: None if a is None else a[c0:c1])
+        chunk_text = text[c0:c1]
+        cuts = (np.flatnonzero(own_c[1:] != own_c[:-1]) + 1).tolist()
+        run_starts = [0] + cuts
+        order = []              # the chunk's spans in order of first use
+        for a in run_starts:
+            si = owner_l[c0 + a]
+            if si not in order:
+                order.append(si)
+        res = None
+        key = None
+        if tp is None and dx is None and dy is None and angle is None:
+            key = (db, _chunk_key(chunk_text, own_c, run_starts, order, anchor, env))
+            res = _CHUNKS.get(key)
+        if res is None:
+            res = _lay_chunk(chunk_text, own_c, run_starts, order, anchor, tp, sub(dx), sub(dy),
+                             sub(angle), _path_start(tp, ax[c0], ay[c0], vertical), env)
+            if key is not None:
+                _CHUNKS.put(key, res)
+        if res.empty:
+            continue
+        if res.missing:
+            _warn_missing(res.missing, cache)
         if tp is None:
+            cx = ax[c0] if not math.isnan(ax[c0]) else None
+            cy = ay[c0] if not math.isnan(ay[c0]) else None
             x0 = cur_x if cx is None else cx
             y0 = cur_y if cy is None else cy
-            ex, ey = position_linear(cl, anchor, sub(dx), sub(dy), sub(angle), vertical)
-            base = translate(x0, y0)[None]
+            ex, ey = res.end
             if vertical:
-                base = compose(translate(x0, y0)[None], rotate(90.0)[None])
+                base = Affine.translate(x0, y0) @ Affine.rotate(90.0)
                 ex, ey = ey, ex
+            else:
+                base = (x0, y0)
             cur_x, cur_y = x0 + ex, y0 + ey
         else:
-            edges, cum, off = tp
-            start = off + ((cy if vertical else cx) or 0.0)
-            shifts = np.array([-spans[int(s)].shift for s in cl.span])
-            ex, ey = position_on_path(cl, (edges, cum), start, anchor, sub(dx), sub(dy),
-                                      sub(angle), -shifts)
-            base = translate(0.0, 0.0)[None]
-            cur_x, cur_y = ex, ey
-        simple = cl.m is None and cl.pm is None and not vertical
-        if simple:
-            gm, gvis = None, cl.visible[cl.g_cluster]
-        else:
-            gm, gvis = glyph_matrices(cl)
-        box = metric_boxes(cl)
-        chunk_spans = [int(own_c[a]) for a in [0] + cuts]
-        done = set()
-        for si in chunk_spans:
-            if si in done:
-                continue
-            done.add(si)
-            sp = spans[si]
-            if tp is not None:
-                sts = base
-            elif vertical:
-                sts = compose(base, translate(0.0, sp.shift)[None])
+            base = None
+            cur_x, cur_y = res.end
+        if res.box is not None:
+            if isinstance(base, tuple):
+                x, y = base
+                b = res.box
+                corners.append((b[0] + x, b[1] + y, b[2] + x, b[3] + y))
             else:
-                sts = base.copy()
-                sts[0, 1, 2] += sp.shift
-            if len(box):
-                corners.append(_apply(sts[0], box))
-            mask = cl.span == si
-            for kind in ('overline', 'underline'):
-                p = _decoration_path(cl, mask, sp, kind, decor, sts[0], vertical)
-                if p is not None:
-                    pieces.append((si, kind, p))
-            g = np.flatnonzero(mask[cl.g_cluster] & gvis)
-            if len(g):
-                pieces.append((si, 'glyphs', (cl, g, sts[0] if gm is None else
-                                              compose(sts, gm[g]))))
-            p = _decoration_path(cl, mask, sp, 'line-through', decor, sts[0], vertical)
-            if p is not None:
-                pieces.append((si, 'line-through', p))
+                c = _moved_points(res.corners, base)
+                lo, hi = c.min(0), c.max(0)
+                corners.append((float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])))
+        for rel, kind, path in res.pieces:
+            if kind == 'color':
+                pieces.append((order[rel], kind, _moved_color(path, base)))
+            else:
+                pieces.append((order[rel], kind, _moved_path(path, base)))
     if not pieces:
         return
     bbox = None
     if corners:
-        c = np.concatenate(corners)
+        bbox = (min(b[0] for b in corners), min(b[1] for b in corners),
+                max(b[2] for b in corners), max(b[3] for b in corners))
+    for si, kind, p in pieces:
+        if kind not in ('glyphs', 'color'):
+            x0, y0, x1, y1 = _path_extent(p)
+            if bbox is not None and x1 >= x0:
+                bbox = (min(bbox[0], x0), min(bbox[1], y0), max(bbox[2], x1), max(bbox[3], y1))
+    kids = []
+    undrawn = False
+    for si, kind, path in pieces:
+        if kind == 'color':
+            kids.extend(_color_nodes(spans[si], path, st, cache, bbox))
+            continue
+        if kind == 'glyphs':
+            node = _paint_node(spans[si], path, st, cache, bbox)
+        else:
+            node = _paint_node(decor[(si, kind)], path, st, cache, bbox, spans[si])
+        if node is None:
+            undrawn = True
+            continue
+        pts = path.points
+        if len(pts):
+            big = np.abs(pts).max()
+            if not big <= limits.MAX_COORD:
+                if not np.isfinite(big):    # (glyph paths are not validated)
+                    Path.from_arrays(path.verbs, path.points)   # raises PathError
+                cache.warn('text-coord', 'text beyond the coordinate limit is not rendered')
+                continue
+        kids.append(node)
+    box = None if bbox is None else (bbox[0], bbox[1], bbox[2] - bbox[0], bbox[3] - bbox[1])
+    if undrawn and box is not None:
+        # hidden or unpainted glyphs draw nothing but the text still counts
+        # in its parents' object bounding box (which ignores visibility and
+        # paint, SVG 2 8.10): an unpainted rectangle of its metric box, the
+        # box resvg gives text (painting/visibility/bbox-impact-3)
+        kids.append(PathNode(id='', path=rect_path(*box)))
+    out.extend(wrap(el, own, t, Boxed(kids, box), st, cache))
+
+
+class _ChunkEnv:
+    """What the chunks of one text element share while they are laid out."""
+    __slots__ = ('spans', 'decor', 'vertical', 'spacing', 'ls', 'ws', 'fallback', 'memo')
+
+    def __init__(self, spans, decor, vertical, spacing, ls, ws, fallback, memo):
+        self.spans, self.decor, self.vertical, self.spacing = spans, decor, vertical, spacing
+        self.ls, self.ws, self.fallback, self.memo = ls, ws, fallback, memo
+
+
+class _Chunk:
+    """One laid-out chunk in its own frame (origin at the chunk's start, x
+    along the line; user space for a chunk on a text path).
+
+    ``pieces``: ``(span rank, kind, Path)`` with kind ``'overline'``,
+    ``'underline'``, ``'glyphs'`` or ``'line-through'`` in painting order,
+    the rank indexing the chunk's spans in order of first use;
+    ``corners``: (K, 2) float64 corners of the clusters' metric boxes;
+    ``box``: their extent (x0, y0, x1, y1) or None; ``end``: the pen
+    position after the chunk; ``empty``: no clusters; ``missing``: the
+    characters no font has a glyph for.
+    """
+    __slots__ = ('pieces', 'corners', 'box', 'end', 'empty', 'missing')
+
+    def __init__(self):
+        self.missing = ''
+        self.pieces = []
+        self.corners = np.zeros((0, 2))
+        self.box = None
+        self.end = (0.0, 0.0)
+        self.empty = True
+
+
+_DECOR_KINDS = ('underline', 'overline', 'line-through')
+
+
+class _ChunkMemo:
+    """Chunks laid out along a line without per-character positions,
+    remembered for the process by everything their layout depends on (the
+    FontDB, the Font objects, the text, the spans' sizes, spacings,
+    lengths, shifts and decorations, the anchor): a document repeating a
+    word, or a document rendered again, lays it out once.  The memo holds
+    at most ``limit`` points of outlines and starts over beyond that."""
+
+    def __init__(self, limit=1 << 20):
+        self.limit = limit
+        self.table = {}
+        self.points = 0
+
+    def get(self, key):
+        return self.table.get(key)
+
+    def put(self, key, chunk):
+        size = len(chunk.corners) + sum(len(p.points) if kind != 'color' else 64 * len(p)
+                                        for _, kind, p in chunk.pieces)
+        if self.points + size > self.limit:
+            self.table.clear()
+            self.points = 0
+        chunk.corners.flags.writeable = False
+        self.table[key] = chunk
+        self.points += size
+
+
+_CHUNKS = _ChunkMemo()
+
+
+def _chunk_key(chunk_text, own_c, run_starts, order, anchor, env):
+    """The memo key of a chunk laid out along a line without per-character
+    positions: everything its layout depends on."""
+    rank = {si: k for k, si in enumerate(order)}
+    runs = tuple((a, rank[int(own_c[a])]) for a in run_starts)
+    spans, decor = env.spans, env.decor
+    props = tuple(spans[si].key + (tuple(k for k in _DECOR_KINDS if (si, k) in decor),)
+                  for si in order)
+    return (chunk_text, runs, props, anchor, env.vertical)
+
+
+def _path_start(tp, x, y, vertical):
+    """Start offset along a text path of a chunk (its ``startOffset`` plus
+    an absolute ``x``, ``y`` in vertical text), 0 for a chunk on a line."""
+    if tp is None:
+        return 0.0
+    v = y if vertical else x
+    return tp[2] + (0.0 if math.isnan(v) else float(v))
+
+
+_EYE = np.eye(3)
+
+
+def _lay_chunk(chunk_text, own_c, run_starts, order, anchor, tp, dx, dy, rot, start, env):
+    """Lay out one chunk (see :class:`_Chunk`): shaping, vertical writing,
+    spacing, textLength, positions, then each span's decorations, glyph
+    outlines and metric boxes."""
+    out = _Chunk()
+    spans, vertical = env.spans, env.vertical
+    cl = shape_clusters(chunk_text, own_c, spans, env.fallback, env.memo)
+    if cl is None or not len(cl):
+        return out
+    if vertical:
+        apply_vertical(cl)
+    if env.spacing:
+        apply_spacing(cl, env.ls, env.ws)
+    if not len(cl):
+        return out
+    out.empty = False
+    out.missing = cl.missing
+    segs = []
+    for a, z in zip(run_starts, run_starts[1:] + [len(chunk_text)]):
+        sp = spans[int(own_c[a])]
+        if sp.tl is not None:
+            segs.append((a, z, sp.tl, sp.glyph_adjust))
+    if segs:
+        apply_length(cl, segs, tp is not None)
+    if tp is None:
+        out.end = position_linear(cl, anchor, dx, dy, rot, vertical)
+    else:
+        edges, cum, _ = tp
+        shifts = np.array([-spans[int(s)].shift for s in cl.span])
+        out.end = position_on_path(cl, (edges, cum), start, anchor, dx, dy, rot, -shifts)
+    if cl.m is None and cl.pm is None and not vertical:
+        gm, gvis = None, cl.visible[cl.g_cluster]
+    else:
+        gm, gvis = glyph_matrices(cl)
+    box = metric_boxes(cl)
+    corners = []
+    pieces = out.pieces
+    single = len(order) == 1
+    for rank, si in enumerate(order):
+        sp = spans[si]
+        if tp is None:
+            sts = translate(0.0, sp.shift)
+        else:
+            sts = _EYE
+        if len(box):
+            corners.append(_apply(sts, box))
+        mask = None if single else cl.span == si
+        for kind in ('overline', 'underline'):
+            if (si, kind) in env.decor:
+                p = _decoration_path(cl, mask, sp, kind, sts, vertical)
+                if p is not None:
+                    pieces.append((rank, kind, p))
+        g = np.flatnonzero(gvis) if mask is None else np.flatnonzero(mask[cl.g_cluster] & gvis)
+        if len(g):
+            _glyph_pieces(cl, g, sts, gm, rank, pieces)
+        if (si, 'line-through') in env.decor:
+            p = _decoration_path(cl, mask, sp, 'line-through', sts, vertical)
+            if p is not None:
+                pieces.append((rank, 'line-through', p))
+    if corners:
+        c = out.corners = np.concatenate(corners) if len(corners) > 1 else corners[0]
         if len(c):
             lo, hi = c.min(0), c.max(0)
-            bbox = (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
-    for si, kind, p in pieces:
-        if kind != 'glyphs':
-            for x0, y0, x1, y1 in [_path_extent(p[1])]:
-                if bbox is not None and x1 >= x0:
-                    bbox = (min(bbox[0], x0), min(bbox[1], y0), max(bbox[2], x1),
-                            max(bbox[3], y1))
-    kids = []
-    for si, kind, p in pieces:
-        if kind == 'glyphs':
-            cl, g, mats = p
-            nodes = _glyph_nodes(cl, g, mats, spans[si], st, cache, bbox)
+            out.box = (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+    return out
+
+
+def _color_of(cl, g):
+    """``(descriptions, flags)`` of glyphs ``g`` of a chunk: each glyph's
+    colour description (:meth:`raster.fonts.color.ColorFont.glyph`) or
+    None, and (len(g),) bool; None when no glyph has one."""
+    fi = cl.g_font[g]
+    gid = cl.g_gid[g]
+    flags = None
+    for k, font in enumerate(cl.fonts):
+        cf = font.color
+        if cf is None:
+            continue
+        sel = fi == k
+        ids = gid[sel]
+        ok = (ids >= 0) & (ids < len(cf.mask))
+        hit = np.zeros(len(ids), bool)
+        hit[ok] = cf.mask[ids[ok]]
+        if hit.any():
+            if flags is None:
+                flags = np.zeros(len(g), bool)
+            flags[np.flatnonzero(sel)[hit]] = True
+    if flags is None:
+        return None
+    descs = [None] * len(g)
+    for j in np.flatnonzero(flags).tolist():
+        descs[j] = cl.fonts[int(fi[j])].color.glyph(int(gid[j]))
+        if descs[j] is None:
+            flags[j] = False
+    return (descs, flags) if flags.any() else None
+
+
+def _glyph_pieces(cl, g, sts, gm, rank, pieces):
+    """Append the pieces of glyphs ``g`` of one span: runs of outline
+    glyphs as one ``'glyphs'`` Path, colour glyphs as ``'color'`` pieces
+    (tuples of (font, glyph id, description, (3, 3) glyph-space to
+    chunk-frame matrix)), in glyph order."""
+    colour = _color_of(cl, g)
+    if colour is None:
+        p = _outline_path(cl, g, sts if gm is None else compose(sts[None], gm[g]))
+        if p is not None:
+            pieces.append((rank, 'glyphs', p))
+        return
+    descs, flags = colour
+    if gm is None:              # translated clusters: the glyph matrices
+        s = cl.g_scale[g]
+        gc = cl.g_cluster[g]
+        ms = compose(sts[None], translate(cl.x[gc] + cl.g_x[g] * s, cl.y[gc] - cl.g_y[g] * s),
+                     scale(s, -s))
+    else:
+        ms = compose(sts[None], gm[g])
+    cuts = (np.flatnonzero(flags[1:] != flags[:-1]) + 1).tolist()
+    for a, z in zip([0] + cuts, cuts + [len(g)]):
+        if flags[a]:
+            items = tuple((cl.fonts[int(cl.g_font[g[j]])], int(cl.g_gid[g[j]]), descs[j], ms[j])
+                          for j in range(a, z))
+            pieces.append((rank, 'color', items))
         else:
-            paint_span, path = p
-            nodes = [_paint_node(paint_span, path, st, cache, bbox, spans[si])]
-        for node in nodes:
-            if node is None:
-                continue
-            pts = node.path.points if isinstance(node, PathNode) else None
-            if pts is not None and len(pts):
-                big = np.abs(pts).max()
-                if not big <= limits.MAX_COORD:
-                    if not np.isfinite(big):    # (glyph paths are not validated)
-                        Path.from_arrays(node.path.verbs, node.path.points)   # raises PathError
-                    cache.warn('text-coord', 'text beyond the coordinate limit is not rendered')
-                    continue
-            kids.append(node)
-    box = None if bbox is None else (bbox[0], bbox[1], bbox[2] - bbox[0], bbox[3] - bbox[1])
-    out.extend(wrap(el, own, t, Boxed(kids, box), st, cache))
+            p = _outline_path(cl, g[a:z], ms[a:z])
+            if p is not None:
+                pieces.append((rank, 'glyphs', p))
+
+
+def _moved_color(items, base):
+    """Colour glyph items of a chunk frame in user space (``base`` as for
+    _moved_points)."""
+    if base is None:
+        return items
+    if isinstance(base, tuple):
+        out = []
+        for f, gid, d, m in items:
+            m = m.copy()
+            m[0, 2] += base[0]
+            m[1, 2] += base[1]
+            out.append((f, gid, d, m))
+        return tuple(out)
+    bm = np.vstack([base.matrix, [0.0, 0.0, 1.0]])
+    return tuple((f, gid, d, bm @ m) for f, gid, d, m in items)
+
+
+def _color_nodes(sp, items, st, cache, bbox):
+    """The nodes of colour glyph items of span ``sp`` (user space): one
+    Group per glyph (see :mod:`raster.parser.colorglyph`).  Inside a clip
+    path the outlines are used instead, filled like other glyphs."""
+    if sp.inh.get('visibility', 'visible') in ('hidden', 'collapse'):
+        return []
+    # colour glyphs (and the filters and images they may use) load with
+    # the first one drawn
+    from .colorglyph import color_glyph_node
+    out = []
+    fg = None
+    plain = []
+    for font, gid, desc, m in items:
+        if st.clip:
+            plain.append(font.outline(gid).transform(Affine.from_matrix(m)))
+            continue
+        if fg is None:
+            fg = _foreground(sp, st, cache, bbox)
+        node = color_glyph_node(font, desc, Affine.from_matrix(m), fg, cache)
+        if node is None:
+            continue
+        if not abs(m[:2, 2]).max() <= limits.MAX_COORD:
+            cache.warn('text-coord', 'text beyond the coordinate limit is not rendered')
+            continue
+        out.append(node)
+    if plain:
+        node = _paint_node(sp, Path.concat(plain), st, cache, bbox)
+        if node is not None:
+            out.append(node)
+    return out
+
+
+def _foreground(sp, st, cache, bbox):
+    """Straight RGBA of a colour glyph's foreground colour: the span's fill
+    when it is a solid colour (its fill-opacity applied), else black."""
+    fill, _ = fill_and_stroke(sp.inh, sp.ctx, Path.empty(), st, cache, box=bbox)
+    if fill is not None and isinstance(fill.paint, SolidPaint):
+        r, g, b, a = fill.paint.color
+        return (r, g, b, a * fill.opacity)
+    return (0.0, 0.0, 0.0, 1.0)
+
+
+def _warn_missing(chars, cache):
+    """One warning per document: characters without a glyph in any font."""
+    shown = ' '.join('U+%04X' % ord(c) for c in chars[:5]) + (' ...' if len(chars) > 5 else '')
+    cache.warn('text-missing-glyphs', 'no font has a glyph for some characters (drawn as '
+               'boxes): %s' % shown)
+
+
+def _moved_points(pts, base):
+    """Points (K, 2) of a chunk frame in user space: ``base`` is None (the
+    same), a translation ``(x, y)`` or an Affine."""
+    if base is None:
+        return pts
+    if isinstance(base, tuple):
+        return pts + base
+    return base.apply(pts)
+
+
+def _moved_path(path, base):
+    """A chunk-frame Path in user space (``base`` as for _moved_points)."""
+    if base is None:
+        return path
+    if isinstance(base, tuple):
+        return Path(path.verbs, path.points + base, _checked=True)
+    return path.transform(base)
 
 
 def _apply(m, pts):
@@ -533,13 +839,13 @@ def _decorations(el, spans, cache):
     return out
 
 
-def _decoration_path(cl, mask, sp, kind, decor, span_ts, vertical):
-    """``(paint span, Path)`` of one decoration of one span in a chunk (user
-    space), or None."""
-    paint_span = decor.get((sp.index, kind))
-    if paint_span is None or sp.font is None:
+def _decoration_path(cl, mask, sp, kind, span_ts, vertical):
+    """The Path of one decoration of one span in a chunk (``span_ts``: the
+    span's (3, 3) frame in the chunk's), or None; ``mask`` (C,) bool
+    selects the span's clusters (None: all)."""
+    if sp.font is None:
         return None
-    widths, mats = decoration_pieces(cl, mask)
+    widths, mats = decoration_pieces(cl, np.ones(len(cl), bool) if mask is None else mask)
     if not len(widths):
         return None
     f = sp.font
@@ -567,17 +873,7 @@ def _decoration_path(cl, mask, sp, kind, decor, span_ts, vertical):
     Y = m[:, 1, 0, None] * xs + m[:, 1, 1, None] * ys + m[:, 1, 2, None]
     pts = np.stack([X, Y], 2).reshape(-1, 2)
     verbs = np.tile(np.array([0, 1, 1, 1, 4], np.uint8), k)
-    return paint_span, Path.from_arrays(verbs, pts)
-
-
-def _glyph_nodes(cl, g, mats, sp, st, cache, bbox):
-    """The nodes of glyphs ``g`` of a chunk (``mats``: (len(g), 3, 3)
-    transforms from font units to user space): one PathNode of their
-    outlines painted with the span's fill and stroke."""
-    path = _outline_path(cl, g, mats)
-    if path is None:
-        return []
-    return [_paint_node(sp, path, st, cache, bbox)]
+    return Path.from_arrays(verbs, pts)
 
 
 def _outline_path(cl, g, mats):
@@ -781,9 +1077,24 @@ def _load_font(db, face, cache):
     return None
 
 
-def _fallback_font(db, ch, font):
+def _fallback_font(db, ch, font, sp, cache):
     """The font to draw character ``ch`` with when ``font`` has no glyph
-    for it (``font`` itself when no face has one)."""
+    for it (``font`` itself when no face has one): CSS Fonts' order, the
+    span's other ``font-family`` entries first (their best face for the
+    span's weight, style and stretch), then every face
+    (:meth:`raster.fonts.FontDB.fallback_face`)."""
+    cp = ord(ch)
+    for fam in sp.families:
+        cands = db.match_family([fam])
+        if not cands:
+            continue
+        face = best_face(cands, sp.weight, sp.style, _STRETCH_CLASS.get(sp.stretch, 5))
+        if face == font.face or not db.has_char(face, cp):
+            continue
+        try:
+            return Font.load(face)
+        except RasterError:
+            continue
     face = db.fallback_face(font.face, ch)
     if face is None:
         return font
@@ -791,6 +1102,16 @@ def _fallback_font(db, ch, font):
         return Font.load(face)
     except RasterError:
         return font
+
+
+_STRETCH_CLASS = {'ultra-condensed': 1, 'extra-condensed': 2, 'condensed': 3,
+                  'semi-condensed': 4, 'normal': 5, 'semi-expanded': 6, 'expanded': 7,
+                  'extra-expanded': 8, 'ultra-expanded': 9}
+
+
+def _families(value):
+    """The parsed ``font-family`` list of a span (a tuple: a memo key)."""
+    return tuple(parse_font_family(value))
 
 
 def _text_path_geometry(tp_el, ctx, cache):

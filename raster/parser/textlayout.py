@@ -278,10 +278,13 @@ class Clusters:
     g_scale : (G,) float64
         Font size over units per em of each glyph's font.
     fonts : list of Font
+    missing : str
+        Characters no font has a glyph for (drawn as the first font's
+        .notdef glyph), in order, without repeats.
     """
     __slots__ = ('char', 'span', 'width', 'advance', 'ascent', 'descent', 'x_height', 'visible',
                  'relshift', 'm', 'pm', 'pre', 'g_cluster', 'g_font', 'g_gid', 'g_x', 'g_y',
-                 'g_scale', 'fonts', 'cps', 'x', 'y')
+                 'g_scale', 'fonts', 'cps', 'x', 'y', 'missing')
 
     def mats(self):
         """(C, 3, 3) cluster transforms (made from the positions ``x``,
@@ -357,7 +360,8 @@ def _groups(cl):
 
 
 def _font_key(sp):
-    return (id(sp.font), None if sp.features is None else tuple(sorted(sp.features.items())))
+    return (id(sp.font), None if sp.features is None else tuple(sorted(sp.features.items())),
+            getattr(sp, 'families', None))
 
 
 def shape_clusters(text, owner, spans, fallback, memo):
@@ -374,8 +378,8 @@ def shape_clusters(text, owner, spans, fallback, memo):
         Span objects with ``font`` (a Font or None), ``fs`` (font size),
         ``features`` (dict or None).
     fallback : callable
-        ``fallback(font, ch) -> Font or None``: a font with a glyph for
-        ``ch``.
+        ``fallback(font, ch, span) -> Font or None``: a font with a glyph
+        for ``ch`` (``span``: the span of the character).
     memo : dict
         Shaping results shared by the chunks of a document (the clusters
         of a repeated chunk are copied from it).
@@ -455,40 +459,92 @@ def _shape_clusters(text, owner, spans, fallback, memo, starts):
     if missing.any():
         gid, cl, adv, xo, yo, fi = _fallbacks(text, runs, owner, spans, fonts, fallback, memo,
                                               gid, cl, adv, xo, yo, fi)
-    return _build_clusters(text, owner, spans, fonts, gid, cl, adv, xo, yo, fi)
+    c = _build_clusters(text, owner, spans, fonts, gid, cl, adv, xo, yo, fi)
+    c.missing = _missing(text, gid, cl) if missing.any() else ''
+    return c
+
+
+def _missing(text, gid, cl):
+    """The characters of clusters still drawn with a .notdef glyph (gid 0)
+    after the fallback, without spaces, controls and default-ignorable
+    characters, in order, once each."""
+    out = []
+    for c in np.unique(cl[gid == 0]).tolist():
+        ch = text[c]
+        cp = ord(ch)
+        if cp < 32 or ch.isspace() or 0x200B <= cp <= 0x200F or 0x2060 <= cp <= 0x206F or \
+                0xFE00 <= cp <= 0xFE0F or 0xE0000 <= cp <= 0xE0FFF or cp == 0xFEFF:
+            continue
+        if ch not in out:
+            out.append(ch)
+    return ''.join(out)
 
 
 def _fallbacks(text, runs, owner, spans, fonts, fallback, memo, gid, cl, adv, xo, yo, fi):
     """Replace the glyphs of clusters with a missing glyph by those of a
     fallback font (up to 8 fonts tried per cluster, each shaping the whole
-    chunk, as usvg does)."""
+    chunk, as usvg does).
+
+    A fallback font may join more characters into one cluster than the
+    first font did (an emoji sequence with ZWJ, a flag, a skin tone): the
+    replacement then covers all of them and the first font's clusters
+    inside it are dropped.
+    """
+    n = len(text)
     st, en = _groups(cl)
-    out = []
-    for a, b in zip(st.tolist(), en.tolist()):
-        c = int(cl[a])
-        grp = (gid[a:b], cl[a:b], adv[a:b], xo[a:b], yo[a:b], fi[a:b])
+    starts = cl[st]
+    # end (exclusive, logical order) of every cluster: the next cluster start
+    srt = np.unique(starts)
+    nxt = np.r_[srt[1:], n]
+    cend = nxt[np.searchsorted(srt, starts)]
+    missing = np.logical_or.reduceat(gid == 0, st) if len(st) else np.zeros(0, bool)
+    repl = {}           # group index -> replacement arrays
+    covered = np.zeros(n, bool)     # characters taken by a replacement
+    for k in np.flatnonzero(missing).tolist():
+        c = int(starts[k])
+        if covered[c]:
+            continue
         ch = text[c]
-        if (grp[0] == 0).any() and ch not in ' \u00a0\t' and ord(ch) >= 32:
-            font = fonts[int(fi[a])]
-            tried = {id(font)}
-            for _ in range(8):
-                f = fallback(font, ch)
-                if f is None or id(f) in tried:
-                    break
-                tried.add(id(f))
-                g2, c2, a2, x2, y2 = _shape_runs(f, text, runs, spans[int(owner[c])].features,
-                                                 memo)
-                idx = np.flatnonzero(c2 == c)
-                if len(idx) and not (g2[idx] == 0).any():
-                    if all(x is not f for x in fonts):
-                        fonts.append(f)
-                    k = next(i for i, x in enumerate(fonts) if x is f)
-                    grp = (g2[idx], c2[idx], a2[idx], x2[idx], y2[idx],
-                           np.full(len(idx), k, np.int64))
-                    break
-                font = f
-        out.append(grp)
-    return tuple(np.concatenate([g[i] for g in out]) for i in range(6))
+        if ch in ' \u00a0\t' or ord(ch) < 32:
+            continue
+        font = fonts[int(fi[st[k]])]
+        tried = {id(font)}
+        for _ in range(8):
+            f = fallback(font, ch, spans[int(owner[c])])
+            if f is None or id(f) in tried:
+                break
+            tried.add(id(f))
+            g2, c2, a2, x2, y2 = _shape_runs(f, text, runs, spans[int(owner[c])].features, memo)
+            later = c2[c2 > c]
+            fend = int(later.min()) if len(later) else n
+            end = max(int(cend[k]), fend)
+            idx = np.flatnonzero((c2 >= c) & (c2 < end))
+            if len(idx) and not (g2[idx] == 0).any() and (c2[idx] == c).any():
+                if all(x is not f for x in fonts):
+                    fonts.append(f)
+                j = next(i for i, x in enumerate(fonts) if x is f)
+                repl[k] = (g2[idx], np.full(len(idx), c, np.int64), a2[idx], x2[idx], y2[idx],
+                           np.full(len(idx), j, np.int64))
+                covered[c + 1:end] = True
+                break
+            font = f
+    if not repl:
+        return gid, cl, adv, xo, yo, fi
+    cols = (gid, cl, adv, xo, yo, fi)
+    keep_group = ~covered[starts]
+    for k in repl:
+        keep_group[k] = True
+    parts = []
+    prev = 0            # first glyph not yet copied
+    for k in sorted(set(repl) | set(np.flatnonzero(~keep_group).tolist())):
+        if st[k] > prev:
+            parts.append(tuple(a[prev:st[k]] for a in cols))
+        if k in repl:
+            parts.append(repl[k])
+        prev = int(en[k])
+    if prev < len(gid):
+        parts.append(tuple(a[prev:] for a in cols))
+    return tuple(np.concatenate([p[i] for p in parts]) for i in range(6))
 
 
 def _build_clusters(text, owner, spans, fonts, gid, cl, adv, xo, yo, fi):

@@ -944,8 +944,15 @@ _KW_X = {'left': 0.0, 'center': 50.0, 'right': 100.0}
 _KW_Y = {'top': 0.0, 'center': 50.0, 'bottom': 100.0}
 
 
-def parse_transform_origin(s, ctx=None):
+def parse_transform_origin(s, ctx=None, box=None):
     """Parse ``transform-origin`` into a point in user units.
+
+    The reference box (CSS Transforms 1, ``transform-box``) is the viewport
+    by default (``view-box``: at the user-space origin, ``ctx.width`` x
+    ``ctx.height``); ``box`` ``(x, y, w, h)`` gives another one (the
+    ``fill-box`` or ``stroke-box`` of the element): percentages and
+    keywords are fractions of its size and every offset starts at its
+    corner ``(x, y)``.
 
     One or two values (a third, the z offset, is accepted and ignored): each a
     length, a percentage of the viewport (``ctx.width``/``ctx.height``) or a
@@ -986,17 +993,26 @@ def parse_transform_origin(s, ctx=None):
         a, b = b, a
         parts = parts[::-1]
 
+    bx, by, bw, bh = (0.0, 0.0, ctx.width, ctx.height) if box is None else box
+
     def one(word, raw, kw, axis):
+        size = bw if axis == 'x' else bh
         if word in kw:
-            return kw[word] * (ctx.width if axis == 'x' else ctx.height) / 100.0
+            return kw[word] * size / 100.0
         if word in _KW_X or word in _KW_Y:
             return None
+        if box is not None and raw.endswith('%'):
+            try:
+                v = float(raw[:-1])
+            except ValueError:
+                return None
+            return v * size / 100.0 if math.isfinite(v) else None
         return parse_length(raw, axis, ctx)
     x = one(a, parts[0], _KW_X, 'x')
     y = one(b, parts[1], _KW_Y, 'y')
     if x is None or y is None:
         return None
-    return (x, y)
+    return (bx + x, by + y)
 
 
 # --------------------------------------------------------------------------

@@ -202,9 +202,9 @@ def _box(e, width, height, clip, antialias):
     if antialias:
         X0, X1 = np.floor(xs.min()), np.ceil(xs.max())
         Y0, Y1 = np.floor(ys.min()), np.ceil(ys.max())
-    else:   # pixels whose centre may be inside
-        X0, X1 = np.floor(xs.min() + 0.5), np.ceil(xs.max() - 0.5)
-        Y0, Y1 = np.floor(ys.min() + 0.5), np.ceil(ys.max() - 0.5)
+    else:   # pixels whose centre may be inside: min < centre <= max
+        X0, X1 = np.floor(xs.min() + 0.5), np.floor(xs.max() + 0.5)
+        Y0, Y1 = np.floor(ys.min() + 0.5), np.floor(ys.max() + 0.5)
     wx0, wy0, wx1, wy1 = _window(width, height, clip)
     X0, Y0 = max(int(X0), wx0), max(int(Y0), wy0)
     X1, Y1 = min(int(X1), wx1), min(int(Y1), wy1)
@@ -1480,17 +1480,20 @@ def _resolve_cells(touched, cv, pv, w, h, evenodd):
 
 def _centre_crossings(xa, ya, xb, yb, h, w):
     """Crossings of the scanlines y = i + 0.5 (0 <= i < h) by the edges
-    (xa, ya) -> (xb, yb), half-open (an edge crosses when min(y) <= y_c <
-    max(y)).  ``h`` and ``w`` (the box height and width) are numbers or
-    one per edge.
+    (xa, ya) -> (xb, yb), half-open (an edge crosses when min(y) < y_c <=
+    max(y)): with the columns, a centre on the right or bottom edge of a
+    shape is inside and one on its left or top edge is not, the sampling of
+    Skia's (and resvg's) aliased scan converter, which rounds edge ends to
+    the nearest scanline.  ``h`` and ``w`` (the box height and width) are
+    numbers or one per edge.
 
     Returns None without crossings, else ``(owner, i, j, sign)``: the edge,
     the scanline and the first pixel column whose centre (j + 0.5 > the
     crossing) the crossing changes the winding of (-1 <= j - 1 < w), and
     +1 or -1 (float64) for the edge's direction.
     """
-    i_lo = np.clip(np.ceil(np.minimum(ya, yb) - 0.5), 0, h)
-    i_hi = np.clip(np.ceil(np.maximum(ya, yb) - 0.5), 0, h)
+    i_lo = np.clip(np.floor(np.minimum(ya, yb) - 0.5) + 1.0, 0, h)
+    i_hi = np.clip(np.floor(np.maximum(ya, yb) - 0.5) + 1.0, 0, h)
     n = (i_hi - i_lo).astype(np.int64)
     total = int(n.sum())
     if total == 0:
@@ -1723,9 +1726,9 @@ def _shape_boxes(e, counts, first, idx, win, antialias):
     hi_y = np.maximum.reduceat(np.maximum(ya, yb), f)[pick]
     if antialias:
         x0, x1, y0, y1 = np.floor(lo_x), np.ceil(hi_x), np.floor(lo_y), np.ceil(hi_y)
-    else:       # pixels whose centre may be inside
-        x0, x1 = np.floor(lo_x + 0.5), np.ceil(hi_x - 0.5)
-        y0, y1 = np.floor(lo_y + 0.5), np.ceil(hi_y - 0.5)
+    else:       # pixels whose centre may be inside: min < centre <= max
+        x0, x1 = np.floor(lo_x + 0.5), np.floor(hi_x + 0.5)
+        y0, y1 = np.floor(lo_y + 0.5), np.floor(hi_y + 0.5)
     cx0, cy0, cx1, cy1 = win
     return (np.maximum(x0, cx0).astype(np.int64), np.maximum(y0, cy0).astype(np.int64),
             np.minimum(x1, cx1).astype(np.int64), np.minimum(y1, cy1).astype(np.int64))

@@ -114,7 +114,8 @@ class Masks:
         """``(Mask or None, opacity factor)`` of PathNode ``n``'s stroke
         under ``t`` on ``canvas``.  A stroke thinner than one device pixel
         is drawn one pixel wide with its coverage scaled by its device width
-        (the factor), as resvg does; an undashed one is outlined from the
+        (the factor), as resvg does, unless the node is not anti-aliased
+        (then it is outlined at its width and filled aliased); an undashed one is outlined from the
         fill's polylines (:func:`raster.pixels.hairline.hairline_edges`)."""
         s = n.stroke.style
         key = (id(n), t)
@@ -125,7 +126,10 @@ class Masks:
             return m, s.width * t.mean_scale()
         factor = 1.0
         style = s
-        hair = hairline_scale(s, t)
+        # without anti-aliasing (shape-rendering crispEdges, optimizeSpeed) a
+        # thin stroke is outlined at its own width and filled aliased at
+        # full opacity, as resvg does (no hairline substitute)
+        hair = hairline_scale(s, t) if n.antialias else None
         if hair is not None:
             style = StrokeStyle(width=1.0 / t.mean_scale(), join=s.join, cap=s.cap,
                                 miterlimit=s.miterlimit, dash=s.dash, dash_offset=s.dash_offset)
@@ -286,7 +290,7 @@ def _batch_stroke_style(n, t):
     s = n.stroke
     if s is None or s.opacity <= 0 or s.style.width <= 0:
         return None
-    if hairline_scale(s.style, t) is not None:
+    if n.antialias and hairline_scale(s.style, t) is not None:
         return None
     return s.style
 
@@ -295,5 +299,5 @@ def _wants_hair(n, t):
     """Whether PathNode ``n`` under ``t`` has an undashed hairline stroke
     (outlined from the fill's polylines)."""
     s = n.stroke
-    return (s is not None and s.style.dash is None and s.opacity > 0
+    return (s is not None and s.style.dash is None and s.opacity > 0 and n.antialias
             and 0.0 < s.style.width * t.mean_scale() < 1.0)

@@ -32,7 +32,7 @@ from ..pixels.scan import Mask, path_coverage
 from ..pixels.views import ClipRect
 from ..geometry.transform import Affine
 from ..tree import (Group, ImageNode, LinearGradient, MaskType, MeshGradient, PaintItem, PathNode,
-                    Pattern, RadialGradient, SolidPaint)
+                    Pattern, RadialGradient, SolidPaint, SweepGradient)
 from .batch import Masks
 from .bounds import clip_rect, group_box, pixel_box
 from .paint import STRIP_PIXELS, draw_pixels, gradient_colors, mesh_colors, sample
@@ -231,7 +231,7 @@ class Renderer:
         if isinstance(paint, SolidPaint):
             canvas.fill(mask, paint.color, opacity)
             return
-        if isinstance(paint, (LinearGradient, RadialGradient)):
+        if isinstance(paint, (LinearGradient, RadialGradient, SweepGradient)):
             def colors(m):
                 return gradient_colors(paint, m, t)
         elif isinstance(paint, MeshGradient):

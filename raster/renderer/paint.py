@@ -23,7 +23,7 @@ from ..geometry.path import Path
 from ..pixels.scan import path_coverage
 from ..geometry.transform import Affine
 from ..pixels.mesh import mesh_gradient
-from ..tree import LinearGradient
+from ..tree import LinearGradient, SweepGradient
 
 __all__ = ['gradient_colors', 'mesh_colors', 'draw_pixels', 'sample', 'resample_window', 'STRIP_PIXELS']
 
@@ -62,7 +62,7 @@ def gradient_colors(paint, mask, t):
 
     Parameters
     ----------
-    paint : raster.tree.LinearGradient or raster.tree.RadialGradient
+    paint : raster.tree.LinearGradient, RadialGradient or SweepGradient
         In the painted node's user space.
     mask : raster.pixels.scan.Mask
         Coverage; ``mask.data`` is (h, w) float32.
@@ -121,6 +121,15 @@ def gradient_colors(paint, mask, t):
             return _solid(cols[-1], cover)
         s = field((inv.a * dx + inv.b * dy) / dd, (inv.c * dx + inv.d * dy) / dd,
                   ((inv.e - paint.x1) * dx + (inv.f - paint.y1) * dy) / dd)
+    elif isinstance(paint, SweepGradient):
+        span = paint.end_angle - paint.start_angle
+        if span == 0:
+            return _solid(cols[-1], cover)
+        px = np.asarray(field(inv.a, inv.c, inv.e - paint.cx), np.float64)
+        py = np.asarray(field(inv.b, inv.d, inv.f - paint.cy), np.float64)
+        ang = np.degrees(np.arctan2(py, px))
+        ang %= 360.0
+        s = (ang - paint.start_angle) / span
     else:
         px = field(inv.a, inv.c, inv.e - paint.fx)      # paint space, focal-relative
         py = field(inv.b, inv.d, inv.f - paint.fy)

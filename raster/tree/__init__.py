@@ -30,13 +30,13 @@ Modules: :mod:`.nodes` (Tree, Group, PathNode, ImageNode), :mod:`.paint`
 """
 
 from .paint import (RGBA, SolidPaint, GradientStop, LinearGradient, RadialGradient, Pattern,
-                    MeshGradient, MeshInterpolation, Paint, SpreadMethod, Fill, FillRule, Stroke,
+                    SweepGradient, MeshGradient, MeshInterpolation, Paint, SpreadMethod, Fill, FillRule, Stroke,
                     PaintItem, DEFAULT_PAINT_ORDER)
 from .effects import BlendMode, MaskType, ClipPath, Mask
 from .nodes import Node, Group, PathNode, ImageNode, Tree, walk
 
 __all__ = ['RGBA', 'SolidPaint', 'GradientStop', 'LinearGradient', 'RadialGradient', 'Pattern',
-           'MeshGradient', 'MeshInterpolation', 'Paint', 'SpreadMethod', 'Fill', 'FillRule', 'Stroke', 'PaintItem', 'DEFAULT_PAINT_ORDER',
+           'SweepGradient', 'MeshGradient', 'MeshInterpolation', 'Paint', 'SpreadMethod', 'Fill', 'FillRule', 'Stroke', 'PaintItem', 'DEFAULT_PAINT_ORDER',
            'BlendMode', 'MaskType', 'ClipPath', 'Mask', 'Node', 'Group', 'PathNode',
            'ImageNode', 'Tree', 'walk', 'filter']
 

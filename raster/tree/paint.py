@@ -15,7 +15,8 @@ from ..geometry.stroking import StrokeStyle
 from ..geometry.rules import FillRule
 from ..geometry.transform import IDENTITY, Affine
 
-__all__ = ['RGBA', 'SolidPaint', 'GradientStop', 'LinearGradient', 'RadialGradient', 'Pattern',
+__all__ = ['RGBA', 'SolidPaint', 'GradientStop', 'LinearGradient', 'RadialGradient',
+           'SweepGradient', 'Pattern',
            'MeshGradient', 'MeshInterpolation', 'Paint', 'SpreadMethod', 'Fill', 'Stroke',
            'PaintItem', 'DEFAULT_PAINT_ORDER', 'FillRule']
 
@@ -88,6 +89,26 @@ class RadialGradient:
 
 
 @dataclass(slots=True, frozen=True)
+class SweepGradient:
+    """A sweep (conic) gradient about (cx, cy): the colour at a point is
+    that of offset ``(angle - start_angle) / (end_angle - start_angle)``,
+    where ``angle`` is the point's direction from the centre in degrees in
+    [0, 360), measured from the gradient space's x axis towards its y axis
+    (``atan2(y - cy, x - cx)``; the angles of a COLRv1 font's sweep
+    gradients in its y-up glyph space).  ``spread`` continues it outside
+    [0, 1]; ``transform`` maps gradient space to the painted node's user
+    space.  At least two stops."""
+    cx: float
+    cy: float
+    start_angle: float
+    end_angle: float
+    stops: Tuple[GradientStop, ...]
+    transform: Affine = IDENTITY
+    spread: SpreadMethod = SpreadMethod.PAD
+    id: str = ''
+
+
+@dataclass(slots=True, frozen=True)
 class Pattern:
     """A pattern tile: the rectangle ``rect`` (x, y, w, h) of the tile space
     that ``transform`` maps to the painted node's user space, repeated
@@ -126,7 +147,7 @@ class MeshGradient:
     id: str = ''
 
 
-Paint = Union[SolidPaint, LinearGradient, RadialGradient, Pattern, MeshGradient]
+Paint = Union[SolidPaint, LinearGradient, RadialGradient, SweepGradient, Pattern, MeshGradient]
 
 
 @dataclass(slots=True)

@@ -205,7 +205,28 @@ TREE = """
     ('g ~ rect', ['r4']),
     (':first-child', ['root', 'g1', 'r1', 'r3']),  # Selectors 4: root too
     ('rect:first-child + circle ~ g text', ['t1']),
-    ('rect:hover', []), ('rect:nth-child(1)', []), ('rect::before', []),
+    ('rect:hover', []), ('rect:visited', []), ('rect::before', []), ('rect::first-line', []),
+    # structural pseudo-classes (Selectors 4): element children only, the
+    # comment between r1 and c1 does not count
+    ('rect:nth-child(1)', ['r1', 'r3']),
+    (':root', ['root']), ('g:root', []),
+    (':last-child', ['root', 'g2', 't1', 'r4']),
+    (':only-child', ['root']),
+    ('g > :nth-child(odd)', ['r1', 'r2', 'r3']), ('g > :nth-child(2n+1)', ['r1', 'r2', 'r3']),
+    ('g > :nth-child(even)', ['c1', 'g2', 't1']), ('g > *:nth-child(2n)', ['c1', 'g2', 't1']),
+    ('#g1 > :nth-child(-n+2)', ['r1', 'c1']), ('#g1 > :nth-child(n+3)', ['r2', 'g2']),
+    ('#g1 > :nth-child( 3 )', ['r2']), ('#g1 > :nth-child(0n+4)', ['g2']),
+    ('#g1 > :nth-child(-2n+3)', ['r1', 'r2']), ('#g1 > :nth-child(0)', []),
+    ('#g1 > :nth-last-child(1)', ['g2']), ('#g1 > :nth-last-child(odd)', ['c1', 'g2']),
+    ('rect:first-of-type', ['r1', 'r3', 'r4']), ('rect:last-of-type', ['r2', 'r3', 'r4']),
+    ('#g1 > :only-of-type', ['c1', 'g2']), ('text:only-of-type', ['t1']),
+    ('#g1 > rect:nth-of-type(2)', ['r2']), ('#g1 > rect:nth-last-of-type(2)', ['r1']),
+    (':empty', ['r1', 'c1', 'r2', 'r3', 'r4']),
+    (':lang(en)', ['r1']), (':lang(EN-us)', ['r1']), (':lang(e)', []), (':lang(de, en)', ['r1']),
+    ('rect:not(.b)', ['r3', 'r4']), ('*:not(g, rect)', ['root', 'c1', 't1']),
+    (':not(:first-child):not(:last-child)', ['c1', 'r2']), ('g :not(g > *)', []), (':not(g > *)', ['root', 'g1', 'r4']),
+    ('rect:not(:nth-child(1))', ['r2', 'r4']),
+
     ('circle, #r4', ['c1', 'r4']),
 ])
 def test_selector_matching(sel, ids):
@@ -422,3 +443,118 @@ def test_declared_styles_reports_requested_attributes():
     assert [e.get('id') for e in found['requiredExtensions']] == ['b']
     assert found['fill'] == []          # presentation attributes are styles, not reported
     assert styles[root[1]] == {'fill': 'red', 'stroke': 'green'}
+
+
+# --------------------------------------------------------------------------
+# structural pseudo-classes and @import
+# --------------------------------------------------------------------------
+
+@pytest.mark.parametrize('arg', ['n+', '2x', '', 'odd even', '3n+-1', 'n n'])
+def test_bad_nth_argument_drops_the_rule(arg):
+    assert parse_stylesheet(':nth-child(%s) { fill: red } a { fill: blue }' % arg)[0].selector.text == 'a'
+
+
+def test_pseudo_class_specificity():
+    sp = [s.specificity for s in parse_selector_list(
+        'rect:nth-child(2n), :root, a:not(#x, .y), :not(rect), :lang(en) :empty')]
+    assert sp == [(0, 1, 1), (0, 1, 0), (1, 0, 1), (0, 0, 1), (0, 2, 0)]
+
+
+@settings(max_examples=60, deadline=None)
+@given(a=st.integers(-4, 4), b=st.integers(-6, 8), n=st.integers(1, 14))
+def test_nth_child_is_an_plus_b(a, b, n):
+    """:nth-child(an+b) picks the k-th child (1-based) exactly when
+    k = a*m + b for some m >= 0; :nth-last-child counts from the end."""
+    root = doc(''.join('<rect id="r%d"/>' % k for k in range(1, n + 1)))
+    want = {k for k in range(1, n + 1) if any(a * m + b == k for m in range(0, 40))}
+    got = [e.get('id') for e in select(root, 'rect:nth-child(%dn%+d)' % (a, b))]
+    assert got == ['r%d' % k for k in sorted(want)]
+    got = [e.get('id') for e in select(root, 'rect:nth-last-child(%dn%+d)' % (a, b))]
+    assert got == ['r%d' % k for k in range(1, n + 1) if n + 1 - k in want]
+
+
+def test_nth_child_on_many_siblings():
+    """20,000 siblings with :nth-child and :last-of-type: positions count
+    element children only (the style element is child 1)."""
+    n = 20000
+    root = doc('<style>rect:nth-child(3n+1){fill:red} rect:last-of-type{fill:blue}</style>'
+               + '<rect/>' * n)
+    styles = declared_styles(root)
+    fills = [styles[el].get('fill') for el in root[1:]]
+    assert fills[0] is None and fills[1] is None and fills[2] == 'red' and fills[-1] == 'blue'
+    assert sum(f == 'red' for f in fills) == len(range(4, n + 2, 3))
+
+
+def _write(path, text):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, 'w') as f:
+        f.write(text)
+
+
+def test_import_follows_local_sheets(tmp_path):
+    """@import url() and string forms, relative to the importing sheet,
+    before the rules of the sheet that imports them (so those win ties);
+    media lists all/screen apply, print does not."""
+    from raster.parser import build_tree
+    from raster.parser.document import load_document
+    _write(str(tmp_path / 'css' / 'a.css'), '@import "b.css"; #r1 { fill: #00ff00 }')
+    _write(str(tmp_path / 'css' / 'b.css'), '#r1 { fill: red } #r2 { fill: #0000ff }')
+    _write(str(tmp_path / 'p.css'), '#r2 { fill: red }')
+    _write(str(tmp_path / 's.css'), '#r3 { fill: #ff00ff }')
+    svg = ('<svg xmlns="%s" width="30" height="10"><style>@import url(css/a.css);'
+           '@import url("p.css") print; @import \'s.css\' screen, print;</style>'
+           '<rect id="r1" width="10" height="10"/><rect id="r2" x="10" width="10" height="10"/>'
+           '<rect id="r3" x="20" width="10" height="10"/></svg>' % SVG)
+    _write(str(tmp_path / 'd.svg'), svg)
+    root = load_document(svg.encode())
+    tree = build_tree(root, base_dir=str(tmp_path))
+    colours = [c.fill.paint.color for c in tree.root.children]
+    assert colours == [(0.0, 1.0, 0.0, 1.0), (0.0, 0.0, 1.0, 1.0), (1.0, 0.0, 1.0, 1.0)]
+
+
+def test_import_refusals_warn_and_are_bounded(tmp_path):
+    """Cycles, files outside the allowed directories, network URLs and
+    imports after a rule are not followed; a long chain stops at the depth
+    limit; each refusal is a RasterWarning, never an exception."""
+    from raster.errors import RasterWarning
+    from raster.parser import build_tree
+    from raster.parser.document import load_document
+    from raster.parser.imageload import MAX_IMPORT_DEPTH
+    d = tmp_path / 'doc'
+    _write(str(d / 'loop.css'), '@import "loop2.css"; #r1 { fill: #00ff00 }')
+    _write(str(d / 'loop2.css'), '@import "loop.css";')
+    _write(str(tmp_path / 'outside.css'), '#r2 { fill: red }')
+    for k in range(MAX_IMPORT_DEPTH + 3):
+        _write(str(d / ('c%d.css' % k)), '@import "c%d.css"; #r3 { fill: #%02x0000 }' % (k + 1, k))
+    svg = ('<svg xmlns="%s" width="30" height="10"><style>@import "loop.css";'
+           '@import "../outside.css"; @import url(https://example.com/x.css); @import "c0.css";'
+           '#r2 { fill: #0000ff } @import "outside.css";</style>'
+           '<rect id="r1" width="10" height="10"/><rect id="r2" x="10" width="10" height="10"/>'
+           '<rect id="r3" x="20" width="10" height="10"/></svg>' % SVG)
+    with pytest.warns(RasterWarning) as rec:
+        tree = build_tree(load_document(svg.encode()), base_dir=str(d))
+    msgs = ' '.join(str(w.message) for w in rec)
+    assert 'cycle' in msgs and 'outside the allowed' in msgs and 'not fetched' in msgs
+    assert 'levels' in msgs
+    c = [ch.fill.paint.color for ch in tree.root.children]
+    assert c[0] == (0.0, 1.0, 0.0, 1.0) and c[1] == (0.0, 0.0, 1.0, 1.0)
+    # the deepest sheet read is c{MAX-1}: its rule comes first, c0's last wins
+    assert c[2] == (0.0, 0.0, 0.0, 1.0)
+
+
+def test_import_inside_svg_image_is_refused(tmp_path):
+    """An SVG image reads no files, style sheets included (data: URIs do)."""
+    from raster.parser import build_tree
+    from raster.parser.document import load_document
+    _write(str(tmp_path / 'x.css'), 'rect { fill: red }')
+    root = load_document(('<svg xmlns="%s" width="10" height="10"><style>@import "x.css";'
+                          '@import "data:text/css,circle%%7Bfill:%%2300f%%7D";</style>'
+                          '<rect width="5" height="5"/><circle r="3"/></svg>' % SVG).encode())
+    import warnings
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter('always')
+        tree = build_tree(root, base_dir=str(tmp_path), image_depth=1)
+    assert any('inside an SVG image' in str(w.message) for w in rec)
+    rect, circle = tree.root.children
+    assert rect.fill.paint.color == (0.0, 0.0, 0.0, 1.0)
+    assert circle.fill.paint.color == (0.0, 0.0, 1.0, 1.0)

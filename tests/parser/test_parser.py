@@ -871,7 +871,7 @@ def test_the_garbage_collector_is_left_alone(monkeypatch):
     t = tree_of('<rect width="1" height="1"/><text>x</text><g opacity="0.5"><circle r="2"/></g>')
     raster.render(b'<svg xmlns="http://www.w3.org/2000/svg" width="4" height="4">'
                   b'<rect width="2" height="2"/></svg>')
-    assert calls == [] and len(t.root.children) == 3
+    assert calls == [] and len(t.root.children) == 3     # rect, text (bundled font), g
 
 
 def test_conditional_attributes_found_in_one_pass():

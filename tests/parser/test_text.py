@@ -309,17 +309,21 @@ def test_vertical_writing_mode_is_quarter_turn_of_central_baseline_text():
     np.testing.assert_allclose(vert[0][0].points, np.c_[-y, x], atol=1e-9)
 
 
-def test_unusable_font_warns_and_falls_back(tmp_path):
-    """A bitmap-only (CBDT) font has no outlines: the text is drawn with
-    another face of the directory, with a warning."""
+def test_bitmap_only_font_draws_its_bitmaps_and_falls_back_for_the_rest(tmp_path):
+    """A bitmap-only (CBDT) font has no outlines: its emoji is an image,
+    the letter it lacks comes from another face of the directory."""
     import shutil
+    from raster.tree import ImageNode
     for fn in ('NotoColorEmojiCBDT.subset.ttf', 'NotoSans-Regular.ttf'):
         shutil.copy(os.path.join(FONTS, fn), tmp_path / fn)
-    with pytest.warns(RasterWarning, match='not usable'):
-        ps = text_paths('<text x="10" y="50" font-family="Noto Color Emoji">A</text>',
-                        fonts=FontOptions(dirs=str(tmp_path), system=False))
+    fonts = FontOptions(dirs=str(tmp_path), system=False)
+    tree = load_svg(doc('<text x="10" y="50" font-family="Noto Color Emoji">A\U0001F600</text>'),
+                    fonts=fonts)
+    paths = [(n.path.transform(t), n) for n, t in walk(tree.root) if isinstance(n, PathNode)]
+    images = [n for n, _ in walk(tree.root) if isinstance(n, ImageNode)]
     ref = text_paths('<text x="10" y="50" font-family="Noto Sans">A</text>')
-    assert len(ps) == 1 and ps[0][0] == ref[0][0]
+    assert len(paths) == 1 and paths[0][0] == ref[0][0]
+    assert len(images) == 1 and images[0].pixels.shape == (128, 136, 4)
 
 
 _XML_CHARS = st.characters(blacklist_categories=('Cs', 'Cc'), blacklist_characters='<&>')
@@ -342,7 +346,8 @@ def test_arbitrary_text_builds_and_stays_finite(text, dxs, anchor, family):
         try:
             ps = text_paths(body)
         except RasterWarning as w:      # only the documented kinds
-            assert 'vertical' in str(w) or 'not usable' in str(w), str(w)
+            assert any(k in str(w) for k in ('vertical', 'not usable', 'no font has a glyph')), \
+                str(w)
             return
     for p, _ in ps:
         assert np.isfinite(p.points).all()
@@ -419,7 +424,8 @@ def per_glyph_reference(spans, x, y, ls=0.0, ws=0.0, dx=(), rotate=()):
 @pytest.mark.parametrize('spans, attrs', [
     ([('Hello, World', 'Noto Sans', 40)], {}),
     ([('AVAWAY orbit', 'Noto Serif', 23.5)], {'letter-spacing': 2.5, 'word-spacing': 4}),
-    ([('AB', 'CFF Outlines and SBIX', 50), ('BA', 'CFF Outlines and SBIX', 25)], {}),
+    # 'B' only: the font's 'A' is an sbix bitmap (drawn as an image)
+    ([('BB', 'CFF Outlines and SBIX', 50), ('B B', 'CFF Outlines and SBIX', 25)], {}),
     ([('Ab', 'Noto Sans', 30), ('cd', 'Noto Sans', 15), ('ef', 'Noto Serif', 20)],
      {'dx': [1, 2, 3], 'rotate': [15, -30, 45]}),
     ([('The quick brown fox jumps over the lazy dog 0123456789', 'Source Sans Pro', 12)],
@@ -493,3 +499,42 @@ def test_same_string_in_other_fonts_of_one_document():
         assert p == q
     np.testing.assert_allclose(together[3][0].points, together[0][0].points + [0, 60], atol=1e-9)
     assert together[0][0] != together[2][0]
+
+
+# -- characters without a glyph -------------------------------------------------
+
+def test_characters_without_a_glyph_warn_once_per_document():
+    """U+E000 (private use) and U+0378 (unassigned) are in none of the
+    suite's fonts: one warning naming them, however many elements hold
+    such characters; the boxes are still drawn."""
+    body = ('<text x="10" y="50" font-family="Noto Sans">a\ue000b\u0378</text>'
+            '<text x="10" y="90">\ue001</text>')
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter('always')
+        ps = text_paths(body)
+    msgs = [str(x.message) for x in w if issubclass(x.category, RasterWarning)]
+    assert len(msgs) == 1 and 'U+E000 U+0378' in msgs[0] and 'boxes' in msgs[0]
+    assert len(ps) == 2
+
+
+@pytest.mark.parametrize('text', ['a b', 'a\u200db', 'a\ufe0fb', '\u4e2d', 'a\u00a0b\tc'])
+def test_no_warning_when_every_character_has_a_glyph(text):
+    """Spaces, default-ignorable characters and characters another face
+    has (CJK from the fallback) do not warn."""
+    with warnings.catch_warnings():
+        warnings.simplefilter('error')
+        assert text_paths('<text x="10" y="50" font-family="Noto Sans">%s</text>' % text)
+
+
+def test_fallback_tries_the_font_family_list_first():
+    """CSS Fonts' order: a character the first family lacks comes from the
+    next family of the list that has it (Twitter Color Emoji: an SVG
+    glyph), not from the first face of the folder that has it (Noto Color
+    Emoji: a bitmap)."""
+    from raster.tree import ImageNode
+    def images(family):
+        tree = load_svg(doc('<text x="10" y="50" font-family="%s">a\U0001F600</text>' % family),
+                        fonts=SUITE_FONTS)
+        return [n for n, _ in walk(tree.root) if isinstance(n, ImageNode)]
+    assert images('Noto Sans, Twitter Color Emoji') == []
+    assert len(images('Noto Sans, Noto Color Emoji')) == 1

@@ -443,6 +443,25 @@ def test_mask_helpers():
 
 # -- aliased (pixel centre) mode ----------------------------------------------
 
+def test_crisp_centres_on_edges_follow_skia():
+    """A centre on a shape's left or top edge is outside, one on its right
+    or bottom edge inside (Skia's and resvg's aliased sampling: edge ends
+    rounded to the nearest scanline and column).  Checked for a rectangle
+    with every edge through centres and for its mirror images (a flip maps
+    the rule onto itself shifted by one pixel)."""
+    rect = poly_edges([[2.5, 3.5], [10.5, 3.5], [10.5, 12.5], [2.5, 12.5]])
+    f = full(rect, 16, 16, antialias=False)
+    expect = np.zeros((16, 16))
+    expect[4:13, 3:11] = 1
+    assert np.array_equal(f, expect)
+    # the same rectangle traced backwards: the rule does not depend on direction
+    back = poly_edges([[2.5, 3.5], [2.5, 12.5], [10.5, 12.5], [10.5, 3.5]])
+    assert np.array_equal(full(back, 16, 16, antialias=False), expect)
+    # mirrored about x = 8: edges 5.5 and 13.5, columns 6..13
+    mir = poly_edges([[5.5, 3.5], [13.5, 3.5], [13.5, 12.5], [5.5, 12.5]])
+    assert np.array_equal(full(mir, 16, 16, antialias=False)[:, 6:14], expect[:, 3:11])
+
+
 def test_crisp_rectangle_centres():
     rect = poly_edges([[2.4, 1.6], [7.6, 1.6], [7.6, 4.4], [2.4, 4.4]])
     f = full(rect, 10, 6, antialias=False)
@@ -454,8 +473,8 @@ def test_crisp_rectangle_centres():
 def test_crisp_far_outside_and_clip():
     rect = poly_edges([[-1e6, -1e6], [10.5, -1e6], [10.5, 1e6], [-1e6, 1e6]])
     m = coverage(rect, 20, 20, antialias=False)
-    assert m.box == (0, 0, 10, 20) and np.all(m.data == 1)
-    # centre exactly on the edge (x = 10.5) is outside: half-open rule
+    # a centre exactly on the right edge (x = 10.5) is inside: min < c <= max
+    assert m.box == (0, 0, 11, 20) and np.all(m.data == 1)
     c = coverage(CIRCLES, 40, 40, antialias=False, clip=(10, 12, 30, 25))
     ref = full(CIRCLES, 40, 40, antialias=False)
     assert np.array_equal(c.data, ref[c.y0:c.box[3], c.x0:c.box[2]])

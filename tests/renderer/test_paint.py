@@ -554,3 +554,42 @@ def test_sample_wraps_exactly_at_multiples_of_the_size():
     assert got[:, 0].tolist() == [0, 0, 0, 0, 0, 16, 16, 16]
     got = sample(img, u + 0.5, np.full_like(u, 0.5), smooth=True, wrap=True)
     assert np.allclose(got[:5, 0], 0) and np.allclose(got[7, 0], 8)   # 9.5 + .5: halfway 4 | 0
+
+
+# ---------------------------------------------------------------------------
+# sweep gradients
+# ---------------------------------------------------------------------------
+
+@pytest.mark.parametrize('transform', [Affine(), Affine.rotate(30, 20, 20),
+                                       Affine.translate(3, -2) @ Affine.scale(1, -1)])
+@pytest.mark.parametrize('spread', ['pad', 'repeat', 'reflect'])
+def test_sweep_gradient_against_atan2(transform, spread):
+    """The offset at a pixel centre is (atan2 angle in [0, 360) - start) /
+    (end - start) in gradient space (the pixel mapped back through the
+    transform), spread, then interpolated between the stops."""
+    from raster.tree import SweepGradient
+    stops = [GradientStop(0.0, (1, 0, 0, 1)), GradientStop(1.0, (0, 0, 1, 1))]
+    p = SweepGradient(20, 20, 45.0, 225.0, stops, transform=transform, spread=spread)
+    mask = Mask(np.ones((40, 40), np.float32), 0, 0)
+    got = gradient_colors(p, mask, Affine())
+    jj, ii = np.meshgrid(np.arange(40) + 0.5, np.arange(40) + 0.5)
+    q = transform.inverse().apply(np.stack([jj.ravel(), ii.ravel()], 1))
+    ang = np.degrees(np.arctan2(q[:, 1] - 20, q[:, 0] - 20)) % 360
+    s = (ang - 45.0) / 180.0
+    s = {'pad': np.clip(s, 0, 1), 'repeat': np.mod(s, 1),
+         'reflect': np.abs(np.mod(s + 1, 2) - 1)}[spread].reshape(40, 40)
+    # away from the seams (the angle wraps at 0 degrees; repeat jumps at
+    # 225 degrees): 1 level
+    far = np.abs(((ang.reshape(40, 40) + 180) % 360) - 180) > 2
+    far &= np.abs(ang.reshape(40, 40) - 225) > 2 if spread == 'repeat' else far
+    far &= np.hypot(*(q - 20).T).reshape(40, 40) > 2
+    assert np.abs(got[..., 0] - (1 - s))[far].max() <= 2 * LEVEL
+    assert np.abs(got[..., 2] - s)[far].max() <= 2 * LEVEL
+
+
+def test_sweep_gradient_of_no_angle_is_its_last_stop():
+    from raster.tree import SweepGradient
+    stops = [GradientStop(0.0, (1, 0, 0, 1)), GradientStop(1.0, (0, 0, 1, 1))]
+    mask = Mask(np.ones((4, 4), np.float32), 0, 0)
+    got = gradient_colors(SweepGradient(2, 2, 90, 90, stops), mask, Affine())
+    assert np.allclose(got, (0, 0, 1, 1))
