@@ -4,8 +4,11 @@
   an :class:`OSError` (or any other failure) becomes one line
   ``<prog>: error: <message>`` on stderr and exit status 1, never a
   traceback; usage errors from :mod:`argparse` exit with status 2.
-* :func:`read_source` reads a file or ``-`` (stdin) as bytes, gunzipping
-  ``.svgz`` (gzip) data.
+* :func:`read_source` names what to read for a file or ``-`` (stdin): the
+  parser reads it a piece at a time within the budgets of
+  :mod:`raster.limits` (gzip, ``.svgz``, by content);
+* :func:`add_limit_options` gives a command ``--unlimited`` and one
+  ``--max-...`` option per budget, applied by :func:`run`.
 * :func:`write_output` writes bytes to a regular file atomically (a
   temporary file in the target directory, renamed into place, removed on
   failure, so a failed run never leaves a partial file at the output path);
@@ -18,18 +21,14 @@ import argparse
 import contextlib
 import errno
 import gc
-import io
 import os
+import re
 import stat
 import sys
 import warnings
-import zlib
 
-from raster.errors import RasterError, SVGError
-from raster.sources import local_path, read_file
-
-#: Largest decompressed .svgz document accepted (bytes).
-MAX_SVG_BYTES = 256 * 1024 * 1024
+from raster.errors import LimitError, RasterError, RasterWarning, SVGError  # noqa: F401 (re-exported)
+from raster.sources import local_path
 
 
 class UsageError(Exception):
@@ -128,8 +127,22 @@ def _one_line(msg):
     return msg or 'unknown error'
 
 
+_REPR = re.compile(r'<[^<>]*? at 0x[0-9A-Fa-f]+>')
+
+
+def _no_reprs(msg):
+    """``msg`` without object reprs (``<_io.BytesIO object at 0x...>``):
+    heap addresses mean nothing to the user."""
+    return _REPR.sub('', msg)
+
+
 def error_message(exc):
-    """One-line description of an exception for the user."""
+    """One-line description of an exception for the user (no object
+    reprs)."""
+    return _no_reprs(_error_message(exc))
+
+
+def _error_message(exc):
     if isinstance(exc, OSError):
         parts = [exc.strerror or str(exc)]
         if exc.filename:
@@ -140,6 +153,62 @@ def error_message(exc):
     if isinstance(exc, RasterError):
         return _one_line(exc)
     return _one_line('internal error: %s: %s' % (type(exc).__name__, exc))
+
+
+def _budget_value(text):
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError('must be a positive number or inf, got %r' % text)
+    if not v > 0:
+        raise argparse.ArgumentTypeError('must be a positive number or inf, got %r' % text)
+    return v
+
+
+def add_limit_options(parser):
+    """Give ``parser`` the budgets of :mod:`raster.limits`: ``--unlimited``
+    and one ``--max-...`` option per budget (``--max-pixel-work 2048``);
+    :func:`run` applies them around the command's body."""
+    from raster.limits import Limits
+    g = parser.add_argument_group(
+        'limits', 'budgets that bound the time and memory a document may cost; over one, '
+        'the element is left out with a warning (see raster.limits)')
+    g.add_argument('--unlimited', action='store_true',
+                   help='lift every budget (trusted input only)')
+    for name, default, unit, doc in Limits.describe():
+        g.add_argument('--' + name.replace('_', '-'), type=_budget_value, metavar='N',
+                       dest='limit_' + name,
+                       help='%s (%s; default %s)' % (doc, unit, _fmt_default(default)))
+
+
+def _fmt_default(v):
+    return ('%d' % v) if float(v).is_integer() and abs(v) < 1e15 else ('%g' % v)
+
+
+def limits_of(args):
+    """The :class:`raster.limits.Limits` the options of
+    :func:`add_limit_options` ask for (None when the parser has none)."""
+    if not hasattr(args, 'unlimited'):
+        return None
+    from raster import limits
+    base = limits.UNLIMITED if args.unlimited else limits.current()
+    changes = {k[len('limit_'):]: v for k, v in vars(args).items()
+               if k.startswith('limit_') and v is not None}
+    return base.replace(**changes) if changes else base
+
+
+def install_warnings(prog):
+    """Print every warning (an element skipped, no fonts for text, a
+    numpy floating-point warning that escaped...) as one line
+    ``<prog>: warning: <message>``, each distinct message once."""
+    seen = set()
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        msg = _one_line(_no_reprs(str(message)))
+        if msg not in seen:
+            seen.add(msg)
+            print('%s: warning: %s' % (prog, msg), file=sys.stderr)
+    warnings.showwarning = show
 
 
 @contextlib.contextmanager
@@ -187,13 +256,16 @@ def run(prog, body, parser, argv):
         args = parser.parse_args(argv)
     except SystemExit as e:
         return e.code if isinstance(e.code, int) else 2
-    # warnings (an element skipped, no fonts for text...) as one line each
-    warnings.showwarning = (lambda message, category, filename, lineno, file=None, line=None:
-                            print('%s: warning: %s' % (prog, _one_line(message)),
-                                  file=sys.stderr))
+    install_warnings(prog)
     try:
+        lim = limits_of(args)
         with collector_paused():
-            rc = body(args)
+            if lim is None:
+                rc = body(args)
+            else:
+                from raster.limits import applied
+                with applied(lim):
+                    rc = body(args)
     except UsageError as e:
         parser.print_usage(sys.stderr)
         print('%s: error: %s' % (prog, _one_line(e)), file=sys.stderr)
@@ -210,29 +282,37 @@ def run(prog, body, parser, argv):
 
 
 def read_source(path):
-    """Bytes of ``path`` (``-``: stdin), decompressed when gzip-compressed.
+    """What :func:`raster.svg.load_svg` should read for the command-line
+    input ``path``: stdin's binary stream for ``-``, else the local path
+    (``file:`` URLs resolved, other URLs refused).  The document is then
+    read a piece at a time while it is parsed, so input beyond
+    ``max_input_bytes`` or ``max_xml_elements`` (:mod:`raster.limits`;
+    files, stdin and gzip alike) fails before it is read in full, and a
+    regular file's size is checked before anything is read.
 
     Raises
     ------
     raster.errors.RasterIOError
-        The file cannot be read, or ``path`` is a URL other than ``file:``.
-    SVGError
-        Corrupt gzip data or a document beyond :data:`MAX_SVG_BYTES`.
+        ``path`` is a URL other than ``file:``.
     """
     if path == '-':
-        data = sys.stdin.buffer.read()
-    else:
-        data = read_file(path, MAX_SVG_BYTES)     # file: URLs read, other URLs refused
-    if data[:2] == b'\x1f\x8b':
-        import gzip
-        try:
-            with gzip.GzipFile(fileobj=io.BytesIO(data)) as g:
-                data = g.read(MAX_SVG_BYTES + 1)
-        except (OSError, EOFError, zlib.error) as e:
-            raise SVGError('corrupt gzip data: %s' % _one_line(e)) from None
-        if len(data) > MAX_SVG_BYTES:
-            raise SVGError('decompressed document exceeds %d bytes' % MAX_SVG_BYTES)
-    return data
+        return sys.stdin.buffer
+    return local_path(path)
+
+
+def metered(tree):
+    """The whole-render budgets of :mod:`raster.limits` (flattened points)
+    for a command that works on ``tree`` without rendering it (svg-bbox,
+    svg-flatten), as a context manager."""
+    from raster import limits
+    return limits.metering(limits.Meter(limits.current(),
+                                        int(min(tree.width * tree.height, 1e15))))
+
+
+def left_out(e):
+    """One shape beyond a budget (:class:`raster.errors.LimitError`) is
+    left out with a warning; the rest of the document is processed."""
+    warnings.warn('shape left out: %s' % e, RasterWarning, stacklevel=2)
 
 
 def base_dir_of(path):
@@ -249,8 +329,21 @@ def write_output(path, data):
     atomically: a temporary file beside it, renamed over it.  Any other
     existing file (a device, a FIFO, a socket, a link to one) is opened and
     written directly: renaming over it would replace the device node."""
+    with open_output(path) as f:
+        f.write(data)
+
+
+@contextlib.contextmanager
+def open_output(path):
+    """A binary file to write ``path`` through, by the rules of
+    :func:`write_output`: ``-`` is stdout; a regular file (or a new path)
+    is a temporary file beside it, renamed into place when the block ends
+    without an error and removed otherwise, so a failed or interrupted
+    write never leaves a partial file at ``path``; an existing device,
+    FIFO or socket is opened and written directly.  What streams its
+    output (a PNG written strip by strip) writes through this."""
     if path == '-':
-        sys.stdout.buffer.write(data)
+        yield sys.stdout.buffer
         sys.stdout.buffer.flush()
         return
     try:
@@ -261,23 +354,110 @@ def write_output(path, data):
         if stat.S_ISDIR(st.st_mode):
             raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), path)
         with open(path, 'wb') as f:
-            f.write(data)
+            yield f
         return
     # a link to a regular file: replace the file it names, not the link
     target = os.path.realpath(path)
-    fd, tmp = _temporary_beside(target)
+    try:
+        fd, tmp = _temporary_beside(target)
+    except OSError as e:
+        raise _about(e, path) from None
     try:
         with os.fdopen(fd, 'wb') as f:
-            f.write(data)
+            yield f
         # created 0600; give the file the mode a plain open() would
         os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, target)
-    except BaseException:
+    except BaseException as e:
         try:
             os.unlink(tmp)
         except OSError:
             pass
+        if isinstance(e, OSError):      # about the output, not the temporary file
+            raise _about(e, path) from None
         raise
+
+
+#: File name endings batch conversion picks up in folders.
+SVG_SUFFIXES = ('.svg', '.svgz')
+
+
+def collect_inputs(paths, recursive=False):
+    """The documents of a batch: ``[(input path, folder relative to the
+    walked root)]`` in the order given, folders walked for
+    :data:`SVG_SUFFIXES` files (case-insensitive, sorted by name; with
+    ``recursive`` their subfolders too, whose relative folder is kept);
+    a file given by name is taken whatever its name, with folder ``''``.
+
+    Raises
+    ------
+    raster.errors.RasterIOError
+        A path that does not exist."""
+    from raster.errors import RasterIOError
+    out = []
+    for p in paths:
+        if p != '-' and os.path.isdir(p):
+            for d, dirs, files in os.walk(p):
+                dirs.sort()
+                if not recursive:
+                    dirs[:] = []
+                rel = os.path.relpath(d, p)
+                rel = '' if rel == '.' else rel
+                out.extend((os.path.join(d, f), rel) for f in sorted(files)
+                           if f.lower().endswith(SVG_SUFFIXES))
+        elif p == '-' or os.path.exists(p):
+            out.append((p, ''))
+        else:
+            raise RasterIOError(errno.ENOENT, 'No such file or directory', p)
+    return out
+
+
+def output_name(path, rel, out_dir, pattern, ext):
+    """Output path of batch input ``path`` found in folder ``rel`` (see
+    :func:`collect_inputs`): ``out_dir/rel/<pattern>`` where ``pattern``
+    names the file with the fields ``{stem}`` (the input's name without
+    ``.svg``/``.svgz``), ``{name}`` (its whole name) and ``{ext}`` (the
+    output format's extension, ``png``...).
+
+    >>> output_name('in/a/logo.svgz', 'a', 'out', '{stem}.{ext}', 'png')
+    'out/a/logo.png'
+    """
+    name = os.path.basename(path)
+    stem = name
+    for suf in SVG_SUFFIXES:
+        if stem.lower().endswith(suf):
+            stem = stem[:-len(suf)]
+            break
+    try:
+        fname = pattern.format(stem=stem, name=name, ext=ext)
+    except (KeyError, IndexError, ValueError) as e:
+        raise UsageError('--out-pattern %r: unknown field or bad format (%s); fields: '
+                         '{stem} {name} {ext}' % (pattern, e)) from None
+    return os.path.join(out_dir, rel, fname) if rel else os.path.join(out_dir, fname)
+
+
+def cpu_count():
+    """CPUs this process may run on (its affinity where the system says)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):
+        return max(1, os.cpu_count() or 1)
+
+
+def process_pool(jobs, initializer=None, initargs=()):
+    """A pool of ``jobs`` worker processes for a command.  Where the system
+    can fork, the workers are copies of the command's process, so the
+    imports (and a document already parsed) are paid for once, not once
+    per worker; elsewhere they are started afresh and ``initializer`` runs
+    in each."""
+    import multiprocessing
+    methods = multiprocessing.get_all_start_methods()
+    ctx = multiprocessing.get_context('fork' if 'fork' in methods else None)
+    return ctx.Pool(jobs, initializer=initializer, initargs=initargs)
+def _about(e, path):
+    """``e`` (an OSError) told about ``path`` rather than a temporary
+    file."""
+    return type(e)(e.errno, e.strerror or str(e), path)
 
 
 def _temporary_beside(target):

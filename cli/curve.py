@@ -499,6 +499,8 @@ def main(argv=None):
     """Entry point; returns the exit status (0 ok, 1 output failure, 2 bad
     input)."""
     from raster.errors import RasterError
+    from ._common import install_warnings
+    install_warnings('curve')
     parser = build_parser()
     if argv is None:
         argv = sys.argv[1:]

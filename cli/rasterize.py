@@ -1,11 +1,16 @@
-"""rasterize: render an SVG document to a PNG, JPEG, WebP, TIFF or BMP file.
+"""rasterize: render SVG documents to PNG, JPEG, WebP, TIFF or BMP files.
 
     rasterize in.svg out.png [--width W | --height H | --zoom Z] [--dpi DPI]
               [--background COLOR] [--id ID [--id-page]] [--allow-dir DIR]
               [--format FMT] [--quality Q] [--compress-level N]
+              [--jobs N] [--memory-budget MB]
               [--font-dir DIR ...] [--font-file FILE ...] [--no-system-fonts]
               [--serif-family NAME] [--sans-serif-family NAME] [--monospace-family NAME]
               [--cursive-family NAME] [--fantasy-family NAME] [--default-family NAME]
+    rasterize A.svg B.svg DIR ... --out-dir OUT [--recursive] [--out-pattern PAT]
+              [--skip-existing] [--jobs N] [any option above]
+    rasterize A.svg B.svg ... OUT/        (a last argument that is a folder)
+    rasterize map.svg --tiles DIR [--min-zoom Z] [--max-zoom Z]
     rasterize --list-fonts [font options]
 
 Text is drawn with the system's fonts (and the ``--font-dir`` folders and
@@ -27,27 +32,61 @@ given or not opaque.  With ``--dpi`` the resolution is recorded in the file
 (PNG ``pHYs``, JPEG, TIFF, BMP): ``--dpi`` times the output's scale of the
 natural size, so the document keeps its physical size.
 
+Large PNG output is rendered in strips of rows (windows of the whole
+render, equal to it) and written as the strips finish, so memory stays
+within ``--memory-budget`` (MB of strip pixels per process, default 256)
+whatever the size, up to 4 000 million pixels; ``--jobs`` spreads the
+strips of one large image over worker processes (for an image beyond the
+budget: the same strips and file bytes whatever the number of workers).  Other formats are encoded by Pillow
+from the whole image (at most 100 million pixels).
+
+Many files: every input (folders are walked for ``.svg``/``.svgz``,
+their subfolders too with ``--recursive``, kept below ``--out-dir``) is
+converted with the same options to ``--out-dir``/``--out-pattern``
+(default ``{stem}.{ext}``; fields ``{stem}``, ``{name}``, ``{ext}``) by
+``--jobs`` worker processes (default: the number of CPUs), each paying
+the start-up once.  On a terminal a progress bar (tqdm) shows on stderr.
+A file that fails gets its one-line error and the others go on;
+``--skip-existing`` leaves outputs that exist alone; a summary line ends
+the run, with exit status 1 if any file failed.
+
+``--tiles DIR`` writes an XYZ pyramid of 256 px PNG tiles,
+``DIR/z/x/y.png``: at zoom z the document's longer side is 256 * 2**z px
+(zoom levels ``--min-zoom`` to ``--max-zoom``, default 0 to the first
+level at the natural size), with ``DIR/tiles.json`` describing the levels
+and the bounds.
+
 Errors are one line on stderr with exit status 1 (2 for usage errors); a
 failed run leaves no file at the output path.
 """
 
 import argparse
+import os
 import sys
+import time
 
-from ._common import (Parser, UsageError, add_font_options, add_languages, add_version,
-                      base_dir_of, font_options, languages_of, list_fonts, read_source, run,
-                      write_output)
+from ._common import (Parser, UsageError, add_font_options, add_languages, add_limit_options,
+                      add_version, base_dir_of, collect_inputs, cpu_count, error_message,
+                      font_options, languages_of, list_fonts, open_output, output_name,
+                      process_pool,
+                      read_source, run, write_output)
 
 PROG = 'rasterize'
 
 FORMAT_CHOICES = ('png', 'jpeg', 'jpg', 'webp', 'tiff', 'tif', 'bmp')
+_EXT = {'png': 'png', 'jpeg': 'jpg', 'webp': 'webp', 'tiff': 'tif', 'bmp': 'bmp'}
+
+#: One image spreads its strips over workers from this many pixels on.
+PARALLEL_PIXELS = 4_000_000
 
 
 def build_parser():
-    ap = Parser(prog=PROG, description='Render an SVG document to a PNG, JPEG, WebP, TIFF or '
-                'BMP image.')
-    ap.add_argument('input', nargs='?', help='SVG or SVGZ file, or - for stdin')
-    ap.add_argument('output', nargs='?', help='image file to write, or - for stdout')
+    ap = Parser(prog=PROG, description='Render SVG documents to PNG, JPEG, WebP, TIFF or '
+                'BMP images: one file, many files (--out-dir), or map tiles (--tiles).')
+    ap.add_argument('paths', nargs='*', metavar='PATH',
+                    help='INPUT OUTPUT for one file (- for stdin/stdout); with --out-dir, or '
+                         'a last argument that is a folder, every PATH is an input (folders '
+                         'are walked for .svg/.svgz)')
     ap.add_argument('--width', type=int, metavar='PX', help='output width in pixels')
     ap.add_argument('--height', type=int, metavar='PX', help='output height in pixels')
     ap.add_argument('--zoom', type=float, metavar='F', help='scale factor of the natural size')
@@ -69,13 +108,37 @@ def build_parser():
     ap.add_argument('--compress-level', type=int, metavar='N',
                     help='PNG zlib level 0-9 (default 1)')
     ap.add_argument('--tolerance', type=float, default=None, help=argparse.SUPPRESS)
+    g = ap.add_argument_group('many files, large images, map tiles')
+    g.add_argument('--out-dir', metavar='DIR',
+                   help='convert every PATH into this folder (created if needed)')
+    g.add_argument('--recursive', action='store_true',
+                   help='walk the subfolders of input folders too (kept below --out-dir)')
+    g.add_argument('--out-pattern', metavar='PAT', default=None,
+                   help='output file name: fields {stem} {name} {ext} (default {stem}.{ext})')
+    g.add_argument('--skip-existing', action='store_true',
+                   help='leave inputs whose output exists alone')
+    g.add_argument('--jobs', '-j', type=int, metavar='N',
+                   help='worker processes for many files, the strips of a large image or '
+                        'tiles (default: the number of CPUs)')
+    g.add_argument('--memory-budget', type=float, metavar='MB', default=256.0,
+                   help='memory for the pixels a process renders at once, in MB (default '
+                        '256): larger PNG output is rendered and written in strips')
+    g.add_argument('--tiles', metavar='DIR',
+                   help='write an XYZ pyramid of 256 px PNG tiles DIR/z/x/y.png and '
+                        'DIR/tiles.json instead of one image')
+    g.add_argument('--min-zoom', type=int, default=0, metavar='Z',
+                   help='with --tiles: first zoom level (default 0)')
+    g.add_argument('--max-zoom', type=int, metavar='Z',
+                   help='with --tiles: last zoom level (default: where the longer side '
+                        'reaches the natural size)')
     add_font_options(ap)
     add_languages(ap)
+    add_limit_options(ap)
     add_version(ap)
     return ap
 
 
-def output_format(args):
+def output_format(args, output=None):
     """The format to write and its checked options, before any work: a
     usage error for an unknown extension or an option of another format."""
     from raster.errors import FormatError
@@ -83,8 +146,10 @@ def output_format(args):
     try:
         if args.format is not None:
             fmt = format_name(args.format)
+        elif output is None:
+            fmt = 'png'
         else:
-            fmt = ('png' if args.output == '-' else format_of_path(args.output)) or 'png'
+            fmt = ('png' if output == '-' else format_of_path(output)) or 'png'
     except FormatError as e:
         raise UsageError('%s; give --format' % e) from None
     if args.quality is not None:
@@ -100,39 +165,369 @@ def output_format(args):
     return fmt
 
 
-def _body(args):
+def _check_common(args):
+    """Options every mode checks before any work: returns the dpi."""
     import math
     from raster.errors import CanvasError
-    if list_fonts(args, ('input', 'output')):
-        return 0
     if args.zoom is not None and (args.width is not None or args.height is not None):
         raise UsageError('--zoom cannot be combined with --width/--height')
     dpi = 96.0 if args.dpi is None else args.dpi
     if not (math.isfinite(dpi) and dpi > 0):
         raise CanvasError('--dpi must be positive and finite, got %g' % dpi)
-    fmt = output_format(args)
-    from raster.svg import DEFAULT_TOLERANCE, load_svg, parse_background, render_tree
-    tol = DEFAULT_TOLERANCE if args.tolerance is None else args.tolerance
-    bg = parse_background(args.background)       # a bad colour fails before any work
-    data = read_source(args.input)
-    tree = load_svg(data, dpi=dpi, fonts=font_options(args),
-                    resources_dir=args.allow_dir, base_dir=base_dir_of(args.input),
-                    languages=languages_of(args))
+    if args.jobs is not None and args.jobs < 1:
+        raise UsageError('--jobs must be at least 1, got %d' % args.jobs)
+    if not (args.memory_budget > 0 and math.isfinite(args.memory_budget)):
+        raise UsageError('--memory-budget must be a positive number of MB')
+    return dpi
+
+
+def _budget(args):
+    return max(1, int(args.memory_budget * 1024 * 1024))
+
+
+def _jobs(args):
+    return cpu_count() if args.jobs is None else args.jobs
+
+
+def _body(args):
+    if list_fonts(args, ()):
+        return 0
+    dpi = _check_common(args)
+    paths = list(args.paths)
+    if args.tiles is not None:
+        if len(paths) != 1 or args.out_dir is not None:
+            raise UsageError('--tiles takes one input document')
+        if args.format not in (None, 'png') or args.quality is not None:
+            raise UsageError('--tiles writes PNG tiles')
+        return _tiles(args, dpi, paths[0])
+    out_dir = args.out_dir
+    if out_dir is None and len(paths) >= 2 and (
+            paths[-1].endswith(('/', os.sep)) or os.path.isdir(paths[-1])):
+        out_dir = paths.pop()
+    if out_dir is None and len(paths) == 2 and not os.path.isdir(paths[0]):
+        if args.recursive or args.out_pattern is not None or args.skip_existing:
+            raise UsageError('--recursive, --out-pattern and --skip-existing go with --out-dir')
+        return _single(args, dpi, paths[0], paths[1])
+    if out_dir is None:
+        if len(paths) < 2:
+            raise UsageError('the following arguments are required: %s (or inputs and '
+                             '--out-dir DIR)' % ('input, output' if not paths else 'output'))
+        raise UsageError('many inputs need --out-dir DIR (or a folder as the last argument)')
+    if not paths:
+        raise UsageError('no input documents given')
+    return _batch(args, dpi, paths, out_dir)
+
+
+# -- one document -----------------------------------------------------------------------
+
+def _load(args, dpi, path):
+    from raster.svg import load_svg
+    data = read_source(path)
+    return load_svg(data, dpi=dpi, fonts=font_options(args), resources_dir=args.allow_dir,
+                    base_dir=base_dir_of(path), languages=languages_of(args))
+
+
+def _tolerance(args):
+    """The flattening tolerance: --tolerance, else the renderer's default."""
+    if args.tolerance is not None:
+        return args.tolerance
+    from raster.renderer import DEFAULT_TOLERANCE
+    return DEFAULT_TOLERANCE
+
+
+def _render_kw(args, bg):
     crop = args.id is not None and not args.id_page
-    canvas = render_tree(tree, width=args.width, height=args.height, zoom=args.zoom,
-                         background=bg, node_id=args.id, tolerance=tol, crop=crop,
-                         dtype='uint8')
-    res = None
-    if args.dpi is not None:
-        # the resolution at which the document keeps its physical size
-        from raster.renderer import output_geometry
-        sx, sy = output_geometry(tree, args.width, args.height, args.zoom, args.id,
-                                 crop).scale
-        res = (dpi * sx, dpi * sy)
-    from raster.pixels.encode import encode_canvas
-    write_output(args.output, encode_canvas(canvas, fmt, dpi=res, quality=args.quality,
-                                            compress_level=args.compress_level))
+    return dict(width=args.width, height=args.height, zoom=args.zoom, background=bg,
+                node_id=args.id, tolerance=_tolerance(args), crop=crop)
+
+
+def _single(args, dpi, inp, out):
+    fmt = output_format(args, out)
+    from raster.svg import parse_background
+    bg = parse_background(args.background)       # a bad colour fails before any work
+    convert(args, dpi, fmt, bg, inp, out, _jobs(args))
     return 0
+
+
+def convert(args, dpi, fmt, bg, inp, out, jobs=1):
+    """Render document ``inp`` to ``out`` in format ``fmt``: in one piece,
+    or as PNG in strips (over ``jobs`` workers) when the image is beyond
+    the memory budget or large enough for the workers to pay."""
+    from raster import limits
+    from raster.errors import CanvasError
+    from raster.renderer import MAX_WINDOWED_PIXELS, output_geometry, render_tree
+    from raster.renderer.tiles import BYTES_PER_PIXEL, strip_rows, strip_spans
+    tree = _load(args, dpi, inp)
+    kw = _render_kw(args, bg)
+    g = output_geometry(tree, kw['width'], kw['height'], kw['zoom'], kw['node_id'], kw['crop'],
+                        max_pixels=MAX_WINDOWED_PIXELS)
+    res = None if args.dpi is None else (dpi * g.scale[0], dpi * g.scale[1])
+    budget = _budget(args)
+    pixels = g.width * g.height
+    big = pixels * BYTES_PER_PIXEL > budget
+    if fmt == 'png' and (big or (jobs > 1 and pixels >= PARALLEL_PIXELS)):
+        from raster.pixels.png import DEFAULT_LEVEL, PNGWriter
+        level = DEFAULT_LEVEL if args.compress_level is None else args.compress_level
+        workers = max(1, jobs)
+        # the budget is per process: the strips are the same whatever the
+        # number of workers (so is the file), and a worker pays the fixed
+        # cost of a strip (the tree walked, the outlines crossing it
+        # flattened) no more often than one process alone would
+        spans = strip_spans(g.height, strip_rows(g.width, budget))
+        if len(spans) == 1 and workers > 1:
+            spans = strip_spans(g.height, -(-g.height // workers))
+        job = (tree, kw, level)
+        with open_output(out) as f:
+            png = PNGWriter(f, g.width, g.height, level, dpi=res)
+            if workers > 1 and len(spans) > 1:
+                global _JOB
+                _JOB = job
+                try:
+                    with process_pool(min(workers, len(spans))) as pool:
+                        for piece in pool.imap(_strip_piece, spans):
+                            png.write_compressed(piece)
+                finally:
+                    _JOB = None
+            else:
+                for span in spans:
+                    png.write_compressed(_compress_strip(job, span))
+            png.close()
+        return
+    if pixels > limits.current().max_pixels:
+        raise CanvasError('output size %d x %d exceeds %d pixels for %s output (PNG is '
+                          'written in strips up to %d pixels)'
+                          % (g.width, g.height, limits.current().max_pixels, fmt.upper(),
+                             MAX_WINDOWED_PIXELS))
+    canvas = render_tree(tree, dtype='uint8', **kw)
+    from raster.pixels.encode import encode_canvas
+    write_output(out, encode_canvas(canvas, fmt, dpi=res, quality=args.quality,
+                                    compress_level=args.compress_level))
+
+
+#: What forked workers of one image render: (tree, render_tree options, level).
+_JOB = None
+
+
+def _compress_strip(job, span):
+    from raster.pixels.png import compress_strip
+    from raster.renderer import render_tree
+    tree, kw, level = job
+    y0, y1 = span
+    from raster.renderer import MAX_WINDOWED_PIXELS, output_geometry
+    g = output_geometry(tree, kw['width'], kw['height'], kw['zoom'], kw['node_id'], kw['crop'],
+                        max_pixels=MAX_WINDOWED_PIXELS)
+    canvas = render_tree(tree, dtype='uint8', window=(0, y0, g.width, y1), **kw)
+    rgba = canvas.to_rgba8()
+    del canvas
+    return compress_strip(rgba, level, first=y0 == 0)
+
+
+def _strip_piece(span):
+    return _compress_strip(_JOB, span)
+
+
+# -- many documents ---------------------------------------------------------------------
+
+def _batch(args, dpi, paths, out_dir):
+    from raster.svg import parse_background
+    if '-' in paths:
+        raise UsageError('stdin (-) cannot be one of many inputs')
+    fmt = output_format(args)
+    bg = parse_background(args.background)
+    pattern = args.out_pattern or '{stem}.{ext}'
+    ext = _EXT[fmt]
+    if args.out_pattern is not None:
+        from raster.pixels.encode import format_of_path
+        from raster.errors import FormatError
+        try:
+            pfmt = format_of_path(pattern.replace('{', '').replace('}', ''))
+        except FormatError:
+            pfmt = None
+        if args.format is None and pfmt is not None:
+            fmt, ext = pfmt, _EXT[pfmt]
+            output_format(args, 'x.' + ext)
+    items = collect_inputs(paths, args.recursive)
+    tasks, seen = [], {}
+    for inp, rel in items:
+        out = output_name(inp, rel, out_dir, pattern, ext)
+        key = os.path.abspath(out)
+        if key in seen:
+            raise UsageError('%s and %s would both write %s' % (seen[key], inp, out))
+        seen[key] = inp
+        tasks.append((inp, out))
+    skipped = 0
+    if args.skip_existing:
+        todo = [t for t in tasks if not os.path.exists(t[1])]
+        skipped = len(tasks) - len(todo)
+        tasks = todo
+    jobs = min(_jobs(args), max(1, len(tasks)))
+    start = time.perf_counter()
+    global _BATCH
+    _BATCH = (args, dpi, fmt, bg, jobs)
+    failed = done = 0
+    bar = _progress(len(tasks))
+    try:
+        if jobs > 1:
+            with process_pool(jobs) as pool:
+                results = pool.imap_unordered(_batch_one, tasks)
+                for r in results:
+                    failed += _report(bar, r)
+                    done += 1
+        else:
+            for t in tasks:
+                failed += _report(bar, _batch_one(t))
+                done += 1
+    finally:
+        _BATCH = None
+        if bar is not None:
+            bar.close()
+    secs = time.perf_counter() - start
+    print('%s: %d of %d files converted, %d skipped, %d failed in %.2f s (%d jobs)'
+          % (PROG, done - failed, len(tasks) + skipped, skipped, failed, secs, jobs),
+          file=sys.stderr)
+    return 1 if failed else 0
+
+
+#: What forked batch workers convert with: (args, dpi, format, background, jobs).
+_BATCH = None
+
+
+def _batch_one(task):
+    """Convert one file of a batch: ``(input, output, error line or None,
+    [warning lines])``; never raises for the file's own failures."""
+    import warnings
+    inp, out = task
+    args, dpi, fmt, bg, jobs = _BATCH
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter('always')
+        try:
+            d = os.path.dirname(out)
+            if d:
+                os.makedirs(d, exist_ok=True)
+            convert(args, dpi, fmt, bg, inp, out, 1)
+            err = None
+        except KeyboardInterrupt:
+            raise
+        except Exception as e:
+            err = error_message(e)
+    return inp, out, err, [' '.join(str(w.message).split()) for w in caught]
+
+
+def _progress(total):
+    """A tqdm bar on stderr when it is a terminal, else None."""
+    if total < 2 or not sys.stderr.isatty():
+        return None
+    from tqdm import tqdm
+    return tqdm(total=total, unit='file', file=sys.stderr, dynamic_ncols=True)
+
+
+def _report(bar, result):
+    inp, out, err, warns = result
+    lines = ['%s: warning: %s: %s' % (PROG, inp, w) for w in dict.fromkeys(warns)]
+    if err is not None:
+        lines.append('%s: error: %s: %s' % (PROG, inp, err))
+    for line in lines:
+        if bar is not None:
+            bar.write(line, file=sys.stderr)
+        else:
+            print(line, file=sys.stderr)
+    if bar is not None:
+        bar.update(1)
+    return 1 if err is not None else 0
+
+
+# -- map tiles --------------------------------------------------------------------------
+
+def _tiles(args, dpi, inp):
+    import json
+    from raster.svg import parse_background
+    from raster.renderer.tiles import TILE_SIZE, default_max_zoom, xyz_levels
+    if args.width is not None or args.height is not None or args.zoom is not None:
+        raise UsageError('--tiles sizes each level itself: no --width/--height/--zoom')
+    if args.id is not None and args.id_page is False:
+        raise UsageError('--tiles renders the page: --id needs --id-page')
+    bg = parse_background(args.background)
+    tree = _load(args, dpi, inp)
+    maxz = default_max_zoom(tree.width, tree.height) if args.max_zoom is None else args.max_zoom
+    if args.min_zoom > maxz:
+        raise UsageError('--min-zoom %d is above the last zoom level %d' % (args.min_zoom, maxz))
+    levels = xyz_levels(tree.width, tree.height, args.min_zoom, maxz)
+    level = 1 if args.compress_level is None else args.compress_level
+    budget = _budget(args)
+    jobs = _jobs(args)
+    tasks = []
+    for lv in levels:
+        # pieces of whole tile rows, as many tiles across as the budget allows
+        per = max(1, budget // (24 * TILE_SIZE * TILE_SIZE * max(1, jobs)))
+        for row in range(lv.rows):
+            for c0 in range(0, lv.columns, per):
+                tasks.append((lv, row, c0, min(lv.columns, c0 + per)))
+    global _TILES
+    _TILES = (tree, bg, args, level, args.tiles)
+    count = 0
+    bar = _progress(len(tasks))
+    try:
+        if jobs > 1 and len(tasks) > 1:
+            with process_pool(min(jobs, len(tasks))) as pool:
+                for n in pool.imap_unordered(_tile_piece, tasks):
+                    count += n
+                    if bar is not None:
+                        bar.update(1)
+        else:
+            for t in tasks:
+                count += _tile_piece(t)
+                if bar is not None:
+                    bar.update(1)
+    finally:
+        _TILES = None
+        if bar is not None:
+            bar.close()
+    meta = {'scheme': 'xyz', 'format': 'png', 'tile_size': TILE_SIZE,
+            'minzoom': levels[0].zoom, 'maxzoom': levels[-1].zoom,
+            'bounds': [0.0, 0.0, float(tree.width), float(tree.height)],
+            'bounds_units': 'document px (x right, y down) of level 0 to its width, height',
+            'levels': [{'zoom': lv.zoom, 'width': lv.width, 'height': lv.height,
+                        'columns': lv.columns, 'rows': lv.rows,
+                        'scale': lv.width / tree.width} for lv in levels]}
+    os.makedirs(args.tiles, exist_ok=True)
+    write_output(os.path.join(args.tiles, 'tiles.json'),
+                 (json.dumps(meta, indent=1) + '\n').encode('utf-8'))
+    print('%s: %d tiles, zoom %d-%d, in %s' % (PROG, count, levels[0].zoom, levels[-1].zoom,
+                                              args.tiles), file=sys.stderr)
+    return 0
+
+
+#: What forked tile workers render: (tree, background, args, level, folder).
+_TILES = None
+
+
+def _tile_piece(task):
+    """Render tiles ``c0 .. c1 - 1`` of one tile row of a level as one
+    window and write them; returns how many were written."""
+    import numpy as np
+    from raster.pixels.png import encode_png
+    from raster.renderer import render_tree
+    from raster.renderer.tiles import TILE_SIZE
+    lv, row, c0, c1 = task
+    tree, bg, args, level, folder = _TILES
+    T = TILE_SIZE
+    x0, y0 = c0 * T, row * T
+    x1, y1 = min(lv.width, c1 * T), min(lv.height, (row + 1) * T)
+    side = dict(width=lv.width) if tree.width >= tree.height else dict(height=lv.height)
+    canvas = render_tree(tree, background=bg, node_id=args.id, tolerance=_tolerance(args),
+                         dtype='uint8', window=(x0, y0, x1, y1), **side)
+    rgba = canvas.to_rgba8()
+    del canvas
+    n = 0
+    for c in range(c0, c1):
+        tile = np.zeros((T, T, 4), np.uint8)
+        part = rgba[:, (c - c0) * T:(c - c0 + 1) * T]
+        tile[:part.shape[0], :part.shape[1]] = part
+        d = os.path.join(folder, str(lv.zoom), str(c))
+        os.makedirs(d, exist_ok=True)
+        write_output(os.path.join(d, '%d.png' % row), encode_png(tile, level))
+        n += 1
+    return n
 
 
 def main(argv=None):

@@ -19,9 +19,9 @@ glyph outlines, laid out with the system's fonts and the font options of
 import json
 import sys
 
-from ._common import (Parser, add_font_options, add_languages, add_version, base_dir_of,
-                      drawn_shapes, font_options, languages_of, list_fonts, node_transforms,
-                      read_source, run, subtree_shapes, user_to_doc, write_text)
+from ._common import (LimitError, Parser, add_font_options, add_languages, add_limit_options,
+                      add_version, base_dir_of, font_options, languages_of, left_out, list_fonts,
+                      metered, read_source, run, user_to_doc, write_text)
 
 PROG = 'svg-bbox'
 
@@ -85,26 +85,58 @@ def _union_all(boxes):
 
 def boxes(tree, with_stroke=False, only_id=None):
     """``{'units': 'user', 'document': box, 'elements': {id: box}}`` in the
-    root's user units; boxes are ``[x0, y0, x1, y1]`` lists or None."""
+    root's user units; boxes are ``[x0, y0, x1, y1]`` lists or None.
+
+    One pass over the tree: each drawn shape's box is computed once and
+    united into the boxes of the nodes above it (children before parents),
+    so nested elements with ids cost no more than the shapes themselves.
+    A shape over a budget of :mod:`raster.limits` is left out with one
+    warning."""
     from raster.errors import SVGError
+    from raster.tree import Group, PathNode
+    from raster.geometry.transform import IDENTITY
     to_user = user_to_doc(tree).inverse()
-    doc = _union_all(shape_box(n, to_user @ t, with_stroke) for n, t in drawn_shapes(tree))
     ids = dict(tree.ids) if isinstance(tree.ids, dict) else {}
     if only_id is not None:
         if only_id not in ids:
             raise SVGError('no element with id %r' % (only_id,))
         ids = {only_id: ids[only_id]}
-    trans = node_transforms(tree)
+    # pre-order list of (node, transform of its coordinates, parent index)
+    order = []
+    where = {}                          # id(node) -> its last index (as node_transforms)
+    stack = [(tree.root, IDENTITY, -1)]
+    while stack:
+        n, t, parent = stack.pop()
+        k = len(order)
+        order.append((n, t, parent))
+        where[id(n)] = k
+        if isinstance(n, Group):
+            t2 = t @ n.transform
+            stack.extend((c, t2, k) for c in reversed(n.children))
+        elif isinstance(n, PathNode) and n.markers is not None:
+            stack.append((n.markers, t, k))
+    box = [None] * len(order)
+    warned = False
+    with metered(tree):
+        for k in range(len(order) - 1, -1, -1):          # children before parents
+            n, t, parent = order[k]
+            if (isinstance(n, PathNode) and n.path is not None
+                    and (n.fill is not None or n.stroke is not None)):
+                try:
+                    b = shape_box(n, to_user @ t, with_stroke)
+                except LimitError as e:
+                    if not warned:
+                        warned = True
+                        left_out(e)
+                    b = None
+                box[k] = _union_all([box[k], b])
+            if parent >= 0 and box[k] is not None:
+                box[parent] = _union_all([box[parent], box[k]])
     elements = {}
     for key in sorted(ids):
-        node = ids[key]
-        t = trans.get(id(node))
-        if t is None:            # defined but not part of the drawn tree
-            elements[key] = None
-            continue
-        b = _union_all(shape_box(n, to_user @ tt, with_stroke) for n, tt in subtree_shapes(node, t))
-        elements[key] = _fmt(b)
-    return {'units': 'user', 'document': _fmt(doc), 'elements': elements}
+        k = where.get(id(ids[key]))
+        elements[key] = None if k is None else _fmt(box[k])
+    return {'units': 'user', 'document': _fmt(box[0]) if box else None, 'elements': elements}
 
 
 def _fmt(b):
@@ -122,6 +154,7 @@ def build_parser():
     ap.add_argument('-o', '--output', default='-', help='output file (default: stdout)')
     add_font_options(ap)
     add_languages(ap)
+    add_limit_options(ap)
     add_version(ap)
     return ap
 

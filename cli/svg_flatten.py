@@ -41,9 +41,10 @@ import json
 import math
 import sys
 
-from ._common import (Parser, add_font_options, add_languages, add_version, base_dir_of,
-                      drawn_shapes, font_options, hex_color, languages_of, list_fonts, read_source,
-                      run, user_to_doc, write_text)
+from ._common import (LimitError, Parser, add_font_options, add_languages, add_limit_options,
+                      add_version, base_dir_of, drawn_shapes, font_options, hex_color,
+                      languages_of, left_out, list_fonts, metered, read_source, run, user_to_doc,
+                      write_text)
 
 PROG = 'svg-flatten'
 
@@ -63,6 +64,7 @@ def build_parser():
     ap.add_argument('--dpi', type=float, default=96.0, help=argparse.SUPPRESS)
     add_font_options(ap)
     add_languages(ap)
+    add_limit_options(ap)
     add_version(ap)
     return ap
 
@@ -94,37 +96,48 @@ def collect(tree, tolerance=0.25, pixels=False, outline_strokes=False):
     list of dict
     """
     from raster.errors import RasterError
-    from raster.geometry.flattening import flatten
-    from raster.geometry.stroking import stroke
     if not (math.isfinite(tolerance) and tolerance > 0):
         raise RasterError('--tolerance must be positive, got %g' % tolerance)
     to_out = None
     if not pixels:
         to_out = user_to_doc(tree).inverse()
     shapes = []
-    for node, t in drawn_shapes(tree):
-        ot = t if to_out is None else to_out @ t
-        fill, fill_a = _paint_value(node.fill.paint if node.fill else None)
-        strk, strk_a = _paint_value(node.stroke.paint if node.stroke else None)
-        rec = {'id': node.id or None,
-               'fill': fill,
-               'fill_opacity': round(fill_a * node.fill.opacity, 6) if node.fill else None,
-               'fill_rule': node.fill.rule if node.fill else None,
-               'stroke': strk,
-               'stroke_opacity': round(strk_a * node.stroke.opacity, 6) if node.stroke else None,
-               'stroke_width': (node.stroke.width * ot.mean_scale()) if node.stroke else 0.0}
-        outline = None
-        if outline_strokes and node.stroke is not None:
-            op = stroke(node.path, node.stroke.style, transform=ot, tolerance=tolerance)
-            outline = dict(rec, fill=strk, fill_opacity=rec['stroke_opacity'],
-                           fill_rule='nonzero', stroke=None, stroke_opacity=None,
-                           stroke_width=0.0, polylines=_polylines(flatten(op, tolerance)))
-            rec.update(stroke=None, stroke_opacity=None, stroke_width=0.0)
-        if rec['fill'] is not None or rec['stroke'] is not None:
-            rec['polylines'] = _polylines(flatten(node.path, tolerance, transform=ot))
-            shapes.append(rec)
-        if outline is not None and outline['polylines']:
-            shapes.append(outline)
+    with metered(tree):
+        for node, t in drawn_shapes(tree):
+            try:
+                shapes.extend(_shape(node, t if to_out is None else to_out @ t, tolerance,
+                                     outline_strokes))
+            except LimitError as e:      # a budget of raster.limits: this shape left out
+                left_out(e)
+    return shapes
+
+
+def _shape(node, ot, tolerance, outline_strokes):
+    """The records of one drawn shape under ``ot`` (node to output units)."""
+    from raster.geometry.flattening import flatten
+    from raster.geometry.stroking import stroke
+    shapes = []
+    fill, fill_a = _paint_value(node.fill.paint if node.fill else None)
+    strk, strk_a = _paint_value(node.stroke.paint if node.stroke else None)
+    rec = {'id': node.id or None,
+           'fill': fill,
+           'fill_opacity': round(fill_a * node.fill.opacity, 6) if node.fill else None,
+           'fill_rule': node.fill.rule if node.fill else None,
+           'stroke': strk,
+           'stroke_opacity': round(strk_a * node.stroke.opacity, 6) if node.stroke else None,
+           'stroke_width': (node.stroke.width * ot.mean_scale()) if node.stroke else 0.0}
+    outline = None
+    if outline_strokes and node.stroke is not None:
+        op = stroke(node.path, node.stroke.style, transform=ot, tolerance=tolerance)
+        outline = dict(rec, fill=strk, fill_opacity=rec['stroke_opacity'],
+                       fill_rule='nonzero', stroke=None, stroke_opacity=None,
+                       stroke_width=0.0, polylines=_polylines(flatten(op, tolerance)))
+        rec.update(stroke=None, stroke_opacity=None, stroke_width=0.0)
+    if rec['fill'] is not None or rec['stroke'] is not None:
+        rec['polylines'] = _polylines(flatten(node.path, tolerance, transform=ot))
+        shapes.append(rec)
+    if outline is not None and outline['polylines']:
+        shapes.append(outline)
     return shapes
 
 

@@ -23,7 +23,7 @@ numpy), so that it stays fast.
 """
 
 from .errors import (RasterError, PathError, TransformError, CanvasError,  # noqa: F401
-                     LimitError, SVGError, FormatError, RasterIOError)
+                     LimitError, InputLimitError, SVGError, FormatError, RasterIOError)
 
 __version__ = '0.1.0'
 
@@ -55,18 +55,21 @@ _LAZY = {
     'svg2png': 'raster.compat',
     'FontOptions': 'raster.fonts',
     'FontError': 'raster.fonts',
+    'Limits': 'raster.limits',
 }
 
 
 def __getattr__(name):
+    import importlib
+    if name == 'limits':                # the budgets (raster.limits), a module
+        return importlib.import_module('raster.limits')
     mod = _LAZY.get(name)
     if mod is None:
         raise AttributeError('module raster has no attribute %r' % name)
-    import importlib
     value = getattr(importlib.import_module(mod), name)
     globals()[name] = value
     return value
 
 
 def __dir__():
-    return sorted(set(globals()) | set(_LAZY))
+    return sorted(set(globals()) | set(_LAZY) | {'limits'})

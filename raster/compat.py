@@ -30,9 +30,10 @@ Differences: ``url`` is a local path or a ``file:`` URL only -- raster
 never fetches from the network (a :class:`~raster.errors.RasterIOError`
 otherwise) -- and errors are :class:`~raster.errors.RasterError` s
 (CairoSVG raises ``ValueError``, ``TypeError`` or parser errors).  Internal
-XML entities are expanded with raster's usual limits whether or not
-``unsafe`` is set.  ``negate_colors`` and ``invert_images`` are not
-supported.
+XML entities are expanded with libxml2's amplification guard whether or
+not ``unsafe`` is set; ``unsafe`` lifts raster's budgets
+(:mod:`raster.limits`), as it lets CairoSVG read very large files.
+``negate_colors`` and ``invert_images`` are not supported.
 """
 
 from __future__ import annotations
@@ -114,7 +115,7 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
             parent_width: float | None = None, parent_height: float | None = None,
             scale: float = 1, unsafe: bool = False, background_color: str | None = None,
             output_width: float | None = None,
-            output_height: float | None = None, fonts=None) -> bytes | None:
+            output_height: float | None = None, fonts=None, limits=None) -> bytes | None:
     """Render an SVG document to PNG, with CairoSVG's ``svg2png`` arguments.
 
     Parameters
@@ -136,7 +137,9 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
     scale : float
         Factor of the natural size (ignored with an output size).
     unsafe : bool
-        Allow images from local files (default: ``data:`` URIs only).
+        Allow images from local files (default: ``data:`` URIs only) and,
+        as CairoSVG's ``unsafe`` allows very large files, lift every budget
+        of :mod:`raster.limits` unless ``limits`` is given.
     background_color : str, optional
         A CSS colour under the document (default transparent).
     output_width, output_height : float, optional
@@ -144,6 +147,9 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
     fonts : raster.FontOptions or dict, optional
         The fonts of text (default: the system's fonts), as for
         :func:`raster.render`; not a CairoSVG argument.
+    limits : raster.limits.Limits, mapping or 'unlimited', optional
+        The budgets for this call (default: those in force, or none with
+        ``unsafe``); raster's own addition.
 
     Returns
     -------
@@ -161,6 +167,16 @@ def svg2png(bytestring: bytes | str | None = None, *, url: str | os.PathLike | N
         A size or scale that is not positive and finite, or an output that
         rounds to 0 pixels or exceeds :mod:`raster.limits`.
     """
+    from . import limits as budgets
+    if limits is None and unsafe:
+        limits = budgets.UNLIMITED
+    with budgets.applied(limits):
+        return _svg2png(bytestring, url, file_obj, write_to, dpi, parent_width, parent_height,
+                        scale, unsafe, background_color, output_width, output_height, fonts)
+
+
+def _svg2png(bytestring, url, file_obj, write_to, dpi, parent_width, parent_height, scale,
+             unsafe, background_color, output_width, output_height, fonts):
     from .pixels.encode import encode
     from .svg import check_dpi, font_options, parse_background
     from .parser import build_tree

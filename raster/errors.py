@@ -7,7 +7,17 @@ one-line message and a non-zero exit status.
 A document that cannot be read (a missing or unreadable file, a URL, which
 raster never fetches) raises :class:`RasterIOError`, which is also an
 :class:`OSError`, so code written as ``except OSError`` keeps working.
+
+Other libraries' diagnostics become ours: :func:`log_warnings` turns what
+a library logs (fontTools on broken fonts) into one-line
+:class:`RasterWarning` s while raster's code runs.
 """
+
+import contextlib
+import contextvars
+import logging
+import threading
+import warnings
 
 
 class RasterError(Exception):
@@ -30,12 +40,18 @@ class CanvasError(RasterError, ValueError):
 
 
 class LimitError(RasterError):
-    """A safety limit was exceeded (too many points, ``use`` nesting, pixel
-    buffer size, ...)."""
+    """A budget of :mod:`raster.limits` was exceeded (too many points,
+    ``use`` nesting, pixel work, ...).  The message names the budget."""
 
 
 class SVGError(RasterError):
     """The document cannot be rendered: unreadable XML, not SVG, invalid size."""
+
+
+class InputLimitError(LimitError, SVGError):
+    """A document beyond a whole-document budget of :mod:`raster.limits`
+    (``max_input_bytes``, ``max_xml_elements``): nothing is rendered.
+    Both a :class:`LimitError` and an :class:`SVGError`."""
 
 
 class FormatError(RasterError, ValueError):
@@ -56,3 +72,70 @@ class RasterIOError(RasterError, OSError):
 class RasterWarning(UserWarning):
     """Something in the input was ignored or not supported (issued with
     :func:`warnings.warn`; the result is still usable)."""
+
+
+def one_line(msg: object) -> str:
+    """``msg`` as one line: whitespace runs (newlines included) become one
+    space."""
+    return ' '.join(str(msg).split())
+
+
+_CAPTURE: contextvars.ContextVar = contextvars.ContextVar('raster_log_capture', default=None)
+_LOCK = threading.Lock()
+_HANDLERS: dict = {}
+
+
+class _ToWarnings(logging.Handler):
+    """Turns the records of the contexts capturing them into warnings."""
+
+    def __init__(self):
+        super().__init__(logging.WARNING)
+        self.users = 0
+
+    def emit(self, record):
+        names = _CAPTURE.get()
+        if names is None or not any(record.name == n or record.name.startswith(n + '.')
+                                    for n in names):
+            return
+        try:
+            msg = record.getMessage()
+        except Exception:               # a broken format: the template
+            msg = str(record.msg)
+        warnings.warn('%s: %s' % (record.name.split('.')[0], one_line(msg)), RasterWarning,
+                      stacklevel=2)
+
+
+@contextlib.contextmanager
+def log_warnings(name: str = 'fontTools'):
+    """While the block runs, what the logger ``name`` (and its children)
+    logs at WARNING or above in this context becomes a one-line
+    :class:`RasterWarning` ``'<library>: <message>'`` instead of raw lines
+    on stderr.
+
+    A handler is attached to the logger for the block only (shared by
+    nested and concurrent blocks); records of other threads and tasks pass
+    it untouched, and records still propagate to the application's own
+    handlers, if it configured any.  The text converter wraps font loading
+    and layout in it; font code may call it directly::
+
+        with log_warnings('fontTools'):
+            font = TTFont(path)
+    """
+    logger = logging.getLogger(name)
+    with _LOCK:
+        h = _HANDLERS.get(name)
+        if h is None:
+            h = _HANDLERS[name] = _ToWarnings()
+        if h.users == 0:
+            logger.addHandler(h)
+        h.users += 1
+    prev = _CAPTURE.get()
+    token = _CAPTURE.set((prev or ()) + (name,))
+    try:
+        yield
+    finally:
+        _CAPTURE.reset(token)
+        with _LOCK:
+            h.users -= 1
+            if h.users == 0:
+                logger.removeHandler(h)

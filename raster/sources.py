@@ -29,10 +29,16 @@ from __future__ import annotations
 
 import os
 import re
+import stat
+from typing import Iterator
 
-from .errors import RasterIOError, SVGError
+from .errors import InputLimitError, RasterIOError
 
-__all__ = ['url_scheme', 'local_path', 'read_file', 'read_stream']
+__all__ = ['url_scheme', 'local_path', 'read_file', 'read_stream', 'file_chunks',
+           'stream_chunks', 'too_large', 'CHUNK']
+
+#: Bytes read at a time by :func:`file_chunks` and :func:`stream_chunks`.
+CHUNK = 1 << 16
 
 # A URL scheme has two or more characters, so ``C:\\x.svg`` is a path.
 _SCHEME = re.compile(r'([A-Za-z][A-Za-z0-9+.\-]+):')
@@ -105,36 +111,110 @@ def _io_error(e: OSError, path: str) -> RasterIOError:
                          e.filename if e.filename is not None else path)
 
 
-def read_file(path: str | os.PathLike, max_bytes: int) -> bytes:
+def too_large(max_bytes: float, what: str = 'document') -> InputLimitError:
+    """The error for input beyond ``max_bytes``
+    (:attr:`raster.limits.Limits.max_input_bytes`)."""
+    return InputLimitError('%s is larger than %d bytes (max_input_bytes)' % (what, max_bytes))
+
+
+def _read_size(max_bytes) -> int:
+    """What to ask ``read()`` for: ``max_bytes + 1`` (room to see "too
+    big"), or everything (-1) without a limit."""
+    return -1 if max_bytes == float('inf') else int(max_bytes) + 1
+
+
+def read_file(path: str | os.PathLike, max_bytes: float) -> bytes:
     """Bytes of a local file (or ``file:`` URL), at most ``max_bytes``.
+
+    A regular file's size is checked before anything is read; a device or a
+    FIFO is read up to ``max_bytes + 1`` bytes.
 
     Raises
     ------
     raster.errors.RasterIOError
         A URL, or the file cannot be opened or read (missing, a directory,
         no permission ...).
-    raster.errors.SVGError
-        The file is larger than ``max_bytes``.
+    raster.errors.InputLimitError
+        The file is larger than ``max_bytes`` (an :class:`~raster.errors.SVGError`).
+    """
+    return b''.join(file_chunks(path, max_bytes, _read_size(max_bytes)))
+
+
+def file_chunks(path: str | os.PathLike, max_bytes: float, chunk: int = CHUNK) -> Iterator[bytes]:
+    """The bytes of a local file (or ``file:`` URL) in pieces of at most
+    ``chunk`` bytes (-1: one piece), read as they are consumed, at most
+    ``max_bytes`` in all; a regular file larger than that fails before
+    anything is read.
+
+    Raises
+    ------
+    raster.errors.RasterIOError
+        A URL, or the file cannot be opened or read.
+    raster.errors.InputLimitError
+        More than ``max_bytes`` bytes.
     """
     p = local_path(path)
     try:
-        with open(p, 'rb') as f:
-            data = f.read(max_bytes + 1)
+        f = open(p, 'rb')
     except OSError as e:
         raise _io_error(e, p) from e
-    if len(data) > max_bytes:
-        raise SVGError('document is larger than %d bytes' % max_bytes)
-    return data
+    with f:
+        try:
+            st = os.fstat(f.fileno())
+        except OSError as e:
+            raise _io_error(e, p) from e
+        if stat.S_ISREG(st.st_mode) and st.st_size > max_bytes:
+            raise too_large(max_bytes)
+        total = 0
+        while True:
+            try:
+                data = f.read(chunk)
+            except OSError as e:
+                raise _io_error(e, p) from e
+            if not data:
+                return
+            total += len(data)
+            if total > max_bytes:
+                raise too_large(max_bytes)
+            yield data
+            if chunk < 0:
+                return
 
 
-def read_stream(fileobj, max_bytes: int) -> bytes | str:
+def read_stream(fileobj, max_bytes: float) -> bytes | str:
     """What ``fileobj.read(max_bytes + 1)`` returns, with a failing read (a
     closed file, an operating-system error) raised as
     :class:`~raster.errors.RasterIOError`."""
+    return _read(fileobj, _read_size(max_bytes))
+
+
+def _read(fileobj, n):
     name = getattr(fileobj, 'name', None)
     try:
-        return fileobj.read(max_bytes + 1)
+        return fileobj.read(n)
     except OSError as e:
         raise _io_error(e, name if isinstance(name, str) else None) from e
     except ValueError as e:              # I/O operation on closed file
         raise RasterIOError('cannot read the file object: %s' % _short(str(e))) from e
+
+
+def stream_chunks(fileobj, max_bytes: float, chunk: int = CHUNK) -> Iterator[bytes | str]:
+    """What a file object's ``read(chunk)`` returns, piece after piece,
+    at most ``max_bytes`` in all (a ``str`` piece counts its characters).
+
+    Raises
+    ------
+    raster.errors.RasterIOError
+        A failing read.
+    raster.errors.InputLimitError
+        More than ``max_bytes``.
+    """
+    total = 0
+    while True:
+        data = _read(fileobj, chunk)
+        if not data:
+            return
+        total += len(data)
+        if total > max_bytes:
+            raise too_large(max_bytes)
+        yield data

@@ -18,6 +18,11 @@ document's own directory).
 
 Output sizes are in device pixels; the document's natural size is its
 ``width``/``height`` in CSS px (96 per inch at ``dpi=96``).
+
+Every function takes ``limits``: the budgets of :mod:`raster.limits` for
+this call (a :class:`~raster.limits.Limits`, a mapping such as
+``{'max_xml_text_bytes': 50_000_000}``, or ``'unlimited'`` for trusted
+input); by default the budgets in force (:func:`raster.limits.current`).
 """
 
 import math
@@ -27,8 +32,10 @@ from typing import BinaryIO, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
+from . import limits as _limits
 from .errors import SVGError
 from .fonts import FontOptions
+from .limits import LimitsSpec
 from .parser import Options, build_tree, load_document
 from .parser.values import CURRENT_COLOR, parse_color
 from .renderer import DEFAULT_TOLERANCE, render_tree
@@ -75,7 +82,8 @@ def _source_and_base(source):
 
 def load_svg(source: Source, *, dpi: float = 96, fonts: Optional[FontOptions] = None,
              resources_dir: Optional[str] = None, base_dir: Optional[str] = None,
-             font_dirs: Optional[Sequence[str]] = None, **options) -> Tree:
+             font_dirs: Optional[Sequence[str]] = None, limits: LimitsSpec = None,
+             **options) -> Tree:
     """Load and resolve an SVG document.
 
     Parameters
@@ -93,6 +101,8 @@ def load_svg(source: Source, *, dpi: float = 96, fonts: Optional[FontOptions] = 
     base_dir : str or None
         Directory relative references resolve against (default: the
         source file's directory).
+    limits : raster.limits.Limits, mapping, 'unlimited' or None
+        Budgets for this call (see the module docstring).
     **options
         Further fields of :class:`raster.parser.Options` (``font_size``,
         ``languages``, ``tolerance``, ``max_elements``, ``max_use_depth``,
@@ -107,10 +117,24 @@ def load_svg(source: Source, *, dpi: float = 96, fonts: Optional[FontOptions] = 
     ------
     raster.errors.SVGError
         Unreadable XML, not an SVG document, invalid size or ``dpi``.
+    raster.errors.InputLimitError
+        A document beyond ``max_input_bytes`` or ``max_xml_elements``
+        (also an :class:`~raster.errors.SVGError`).
     raster.errors.RasterIOError
         The file cannot be read, or ``source`` is a URL other than
         ``file:`` (also an :class:`OSError`).
+
+    Warns
+    -----
+    raster.errors.RasterWarning
+        Content ignored or unsupported, or left out over a budget (once
+        per kind).
     """
+    with _limits.applied(limits):
+        return _load_svg(source, dpi, fonts, font_dirs, resources_dir, base_dir, options)
+
+
+def _load_svg(source, dpi, fonts, font_dirs, resources_dir, base_dir, options):
     d = check_dpi(dpi)
     fopts = font_options(fonts, font_dirs)
     src, sbase = _source_and_base(source)
@@ -176,7 +200,8 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
            resources_dir: Optional[str] = None, premultiplied: bool = False,
            tolerance: float = DEFAULT_TOLERANCE, crop: bool = False,
            font_dirs: Optional[Sequence[str]] = None,
-           languages: Sequence[str] = ('en',)) -> np.ndarray:
+           languages: Sequence[str] = ('en',), limits: LimitsSpec = None,
+           window: Optional[Tuple[int, int, int, int]] = None) -> np.ndarray:
     """Render an SVG document to an RGBA array.
 
     Parameters
@@ -208,11 +233,21 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
     languages : sequence of str
         The user's languages for ``systemLanguage`` (language tags; see
         :class:`raster.parser.Options`).
+    window : (x0, y0, x1, y1) ints or None
+        Only this rectangle of the output (columns x0 to x1 - 1, rows y0
+        to y1 - 1), equal to that part of the whole image; the whole output
+        may then exceed the ``max_pixels`` budget (see
+        :func:`raster.renderer.render_tree`).  To render many windows of
+        one document, load it once (:func:`load_svg`) and call
+        :func:`raster.renderer.render_tree` with ``window`` on the tree.
+    limits : raster.limits.Limits, mapping, 'unlimited' or None
+        Budgets for this call (see the module docstring): an element over
+        one is left out with a warning.
 
     Returns
     -------
     (H, W, 4) uint8 ndarray
-        RGBA, row 0 at the top.
+        RGBA, row 0 at the top (``(y1 - y0, x1 - x0, 4)`` with a window).
 
     Raises
     ------
@@ -220,7 +255,9 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
         Bad document, unknown ``id`` or bad background colour.
     raster.errors.CanvasError
         Zero, negative or non-finite size or zoom, or an output above
-        :data:`raster.limits.MAX_PIXELS` pixels.
+        ``max_pixels`` (:mod:`raster.limits`).
+    raster.errors.InputLimitError
+        A document beyond ``max_input_bytes`` or ``max_xml_elements``.
 
     >>> img = render(b'<svg xmlns="http://www.w3.org/2000/svg" width="4" height="2">'
     ...              b'<rect width="2" height="2" fill="blue"/></svg>')
@@ -228,11 +265,13 @@ def render(source: Source, width: Optional[int] = None, height: Optional[int] = 
     ((2, 4, 4), [0, 0, 255, 255], [0, 0, 0, 0])
     """
     bg = parse_background(background)
-    tree = load_svg(source, dpi=dpi, fonts=font_options(fonts, font_dirs),
-                    resources_dir=resources_dir,
-                    languages=tuple(languages))
-    canvas = render_tree(tree, width=width, height=height, zoom=zoom, background=bg,
-                         node_id=id, tolerance=tolerance, crop=crop, dtype=np.uint8)
+    with _limits.applied(limits):
+        tree = load_svg(source, dpi=dpi, fonts=font_options(fonts, font_dirs),
+                        resources_dir=resources_dir,
+                        languages=tuple(languages))
+        canvas = render_tree(tree, width=width, height=height, zoom=zoom, background=bg,
+                             node_id=id, tolerance=tolerance, crop=crop, dtype=np.uint8,
+                             window=window)
     return canvas.to_rgba8(premultiplied=bool(premultiplied))
 
 

@@ -7,6 +7,8 @@
   starts its own worker processes).  Under pytest-xdist (``-n``) it is
   moved to the front of the run, so that the longest test overlaps the
   others instead of finishing alone at the end; serially it stays last.
+* The ``fuzz`` marker names the long fuzz runs of tests/fuzz; they are
+  deselected unless ``-m`` names them (``pytest -m fuzz tests/fuzz``).
 * ``pillow_registry``: a fixture restoring Pillow's plugin tables.
 * The persistent font-scan cache lives in a temporary folder for the whole
   run (``RASTER_CACHE_DIR``, set before anything scans fonts), never in
@@ -36,9 +38,17 @@ def pytest_configure(config):
     config.addinivalue_line(
         'markers', 'conformance: the full resvg-suite conformance ratchet (slow, starts its own '
         'worker processes; deselect with -m "not conformance")')
+    config.addinivalue_line(
+        'markers', 'fuzz: the long fuzz runs (tests/fuzz), run only when selected: -m fuzz')
 
 
 def pytest_collection_modifyitems(config, items):
+    # the long fuzz runs are opt-in: left out unless -m names them
+    if 'fuzz' not in (config.option.markexpr or ''):
+        keep = [it for it in items if it.get_closest_marker('fuzz') is None]
+        if len(keep) != len(items):
+            config.hook.pytest_deselected(items=[it for it in items if it not in keep])
+            items[:] = keep
     if getattr(config.option, 'numprocesses', None):
         # a stable sort: every xdist worker must see the same order
         items.sort(key=lambda item: item.get_closest_marker('conformance') is None)

@@ -52,3 +52,24 @@ def test_output_format_commands_run(scratch):
         if name.startswith('badge'):
             formats[name] = Image.open(scratch / name).format
     assert set(formats.values()) == {'PNG', 'JPEG', 'WEBP', 'TIFF', 'BMP'}
+
+
+def test_limit_commands_run(scratch):
+    """The command lines of "Limits" run (the budget options exist)."""
+    lines = [ln.strip() for ln in section('Limits').splitlines()
+             if ln.startswith(('    rasterize ', '    svg-bbox '))]
+    assert len(lines) >= 3
+    env = dict(os.environ, PATH=sysconfig.get_path('scripts') + os.pathsep + os.environ['PATH'])
+    for ln in lines:
+        p = subprocess.run(['bash', '-c', ln], cwd=scratch, env=env, capture_output=True,
+                           text=True, timeout=120)
+        assert p.returncode == 0 and p.stderr == '', (ln, p.stderr)
+
+
+def test_limits_table_matches_the_library():
+    from raster.limits import DEFAULT, Limits
+    table = section('Limits')
+    for name in Limits.names():
+        assert '| `%s` |' % name in table, name
+    assert len(re.findall(r'^\| `max_', table, re.M)) == len(Limits.names())
+    assert DEFAULT.max_elements == 100_000 and '| `max_elements` | 100,000 |' in table

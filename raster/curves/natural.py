@@ -117,7 +117,10 @@ class _Cubic:
 
     def __init__(self, x, y, end_slopes):
         self.x, self.y = x, y
-        self.m = second_derivatives(x, y, end_slopes)
+        with np.errstate(over='ignore', invalid='ignore', divide='ignore'):
+            self.m = second_derivatives(x, y, end_slopes)
+        if not np.all(np.isfinite(self.m)):
+            raise CurveError('the spline overflows: samples or end slopes too large')
 
     def eval(self, xs, order=0):
         x, y, m = self.x, self.y, self.m

@@ -130,6 +130,32 @@ def _check_tolerance(tolerance):
     return tol
 
 
+def estimate_points(ctrl, tolerance):
+    """Estimated polyline points of :func:`flatten_beziers` for curves
+    ``ctrl`` ((S, n+1, D) float64) at ``tolerance`` (a number, or (S,)
+    one per curve): Wang's bound, the
+    pieces of a uniform subdivision that is certainly within tolerance,
+    ``ceil(sqrt(n (n-1) M / (8 tolerance)))`` per curve with ``M`` the
+    largest second difference of its control points, plus one point per
+    curve.  Adaptive subdivision needs about half as many; the estimate
+    costs one pass over the control points, so a budget can refuse a
+    hopeless flattening before any work (:mod:`raster.limits`).
+
+    >>> estimate_points(np.array([[[0, 0], [50, 100], [100, 0]]], float), 0.25)
+    16.0
+    """
+    P = np.asarray(ctrl, np.float64)
+    S, n1 = P.shape[0], P.shape[1]
+    n = n1 - 1
+    if S == 0 or n < 2:
+        return float(S * max(n, 1) + S)
+    d2 = P[:, 2:] - 2.0 * P[:, 1:-1] + P[:, :-2]
+    m = np.sqrt(np.einsum('sij,sij->si', d2, d2).max(axis=1))
+    with np.errstate(over='ignore', invalid='ignore'):
+        pieces = np.ceil(np.sqrt(m * (n * (n - 1) / 8.0) / np.asarray(tolerance, np.float64)))
+    return float(np.maximum(pieces, 1.0).sum()) + S
+
+
 def _deviation(Q):
     """Rigorous bound of the Hausdorff distance between Bezier pieces and
     their chord segments.
@@ -477,15 +503,15 @@ def _flatten(ctrl, tolerance, straddle=False, smooth=None):
         raise PathError('straddled polylines need planar curves (D = 2), got D = %d' % D)
     if S == 0:
         return np.zeros((0, D)), np.zeros(0, np.int64)
-    if 2 * S > limits.MAX_FLATTEN_POINTS:
-        raise LimitError('flattening would produce more than %d points'
-                         % limits.MAX_FLATTEN_POINTS)
     n = n1 - 1
     scale = np.abs(P).reshape(S, -1).max(axis=1)
     if scale.max() > _HUGE:
         raise LimitError('control points beyond %g cannot be flattened '
                          '(squared distances would overflow)' % _HUGE)
     floor = _NOISE * scale                            # per-curve noise level
+    # the work budget, before any subdivision (raster.limits)
+    limits.spend_points(estimate_points(P, np.maximum(tol, floor)), 'flattening')
+    max_points = limits.current().max_flatten_points
 
     # active pieces: curve index and parameter interval
     PT = np.ascontiguousarray(P.transpose(1, 2, 0))   # (n+1, D, S)
@@ -529,9 +555,10 @@ def _flatten(ctrl, tolerance, straddle=False, smooth=None):
             # shorter and may be allowed less than the piece)
             kf, cdf = _plan_split(Q[:, :, bad], e[bad], tol)
             total = float(kf.sum())
-            if n_acc + n_new + len(cur) - lo + total + S > limits.MAX_FLATTEN_POINTS:
+            if n_acc + n_new + len(cur) - lo + total + S > max_points:
                 raise LimitError('flattening would produce more than %d points '
-                                 '(tolerance %g too small?)' % (limits.MAX_FLATTEN_POINTS, tol))
+                                 '(max_flatten_points; tolerance %g too small?)'
+                                 % (max_points, tol))
             k = kf.astype(np.int64)
             ba, bb = ca[bad], cb[bad]
             rep, s_end = _split_points(k, cdf)
@@ -776,8 +803,9 @@ def flatten(path: Path, tolerance: float = DEFAULT_TOLERANCE,
     ctrl = seg.ctrl
     cstart = seg.contour_start
     if not t.is_identity:
-        ctrl = t.apply(ctrl)
-        cstart = t.apply(cstart)
+        with np.errstate(over='ignore', invalid='ignore'):     # checked just below
+            ctrl = t.apply(ctrl)
+            cstart = t.apply(cstart)
         if not (np.all(np.isfinite(ctrl)) and np.all(np.isfinite(cstart))):
             raise PathError('transformed path has non-finite coordinates')
     out, starts, keep_c, _ = _assemble(ctrl, cstart, seg.degree, seg.contour,
@@ -795,6 +823,9 @@ def _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol, 
     seg_contour = contour
     S = len(ctrl)
     C = len(cstart)
+    if S:
+        # device coordinates (raster.limits.max_coord), before any work
+        limits.check_coord(max(float(np.abs(ctrl).max()), float(np.abs(cstart).max())))
     deg = degree.astype(np.int64)
     joint = nxt = None
     smooth = np.zeros((S, 2), bool)
@@ -827,9 +858,7 @@ def _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol, 
     item_n[seg_item] = seg_n
     item_off = np.cumsum(item_n) - item_n
     total = int(item_n.sum())
-    if total > limits.MAX_FLATTEN_POINTS:
-        raise LimitError('flattening would produce more than %d points'
-                         % limits.MAX_FLATTEN_POINTS)
+    limits.check_points(total, 'flattening')
     out = np.empty((total, 2))
     starts = item_off[start_item][keep_c]
     out[starts] = cstart[keep_c]
@@ -951,7 +980,8 @@ def flatten_joined(paths: Sequence[Path], transforms: Optional[Sequence[AffineLi
         def apply(pts, owner):
             out = pts.copy()
             move = np.flatnonzero(~ident[owner])
-            out[move] = apply_each(M[owner[move]], pts[move])
+            with np.errstate(over='ignore', invalid='ignore'):   # checked below
+                out[move] = apply_each(M[owner[move]], pts[move])
             return out
         ctrl = apply(ctrl, c_path[seg.contour])
         cstart = apply(cstart, c_path)

@@ -101,7 +101,7 @@ from typing import Any, List, NamedTuple, Optional, Sequence, Tuple
 import numpy as np
 
 from ..errors import LimitError, RasterError
-from ..limits import MAX_COORD, MAX_FLATTEN_POINTS
+from .. import limits
 from .bezier import evaluate
 from .flattening import flatten_beziers
 from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
@@ -379,9 +379,12 @@ def _ranges(counts):
 
 
 def _check_size(n, what):
-    if n > MAX_FLATTEN_POINTS:
-        raise LimitError('stroke needs %.3g %s, more than the limit of %d'
-                         % (n, what, MAX_FLATTEN_POINTS))
+    """The budget of :mod:`raster.limits` for ``n`` points (or dashes)
+    of a stroke, before they are made."""
+    lim = limits.current().max_flatten_points
+    if n > lim:
+        raise LimitError('stroke needs %.3g %s, more than max_flatten_points %d'
+                         % (n, what, lim))
 
 
 def _refine_ends(ctrl, points, counts, r, tol, ends=None):
@@ -447,7 +450,8 @@ def _refine_ends(ctrl, points, counts, r, tol, ends=None):
             ta[todo[ok]] = t[ok]
             todo, t = todo[~ok], 0.5 * t[~ok]
         need = ta > 0
-        rho = 1.0 + np.minimum(1.0, c1 / np.maximum(r * ang, 1e-300))
+        with np.errstate(over='ignore'):             # a huge ratio is clamped to 1
+            rho = 1.0 + np.minimum(1.0, c1 / np.maximum(r * ang, 1e-300))
         need &= rho > 1.0
         lr = np.log(np.where(need, rho, 2.0))
         J = np.where(need, np.minimum(64, np.ceil(np.log(np.maximum(r * ang / tol, 1.0)) / lr) + 1),
@@ -762,8 +766,10 @@ def _dash(lines, pattern, offset):
     off = float(offset) % period
     if not 0 <= off < period:
         off = 0.0
-    K = np.floor((L + off) / period).astype(np.int64) + 1
-    _check_size(float(K.sum()) * len(on0), 'dashes')
+    with np.errstate(over='ignore', invalid='ignore'):
+        Kf = np.floor((L + off) / period) + 1
+    _check_size(float(Kf.sum()) * len(on0), 'dashes')      # before the int cast (huge)
+    K = Kf.astype(np.int64)
     kc, kk = _ranges(K)
     a = (kk * period - off)[:, None] + on0[None, :]
     b = (kk * period - off)[:, None] + on1[None, :]
@@ -1245,7 +1251,7 @@ def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: Affine
         Invalid style values or tolerance, or ``path`` not a Path.
     LimitError
         When the outline would need more than
-        :data:`raster.limits.MAX_FLATTEN_POINTS` points or dashes.
+        ``max_flatten_points`` (:mod:`raster.limits`) points or dashes.
 
     Examples
     --------
@@ -1279,6 +1285,9 @@ def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: Affine
         raise LimitError('transform scale is too large (%r)' % (t,))
     if style.width == 0 or len(path.verbs) == 0 or scale == 0:
         return Path.empty()
+    with np.errstate(over='ignore', invalid='ignore'):         # checked in _check_early
+        dev = path.points if t.is_identity else t.apply(path.points)
+    _check_early(dev, style.width * scale)
     pts, counts, _ = _geometry(path, style, tol / scale, straddle=straddle)
     if not t.is_identity:
         pts = t.apply(pts)
@@ -1351,10 +1360,25 @@ def _eps_per_path(lines, cp, npaths):
 
 def _check_device(pts):
     """Outline points after the transform: finite and within
-    :data:`raster.limits.MAX_COORD` (as scan conversion requires), else
+    ``max_coord`` (:mod:`raster.limits`) (as scan conversion requires), else
     :class:`~raster.errors.LimitError`."""
-    if len(pts) and not (np.all(np.isfinite(pts)) and np.abs(pts).max() <= MAX_COORD):
-        raise LimitError('stroke outline coordinates exceed MAX_COORD %g' % MAX_COORD)
+    if len(pts) and not (np.all(np.isfinite(pts))
+                         and np.abs(pts).max() <= limits.current().max_coord):
+        raise LimitError('stroke outline coordinates exceed max_coord %g'
+                         % limits.current().max_coord)
+
+
+def _check_early(pts, width):
+    """Before any work: the path's device points ``pts`` within
+    ``max_coord``, and a stroke ``width`` (device px) that cannot put the
+    outline beyond it for certain (every path point has outline points
+    ``width / 2`` away, one coordinate at least ``width / (2 sqrt 2)``
+    off)."""
+    _check_device(pts)
+    if len(pts):
+        lim = limits.current().max_coord
+        if 0.5 * width / math.sqrt(2.0) - float(np.abs(pts).max()) > lim:
+            raise LimitError('stroke outline coordinates exceed max_coord %g' % lim)
 
 
 def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
@@ -1402,7 +1426,7 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
         of transforms different from the number of paths.
     LimitError
         When the outlines together would need more than
-        :data:`raster.limits.MAX_FLATTEN_POINTS` points or dashes, or an
+        ``max_flatten_points`` (:mod:`raster.limits`) points or dashes, or an
         outline overflows.
 
     Examples
@@ -1458,6 +1482,13 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
     vpath = np.repeat(np.arange(len(rep)), lens[rep])
     cpath = vpath[big.verbs == MOVE]
     tol_u = (tol / scales[rep])[cpath]
+    mu = m[use]
+    # device coordinates of the paths themselves, before any work
+    upts = [paths[i].points for i in use.tolist()]
+    vp = np.repeat(np.arange(len(use)), [len(q) for q in upts])
+    with np.errstate(over='ignore', invalid='ignore'):         # checked in _check_early
+        dev = apply_each(mu[vp], np.concatenate(upts))
+    _check_early(dev, style.width * float(scales[use].max()))
     pts, rcounts, owner = _geometry(big, style, tol_u, cpath, len(rep), straddle)
     # polygons come out path by path
     ppath = np.repeat(owner, rcounts)
@@ -1469,7 +1500,6 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
         pts = pts[_starts(npts)[inv][ipath] + loc]
     else:
         ipath = ppath
-    mu = m[use]
     if len(ipath) and not np.all(mu == (1.0, 0.0, 0.0, 1.0, 0.0, 0.0)):
         pts = apply_each(mu[ipath], pts)
     _check_device(pts)

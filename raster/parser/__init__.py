@@ -30,6 +30,9 @@ import dataclasses
 import math
 from typing import Optional
 
+import numpy as np
+
+from .. import limits
 from ..errors import SVGError
 from ..tree import Tree
 from .context import Cache, Options
@@ -112,6 +115,12 @@ def build_tree(root, options: Optional[Options] = None, image_cache: Optional[di
         if 'languages' in fields:
             fields['languages'] = tuple(fields['languages'])
         options = dataclasses.replace(options, **fields)
+    lim = limits.current()
+    if options.max_elements is None or options.max_use_depth is None:
+        me, md = options.max_elements, options.max_use_depth
+        options = dataclasses.replace(options,
+                                      max_elements=lim.max_elements if me is None else me,
+                                      max_use_depth=lim.max_use_depth if md is None else md)
     tag = root.tag
     if not (isinstance(tag, str) and tag == '{http://www.w3.org/2000/svg}svg'):
         raise SVGError('not an SVG document: root element is not <svg>')
@@ -120,8 +129,15 @@ def build_tree(root, options: Optional[Options] = None, image_cache: Optional[di
         raise SVGError('tolerance must be a positive number, got %r' % (tol,))
     # (the library leaves Python's garbage collector as the application set
     # it; the commands pause it while they run: raster_cli._common.run)
-    cache = _document_cache(root, options, {} if image_cache is None else image_cache)
-    return convert_root(root, cache)
+    # hostile numbers overflow in transforms and boxes: the results are
+    # checked where they are used (State.check, finite paths), not warned about
+    with np.errstate(over='ignore', invalid='ignore', divide='ignore'):
+        cache = _document_cache(root, options, {} if image_cache is None else image_cache, lim)
+        tree = convert_root(root, cache)
+    deep = cache.memo.get('too-deep')
+    if deep:
+        cache.warn('nesting', 'element <%s> nested too deeply: not rendered' % deep['tag'])
+    return tree
 
 
 def _import_loader(options):
@@ -158,9 +174,9 @@ def _import_loader(options):
     return loader(None, ())
 
 
-def _document_cache(root, options, image_cache):
+def _document_cache(root, options, image_cache, lim):
     """The :class:`Cache` of a loaded document: its cascade, ids and
-    conditional elements."""
+    conditional elements, under the budgets ``lim``."""
     found = {'id': [], 'requiredExtensions': [], 'systemLanguage': []}
     styles = declared_styles(root, options.extra_css, found, _import_loader(options))
     by_id = {}
@@ -170,8 +186,8 @@ def _document_cache(root, options, image_cache):
             by_id[i] = el
 
     def open_document(other_root, other_options):
-        return _document_cache(other_root, other_options, image_cache)
+        return _document_cache(other_root, other_options, image_cache, lim)
     return Cache(options=options, root=root, styles=styles, by_id=by_id,
                  conditional=set(found['requiredExtensions']) | set(found['systemLanguage']),
                  converters=CONVERTERS, parse_nested=build_tree, image_cache=image_cache,
-                 open_document=open_document)
+                 open_document=open_document, limits=lim)

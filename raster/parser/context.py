@@ -18,7 +18,7 @@ import warnings
 from dataclasses import dataclass, field
 from typing import Optional, Tuple
 
-from .. import limits
+from ..limits import Limits, current as current_limits
 from ..errors import RasterWarning, SVGError, TransformError
 from ..fonts import FontOptions
 from ..geometry.transform import Affine
@@ -99,10 +99,13 @@ class Options:
         become cubics a hundred times finer than this divided by the
         element's scale (:data:`raster.parser.shapes.ARC_SAFETY`), so a 100x
         zoom stays within it.
-    max_elements : int
-        Most nodes to build (a ``use`` bomb stops there, with a warning).
-    max_use_depth : int
-        Deepest ``use`` nesting followed.
+    max_elements : int or None
+        Most nodes to build (a ``use`` bomb stops there, with a warning);
+        None: ``max_elements`` of :func:`raster.limits.current` when the
+        tree is built.
+    max_use_depth : int or None
+        Deepest ``use`` nesting followed (None: from
+        :func:`raster.limits.current`).
     extra_css : str
         A user stylesheet applied after the document's own.
     base_dir : str or None
@@ -122,8 +125,8 @@ class Options:
     font_size: float = 12.0
     languages: Tuple[str, ...] = ('en',)
     tolerance: float = 0.1
-    max_elements: int = limits.MAX_ELEMENTS
-    max_use_depth: int = limits.MAX_USE_DEPTH
+    max_elements: Optional[int] = None
+    max_use_depth: Optional[int] = None
     extra_css: str = ''
     base_dir: Optional[str] = None
     allow_files_under: Optional[str] = None
@@ -240,6 +243,13 @@ class Cache:
     image_cache : dict
         Decoded images by resolved reference, shared with nested SVG
         images (see :mod:`raster.parser.imageload`).
+    limits : raster.limits.Limits
+        The budgets of this document (see :meth:`spend`).
+    spent : dict
+        What the document has used of its budgets, by kind.
+    prepaid : int
+        Depth of ``use`` copies being converted whose layers were taken
+        from the budget ahead (see :func:`raster.parser.refs.instance_size`).
     open_document : callable
         ``open_document(root, options)`` -> the Cache of another document
         whose elements this one references (``use href="lib.svg#id"``;
@@ -259,6 +269,9 @@ class Cache:
     active: set = field(default_factory=set)
     memo: dict = field(default_factory=dict)
     image_cache: dict = field(default_factory=dict)
+    limits: Limits = field(default_factory=current_limits)
+    spent: dict = field(default_factory=dict)
+    prepaid: int = 0
     open_document: object = None
 
     def table(self, name):
@@ -275,15 +288,30 @@ class Cache:
             self.warned.add(kind)
             warnings.warn(msg, RasterWarning, stacklevel=4)
 
-    def tick(self):
-        """Count one node; False (with a warning) once the limit is hit."""
-        self.count += 1
+    def tick(self, n=1):
+        """Count ``n`` nodes (default one); False (with a warning) once the
+        limit is hit."""
+        self.count += n
         if self.count > self.options.max_elements:
             if not self.stopped:
                 self.stopped = True
                 self.warn('limit', 'document needs more than %d nodes; the rest is not '
                           'rendered' % self.options.max_elements)
             return False
+        return True
+
+    def spend(self, kind, amount, what):
+        """Take ``amount`` of the document's budget ``max_<kind>``
+        (:mod:`raster.limits`, e.g. ``'glyphs'``) for ``what``; False (with
+        one warning per kind) when that would go over it: ``what`` is then
+        left out."""
+        used = self.spent.get(kind, 0) + amount
+        budget = getattr(self.limits, 'max_' + kind)
+        if used > budget:
+            self.warn(('budget', kind), '%s not rendered: the document needs more than %d %s '
+                      '(max_%s)' % (what, budget, kind, kind))
+            return False
+        self.spent[kind] = used
         return True
 
     def note_id(self, el, node):

@@ -9,8 +9,10 @@ namespace and elements that are never rendered directly (``defs``,
 gradients, ``clipPath`` ...) are skipped; ``display: none`` and failed
 conditional processing attributes hide the element and its content; each
 element counts against :attr:`Options.max_elements`; an element whose
-numbers overflow when combined (``1e308`` scales ...) is left out with one
-warning while the rest of the document is converted.
+numbers overflow when combined (``1e308`` scales ...), that is over a
+budget of :mod:`raster.limits` or nested deeper than Python's stack allows
+is left out with one warning while the rest of the document is
+converted.
 """
 
 from ..errors import RasterError
@@ -54,3 +56,9 @@ def convert(el, state, cache, parent):
         # the rest of the document still renders
         del parent[mark:]
         cache.warn('element-error', 'element <%s> not rendered: %s' % (tag[_PLEN:], e))
+    except RecursionError:
+        # nesting deeper than Python's stack allows: this element is left
+        # out; the warning is issued once the stack has unwound (see
+        # raster.parser.build_tree), a warning here could overflow again
+        del parent[mark:]
+        cache.table('too-deep').setdefault('tag', tag[_PLEN:])

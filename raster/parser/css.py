@@ -45,7 +45,11 @@ Cost: rules are indexed by the id, first class or type of their rightmost
 compound, so an element is only tested against rules that can match it; with
 no ``<style>`` at all only attributes are read.  Matching caches results per
 (element, compound) during a pass, so descendant and sibling combinators stay
-linear on deep trees.
+linear on deep trees.  The tests (candidate rules summed over the elements)
+are counted before any is made: beyond ``max_css_matches``
+(:mod:`raster.limits`) the stylesheets are ignored with one
+:class:`~raster.errors.RasterWarning` (presentation attributes and
+``style`` attributes still apply).
 
 >>> from lxml import etree
 >>> root = etree.fromstring(
@@ -58,9 +62,11 @@ linear on deep trees.
 
 import functools
 import re
+import warnings
 from typing import NamedTuple
 
-from ..errors import SVGError
+from .. import limits
+from ..errors import RasterWarning, SVGError
 from .properties import PROPERTIES, PRESENTATION_ATTRIBUTES
 
 __all__ = ['CSSError', 'Declaration', 'Rule', 'Selector', 'parse_stylesheet', 'font_face_rules',
@@ -1027,6 +1033,35 @@ def _sort_declarations(decls, props, normal, important):
     return important
 
 
+def _candidate_count(index, elements, limit):
+    """Selector tests the cascade would make (the candidate rules of every
+    element), counted without testing any; stops past ``limit``."""
+    uni, by_id, by_class, by_tag = (len(index.universal), index.by_id, index.by_class,
+                                    index.by_tag)
+    total = 0
+    for el in elements:
+        n = uni
+        tag = el.tag
+        t = by_tag.get(tag.rpartition('}')[2] if tag[0] == '{' else tag)
+        if t:
+            n += len(t)
+        if by_id:
+            i = el.get('id')
+            if i is not None and i in by_id:
+                n += len(by_id[i])
+        if by_class:
+            c = el.get('class')
+            if c is not None:
+                for name in set(c.split()):
+                    r = by_class.get(name)
+                    if r:
+                        n += len(r)
+        total += n
+        if total > limit:
+            break
+    return total
+
+
 def declared_styles(root, extra_css='', found=None, load=None):
     """The cascaded (declared) style of every element of a document.
 
@@ -1074,6 +1109,15 @@ def declared_styles(root, extra_css='', found=None, load=None):
     if extra_css:
         rules.extend(parse_stylesheet(extra_css, (rules[-1].order if rules else 0) + 1_000_000))
     index = _Index(rules) if rules else None
+    # the cost model (raster.limits max_css_matches): every element is
+    # tested against its candidate rules; count the tests before making any
+    limit = limits.current().max_css_matches
+    if index is not None and len(rules) * len(elements) > limit:
+        n = _candidate_count(index, elements, limit)
+        if n > limit:
+            warnings.warn('stylesheets ignored: the cascade needs more than %d selector tests '
+                          '(max_css_matches)' % limit, RasterWarning, stacklevel=3)
+            rules, index = [], None
     # one matching cache per selector with descendant/sibling combinators,
     # shared by all elements of this pass (see Selector.matches)
     memos = {id(r.selector): {} for r in rules if r.selector._backtracks}

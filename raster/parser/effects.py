@@ -76,6 +76,10 @@ def effects(el, own, state, cache, kids, t=None):
         if e is None:
             e = memo[o] = Effects(opacity=opacity(o))
         return e
+    # the layer budget (raster.limits max_layers); use copies pay ahead
+    if not cache.prepaid and not cache.spend('layers', 1, 'element with a clip path, mask, '
+                                             'filter or blend mode'):
+        return NOT_DRAWN
     # clip paths, masks and filters load with the first element that has one
     from .clipmask import EMPTY, build_mask, clip_property, cut_masks
     mask = None
@@ -126,6 +130,9 @@ def wrap(el, own, t, kids, state, cache, clip=None, keep=False):
         else:
             e = dataclasses.replace(e, clip=clip)
     kids, e = _fold_opacity(kids, e)
+    if (e.opacity < 1.0 and not e.composited and not cache.prepaid
+            and not cache.spend('layers', 1, 'group with opacity')):
+        return []                   # the layer budget (raster.limits max_layers)
     i = el.get('id') or ''
     if not keep and not i and t.is_identity and e.trivial:
         return kids

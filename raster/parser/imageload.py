@@ -17,7 +17,7 @@ Sources (``href``, else ``xlink:href``):
 
 Anything that cannot be used -- a refused or missing file, broken data, an
 unsupported format, an image above :data:`MAX_IMAGE_PIXELS` pixels or
-:data:`MAX_IMAGE_BYTES` bytes -- is skipped with one
+:data:`MAX_IMAGE_BYTES` bytes (budgets of :mod:`raster.limits`) -- is skipped with one
 :class:`raster.errors.RasterWarning`; no exception escapes.
 
 SVG images are parsed with :func:`raster.parser.document.load_document` and
@@ -50,6 +50,7 @@ import base64
 import dataclasses
 import io
 import os
+import re
 import urllib.parse
 import warnings
 from typing import NamedTuple, Optional
@@ -73,12 +74,24 @@ MAX_IMAGE_DEPTH = 4
 MAX_IMPORT_DEPTH = 8
 MAX_IMPORTS = 64
 
-#: Largest encoded image (file or decoded data URI) read, in bytes.
-MAX_IMAGE_BYTES = 64 * 1024 * 1024
+#: Default largest encoded image (file or decoded data URI) read, in bytes
+#: (:attr:`raster.limits.Limits.max_image_bytes`).
+MAX_IMAGE_BYTES = limits.DEFAULT.max_image_bytes
 
-#: Largest decoded raster image, in pixels (Pillow's decompression-bomb limit,
-#: at most :data:`raster.limits.MAX_PIXELS`).
-MAX_IMAGE_PIXELS = min(limits.MAX_PIXELS, 89_478_485)
+#: Default largest decoded raster image, in pixels (Pillow's
+#: decompression-bomb limit; :attr:`raster.limits.Limits.max_image_pixels`,
+#: at most ``max_pixels``).  Pillow's own ``Image.MAX_IMAGE_PIXELS`` still
+#: applies (raster never changes it).
+MAX_IMAGE_PIXELS = min(limits.DEFAULT.max_pixels, limits.DEFAULT.max_image_pixels)
+
+
+def _max_bytes():
+    return limits.current().max_image_bytes
+
+
+def _max_pixels():
+    lim = limits.current()
+    return min(lim.max_pixels, lim.max_image_pixels)
 
 _PIL_FORMATS = {'png': 'PNG', 'jpeg': 'JPEG', 'gif': 'GIF', 'webp': 'WEBP'}
 
@@ -142,16 +155,16 @@ def parse_data_uri(href):
         raw = ''.join(urllib.parse.unquote(data).split())
         raw = raw.rstrip('=')
         raw += '=' * (-len(raw) % 4)
-        if len(raw) > MAX_IMAGE_BYTES * 4 // 3 + 4:
-            raise ImageError('data URI larger than %d bytes' % MAX_IMAGE_BYTES)
+        if len(raw) > _max_bytes() * 4 // 3 + 4:
+            raise ImageError('data URI larger than %d bytes (max_image_bytes)' % _max_bytes())
         try:
             payload = base64.b64decode(raw, validate=False)
         except (ValueError, TypeError) as e:
             raise ImageError('invalid base64 in data URI (%s)' % e) from None
     else:
         payload = urllib.parse.unquote_to_bytes(data)
-    if len(payload) > MAX_IMAGE_BYTES:
-        raise ImageError('data URI larger than %d bytes' % MAX_IMAGE_BYTES)
+    if len(payload) > _max_bytes():
+        raise ImageError('data URI larger than %d bytes (max_image_bytes)' % _max_bytes())
     return mime, payload
 
 
@@ -197,14 +210,26 @@ def _resolve_file(href, source, what='image'):
 def _read_file(path, what='image'):
     try:
         with open(path, 'rb') as f:
-            data = f.read(MAX_IMAGE_BYTES + 1)
+            size = os.fstat(f.fileno()).st_size
+            if size > _max_bytes():
+                data = b''
+            else:
+                data = f.read(-1 if _max_bytes() == float('inf') else int(_max_bytes()) + 1)
     except OSError as e:
         raise ImageError('cannot read %s file %s (%s)'
                          % (what, _short(path), e.strerror or e)) from None
-    if len(data) > MAX_IMAGE_BYTES:
-        raise ImageError('%s file larger than %d bytes: %s' % (what, MAX_IMAGE_BYTES,
-                                                               _short(path)))
+    if size > _max_bytes() or len(data) > _max_bytes():
+        raise ImageError('%s file larger than %d bytes (max_image_bytes): %s'
+                         % (what, _max_bytes(), _short(path)))
     return data
+
+
+_REPR = re.compile(r'<[^<>]*? at 0x[0-9A-Fa-f]+>')
+
+
+def _no_reprs(msg):
+    """``msg`` without object reprs (``<_io.BytesIO object at 0x...>``)."""
+    return ' '.join(_REPR.sub('', msg).split())
 
 
 def _short(s, n=60):
@@ -298,9 +323,9 @@ def decode_raster(data, kind=None):
             w, h = im.size
             if w <= 0 or h <= 0:
                 raise ImageError('image has no pixels')
-            if w * h > MAX_IMAGE_PIXELS:
-                raise ImageError('image of %dx%d pixels exceeds the limit of %d pixels'
-                                 % (w, h, MAX_IMAGE_PIXELS))
+            if w * h > _max_pixels():
+                raise ImageError('image of %dx%d pixels exceeds the limit of %d pixels '
+                                 '(max_image_pixels)' % (w, h, _max_pixels()))
             im.seek(0)
             im.load()
             return _to_rgba8(im)
@@ -311,7 +336,7 @@ def decode_raster(data, kind=None):
     except MemoryError:
         raise ImageError('image too large to decode') from None
     except Exception as e:      # Pillow raises many types on broken data
-        msg = str(e).splitlines()[0] if str(e) else type(e).__name__
+        msg = _no_reprs(str(e).splitlines()[0]) if str(e) else type(e).__name__
         raise ImageError('cannot decode %s image (%s)' % (kind.upper(), _short(msg))) from None
 
 
@@ -320,7 +345,7 @@ def _load_svg(data, source, cache, tolerance):
     depth = cache.options.image_depth + 1
     if depth > MAX_IMAGE_DEPTH:
         raise ImageError('SVG images nested deeper than %d levels' % MAX_IMAGE_DEPTH)
-    root = load_document(data, max_bytes=MAX_IMAGE_BYTES)
+    root = load_document(data, max_bytes=_max_bytes())
     o = cache.options
     opts = type(o)(dpi=o.dpi, font_size=o.font_size, languages=o.languages or ('en',),
                    tolerance=tolerance, base_dir=source.base_dir, image_depth=depth)
@@ -520,7 +545,7 @@ def fetch_document(path, options, documents):
     r = documents.get(real)
     if r is None:
         try:
-            r = (real, load_document(_read_file(real), max_bytes=MAX_IMAGE_BYTES))
+            r = (real, load_document(_read_file(real), max_bytes=_max_bytes()))
         except ImageError as e:
             r = e
         except (RasterError, OSError, ValueError) as e:

@@ -68,6 +68,7 @@ from ..geometry.transform import Affine
 from ..geometry.bounds import bbox as exact_bbox
 from ..tree import FillRule, Group, PathNode, SolidPaint
 from .convert import convert_children
+from .boxes import walk_all
 from .effects import clip_rect
 from .paint import in_space
 from .style import doc_style, length, local_name
@@ -674,8 +675,18 @@ def build_markers(el, name, path, placement, inh, ctx, state, cache, fill=None, 
                 if g is not None:
                     out.append(g)
                     continue
+            # every instance draws the shared content again: it counts as
+            # many nodes, and markers that cannot all fit in what is left of
+            # the budget are left out before any is built (raster.limits
+            # max_elements)
+            size = 1 + sum(1 for _ in walk_all(shared))
+            left = cache.options.max_elements - cache.count
+            if size * len(mats) > left:
+                cache.warn('limit', 'markers not rendered: %d instances of %d nodes, more than '
+                           'the %d left of max_elements' % (len(mats), size, max(left, 0)))
+                continue
             for row in mats:
-                if not cache.tick():
+                if not cache.tick(size):
                     break
                 out.append(Group(transform=Affine(*row), clip_path=clip, children=list(shared)))
             continue

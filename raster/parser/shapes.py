@@ -19,7 +19,7 @@ agrees), so it is kept unpainted.  Inside a ``clipPath`` a shape is filled black
 
 import math
 
-from ..errors import RasterError
+from ..errors import LimitError, RasterError
 from ..geometry.bounds import bbox as exact_bbox
 from ..geometry.stroking import LineCap, LineJoin, StrokeStyle
 from ..geometry.pathdata import (circle_path, ellipse_path, line_path, parse_path, parse_paths,
@@ -70,6 +70,9 @@ def convert_shape(el, state, cache, parent):
         if not ident:
             state.check(t)     # an overflowing CTM: the element is left out
         path = _shape_path(el, name, ctx, state, t, cache)
+    except LimitError as e:     # a budget of raster.limits: left out, one warning
+        cache.warn('path-limit', 'element <%s> not rendered: %s' % (name, e))
+        return
     except RasterError:
         return
     if path is None or len(path.verbs) == 0:
@@ -187,16 +190,26 @@ def path_data(d, tol, cache):
     _element_paths(cache)
     p = memo.get(key)
     if p is None:
+        check_path_size(d, cache)
         p = parse_path(d, tol, strict=False)
         if len(memo) < 65536:
             memo[key] = p
     return p
 
 
+def check_path_size(data, cache):
+    """The cost model of path data (``d``, ``points``): parsing holds a
+    few hundred bytes per segment for a while, so data longer than
+    ``max_path_bytes`` (:mod:`raster.limits`) is refused before it is
+    parsed (:class:`~raster.errors.LimitError`: the element is left out)."""
+    lim = cache.limits.max_path_bytes
+    if len(data) > lim:
+        raise LimitError('path data of %d bytes, more than max_path_bytes %d'
+                         % (len(data), lim))
+
+
 #: Characters of path data parsed in one vectorized pass (see _element_paths).
 _PATHS_CHARS = 1 << 18
-
-
 def _element_paths(cache):
     """``{path element: Path}`` for the document's arc-free path data,
     parsed in one vectorized pass on first use (a map with thousands of
@@ -208,9 +221,10 @@ def _element_paths(cache):
     memo = cache.table('path_data')
     ds = {}
     els = []
+    lim = cache.limits.max_path_bytes
     for el in cache.root.iter(_PATH):
         d = el.get('d')
-        if d and 'a' not in d and 'A' not in d:
+        if d and 'a' not in d and 'A' not in d and len(d) <= lim:
             els.append((el, d))
             if d not in memo:
                 ds[d] = None
@@ -247,6 +261,8 @@ def geometry(el, name, ctx, tol, cache):
             return None
         return path_data(d, tol, cache)
     key = (name, ctx, tol) + tuple(map(el.get, _GEOMETRY_ATTRS.get(name, ('points',))))
+    if name in ('polyline', 'polygon') and key[-1]:
+        check_path_size(key[-1], cache)
     memo = cache.table('shape_geometry')
     p = memo.get(key, memo)
     if p is memo:

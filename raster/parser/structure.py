@@ -21,7 +21,7 @@ from .convert import convert, convert_children
 from .css import parse_declarations
 from .effects import clip_rect, effects, wrap
 from .paint import GradientServer, PatternServer, in_space, paint
-from .refs import external_target, href_target, is_recursive
+from .refs import external_target, href_target, instance_size, is_recursive
 from .style import (initial_inherited, is_displayed, length, length_context, local_name,
                     origin_box, passes_conditions, style_of, transform_of)
 from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length,
@@ -155,7 +155,8 @@ def convert_use(el, state, cache, parent):
         key = (id(tcache), id(tgt))
         active = cache.table('external_active')
         if key in active:
-            cache.warn('use-cycle', 'recursive use reference ignored (id %r)' % el.get('id'))
+            cache.warn('use-cycle', 'recursive use reference ignored (or nested deeper than %d)'
+                       % cache.options.max_use_depth)
             return
     else:
         # (a reference to another document that cannot be followed warned)
@@ -163,12 +164,35 @@ def convert_use(el, state, cache, parent):
         if tgt is None:
             return
         if is_recursive(el, cache):
-            cache.warn('use-cycle', 'recursive use reference ignored (id %r)' % el.get('id'))
+            cache.warn('use-cycle', 'recursive use reference ignored (or nested deeper than %d)'
+                       % cache.options.max_use_depth)
             return
     max_depth = cache.options.max_use_depth
     if state.use_depth >= max_depth:
         cache.warn('use-depth', 'use nesting deeper than %d ignored' % max_depth)
         return
+    # the cost model: a copy that cannot fit in the node or layer budgets
+    # is left out before any of it is built (raster.limits max_elements,
+    # max_layers; the content of another document is counted as it is built)
+    need, layers = instance_size(el, cache)        # the use itself included
+    need -= 1                                      # (already counted)
+    left = cache.options.max_elements - cache.count
+    if need > left:
+        cache.warn('limit', 'use element not rendered: its content needs about %d nodes, '
+                   'more than the %d left of max_elements' % (need, max(left, 0)))
+        return
+    if layers and not cache.prepaid and not cache.spend('layers', layers, 'use element'):
+        return
+    cache.prepaid += bool(layers)
+    try:
+        _instantiate(el, tgt, ext, state, cache, parent, inh, own, ctx, t)
+    finally:
+        cache.prepaid -= bool(layers)
+
+
+def _instantiate(el, tgt, ext, state, cache, parent, inh, own, ctx, t):
+    """The rest of :func:`convert_use`: ``el``'s copy of ``tgt`` (of the
+    document of ``ext``'s cache when not None)."""
     name = local_name(tgt)
     if name is None:
         return
@@ -177,8 +201,12 @@ def convert_use(el, state, cache, parent):
         return
     # the element counts and limits of the whole rendering carry on in the
     # other document's cache
+    tcache = ext[1]
+    key = (id(tcache), id(tgt))
+    active = cache.table('external_active')
     active[key] = True
     tcache.count, tcache.stopped = cache.count, cache.stopped
+    tcache.spent, tcache.prepaid = cache.spent, cache.prepaid     # one set of budgets
     try:
         _instance(el, tgt, name, inh, own, ctx, t, state, cache, tcache, parent)
     finally:

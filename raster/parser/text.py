@@ -50,7 +50,7 @@ import re
 import numpy as np
 
 from .. import limits
-from ..errors import RasterError
+from ..errors import RasterError, log_warnings
 from ..geometry.flattening import flatten
 from ..fonts import Font, FontDB, FontError, cached, parse_font_family
 from ..fonts.matching import best_face
@@ -165,8 +165,12 @@ def convert_text(el, state, cache, parent):
     (:class:`~raster.errors.RasterWarning`) and the element is skipped.
     """
     mark = len(parent)
+    # the layout budget (raster.limits max_glyphs), before any layout
+    if not cache.spend('glyphs', sum(map(len, el.itertext())), 'text'):
+        return
     try:
-        _build(el, state, cache, parent)
+        with log_warnings('fontTools'):         # a broken font's log lines: our warnings
+            _build(el, state, cache, parent)
     except Exception as e:      # text must never break a document (RasterError too)
         del parent[mark:]
         cache.warn('text-error', 'text element not rendered: %s' % (e,))

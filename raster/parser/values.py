@@ -555,7 +555,10 @@ def _resolve(v, unit, axis, ctx):
         elif axis == 'y':
             ref = ctx.height
         else:
-            ref = math.sqrt((ctx.width ** 2 + ctx.height ** 2) / 2.0)
+            try:
+                ref = math.sqrt((ctx.width ** 2 + ctx.height ** 2) / 2.0)
+            except OverflowError:           # a huge viewport: the same, without squares
+                ref = math.hypot(ctx.width, ctx.height) / math.sqrt(2.0)
         return v * ref / 100.0
     return None
 

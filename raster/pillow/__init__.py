@@ -53,7 +53,8 @@ FORMAT = 'SVG'
 EXTENSIONS = ('.svg', '.svgz')
 MIME = 'image/svg+xml'
 
-_BUILT_IN = {'dpi': 96.0, 'fonts': None, 'resources_dir': None, 'background': None}
+_BUILT_IN = {'dpi': 96.0, 'fonts': None, 'resources_dir': None, 'background': None,
+             'limits': None}
 _defaults = dict(_BUILT_IN)      # what Image.open uses (set by register())
 # options of one raster.pillow.open() call, seen by SvgImageFile._open
 _pending = contextvars.ContextVar('raster_pillow_options', default=None)
@@ -68,11 +69,15 @@ def _accept(prefix: bytes) -> bool:
 
 
 def _options(dpi=None, fonts=None, resources_dir=None, background=None, base=None,
-             font_dirs=None):
+             font_dirs=None, limits=None):
     """Checked options, unset ones taken from ``base`` (default: the
     built-in defaults)."""
     from ..svg import font_options, parse_background
     o = dict(_BUILT_IN if base is None else base)
+    if limits is not None:
+        from .. import limits as budgets
+        budgets.resolve(limits)                 # checked now
+        o['limits'] = limits
     if dpi is not None:
         try:
             d = float(dpi)
@@ -101,17 +106,26 @@ class SvgImageFile(ImageFile.ImageFile):
     format_description = 'Scalable Vector Graphics (drawn by raster)'
 
     def _open(self):
-        from ..parser import build_tree
-        from ..parser.document import MAX_DOCUMENT_BYTES, load_document
+        from .. import limits
+        from ..errors import LimitError
+        from ..parser.document import load_document
         from ..sources import read_stream
         opts = _pending.get() or _defaults
-        data = read_stream(self.fp, MAX_DOCUMENT_BYTES)
-        if isinstance(data, str):
-            data = data.encode('utf-8')
-        try:
-            root = load_document(data)
-        except RasterError as e:            # not (readable) SVG: let Pillow try others
-            raise SyntaxError(str(e)) from None
+        self._svg_limits = lim = limits.resolve(opts['limits'])
+        with limits.applied(lim):
+            data = read_stream(self.fp, lim.max_input_bytes)
+            if isinstance(data, str):
+                data = data.encode('utf-8')
+            try:
+                root = load_document(data)
+            except LimitError:                  # SVG, over a budget: said as it is
+                raise
+            except RasterError as e:            # not (readable) SVG: let Pillow try others
+                raise SyntaxError(str(e)) from None
+            self._open_tree(root, opts)
+
+    def _open_tree(self, root, opts):
+        from ..parser import build_tree
         path = self.filename or getattr(self.fp, 'name', None)
         if isinstance(path, bytes):
             path = os.fsdecode(path)
@@ -156,10 +170,12 @@ class SvgImageFile(ImageFile.ImageFile):
     def load(self):
         tree = getattr(self, '_svg_tree', None)
         if tree is not None:                 # not drawn yet
+            from .. import limits
             from ..renderer import render_tree
             width, height, zoom = self._svg_request
-            canvas = render_tree(tree, width=width, height=height, zoom=zoom,
-                                 background=self._svg_background, dtype='uint8')
+            with limits.applied(self._svg_limits):
+                canvas = render_tree(tree, width=width, height=height, zoom=zoom,
+                                     background=self._svg_background, dtype='uint8')
             self.load_prepare()
             self.frombytes(canvas.to_rgba8().tobytes())
             if self.fp is not None and getattr(self, '_exclusive_fp', False):
@@ -170,7 +186,7 @@ class SvgImageFile(ImageFile.ImageFile):
 
 
 def register(*, dpi: float | None = None, fonts=None, resources_dir: str | None = None,
-             background=None, font_dirs=None) -> None:
+             background=None, font_dirs=None, limits=None) -> None:
     """Register the SVG plugin with Pillow (``Image.open`` then opens SVG and
     SVGZ); the keywords set the options it opens with, unset ones being the
     built-in defaults.
@@ -186,12 +202,16 @@ def register(*, dpi: float | None = None, fonts=None, resources_dir: str | None 
         A directory images may be read from besides the document's own.
     background : str or tuple, optional
         A CSS colour under the drawing (default transparent).
+    limits : raster.limits.Limits, mapping or 'unlimited', optional
+        Budgets (:mod:`raster.limits`; default: those in force when an
+        image is opened).
 
     Calling it again replaces the options (``register()`` restores the
     built-in ones).
     """
     global _defaults
-    _defaults = _options(dpi, fonts, resources_dir, background, font_dirs=font_dirs)
+    _defaults = _options(dpi, fonts, resources_dir, background, font_dirs=font_dirs,
+                         limits=limits)
     Image.register_open(FORMAT, SvgImageFile, _accept)
     Image.register_extensions(FORMAT, list(EXTENSIONS))
     Image.register_mime(FORMAT, MIME)
@@ -199,7 +219,7 @@ def register(*, dpi: float | None = None, fonts=None, resources_dir: str | None 
 
 def open(fp, *, width: int | None = None, height: int | None = None,
          zoom: float | None = None, dpi: float | None = None, background=None,
-         fonts=None, resources_dir=None, font_dirs=None) -> SvgImageFile:
+         fonts=None, resources_dir=None, font_dirs=None, limits=None) -> SvgImageFile:
     """Open an SVG or SVGZ document as a Pillow image of a chosen size.
 
     Parameters
@@ -211,7 +231,7 @@ def open(fp, *, width: int | None = None, height: int | None = None,
         the natural size.
     zoom : float, optional
         Scale of the natural size (instead of width/height).
-    dpi, background, fonts, resources_dir :
+    dpi, background, fonts, resources_dir, limits :
         As for :func:`register`; unset ones are the registered defaults.
 
     Returns
@@ -230,7 +250,7 @@ def open(fp, *, width: int | None = None, height: int | None = None,
     """
     from ..sources import local_path
     opts = _options(dpi, fonts, resources_dir, background, base=_defaults,
-                    font_dirs=font_dirs)
+                    font_dirs=font_dirs, limits=limits)
     if isinstance(fp, (str, os.PathLike)):
         path = local_path(fp)
         f = _open_file(path)

@@ -214,9 +214,9 @@ class Canvas:
     ------
     CanvasError
         Size not a positive whole number, a side above
-        :data:`raster.limits.MAX_SIDE` or more than
-        :data:`raster.limits.MAX_PIXELS` pixels; malformed background; a
-        dtype other than float32 and uint8.
+        ``max_side`` or more than ``max_pixels`` pixels
+        (:mod:`raster.limits`); malformed background; a dtype other than
+        float32 and uint8.
 
     >>> Canvas(3, 2).data.shape, Canvas(3, 2, dtype=np.uint8).data.dtype
     ((2, 3, 4), dtype('uint8'))

@@ -203,7 +203,14 @@ def composite(a, b, operator='over', k=(0.0, 0.0, 0.0, 0.0)):
         k1, k2, k3, k4 = (float(v) for v in k)
         if not all(math.isfinite(v) for v in (k1, k2, k3, k4)):
             raise CanvasError('arithmetic coefficients must be finite, got %r' % (k,))
-        out = np.clip(k1 * a * b + k2 * a + k3 * b + k4, 0.0, 1.0)
+        with np.errstate(over='ignore', invalid='ignore'):
+            v = k1 * a * b + k2 * a + k3 * b + k4
+            if not np.isfinite(v).all():
+                # huge coefficients overflow float32: again in float64, and
+                # what still overflows (inf - inf) counts as 0
+                a64, b64 = a.astype(np.float64), b.astype(np.float64)
+                v = np.nan_to_num(k1 * a64 * b64 + k2 * a64 + k3 * b64 + k4, nan=0.0)
+        out = np.clip(v, 0.0, 1.0)
         out[..., :3] = np.minimum(out[..., :3], out[..., 3:4])
     else:
         raise CanvasError('unknown composite operator %r' % (operator,))

@@ -26,7 +26,7 @@ __all__ = ['FilterError', 'FilterImage', 'gaussian_blur', 'box_blur', 'box_sigma
            'morphology', 'convolve', 'lighting', 'turbulence', 'displace', 'tile',
            'srgb_to_linear', 'linear_to_srgb', 'premultiply', 'unpremultiply', 'solid_image',
            'convert_space', 'check_image', 'check_finite', 'check_tolerance',
-           'DEFAULT_TOLERANCE']
+           'DEFAULT_TOLERANCE', 'MAX_OCTAVES', 'blur_cost']
 
 #: Default tolerance (device pixels) for explicit-accuracy blurs (see
 #: :func:`gaussian_blur`; the renderer follows the specification's box
@@ -179,16 +179,42 @@ def _perlin_tables(seed):
     return r
 
 
+#: Octaves of feTurbulence computed: octave ``k`` adds at most ``2**-k`` to
+#: a channel, so the ones past the 32nd change no channel by more than
+#: ``2**-31`` (far below 8-bit output and float32 resolution near 1) and a
+#: ``numOctaves`` of 10**9 costs what 32 cost.
+MAX_OCTAVES = 32
+
+# Lattice coordinates at or beyond this are whole numbers; they are reduced
+# modulo it (a multiple of the lattice's 256) before the integer cast.
+_WRAP = float(2 ** 52)
+
+
+def _lattice_coord(v):
+    """``v + 4096`` with huge (or non-finite) values reduced so that the
+    integer cast is exact: the lattice index (mod 256) and the fraction
+    (0) of a whole number beyond 2**52 are kept; NaN and infinities are
+    0."""
+    t = v + 4096.0
+    big = ~(np.abs(t) < _WRAP)
+    if big.any():
+        with np.errstate(invalid='ignore'):
+            r = np.fmod(t[big], _WRAP)
+        t = t.copy()
+        t[big] = np.nan_to_num(r, nan=0.0, posinf=0.0, neginf=0.0)
+    return t
+
+
 def _noise2(lattice, grad, vx, vy, stitch=None):
     """Perlin noise of the four channels at points (vx, vy): (4, N).
     ``stitch`` is ``(width, wrap_x, height, wrap_y)`` of the reference's
     stitching: lattice columns at or past ``wrap_x`` are taken ``width``
     columns back (rows likewise), so the noise repeats across the tile."""
-    t = vx + 4096.0
+    t = _lattice_coord(vx)
     ix = t.astype(np.int64)
     rx0 = t - ix
     bx0, bx1 = ix, ix + 1
-    t = vy + 4096.0
+    t = _lattice_coord(vy)
     iy = t.astype(np.int64)
     ry0 = t - iy
     by0, by1 = iy, iy + 1
@@ -233,6 +259,8 @@ def turbulence(x, y, base_freq, octaves, seed, fractal, tile=None):
     x, y : (H, W) float64 ndarrays, user-space coordinates
     base_freq : (fx, fy) floats >= 0
     octaves : int >= 0
+        Only the first :data:`MAX_OCTAVES` are computed (the others are
+        below the output's resolution).
     seed : int
     fractal : bool
         True for ``fractalNoise`` (``(sum + 1) / 2``), False for
@@ -254,16 +282,21 @@ def turbulence(x, y, base_freq, octaves, seed, fractal, tile=None):
     if tile is not None:
         tx, ty, tw, th = (float(v) for v in tile)
         fx, fy = _stitch_frequency(fx, tw), _stitch_frequency(fy, th)
-        sw, sh = int(tw * fx + 0.5), int(th * fy + 0.5)
-        stitch = (sw, int(tx * fx + 4096 + sw), sh, int(ty * fy + 4096 + sh))
-    vx = x.ravel() * fx
-    vy = y.ravel() * fy
+        sw, sh = tw * fx + 0.5, th * fy + 0.5
+        edges = (sw, sh, tx * fx + 4096, ty * fy + 4096)
+        if all(abs(v) < 2.0 ** 52 for v in edges):      # (hostile sizes: no stitching)
+            sw, sh = int(sw), int(sh)
+            stitch = (sw, int(edges[2] + sw), sh, int(edges[3] + sh))
+    with np.errstate(over='ignore', invalid='ignore'):
+        vx = x.ravel() * fx
+        vy = y.ravel() * fy
     total = np.zeros((4, vx.size))
     ratio = 1.0
-    for _ in range(octaves):                 # loop over octaves, not pixels
+    for _ in range(min(int(octaves), MAX_OCTAVES)):     # loop over octaves, not pixels
         n = _noise2(lattice, grad, vx, vy, stitch)
         total += (n if fractal else np.abs(n)) / ratio
-        vx, vy, ratio = vx * 2.0, vy * 2.0, ratio * 2.0
+        with np.errstate(over='ignore'):
+            vx, vy, ratio = vx * 2.0, vy * 2.0, ratio * 2.0
         if stitch is not None:
             sw, wx, sh, wy = stitch
             stitch = (2 * sw, 2 * wx - 4096, 2 * sh, 2 * wy - 4096)
@@ -794,6 +827,29 @@ def blur_array(x, plan_x, plan_y):
     out = np.zeros(x.shape, np.float32)
     out[y0:y1, x0:x1] = work
     return out
+
+
+def blur_cost(plan_x, plan_y):
+    """Array passes per pixel (and channel) of :func:`blur_array` with
+    these plans: a box pass of width ``d`` costs about ``log2(d) +
+    popcount(d)`` additions plus two copies (:func:`_box_passes`), a
+    Gaussian of reach ``r`` a multiply and an add per tap.  Used to weigh
+    a blur against a work budget before running it.
+
+    >>> blur_cost(*blur_plans(5.0, 5.0, None))      # three boxes of 9 px per axis
+    48.0
+    """
+    cost = 0.0
+    for plan in (plan_x, plan_y):
+        if plan is None:
+            continue
+        kind, arg = plan
+        if kind == 'gauss':
+            cost += 2.0 * (2 * max(1, int(math.ceil(4.0 * arg))) + 1)
+        else:
+            cost += sum(max(int(d), 1).bit_length() + bin(max(int(d), 1)).count('1') + 2
+                        for d, _ in arg)
+    return float(cost)
 
 
 def blur_image(img, plan_x, plan_y):

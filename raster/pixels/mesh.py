@@ -77,7 +77,7 @@ from numpy.typing import ArrayLike
 
 from ..errors import LimitError, RasterError
 from ..geometry import patches as P
-from ..limits import MAX_PIXELS
+from .. import limits
 
 __all__ = ['MeshError', 'MAX_MESH_CELLS', 'MAX_PIECE_CELLS', 'INTERPOLATIONS', 'mesh_gradient',
            'color_nets', 'corner_grid', 'bicubic_slopes', 'mesh_cells']
@@ -259,9 +259,9 @@ def _window(window):
         raise MeshError('window must be four integers (x0, y0, width, height)') from None
     if w < 1 or h < 1 or w > MAX_WINDOW_SIDE or h > MAX_WINDOW_SIDE:
         raise MeshError('window size %d x %d is out of range' % (w, h))
-    if w * h > MAX_PIXELS:
-        raise LimitError('mesh gradient window of %d pixels exceeds the limit %d'
-                         % (w * h, MAX_PIXELS))
+    if w * h > limits.current().max_pixels:
+        raise LimitError('mesh gradient window of %d pixels exceeds max_pixels %d'
+                         % (w * h, limits.current().max_pixels))
     return x0, y0, w, h
 
 

@@ -21,13 +21,14 @@ True
 
 import struct
 import zlib
+from typing import NamedTuple
 
 import numpy as np
 
 from ..errors import CanvasError
 
 __all__ = ['encode_png', 'encode_png_strips', 'write_png', 'phys_chunk', 'DEFAULT_LEVEL',
-           'STRIP_PIXELS']
+           'STRIP_PIXELS', 'PNGWriter', 'compress_strip', 'CompressedStrip']
 
 #: zlib level of :func:`encode_png` (levels 1-3 use the run-length strategy).
 DEFAULT_LEVEL = 1
@@ -45,12 +46,14 @@ def _chunk(kind, payload):
             + struct.pack('>I', zlib.crc32(payload, zlib.crc32(kind)) & 0xFFFFFFFF))
 
 
-def _filtered(raw, prev=None, scratch=None):
+def _filtered(raw, prev=None, scratch=None, first_up=True):
     """Rows of ``raw`` ((H, N) uint8) each prefixed with its filter type
     (0 None, 1 Sub, 2 Up) and filtered by it: (H, N + 1) uint8.  ``prev``
     ((N,) uint8) is the image row above ``raw[0]`` (None: ``raw`` starts the
     image, where Up sees a row of zeros).  ``scratch``: optional (3, h, N)
-    uint8 work space, h >= H, reused from strip to strip."""
+    uint8 work space, h >= H, reused from strip to strip.  ``first_up``
+    False: the first row is not given the Up filter (the row above it is
+    not known here: a strip compressed on its own)."""
     H, N = raw.shape
     out = np.empty((H, N + 1), np.uint8)
     if scratch is None or scratch.shape[1] < H or scratch.shape[2] != N:
@@ -69,6 +72,8 @@ def _filtered(raw, prev=None, scratch=None):
         np.minimum(a, tmp, out=tmp)
         return tmp.sum(1, dtype=np.uint32)          # (128 N < 2**32)
     costs = np.stack([cost(raw), cost(sub), cost(up)])
+    if not first_up:
+        costs[2, 0] = np.iinfo(np.uint32).max
     kind = np.argmin(costs, axis=0).astype(np.uint8)      # ties: the lower type
     out[:, 0] = kind
     for k, src in ((0, raw), (1, sub), (2, up)):
@@ -231,6 +236,183 @@ def _idat(parts, pending, last):
     if n < len(z):
         pending.append(z[n:])
     return len(z) - n
+
+
+class CompressedStrip(NamedTuple):
+    """Rows of a PNG image filtered and deflated on their own
+    (:func:`compress_strip`): ``data`` (raw deflate, ending on a byte
+    boundary, not final), the ``adler`` checksum (Adler-32) and ``length``
+    in bytes of the filtered rows, and their count ``rows``."""
+    data: bytes
+    adler: int
+    length: int
+    rows: int
+
+
+def compress_strip(rgba, level=DEFAULT_LEVEL, first=False):
+    """Filter and deflate a strip of rows of a PNG image on its own, so
+    strips can be compressed in any order (or in other processes) and
+    joined by :meth:`PNGWriter.write_compressed`.
+
+    Parameters
+    ----------
+    rgba : (h, W, 4) uint8 ndarray
+        Straight RGBA rows.
+    level : int
+        zlib level 0-9 (as for :func:`encode_png`).
+    first : bool
+        The strip starts the image (its first row may use the Up filter
+        against the zero row above the image); otherwise that row is
+        filtered with None or Sub, as the row above is not known.
+
+    Returns
+    -------
+    CompressedStrip
+
+    Raises
+    ------
+    CanvasError
+        Not an (h, W, 4) uint8 array with h, W >= 1, or a bad level.
+    """
+    a = np.asarray(rgba)
+    if a.dtype != np.uint8 or a.ndim != 3 or a.shape[2] != 4 or 0 in a.shape:
+        raise CanvasError('PNG strip must be (h, W, 4) uint8, got %s %r' % (a.dtype, a.shape))
+    level = _check_level(level)
+    h, w = a.shape[:2]
+    raw = np.ascontiguousarray(a).reshape(h, w * 4)
+    step = max(1, STRIP_PIXELS // w)
+    co = zlib.compressobj(level, zlib.DEFLATED, -15, 8, _strategy(level))
+    scratch = np.empty((3, min(step, h), w * 4), np.uint8)
+    parts, adler, prev = [], 1, None
+    for y in range(0, h, step):
+        f = memoryview(_filtered(raw[y:y + step], prev, scratch,
+                                 first_up=first or y > 0)).cast('B')
+        adler = zlib.adler32(f, adler)
+        parts.append(co.compress(f))
+        prev = raw[min(h, y + step) - 1]
+    parts.append(co.flush(zlib.Z_SYNC_FLUSH))
+    return CompressedStrip(b''.join(parts), adler, h * (w * 4 + 1), h)
+
+
+def _strategy(level):
+    return zlib.Z_RLE if 1 <= level <= 3 else zlib.Z_DEFAULT_STRATEGY
+
+
+_ADLER_BASE = 65521
+
+
+def _adler_join(a1, a2, len2):
+    """Adler-32 of two byte strings joined, from their checksums and the
+    second one's length (s1 = 1 + the bytes' sum, s2 = the sum of the
+    running s1 values, both modulo 65521)."""
+    s1a, s2a = a1 & 0xFFFF, a1 >> 16
+    s1b, s2b = a2 & 0xFFFF, a2 >> 16
+    s1 = (s1a + s1b - 1) % _ADLER_BASE
+    s2 = (s2a + s2b + len2 * (s1a - 1)) % _ADLER_BASE
+    return (s2 << 16) | s1
+
+
+class PNGWriter:
+    """A PNG file written as strips of rows arrive, top to bottom, with a
+    fixed amount of memory whatever the image's size.
+
+    Each strip is filtered and deflated on its own (:func:`compress_strip`;
+    the first row of every strip but the first uses the None or Sub filter)
+    and its bytes go to the file in ``IDAT`` chunks at once; the zlib stream
+    is the strips' deflate data joined, with one checksum.  The bytes do
+    not depend on who compressed the strips: :meth:`write` compresses here,
+    :meth:`write_compressed` takes strips compressed elsewhere (worker
+    processes).
+
+    Parameters
+    ----------
+    file : binary file object
+        Where the PNG goes (only ``write`` is called).
+    width, height : int
+        Image size in pixels.
+    level, dpi :
+        As for :func:`encode_png`.
+
+    Raises
+    ------
+    CanvasError
+        Bad size, level or resolution; strips of the wrong width; more or
+        (at :meth:`close`) fewer than ``height`` rows.
+
+    >>> import io
+    >>> img = np.arange(4 * 3 * 4, dtype=np.uint8).reshape(4, 3, 4)
+    >>> out = io.BytesIO()
+    >>> with PNGWriter(out, 3, 4) as png:
+    ...     png.write(img[:3]); png.write(img[3:])
+    >>> from PIL import Image
+    >>> np.array_equal(np.asarray(Image.open(io.BytesIO(out.getvalue()))), img)
+    True
+    """
+
+    def __init__(self, file, width, height, level=DEFAULT_LEVEL, dpi=None):
+        W, H = int(width), int(height)
+        if W < 1 or H < 1:
+            raise CanvasError('PNG size must be positive, got %r x %r' % (width, height))
+        self.file, self.width, self.height = file, W, H
+        self.level = _check_level(level)
+        self.rows = 0
+        self._adler = 1
+        self._closed = False
+        # zlib header: deflate, 32 kB window, no dictionary (31 divides it)
+        cmf = 0x78
+        flg = 31 - (cmf * 256) % 31
+        file.write(_SIGNATURE + _chunk(b'IHDR', struct.pack('>IIBBBBB', W, H, 8, 6, 0, 0, 0))
+                   + (phys_chunk(dpi) if dpi is not None else b''))
+        self._pending = bytearray((cmf, flg))
+
+    def write(self, rgba):
+        """Append rows: (h, width, 4) uint8 straight RGBA."""
+        a = np.asarray(rgba)
+        if a.ndim != 3 or a.shape[1:] != (self.width, 4):
+            raise CanvasError('PNG strip must be (h, %d, 4) uint8, got %s %r'
+                              % (self.width, a.dtype, a.shape))
+        if len(a):
+            self.write_compressed(compress_strip(a, self.level, first=self.rows == 0))
+
+    def write_compressed(self, strip):
+        """Append the rows of a :class:`CompressedStrip` (made with this
+        writer's level and width, and ``first`` for the first one)."""
+        if self._closed:
+            raise CanvasError('PNG already closed')
+        if strip.length != strip.rows * (self.width * 4 + 1):
+            raise CanvasError('PNG strip of another width')
+        self.rows += strip.rows
+        if self.rows > self.height:
+            raise CanvasError('PNG strips hold more than %d rows' % self.height)
+        self._adler = _adler_join(self._adler, strip.adler, strip.length)
+        self._pending += strip.data
+        if len(self._pending) >= _IDAT_MAX:
+            n = len(self._pending) - len(self._pending) % _IDAT_MAX
+            for i in range(0, n, _IDAT_MAX):
+                self.file.write(_chunk(b'IDAT', bytes(self._pending[i:i + _IDAT_MAX])))
+            del self._pending[:n]
+
+    def close(self):
+        """Finish the stream (checks that ``height`` rows were written)."""
+        if self._closed:
+            return
+        if self.rows != self.height:
+            raise CanvasError('PNG strips hold %d rows, not %d' % (self.rows, self.height))
+        self._closed = True
+        self._pending += zlib.compressobj(self.level, zlib.DEFLATED, -15).flush()
+        self._pending += struct.pack('>I', self._adler)
+        z = bytes(self._pending)
+        self._pending = bytearray()
+        for i in range(0, len(z), _IDAT_MAX):
+            self.file.write(_chunk(b'IDAT', z[i:i + _IDAT_MAX]))
+        self.file.write(_chunk(b'IEND', b''))
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, value, tb):
+        if kind is None:
+            self.close()
 
 
 def write_png(path_or_file, rgba, level=DEFAULT_LEVEL, dpi=None):

@@ -136,13 +136,14 @@ def check_canvas_size(width, height):
 
     Raises :class:`~raster.errors.CanvasError` for sizes that are not
     integers (integral floats are accepted), not positive, larger than
-    :data:`raster.limits.MAX_SIDE` or with more than
-    :data:`raster.limits.MAX_PIXELS` pixels.
+    ``max_side`` or with more than
+    ``max_pixels`` pixels (:mod:`raster.limits`).
 
     >>> check_canvas_size(10.0, 3)
     (10, 3)
     """
     out = []
+    lim = limits.current()
     for name, v in (('width', width), ('height', height)):
         try:
             f = float(v)
@@ -153,12 +154,12 @@ def check_canvas_size(width, height):
         i = int(f)
         if i <= 0:
             raise CanvasError('canvas %s must be positive, got %d' % (name, i))
-        if i > limits.MAX_SIDE:
-            raise CanvasError('canvas %s %d exceeds MAX_SIDE %d' % (name, i, limits.MAX_SIDE))
+        if i > lim.max_side:
+            raise CanvasError('canvas %s %d exceeds max_side %d' % (name, i, lim.max_side))
         out.append(i)
-    if out[0] * out[1] > limits.MAX_PIXELS:
-        raise CanvasError('canvas %dx%d exceeds MAX_PIXELS %d'
-                          % (out[0], out[1], limits.MAX_PIXELS))
+    if out[0] * out[1] > lim.max_pixels:
+        raise CanvasError('canvas %dx%d exceeds max_pixels %d'
+                          % (out[0], out[1], lim.max_pixels))
     return out[0], out[1]
 
 
@@ -175,8 +176,7 @@ def _check_edges(edges):
         raise PathError('edges must have shape (E, 2, 2), got %r' % (e.shape,))
     if not np.all(np.isfinite(e)):
         raise PathError('edges have non-finite coordinates (NaN or infinity)')
-    if np.abs(e).max() > limits.MAX_COORD:
-        raise LimitError('edge coordinate magnitude exceeds MAX_COORD %g' % limits.MAX_COORD)
+    limits.check_coord(float(np.abs(e).max()), 'edge')
     return e
 
 
@@ -257,7 +257,7 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
         Edges not of shape (E, 2, 2), non-finite coordinates, unknown
         fill rule.
     LimitError
-        A coordinate larger in magnitude than :data:`raster.limits.MAX_COORD`.
+        A coordinate larger in magnitude than ``max_coord`` (:mod:`raster.limits`).
     CanvasError
         Zero, negative or too large canvas size; malformed ``clip``.
 
@@ -1498,8 +1498,8 @@ def _centre_crossings(xa, ya, xb, yb, h, w):
     total = int(n.sum())
     if total == 0:
         return None
-    if total > limits.MAX_FLATTEN_POINTS:
-        raise LimitError('too many scanline crossings (%d)' % total)
+    if total > limits.current().max_flatten_points:
+        raise LimitError('too many scanline crossings (%d, max_flatten_points)' % total)
     owner = np.repeat(np.arange(len(xa)), n)
     m = np.arange(total) - np.repeat(np.cumsum(n) - n, n)
     i = i_lo[owner].astype(np.int64) + m

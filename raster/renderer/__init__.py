@@ -23,6 +23,8 @@ tree, the geometry kernel and the pixel layer; never the parser.
 import math
 from typing import NamedTuple, Optional, Tuple
 
+import numpy as np
+
 from .. import limits
 from ..errors import CanvasError, SVGError
 from ..pixels.canvas import Canvas
@@ -32,7 +34,12 @@ from ..tree.extent import drawn_box
 from .draw import Renderer
 
 __all__ = ['render_tree', 'output_size', 'output_geometry', 'OutputGeometry', 'find_node', 'DEFAULT_TOLERANCE',
-           'Renderer']
+           'Renderer', 'check_window', 'MAX_WINDOWED_PIXELS']
+
+#: Largest whole output (pixels) that is rendered a window at a time
+#: (``render_tree(window=...)``, the strips of ``rasterize``, map tiles):
+#: each window is still at most :data:`raster.limits.MAX_PIXELS`.
+MAX_WINDOWED_PIXELS = 4_000_000_000
 
 #: Default flattening tolerance in device pixels.  The renderer flattens
 #: into straddled polylines (:func:`raster.geometry.flattening.flatten`
@@ -54,7 +61,8 @@ def _positive(name, v):
 
 def output_size(doc_width: float, doc_height: float, width: Optional[int] = None,
                 height: Optional[int] = None,
-                zoom: Optional[float] = None) -> Tuple[int, int, float, float]:
+                zoom: Optional[float] = None,
+                max_pixels: Optional[int] = None) -> Tuple[int, int, float, float]:
     """Output size in pixels and the document-to-device scale.
 
     Parameters
@@ -68,6 +76,9 @@ def output_size(doc_width: float, doc_height: float, width: Optional[int] = None
         non-uniform scale.
     zoom : float or None
         Scale factor of the natural size (not with ``width``/``height``).
+    max_pixels : int or None
+        Largest output in pixels (default :data:`raster.limits.MAX_PIXELS`;
+        windowed rendering allows :data:`MAX_WINDOWED_PIXELS`).
 
     Returns
     -------
@@ -79,8 +90,8 @@ def output_size(doc_width: float, doc_height: float, width: Optional[int] = None
     ------
     CanvasError
         A size or zoom that is not positive and finite, both zoom and a
-        size, or an output of more than :data:`raster.limits.MAX_PIXELS`
-        pixels or a side above :data:`raster.limits.MAX_SIDE`.
+        size, or an output of more than ``max_pixels`` pixels or a side
+        above ``max_side`` (:mod:`raster.limits`).
 
     >>> output_size(100, 50)
     (100, 50, 1.0, 1.0)
@@ -114,9 +125,13 @@ def output_size(doc_width: float, doc_height: float, width: Optional[int] = None
     if w != int(w) or h != int(h):
         raise CanvasError('output size must be whole pixels, got %r x %r' % (w, h))
     w, h = int(w), int(h)
-    if w > limits.MAX_SIDE or h > limits.MAX_SIDE or w * h > limits.MAX_PIXELS:
-        raise CanvasError('output size %d x %d exceeds the limit (%d px per side, %d pixels)'
-                          % (w, h, limits.MAX_SIDE, limits.MAX_PIXELS))
+    lim = limits.current()
+    # windowed rendering may allow a larger whole output (max_pixels), never
+    # less than the budget
+    mp = lim.max_pixels if max_pixels is None else max(max_pixels, lim.max_pixels)
+    if w > lim.max_side or h > lim.max_side or w * h > mp:
+        raise CanvasError('output size %d x %d exceeds the limit (max_side %d px, max_pixels '
+                          '%d)' % (w, h, lim.max_side, mp))
     return w, h, w / dw, h / dh
 
 
@@ -124,7 +139,8 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
                 zoom: Optional[float] = None,
                 background: Optional[Tuple[float, float, float, float]] = None,
                 node_id: Optional[str] = None, tolerance: float = DEFAULT_TOLERANCE,
-                crop: bool = False, dtype='float32') -> Canvas:
+                crop: bool = False, dtype='float32',
+                window: Optional[Tuple[int, int, int, int]] = None) -> Canvas:
     """Render a resolved tree.
 
     Parameters
@@ -150,11 +166,21 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
         (4 bytes a pixel, each composite onto it rounded to 1/255 as in
         resvg; what :func:`raster.svg.render` and the ``rasterize`` command
         use).  Group layers, clip paths and masks are float32 either way.
+    window : (x0, y0, x1, y1) ints or None
+        Render only this rectangle of the output (pixel columns x0 to
+        x1 - 1, rows y0 to y1 - 1; 0 <= x0 < x1 <= width, likewise for y):
+        the canvas is ``(x1 - x0) x (y1 - y0)`` and holds those pixels of
+        the whole render.  Filters, masks, clip paths and patterns that
+        reach across the window's border are drawn with the margins they
+        need, so windows put side by side equal the whole image (to within
+        one level of 255 where a blur's sums round differently).  The
+        whole output may then be up to :data:`MAX_WINDOWED_PIXELS` pixels;
+        the window at most :data:`raster.limits.MAX_PIXELS`.
 
     Returns
     -------
     raster.pixels.canvas.Canvas
-        Premultiplied RGBA canvas of the output size.
+        Premultiplied RGBA canvas of the output size (of the window).
 
     Raises
     ------
@@ -162,15 +188,57 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
         Bad output size (see :func:`output_size`) or tolerance.
     SVGError
         ``tree`` is not a Tree, ``node_id`` names no node of it, or the
-        node to crop to draws nothing.
+        node to crop to draws nothing; a window that is not inside the
+        output.
     """
     if not isinstance(tree, Tree):
         raise SVGError('render_tree needs a raster.tree.Tree, got %s' % type(tree).__name__)
     tol = _positive('tolerance', tolerance)
-    g = output_geometry(tree, width, height, zoom, node_id, crop)
-    canvas = Canvas(g.width, g.height, background, dtype)
-    Renderer(tol, canvas.dtype).draw(g.node, g.transform, canvas)
+    # hostile numbers overflow in transforms and boxes: the results are
+    # checked where they are used (finite, max_coord), not warned about
+    with np.errstate(over='ignore', invalid='ignore', divide='ignore'):
+        g = output_geometry(tree, width, height, zoom, node_id, crop,
+                            max_pixels=None if window is None else MAX_WINDOWED_PIXELS)
+        if window is None:
+            x0, y0, x1, y1 = 0, 0, g.width, g.height
+        else:
+            x0, y0, x1, y1 = check_window(window, g.width, g.height)
+        canvas = Canvas(x1 - x0, y1 - y0, background, dtype)
+        t = g.transform if window is None else Affine.translate(-x0, -y0) @ g.transform
+        frame = None if window is None else (-x0, -y0, g.width - x0, g.height - y0)
+        # the whole-render budgets (pixel work, flattened points) of raster.limits
+        with limits.metering(limits.Meter(limits.current(), canvas.width * canvas.height)):
+            Renderer(tol, canvas.dtype).draw(g.node, t, canvas, frame=frame)
     return canvas
+
+
+def check_window(window, width: int, height: int) -> Tuple[int, int, int, int]:
+    """``window`` as four ints ``(x0, y0, x1, y1)`` with
+    ``0 <= x0 < x1 <= width`` and ``0 <= y0 < y1 <= height``.
+
+    Raises
+    ------
+    CanvasError
+        Anything else, or a window of more than
+        :data:`raster.limits.MAX_PIXELS` pixels.
+
+    >>> check_window((0, 10, 20, 30), 100, 50)
+    (0, 10, 20, 30)
+    """
+    try:
+        vals = tuple(window)
+        x0, y0, x1, y1 = (int(v) for v in vals)
+        if any(int(v) != v for v in vals):
+            raise ValueError
+    except (TypeError, ValueError):
+        raise CanvasError('window must be four whole numbers (x0, y0, x1, y1), got %r'
+                          % (window,)) from None
+    if not (0 <= x0 < x1 <= width and 0 <= y0 < y1 <= height):
+        raise CanvasError('window %r is not inside the %d x %d output' % (window, width, height))
+    if (x1 - x0) * (y1 - y0) > limits.current().max_pixels:
+        raise CanvasError('window %d x %d exceeds %d pixels'
+                          % (x1 - x0, y1 - y0, limits.current().max_pixels))
+    return x0, y0, x1, y1
 
 
 class OutputGeometry(NamedTuple):
@@ -187,9 +255,9 @@ class OutputGeometry(NamedTuple):
 
 def output_geometry(tree: Tree, width: Optional[int] = None, height: Optional[int] = None,
                     zoom: Optional[float] = None, node_id: Optional[str] = None,
-                    crop: bool = False) -> OutputGeometry:
+                    crop: bool = False, max_pixels: Optional[int] = None) -> OutputGeometry:
     """The :class:`OutputGeometry` of a render (arguments as for
-    :func:`render_tree`)."""
+    :func:`render_tree`; ``max_pixels`` as for :func:`output_size`)."""
     if node_id is None:
         node, t = tree.root, IDENTITY
     else:
@@ -198,10 +266,11 @@ def output_geometry(tree: Tree, width: Optional[int] = None, height: Optional[in
         box = drawn_box(node, t, tolerance=0.01)
         if box is None or not (box[2] > box[0] and box[3] > box[1]):
             raise SVGError('element %r draws nothing to crop to' % (node_id,))
-        w, h, sx, sy = output_size(box[2] - box[0], box[3] - box[1], width, height, zoom)
+        w, h, sx, sy = output_size(box[2] - box[0], box[3] - box[1], width, height, zoom,
+                                   max_pixels)
         t = Affine.translate(-box[0], -box[1]) @ t
     else:
-        w, h, sx, sy = output_size(tree.width, tree.height, width, height, zoom)
+        w, h, sx, sy = output_size(tree.width, tree.height, width, height, zoom, max_pixels)
     return OutputGeometry(node, w, h, Affine.scale(sx, sy) @ t, (sx, sy))
 
 

@@ -64,6 +64,13 @@ class Masks:
         # key -> Mask or None already scan converted
         self._stroke_pending = {}
         self._stroke_ready = {}
+        # keys of fills / strokes whose device box misses their canvas:
+        # they cover nothing (a closed outline wholly outside a canvas adds
+        # no winding inside it) and are never flattened -- what makes a
+        # window of a large render cost about its share of the paths
+        # (key -> the canvas size it was planned for)
+        self._outside_fill = {}
+        self._outside_stroke = {}
 
     # -- planning ----------------------------------------------------------------
     def plan(self, nodes, t, canvas):
@@ -81,6 +88,8 @@ class Masks:
                 ct = m @ n.transform
                 stack.extend((c, ct) for c in reversed(n.children))
             elif isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
+                if n.markers is not None:       # drawn after the path: planned after it
+                    stack.append((n.markers, m))
                 f = n.fill
                 wf = f is not None and f.opacity > 0
                 wh = _wants_hair(n, m)
@@ -89,18 +98,30 @@ class Masks:
                 if not (wf or wh or style is not None):
                     continue
                 area = device_area(n.path, m, size)
+                key = (id(n), m)
                 if wf or wh:
-                    geo.setdefault((id(n), m), (n, m, size, area, wf, wh))
+                    if area > 0:
+                        geo.setdefault(key, (n, m, size, area, wf, wh))
+                    elif key not in geo:
+                        self._outside_fill[key] = size
+                        if wh:
+                            self._outside_stroke[key] = size
                 if style is not None:
                     reach = stroke_reach(style) * m.max_scale() + 1.0
                     sarea = device_area(n.path, m, size, reach)
-                    strokes.setdefault((id(n), m), (n, m, size, sarea, style))
+                    if sarea > 0:
+                        strokes.setdefault(key, (n, m, size, sarea, style))
+                    elif key not in strokes:
+                        self._outside_stroke[key] = size
 
     # -- masks -------------------------------------------------------------------
     def fill(self, n, t, canvas):
         """The fill coverage Mask of PathNode ``n`` under ``t`` on
         ``canvas`` (None: nothing covered)."""
         key = (id(n), t)
+        if self._outside_fill.get(key) == (canvas.width, canvas.height):
+            del self._outside_fill[key]
+            return None
         if key in self._geo_pending:
             self._flush_geometry(key, canvas)
         if key in self._fill_ready:
@@ -119,6 +140,9 @@ class Masks:
         fill's polylines (:func:`raster.pixels.hairline.hairline_edges`)."""
         s = n.stroke.style
         key = (id(n), t)
+        if self._outside_stroke.get(key) == (canvas.width, canvas.height):
+            del self._outside_stroke[key]
+            return None, 1.0
         if key in self._geo_pending:
             self._flush_geometry(key, canvas)
         m = self._hair_ready.pop(key, _ABSENT)

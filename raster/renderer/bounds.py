@@ -73,7 +73,7 @@ def node_box(n, t):
         ct = t @ n.transform
         if n.filters:
             from .filters import filter_box     # (loaded with the first filter)
-            return filter_box(n.filters, ct)
+            return filter_box(n.filters, ct, lambda: group_box(n, ct))
         box = group_box(n, ct)
         if box is not None and n.mask is not None:
             mb = _rect_box(n.mask.rect, ct)

@@ -39,6 +39,14 @@ from .paint import STRIP_PIXELS, draw_pixels, gradient_colors, mesh_colors, samp
 
 __all__ = ['Renderer']
 
+# Work (raster.limits max_pixel_work, in array passes over a pixel) of a
+# layer, clip or mask canvas: per pixel (made, drawn into, combined and
+# composited), and what one costs whatever its size (planning and batching
+# its content: a few milliseconds).  A painted path costs its mask's
+# pixels: its fixed costs are bounded by max_elements, but not its area.
+_LAYER_PASSES = 4
+_LAYER_FIXED = 1 << 21
+
 
 class Renderer:
     """Draws tree nodes onto canvases with flattening ``tolerance`` (device
@@ -51,20 +59,90 @@ class Renderer:
         self.dtype = np.dtype(dtype)
         self.masks = Masks(tolerance)
         self._limit_warned = False
+        # windowed rendering: id(canvas) -> (frame, need), see draw()
+        self._frames = {}
+        self._too_deep = False
 
-    def draw(self, node, t, canvas):
+    def draw(self, node, t, canvas, frame=None):
         """Draw ``node`` (and what is below it) with CTM ``t`` on ``canvas``,
-        planning the masks of its subtree first."""
-        self.masks.plan([node], t, canvas)
-        self.node(node, t, canvas)
+        planning the masks of its subtree first.
+
+        ``frame`` : (x0, y0, x1, y1) ints or None
+            When ``canvas`` is a window of a larger output, the rectangle of
+            that whole output in the canvas's pixel coordinates.  Layers are
+            then placed and clipped as they would be on the whole output,
+            and filter layers reach past the window by the margin their
+            primitives read (:func:`raster.renderer.filters.filter_margin`),
+            so the window's pixels are those of the whole render."""
+        if frame is not None:
+            self._frames[id(canvas)] = (tuple(int(v) for v in frame),
+                                        (0, 0, canvas.width, canvas.height))
+        try:
+            self.masks.plan([node], t, canvas)
+            self.node(node, t, canvas)
+        finally:
+            if frame is not None:
+                self._frames.pop(id(canvas), None)
+        if self._too_deep:
+            self._too_deep = False
+            self._left_out(LimitError('nested too deeply'))
+
+    def _layer_box(self, g, ct, canvas):
+        """``(px, frame)``: the pixel box of a group's layer on ``canvas``
+        and the layer's frame (the whole render's layer in the layer's own
+        pixel coordinates), or ``(None, None)``; ``frame`` is None outside
+        windowed rendering."""
+        base = canvas
+        while isinstance(base, ClipRect):       # a view: its canvas's frame
+            base = base.canvas
+        entry = self._frames.get(id(base))
+        if g.filters:
+            from .filters import filter_box, filter_margin, filter_pixel_box
+            box = filter_box(g.filters, ct, lambda: group_box(g, ct))
+        else:
+            box = group_box(g, ct)
+        if entry is None:
+            if box is None:
+                return None, None
+            if g.filters:
+                return filter_pixel_box(box, canvas.width, canvas.height), None
+            return pixel_box(box, canvas.width, canvas.height), None
+        (fx0, fy0, fx1, fy1), need = entry
+        if box is None:
+            return None, None
+        sbox = (box[0] - fx0, box[1] - fy0, box[2] - fx0, box[3] - fy0)
+        if g.filters:
+            full = filter_pixel_box(sbox, fx1 - fx0, fy1 - fy0)
+            m = filter_margin(g.filters, ct)
+        else:
+            full = pixel_box(sbox, fx1 - fx0, fy1 - fy0)
+            m = 0
+        if full is None:
+            return None, None
+        full = (full[0] + fx0, full[1] + fy0, full[2] + fx0, full[3] + fy0)
+        if m is None:                   # reads the whole region (feTile...)
+            px = full
+        else:
+            m = int(math.ceil(m))
+            px = (max(full[0], need[0] - m), max(full[1], need[1] - m),
+                  min(full[2], need[2] + m), min(full[3], need[3] + m))
+        if px[2] <= px[0] or px[3] <= px[1]:
+            return None, None
+        frame = (full[0] - px[0], full[1] - px[1], full[2] - px[0], full[3] - px[1])
+        return px, frame
 
     def node(self, node, t, canvas):
-        if isinstance(node, Group):
-            self.group(node, t, canvas)
-        elif isinstance(node, PathNode):
-            self.path(node, t, canvas)
-        elif isinstance(node, ImageNode):
-            self.image(node, t, canvas)
+        try:
+            if isinstance(node, Group):
+                self.group(node, t, canvas)
+            elif isinstance(node, PathNode):
+                self.path(node, t, canvas)
+            elif isinstance(node, ImageNode):
+                self.image(node, t, canvas)
+        except LimitError as e:         # a budget of raster.limits: this node left out
+            self._left_out(e)
+        except RecursionError:          # nested deeper than Python's stack allows
+            self._too_deep = True       # warned by draw(), once the stack has unwound
 
     # -- groups ----------------------------------------------------------------
     def group(self, g, t, canvas):
@@ -84,29 +162,34 @@ class Renderer:
                 for c in g.children:
                     self.node(c, ct, view)
             return
+        # what a layer costs whatever its size, before its box is measured
+        limits.spend_work(_LAYER_FIXED, 'a group layer')
         # the layer: the group's box, or its filter region (effects draw
-        # outside the content)
-        if g.filters:
-            # the filter machinery loads with the first filter drawn
-            from .filters import filter_box, filter_layer, filter_pixel_box
-            px = filter_pixel_box(filter_box(g.filters, ct), canvas.width, canvas.height)
-        else:
-            box = group_box(g, ct)
-            px = None if box is None else pixel_box(box, canvas.width, canvas.height)
+        # outside the content); the filter machinery loads with the first
+        # filter drawn
+        px, frame = self._layer_box(g, ct, canvas)
         if px is None:
             return
         x0, y0, x1, y1 = px
+        limits.spend_work(_LAYER_PASSES * (x1 - x0) * (y1 - y0), 'a group layer')
         layer = Canvas(x1 - x0, y1 - y0, dtype=self.dtype)
         lt = Affine.translate(-x0, -y0) @ ct
-        self.masks.plan(g.children, lt, layer)
-        for c in g.children:
-            self.node(c, lt, layer)
-        if g.filters:
-            filter_layer(g.filters, layer, lt, draw=self._draw_new)
-        if g.clip_path is not None:
-            layer.scale(self.clip_coverage(g.clip_path, lt, layer.width, layer.height))
-        if g.mask is not None:
-            layer.scale(self.mask_values(g.mask, lt, layer.width, layer.height))
+        if frame is not None:
+            self._frames[id(layer)] = (frame, (0, 0, layer.width, layer.height))
+        try:
+            self.masks.plan(g.children, lt, layer)
+            for c in g.children:
+                self.node(c, lt, layer)
+            if g.filters:
+                from .filters import filter_layer
+                filter_layer(g.filters, layer, lt, draw=self._draw_new)
+            if g.clip_path is not None:
+                layer.scale(self.clip_coverage(g.clip_path, lt, layer.width, layer.height))
+            if g.mask is not None:
+                layer.scale(self.mask_values(g.mask, lt, layer.width, layer.height, frame))
+        finally:
+            if frame is not None:
+                self._frames.pop(id(layer), None)
         blend_layer(canvas, layer.data, x0, y0, float(g.opacity), g.blend_mode)
 
     def _draw_new(self, node, m, w, h):
@@ -120,6 +203,7 @@ class Renderer:
     def clip_coverage(self, clip, t, w, h):
         """(h, w) float32 coverage of a ClipPath with CTM ``t`` (the
         clipped group's user space to layer pixels)."""
+        limits.spend_work(_LAYER_PASSES * w * h + _LAYER_FIXED, 'a clip path')
         cov = np.zeros((h, w), np.float32)
         self._clip_node(clip.root, t @ clip.transform, cov)
         if clip.clip_path is not None:
@@ -135,6 +219,7 @@ class Renderer:
         if isinstance(n, Group):
             ct = t @ n.transform
             if n.clip_path is not None:
+                limits.spend_work(_LAYER_PASSES * cov.size + _LAYER_FIXED, 'a clip path')
                 sub = np.zeros_like(cov)
                 for c in n.children:
                     self._clip_node(c, ct, sub)
@@ -155,12 +240,21 @@ class Renderer:
                 self._left_out(e)
                 return
             if m is not None:
+                limits.spend_work(m.data.size, 'a clip path')
                 _unite(cov, m)
 
-    def mask_values(self, mask, t, w, h):
-        """(h, w) float32 values of a Mask with CTM ``t``."""
+    def mask_values(self, mask, t, w, h, frame=None):
+        """(h, w) float32 values of a Mask with CTM ``t`` (``frame``: that
+        of the masked layer in windowed rendering, see :meth:`draw`)."""
+        limits.spend_work(_LAYER_PASSES * w * h + _LAYER_FIXED, 'a mask')
         layer = Canvas(w, h, dtype=self.dtype)
-        self.node(mask.root, t, layer)
+        if frame is not None:
+            self._frames[id(layer)] = (frame, (0, 0, w, h))
+        try:
+            self.node(mask.root, t, layer)
+        finally:
+            if frame is not None:
+                self._frames.pop(id(layer), None)
         if mask.kind == MaskType.ALPHA:
             m = layer.combine((0.0, 0.0, 0.0, 1.0))
         else:
@@ -180,7 +274,7 @@ class Renderer:
                 return np.zeros((h, w), np.float32)
             _times_mask(m, rc)
         if mask.mask is not None:
-            m *= self.mask_values(mask.mask, t, w, h)
+            m *= self.mask_values(mask.mask, t, w, h, frame)
         np.clip(m, 0.0, 1.0, out=m)
         return m
 
@@ -200,8 +294,9 @@ class Renderer:
             self._left_out(e)
 
     def _left_out(self, e):
-        """One element beyond a limit (a coordinate above MAX_COORD, too
-        many dashes...) is left out with one warning; the rest of the
+        """One element beyond a budget of :mod:`raster.limits` (a
+        coordinate above max_coord, too many dashes, the pixel work
+        spent...) is left out, with one warning per render; the rest of the
         document is drawn."""
         if not self._limit_warned:
             self._limit_warned = True
@@ -228,6 +323,7 @@ class Renderer:
         canvas) through coverage ``mask`` with ``opacity``.  Gradient and
         pattern colours are made and composited a strip of rows at a time
         (:data:`raster.renderer.paint.STRIP_PIXELS`)."""
+        limits.spend_work(mask.data.size, 'a path')
         if isinstance(paint, SolidPaint):
             canvas.fill(mask, paint.color, opacity)
             return
@@ -238,6 +334,7 @@ class Renderer:
             def colors(m):
                 return mesh_colors(paint, m, t, self.tol)
         elif isinstance(paint, Pattern):
+            limits.spend_work(8 * mask.data.size, 'a pattern')     # sampled per pixel
             tile = self.pattern_tile(paint, t)
             if tile is None:
                 return
@@ -275,10 +372,13 @@ class Renderer:
         tile_to_dev = t @ p.transform @ Affine.translate(x, y)
         sx = math.hypot(tile_to_dev.a, tile_to_dev.b)
         sy = math.hypot(tile_to_dev.c, tile_to_dev.d)
+        if not (math.isfinite(w * sx) and math.isfinite(h * sy) and sx > 0 and sy > 0):
+            return None                 # a tile of no or of infinite size
         tw = max(1, int(math.ceil(w * sx)))
         th = max(1, int(math.ceil(h * sy)))
-        if tw * th > limits.MAX_PIXELS // 4:
+        if tw * th > limits.current().max_pixels // 4:
             return None
+        limits.spend_work(_LAYER_PASSES * tw * th + _LAYER_FIXED, 'a pattern')
         # As resvg: the tile raster has whole-pixel size (rounded up) and the
         # content is drawn at the device scale, so the period is tw / sx
         # (up to a pixel longer than the tile): references tile this way.
@@ -312,6 +412,8 @@ class Renderer:
         if px is None:
             return
         x0, y0, x1, y1 = px
+        limits.spend_work(_LAYER_PASSES * (x1 - x0) * (y1 - y0) + _LAYER_FIXED,
+                          'an SVG image')
         layer = Canvas(x1 - x0, y1 - y0, dtype=self.dtype)
         lt = Affine.translate(-x0, -y0)
         self.node(g, lt @ it, layer)

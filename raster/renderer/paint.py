@@ -18,6 +18,7 @@ import math
 
 import numpy as np
 
+from .. import limits
 from ..errors import RasterError
 from ..geometry.path import Path
 from ..pixels.scan import path_coverage
@@ -33,6 +34,10 @@ __all__ = ['gradient_colors', 'mesh_colors', 'draw_pixels', 'sample', 'resample_
 STRIP_PIXELS = 1 << 18
 
 _F32 = np.float32
+
+# Work (raster.limits max_pixel_work) per covered pixel of a raster image:
+# resampled (bilinear: four taps), covered and composited.
+_IMAGE_PASSES = 40
 
 
 
@@ -505,6 +510,7 @@ def draw_pixels(n, t, canvas, tol):
                * cm.data[ay0 - cm.y0:ay1 - cm.y0, ax0 - cm.x0:ax1 - cm.x0])
         x0, y0 = ax0, ay0
     h, w = cov.shape
+    limits.spend_work(_IMAGE_PASSES * w * h, 'an image')
     flt = 'bilinear' if n.smooth else 'nearest'
     step = max(1, STRIP_PIXELS // w)
     for r0 in range(0, h, step):        # strips of rows: bounded temporaries

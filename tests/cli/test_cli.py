@@ -218,7 +218,8 @@ def test_rasterize_bad_input_exit_1_no_output(tmp_path, capsys, kind):
 
 
 @pytest.mark.parametrize('opts', [['--width', '0'], ['--width', '-3'], ['--zoom', '0'],
-                                  ['--width', '200000'], ['--width', '20000', '--height', '20000'],
+                                  ['--width', '200000'], ['--width', '70000', '--height', '70000'],
+                                  ['--width', '20000', '--height', '20000', '--format', 'jpeg'],
                                   ['--background', 'notacolour'], ['--id', 'nope'],
                                   ['--dpi', '0']])
 def test_rasterize_bad_options_exit_1(tmp_path, capsys, opts):
@@ -500,13 +501,15 @@ def test_output_through_a_link_to_a_file_replaces_the_file(tmp_path):
     assert link.is_symlink() and real.read_bytes()[:4] == b'\x89PNG'
 
 
-def test_output_to_a_directory_is_an_error(tmp_path, capsys):
+def test_output_to_a_directory_converts_into_it(tmp_path, capsys):
+    # a folder as the last argument is the output folder of a batch (it
+    # was "Is a directory")
     src = write(tmp_path, 'in.svg', SQUARE)
     d = tmp_path / 'dir'
     d.mkdir()
-    assert rasterize.main([src, str(d)]) == 1
-    assert one_error_line(capsys.readouterr().err, 'rasterize')
-    assert list(d.iterdir()) == []
+    assert rasterize.main([src, str(d)]) == 0
+    assert [p.name for p in d.iterdir()] == ['in.png']
+    assert 'rasterize: 1 of 1 files converted' in capsys.readouterr().err
 
 
 # -- --id crops to the element ---------------------------------------------------------------

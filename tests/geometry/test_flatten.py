@@ -354,9 +354,8 @@ def test_bad_tolerance(tol):
         flatten(Path.polygon([[0, 0], [1, 1]]), tol)
 
 
-def test_point_limit(monkeypatch):
-    monkeypatch.setattr(limits, 'MAX_FLATTEN_POINTS', 10_000)
-    with pytest.raises(LimitError):
+def test_point_limit():
+    with limits.applied(max_flatten_points=10_000), pytest.raises(LimitError):
         flatten_beziers([[[0, 0], [5e7, 1e8], [1e8, 0]]], 0.01)
 
 
@@ -365,18 +364,18 @@ def test_astronomical_coordinates_refused():
         flatten_beziers([[[0, 0], [1e200, 1e200], [0, 1]]])
 
 
-def test_tiny_tolerance_at_huge_coordinates_terminates(monkeypatch):
-    monkeypatch.setattr(limits, 'MAX_FLATTEN_POINTS', 200_000)
-    # a straight cubic far away: rounding noise must not cause endless splits
-    c = np.array([[[1e9, 1e9], [1e9 + 1, 1e9 + 1], [1e9 + 2, 1e9 + 2], [1e9 + 3, 1e9 + 3]]])
-    pts, counts = flatten_beziers(c, 1e-12)
-    assert counts[0] < 100
-    # a real curve there either fits in the limit or raises LimitError
-    c2 = np.array([[[1e9, 1e9], [1e9 + 10, 1e9], [1e9 + 10, 1e9 + 10]]])
-    try:
-        flatten_beziers(c2, 1e-12)
-    except LimitError:
-        pass
+def test_tiny_tolerance_at_huge_coordinates_terminates():
+    with limits.applied(max_flatten_points=200_000):
+        # a straight cubic far away: rounding noise must not cause endless splits
+        c = np.array([[[1e9, 1e9], [1e9 + 1, 1e9 + 1], [1e9 + 2, 1e9 + 2], [1e9 + 3, 1e9 + 3]]])
+        pts, counts = flatten_beziers(c, 1e-12)
+        assert counts[0] < 100
+        # a real curve there either fits in the limit or raises LimitError
+        c2 = np.array([[[1e9, 1e9], [1e9 + 10, 1e9], [1e9 + 10, 1e9 + 10]]])
+        try:
+            flatten_beziers(c2, 1e-12)
+        except LimitError:
+            pass
 
 
 # -- flatten(path) -------------------------------------------------------------------

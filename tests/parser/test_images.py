@@ -17,6 +17,8 @@ import zlib
 
 import numpy as np
 import pytest
+
+from raster import limits
 from hypothesis import given, settings, strategies as hs
 from PIL import Image
 
@@ -546,11 +548,30 @@ def test_broken_or_unusable_data_warns_once_and_draws_nothing(href):
     assert images(t) == [] and len(ws) == 1
 
 
-def test_pixel_limit(monkeypatch):
-    monkeypatch.setattr(image_mod, 'MAX_IMAGE_PIXELS', 15)
+def test_pixel_limit():
     uri = data_uri(encode(np.zeros((4, 4, 3), np.uint8)))
+    with limits.applied(max_image_pixels=15):
+        t, ws = tree_quiet(doc('<image href="%s"/>' % uri))
+    assert images(t) == [] and 'exceeds the limit' in ws[0] and 'max_image_pixels' in ws[0]
     t, ws = tree_quiet(doc('<image href="%s"/>' % uri))
-    assert images(t) == [] and 'exceeds the limit' in ws[0]
+    assert len(images(t)) == 1
+
+
+def test_image_byte_limit():
+    uri = data_uri(encode(np.zeros((4, 4, 3), np.uint8)))
+    with limits.applied(max_image_bytes=20):
+        t, ws = tree_quiet(doc('<image href="%s"/>' % uri))
+    assert images(t) == [] and 'max_image_bytes' in ws[0]
+
+
+@pytest.mark.parametrize('magic', [b'\x89PNG\r\n\x1a\n', b'\xff\xd8\xff', b'GIF89a',
+                                   b'RIFF\0\0\0\0WEBP'])
+def test_unidentified_image_message_has_no_object_repr(magic):
+    # Pillow says "cannot identify image file <_io.BytesIO object at 0x...>"
+    uri = 'data:image/png;base64,' + base64.b64encode(magic).decode()
+    t, ws = tree_quiet(doc('<image width="5" height="5" href="%s"/>' % uri))
+    assert images(t) == [] and len(ws) == 1
+    assert 'cannot decode' in ws[0] and ' at 0x' not in ws[0] and 'BytesIO' not in ws[0]
 
 
 def test_decompression_bomb_header_is_refused_before_decoding():

@@ -366,9 +366,21 @@ def test_use_bomb_capped():
                                                       for _ in range(10))))
     body.append('</defs><use href="#a11"/>')
     doc = '<svg xmlns="http://www.w3.org/2000/svg" width="10" height="10">%s</svg>' % ''.join(body)
-    with pytest.warns(RasterWarning, match='more than 2000 nodes'):
+    # the fan-out of 10**11 copies is refused before any of it is built
+    with pytest.warns(RasterWarning, match='left of max_elements'):
         t = build_tree(load_document(doc.encode()), max_elements=2000)
-    assert 0 < len(paths(t)) <= 2000
+    assert len(paths(t)) == 0
+
+
+def test_use_copies_past_the_node_budget_are_left_out():
+    # 30 copies of a group of 10 rects: those that fit in 100 nodes are built
+    doc = ('<svg xmlns="http://www.w3.org/2000/svg" width="10" height="10"><defs><g id="g">%s'
+           '</g></defs>%s</svg>' % ('<rect width="1" height="1"/>' * 10,
+                                    '<use href="#g"/>' * 30))
+    with pytest.warns(RasterWarning, match='left of max_elements'):
+        t = build_tree(load_document(doc.encode()), max_elements=100)
+    # each copy: the use, its group and 10 rects (12 nodes), within 100
+    assert len(paths(t)) == 10 * (100 // 12)
 
 
 def test_use_depth_limit():

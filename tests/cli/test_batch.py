@@ -1,0 +1,221 @@
+"""rasterize at scale: many files (--out-dir, folders, --recursive,
+--out-pattern, --skip-existing, --jobs, one line per failed file, the
+summary, exit status), large PNG output in strips (--memory-budget, strips
+over --jobs workers equal to the one-piece render) and XYZ map tiles."""
+
+import json
+import os
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import raster
+from raster_cli import rasterize
+from test_cli import cli, one_error_line, png, write
+
+DOC = ('<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d">'
+       '<defs><filter id="f" x="-20%%" y="-20%%" width="140%%" height="140%%">'
+       '<feGaussianBlur stdDeviation="4"/></filter>'
+       '<linearGradient id="g"><stop offset="0" stop-color="red"/>'
+       '<stop offset="1" stop-color="blue"/></linearGradient></defs>'
+       '<rect x="10%%" y="10%%" width="80%%" height="80%%" fill="url(#g)" filter="url(#f)"/>'
+       '<circle cx="50%%" cy="50%%" r="%d" fill="%s" stroke="black" stroke-width="3"/></svg>')
+
+
+def doc(w=60, h=40, r=12, colour='green'):
+    return (DOC % (w, h, r, colour)).encode()
+
+
+def folder(tmp_path, n=5):
+    d = tmp_path / 'in'
+    d.mkdir()
+    for i in range(n):
+        (d / ('icon%d.svg' % i)).write_bytes(doc(30 + 7 * i, 20 + 5 * i, 4 + i))
+    return d
+
+
+def summary(err):
+    lines = [ln for ln in err.strip().splitlines() if 'files converted' in ln]
+    assert len(lines) == 1, err
+    return lines[0]
+
+
+@pytest.mark.parametrize('jobs', ['1', '2'])
+def test_a_folder_to_an_out_dir(tmp_path, capsys, jobs):
+    d = folder(tmp_path)
+    out = tmp_path / 'out'
+    assert rasterize.main([str(d), '--out-dir', str(out), '--jobs', jobs]) == 0
+    names = sorted(os.listdir(out))
+    assert names == ['icon%d.png' % i for i in range(5)]
+    for i in range(5):
+        img = png(out / ('icon%d.png' % i))
+        assert np.array_equal(img, raster.render(str(d / ('icon%d.svg' % i))))
+    assert '5 of 5 files converted, 0 skipped, 0 failed' in summary(capsys.readouterr().err)
+
+
+def test_one_bad_file_gets_its_line_and_the_rest_go_on(tmp_path, capsys):
+    d = folder(tmp_path, 3)
+    (d / 'broken.svg').write_bytes(b'<svg')
+    (d / 'notes.txt').write_bytes(b'not an input')
+    out = tmp_path / 'out'
+    assert rasterize.main([str(d), '--out-dir', str(out), '--jobs', '2']) == 1
+    err = capsys.readouterr().err
+    errors = [ln for ln in err.splitlines() if ': error: ' in ln]
+    assert len(errors) == 1 and 'broken.svg' in errors[0] and 'Traceback' not in err
+    assert sorted(os.listdir(out)) == ['icon0.png', 'icon1.png', 'icon2.png']
+    assert '3 of 4 files converted, 0 skipped, 1 failed' in summary(err)
+
+
+def test_recursive_keeps_subfolders_and_the_pattern_names_files(tmp_path, capsys):
+    d = folder(tmp_path, 2)
+    sub = d / 'sub'
+    sub.mkdir()
+    (sub / 'deep.SVGZ').write_bytes(__import__('gzip').compress(doc()))
+    out = tmp_path / 'out'
+    assert rasterize.main([str(d), '--out-dir', str(out), '--jobs', '1']) == 0
+    assert sorted(os.listdir(out)) == ['icon0.png', 'icon1.png']          # not recursive
+    out2 = tmp_path / 'out2'
+    assert rasterize.main([str(d), '--out-dir', str(out2), '--recursive',
+                           '--out-pattern', 'x-{stem}.{ext}', '--format', 'webp']) == 0
+    found = sorted(os.path.relpath(os.path.join(r, f), out2)
+                   for r, _, fs in os.walk(out2) for f in fs)
+    assert found == ['sub/x-deep.webp', 'x-icon0.webp', 'x-icon1.webp']
+    assert Image.open(out2 / 'sub' / 'x-deep.webp').format == 'WEBP'
+
+
+def test_skip_existing_and_a_folder_as_the_last_argument(tmp_path, capsys):
+    d = folder(tmp_path, 3)
+    out = tmp_path / 'out'
+    out.mkdir()
+    (out / 'icon1.png').write_bytes(b'keep me')
+    files = [str(d / ('icon%d.svg' % i)) for i in range(3)]
+    assert rasterize.main(files + [str(out), '--skip-existing']) == 0
+    assert (out / 'icon1.png').read_bytes() == b'keep me'
+    assert png(out / 'icon2.png').shape == (30, 44, 4)
+    assert '2 of 3 files converted, 1 skipped, 0 failed' in summary(capsys.readouterr().err)
+
+
+def test_usage_errors_of_batches(tmp_path, capsys):
+    d = folder(tmp_path, 1)
+    other = tmp_path / 'other'
+    other.mkdir()
+    (other / 'icon0.svg').write_bytes(doc())
+    out = str(tmp_path / 'out')
+    # two inputs writing one output
+    assert rasterize.main([str(d), str(other), '--out-dir', out]) == 2
+    assert 'would both write' in capsys.readouterr().err
+    # many inputs and no output folder
+    assert rasterize.main([str(d / 'icon0.svg')] * 3) == 2
+    assert '--out-dir' in capsys.readouterr().err
+    assert rasterize.main([str(d), '--out-dir', out, '--out-pattern', '{nope}.png']) == 2
+    assert 'unknown field' in capsys.readouterr().err
+    assert rasterize.main([str(d), '--out-dir', out, '--jobs', '0']) == 2
+    capsys.readouterr()
+    # a missing input: one line, status 1
+    assert rasterize.main([str(tmp_path / 'missing.svg'), '--out-dir', out]) == 1
+    assert one_error_line(capsys.readouterr().err, 'rasterize')
+
+
+def test_the_command_converts_a_batch_in_worker_processes(tmp_path):
+    # end to end: the installed command, two workers, no terminal (no bar)
+    d = folder(tmp_path, 4)
+    out = tmp_path / 'out'
+    rc, stdout, err = cli('rasterize', str(d), '--out-dir', str(out), '--jobs', '2')
+    assert rc == 0 and stdout == b'' and '\r' not in err
+    assert summary(err).startswith('rasterize: 4 of 4 files converted')
+    assert len(os.listdir(out)) == 4
+
+
+# -- large images in strips ---------------------------------------------------------------
+
+@pytest.mark.parametrize('jobs', ['1', '2'])
+def test_png_in_strips_equals_the_one_piece_render(tmp_path, capsys, jobs):
+    src = write(tmp_path, 'big.svg', doc(300, 200, 60, 'orange'))
+    whole = raster.render(src, 700)
+    out = tmp_path / 'strips.png'
+    # 0.2 MB for pixels: strips of 16 rows (BYTES_PER_PIXEL 24 a pixel)
+    assert rasterize.main([src, str(out), '--width', '700', '--memory-budget', '0.2',
+                           '--jobs', jobs]) == 0
+    assert np.array_equal(png(out), whole)
+
+
+def test_strips_reach_outputs_beyond_max_pixels(tmp_path, monkeypatch):
+    # with MAX_PIXELS lowered, an output above it still renders as PNG in
+    # strips (and is refused for a format encoded in one piece)
+    from raster import limits
+    monkeypatch.setattr(limits, 'MAX_PIXELS', 20_000)
+    src = write(tmp_path, 'big.svg', doc(300, 200, 60, 'orange'))
+    out = tmp_path / 'big.png'
+    assert rasterize.main([src, str(out), '--width', '300', '--memory-budget', '0.1',
+                           '--jobs', '1']) == 0
+    monkeypatch.undo()
+    assert np.array_equal(png(out), raster.render(src))
+    monkeypatch.setattr(limits, 'MAX_PIXELS', 20_000)
+    assert rasterize.main([src, str(tmp_path / 'big.jpg'), '--width', '300']) == 1
+    assert not (tmp_path / 'big.jpg').exists()
+
+
+def test_a_failed_strip_render_leaves_no_file(tmp_path, capsys, monkeypatch):
+    src = write(tmp_path, 'big.svg', doc(300, 200, 60, 'orange'))
+    out = tmp_path / 'big.png'
+    calls = []
+
+    def broken(job, span):
+        calls.append(span)
+        if len(calls) == 3:
+            raise MemoryError
+        return real(job, span)
+    real = rasterize._compress_strip
+    monkeypatch.setattr(rasterize, '_compress_strip', broken)
+    assert rasterize.main([src, str(out), '--memory-budget', '0.1', '--jobs', '1']) == 1
+    assert one_error_line(capsys.readouterr().err, 'rasterize')
+    assert os.listdir(tmp_path) == ['big.svg']
+
+
+# -- map tiles ------------------------------------------------------------------------------
+
+def test_xyz_tiles(tmp_path, capsys):
+    src = write(tmp_path, 'map.svg', doc(600, 300, 80, 'teal'))
+    d = tmp_path / 'tiles'
+    assert rasterize.main([src, '--tiles', str(d), '--jobs', '2']) == 0
+    meta = json.loads((d / 'tiles.json').read_text())
+    assert meta['tile_size'] == 256 and (meta['minzoom'], meta['maxzoom']) == (0, 2)
+    assert meta['bounds'] == [0.0, 0.0, 600.0, 300.0]
+    for lv in meta['levels']:
+        z = lv['zoom']
+        assert lv['width'] == 256 * 2 ** z and lv['height'] == 128 * 2 ** z
+        whole = raster.render(src, lv['width'])
+        got = sorted(os.listdir(d / str(z)))
+        assert got == [str(x) for x in range(lv['columns'])]
+        for x in range(lv['columns']):
+            assert sorted(os.listdir(d / str(z) / str(x))) == sorted(
+                '%d.png' % y for y in range(lv['rows']))
+            for y in range(lv['rows']):
+                tile = png(d / str(z) / str(x) / ('%d.png' % y))
+                assert tile.shape == (256, 256, 4)
+                part = whole[256 * y:256 * (y + 1), 256 * x:256 * (x + 1)]
+                assert np.array_equal(tile[:part.shape[0], :part.shape[1]], part)
+                assert not tile[part.shape[0]:].any()          # padding is transparent
+    assert '11 tiles, zoom 0-2' in capsys.readouterr().err    # 1 + 2 + 8
+
+
+def test_tiles_usage_errors(tmp_path, capsys):
+    src = write(tmp_path, 'map.svg', doc())
+    d = str(tmp_path / 't')
+    assert rasterize.main([src, src, '--tiles', d]) == 2
+    assert rasterize.main([src, '--tiles', d, '--width', '100']) == 2
+    assert rasterize.main([src, '--tiles', d, '--min-zoom', '3', '--max-zoom', '1']) == 2
+    assert rasterize.main([src, '--tiles', d, '--max-zoom', '30']) == 1
+    assert not os.path.exists(d)
+
+
+def test_the_file_does_not_depend_on_the_number_of_workers(tmp_path):
+    src = write(tmp_path, 'big.svg', doc(300, 200, 60, 'orange'))
+    outs = []
+    for jobs in ('1', '2'):
+        out = tmp_path / ('j%s.png' % jobs)
+        assert rasterize.main([src, str(out), '--width', '500', '--memory-budget', '0.5',
+                               '--jobs', jobs]) == 0
+        outs.append(out.read_bytes())
+    assert outs[0] == outs[1]

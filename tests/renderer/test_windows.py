@@ -1,0 +1,177 @@
+"""Windows of a render (render_tree(window=...), raster.render(window=)):
+a window equals that part of the whole image -- bit for bit for paths,
+gradients, patterns, clip paths, masks, groups and most filters, within one
+level of 255 where a blur's or gradient's float sums round differently at
+another layer origin -- including effects that reach across the window's
+border (blurs, offsets, shadows, morphology, feTile)."""
+
+import os
+
+import numpy as np
+import pytest
+
+import raster
+from raster.errors import CanvasError
+from raster.renderer import MAX_WINDOWED_PIXELS, check_window, render_tree
+from raster.renderer.filters import filter_margin
+from raster.geometry.transform import Affine
+from raster.svg import load_svg
+from raster.tree import filter as F
+
+from _shared import CORPUS
+
+SVG = '<svg xmlns="http://www.w3.org/2000/svg" width="160" height="120">%s</svg>'
+
+CASES = {
+    'paths': '<rect x="10" y="10" width="100" height="60" fill="#336699" stroke="red" '
+             'stroke-width="7"/><circle cx="100" cy="80" r="37" fill="green" opacity="0.6"/>'
+             '<path d="M5 115 L155 5" stroke="black" stroke-width="0.5"/>',
+    'gradient': '<defs><linearGradient id="g" x1="0" x2="1"><stop offset="0" stop-color="red"/>'
+                '<stop offset="1" stop-color="blue"/></linearGradient><radialGradient id="r">'
+                '<stop offset="0" stop-color="yellow"/><stop offset="1" stop-color="purple" '
+                'stop-opacity="0.2"/></radialGradient></defs>'
+                '<rect width="160" height="60" fill="url(#g)"/>'
+                '<ellipse cx="80" cy="80" rx="70" ry="35" fill="url(#r)"/>',
+    'pattern': '<defs><pattern id="p" width="13" height="9" patternUnits="userSpaceOnUse" '
+               'patternTransform="rotate(20)"><circle cx="5" cy="4" r="4" fill="teal"/>'
+               '</pattern></defs><rect x="3" y="3" width="150" height="110" fill="url(#p)"/>',
+    'clip-mask': '<defs><clipPath id="c"><circle cx="80" cy="60" r="50"/></clipPath>'
+                 '<mask id="m"><rect width="160" height="120" fill="white"/>'
+                 '<circle cx="60" cy="50" r="25" fill="black"/></mask></defs>'
+                 '<g clip-path="url(#c)" mask="url(#m)"><rect width="160" height="120" '
+                 'fill="orange"/><path d="M0 0 L160 120" stroke="navy" stroke-width="9"/></g>',
+    'blur': '<defs><filter id="f" x="-50%" y="-50%" width="200%" height="200%">'
+            '<feGaussianBlur stdDeviation="6"/></filter></defs>'
+            '<rect x="30" y="30" width="70" height="50" fill="crimson" filter="url(#f)"/>',
+    'small-blur': '<defs><filter id="f"><feGaussianBlur stdDeviation="1.2 0.6"/></filter></defs>'
+                  '<circle cx="80" cy="60" r="30" fill="blue" filter="url(#f)"/>',
+    'shadow-offset': '<defs><filter id="f" x="-30%" y="-30%" width="180%" height="180%">'
+                     '<feDropShadow dx="9" dy="-7" stdDeviation="3"/>'
+                     '<feOffset dx="-11" dy="5"/></filter></defs>'
+                     '<text x="20" y="70" font-size="40" fill="gold" filter="url(#f)">Ab</text>'
+                     '<rect x="90" y="40" width="40" height="40" fill="purple" '
+                     'filter="url(#f)"/>',
+    'morphology': '<defs><filter id="f"><feMorphology radius="4 2" operator="dilate"/>'
+                  '</filter></defs><path d="M20 20 L140 100 M20 100 L140 20" stroke="black" '
+                  'stroke-width="3" filter="url(#f)"/>',
+    'tile': '<defs><filter id="f" x="0" y="0" width="1" height="1">'
+            '<feFlood flood-color="green" x="10" y="10" width="23" height="17" result="a"/>'
+            '<feOffset dx="5" dy="3"/><feTile/></filter></defs>'
+            '<rect x="5" y="5" width="150" height="110" filter="url(#f)"/>',
+    'nested': '<defs><filter id="f" x="-40%" y="-40%" width="180%" height="180%">'
+              '<feGaussianBlur stdDeviation="3"/></filter></defs>'
+              '<g opacity="0.7" filter="url(#f)"><g filter="url(#f)">'
+              '<rect x="40" y="30" width="60" height="50" fill="teal"/></g>'
+              '<circle cx="110" cy="80" r="20" fill="red"/></g>',
+}
+
+
+def windows(w, h, rng, n=3):
+    """Cuts of a w x h image into a grid of random windows."""
+    xs = sorted(set([0, w] + [int(v) for v in rng.integers(1, w, n)]))
+    ys = sorted(set([0, h] + [int(v) for v in rng.integers(1, h, n)]))
+    return [(x0, y0, x1, y1) for y0, y1 in zip(ys, ys[1:]) for x0, x1 in zip(xs, xs[1:])]
+
+
+def assert_windows_equal(tree, tol, seed=0, **kw):
+    full = render_tree(tree, dtype='uint8', **kw).to_rgba8()
+    h, w = full.shape[:2]
+    worst = 0
+    for win in windows(w, h, np.random.default_rng(seed)):
+        x0, y0, x1, y1 = win
+        part = render_tree(tree, dtype='uint8', window=win, **kw).to_rgba8()
+        assert part.shape == (y1 - y0, x1 - x0, 4)
+        worst = max(worst, int(np.abs(part.astype(int) - full[y0:y1, x0:x1]).max()))
+    assert worst <= tol, worst
+    return full
+
+
+@pytest.mark.parametrize('name', sorted(CASES))
+def test_windows_equal_the_whole_render(name):
+    tree = load_svg((SVG % CASES[name]).encode())
+    full = assert_windows_equal(tree, 1, seed=len(name))
+    assert full[..., 3].any()                    # the case draws something
+
+
+@pytest.mark.parametrize('name', ['blur', 'shadow-offset', 'pattern', 'clip-mask'])
+def test_windows_equal_the_whole_render_scaled(name):
+    tree = load_svg((SVG % CASES[name]).encode())
+    assert_windows_equal(tree, 1, seed=3, width=397)
+
+
+def test_blur_windows_are_exact_where_the_window_is_far_from_content():
+    # a window of a region the blur does not reach is transparent, and a
+    # window that only the blur's tail reaches still gets that tail
+    tree = load_svg((SVG % CASES['blur']).encode())
+    full = render_tree(tree, dtype='uint8').to_rgba8()
+    tail = render_tree(tree, dtype='uint8', window=(101, 30, 120, 80)).to_rgba8()
+    assert tail[..., 3].any()
+    assert np.array_equal(tail, full[30:80, 101:120])
+
+
+@pytest.mark.parametrize('name', ['tango_paper_sheet_inkscape.svg',
+                                  'tango_input_keyboard_inkscape.svg', 'tiger.svg'])
+def test_corpus_windows_are_exact(name):
+    # Inkscape's blurred shadows and gradients, the tiger's strokes: strips
+    # and tiles of 600 px renders equal the whole render bit for bit
+    tree = load_svg(os.path.join(CORPUS, name))
+    assert_windows_equal(tree, 0, seed=1, width=600)
+
+
+def test_render_window_front_door():
+    doc = (SVG % CASES['blur']).encode()
+    full = raster.render(doc)
+    part = raster.render(doc, window=(20, 10, 90, 70))
+    assert np.array_equal(part, full[10:70, 20:90])
+
+
+def test_a_window_of_an_output_beyond_max_pixels():
+    # a 40000 x 30000 output (1200 M pixels) is refused whole but its
+    # windows render, equal to the same place of a smaller render scaled
+    doc = (SVG % '<rect x="40" y="30" width="80" height="60" fill="blue"/>').encode()
+    tree = load_svg(doc)
+    with pytest.raises(CanvasError):
+        render_tree(tree, width=40000)
+    px = render_tree(tree, width=40000, dtype='uint8',
+                     window=(9990, 7490, 10010, 7510)).to_rgba8()
+    # the rectangle's corner (40, 30) is at (10000, 7500) at 250x: inside
+    # below-right of it, outside above-left
+    assert px[15, 15].tolist() == [0, 0, 255, 255] and px[5, 5, 3] == 0
+    assert 40000 * 30000 <= MAX_WINDOWED_PIXELS
+
+
+@pytest.mark.parametrize('win', [(0, 0, 0, 5), (0, 0, 161, 10), (-1, 0, 5, 5), (3, 2, 1, 9),
+                                 (0, 0, 1.5, 2), 'abcd', (1, 2, 3)])
+def test_bad_windows_are_refused(win):
+    with pytest.raises(CanvasError):
+        check_window(win, 160, 120)
+    with pytest.raises(CanvasError):
+        raster.render((SVG % '').encode(), window=win)
+
+
+def test_filter_margin_bounds_each_primitive():
+    t = Affine.scale(3.0, 2.0)
+    blur = F.Filter(region=None, primitives=[F.GaussianBlur(std_dev=(2.0, 5.0))])
+    assert filter_margin([blur], t) == 4 * 10.0 + 4
+    off = F.Filter(region=None, primitives=[F.Offset(dx=-4.0, dy=1.5)])
+    assert filter_margin([off], t) == 12.0 + 3.0 + 1
+    # chains add up; lists of filters too
+    assert filter_margin([blur, off], t) == filter_margin([blur], t) + filter_margin([off], t)
+    assert filter_margin([F.Filter(region=None, primitives=[F.Tile()])], t) is None
+    wrap = F.ConvolveMatrix(kernel=np.ones((3, 3)), edge_mode=F.EdgeMode.WRAP)
+    assert filter_margin([F.Filter(region=None, primitives=[wrap])], t) is None
+    assert filter_margin([F.Filter(region=None, primitives=[F.Flood()])], t) == 0.0
+
+
+def test_paths_outside_the_canvas_cover_nothing():
+    # the culling of paths whose device box misses the canvas: a shape
+    # wholly left of, above, and beside the window changes nothing
+    inside = '<rect x="60" y="40" width="30" height="30" fill="red"/>'
+    outside = ('<rect x="-300" y="40" width="100" height="30" fill="blue"/>'
+               '<path d="M-50 -50 L-10 -50 L-10 -10 Z" fill="green" stroke="black"/>'
+               '<rect x="500" y="500" width="10" height="10" fill="black"/>')
+    a = raster.render((SVG % inside).encode())
+    b = raster.render((SVG % (outside + inside)).encode())
+    assert np.array_equal(a, b)
+    win = raster.render((SVG % (outside + inside)).encode(), window=(55, 35, 95, 75))
+    assert np.array_equal(win, a[35:75, 55:95])
