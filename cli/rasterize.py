@@ -107,7 +107,7 @@ def build_parser():
                     help='JPEG quality 1-100 (default 90); WebP: lossy at Q (default lossless)')
     ap.add_argument('--compress-level', type=int, metavar='N',
                     help='PNG zlib level 0-9 (default 1)')
-    ap.add_argument('--tolerance', type=float, default=0.25, help=argparse.SUPPRESS)
+    ap.add_argument('--tolerance', type=float, default=None, help=argparse.SUPPRESS)
     g = ap.add_argument_group('many files, large images, map tiles')
     g.add_argument('--out-dir', metavar='DIR',
                    help='convert every PATH into this folder (created if needed)')
@@ -227,10 +227,18 @@ def _load(args, dpi, path):
                     base_dir=base_dir_of(path), languages=languages_of(args))
 
 
+def _tolerance(args):
+    """The flattening tolerance: --tolerance, else the renderer's default."""
+    if args.tolerance is not None:
+        return args.tolerance
+    from raster.renderer import DEFAULT_TOLERANCE
+    return DEFAULT_TOLERANCE
+
+
 def _render_kw(args, bg):
     crop = args.id is not None and not args.id_page
     return dict(width=args.width, height=args.height, zoom=args.zoom, background=bg,
-                node_id=args.id, tolerance=args.tolerance, crop=crop)
+                node_id=args.id, tolerance=_tolerance(args), crop=crop)
 
 
 def _single(args, dpi, inp, out):
@@ -506,7 +514,7 @@ def _tile_piece(task):
     x0, y0 = c0 * T, row * T
     x1, y1 = min(lv.width, c1 * T), min(lv.height, (row + 1) * T)
     side = dict(width=lv.width) if tree.width >= tree.height else dict(height=lv.height)
-    canvas = render_tree(tree, background=bg, node_id=args.id, tolerance=args.tolerance,
+    canvas = render_tree(tree, background=bg, node_id=args.id, tolerance=_tolerance(args),
                          dtype='uint8', window=(x0, y0, x1, y1), **side)
     rgba = canvas.to_rgba8()
     del canvas

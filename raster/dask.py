@@ -99,7 +99,7 @@ def _tree(token, data, base, load, size, render):
 
 def _render_chunk(data, spec, window):
     """One chunk: ``(y1 - y0, x1 - x0, 4)`` uint8 RGBA of the window."""
-    from .renderer import render_tree
+    from .renderer import DEFAULT_TOLERANCE, render_tree
     from .svg import parse_background
     token, base, load, size, render, premultiplied = spec
     tree, _ = _tree(token, data, base, load, size, render)
@@ -107,7 +107,7 @@ def _render_chunk(data, spec, window):
     canvas = render_tree(tree, width=size[0], height=size[1], zoom=render.get('zoom'),
                          background=parse_background(render.get('background')),
                          node_id=render.get('id'),
-                         tolerance=render.get('tolerance', 0.25), crop=crop,
+                         tolerance=render.get('tolerance', DEFAULT_TOLERANCE), crop=crop,
                          dtype=np.uint8, window=window)
     return canvas.to_rgba8(premultiplied=premultiplied)
 

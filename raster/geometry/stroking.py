@@ -476,9 +476,10 @@ def _refine_ends(ctrl, points, counts, r, tol, ends=None):
     return out, new_counts
 
 
-def _path_lines(path, tol, r=0.0):
+def _path_lines(path, tol, r=0.0, straddle=False):
     """Flatten every segment of ``path`` within ``tol`` (user units) with
-    :func:`raster.geometry.flattening.flatten_beziers`, keeping track of which vertices
+    :func:`raster.geometry.flattening.flatten_beziers` (``straddle`` passed
+    on), keeping track of which vertices
     lie inside a curve (smooth joins).  ``tol`` is a float or a (C,) array,
     one tolerance per contour (``MOVE``) of ``path``.
 
@@ -509,17 +510,17 @@ def _path_lines(path, tol, r=0.0):
                 tc = tol[seg.contour[sel]]
                 tmin = float(tc.min())
                 if np.all(tc == tmin):
-                    p, cnt = flatten_beziers(ctrl, tmin)
+                    p, cnt = flatten_beziers(ctrl, tmin, straddle)
                 else:
                     f = tmin / tc
-                    p, cnt = flatten_beziers(ctrl * f[:, None, None], tmin)
+                    p, cnt = flatten_beziers(ctrl * f[:, None, None], tmin, straddle)
                     p = p / np.repeat(f, cnt)[:, None]
                     last = np.cumsum(cnt) - 1     # end points exactly
                     p[last] = ctrl[:, -1]
                     p[last - cnt + 1] = ctrl[:, 0]
             else:
                 tc = tol
-                p, cnt = flatten_beziers(ctrl, tol)
+                p, cnt = flatten_beziers(ctrl, tol, straddle)
             if r > 0:
                 if g1 is None:
                     g1 = _g1_ends(seg)
@@ -1212,7 +1213,7 @@ def _emit_verbs(counts):
 # ---------------------------------------------------------------------------
 
 def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: AffineLike = None,
-           tolerance: float = 0.25, **style_kwargs: Any) -> Path:
+           tolerance: float = 0.25, straddle: bool = False, **style_kwargs: Any) -> Path:
     """Outline of the stroke of ``path``, to be filled with the nonzero rule.
 
     Parameters
@@ -1228,6 +1229,11 @@ def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: Affine
     tolerance : float
         Largest distance, in device pixels, between the returned outline and
         the exact stroke (curve flattening and arc polygonization).
+    straddle : bool
+        Flatten the curves into straddled polylines
+        (:func:`raster.geometry.flattening.flatten_beziers`): the outline's
+        curved sides then lie on both sides of the exact ones, about half
+        as far, instead of all inside or outside them.
 
     Returns
     -------
@@ -1282,14 +1288,14 @@ def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: Affine
     with np.errstate(over='ignore', invalid='ignore'):         # checked in _check_early
         dev = path.points if t.is_identity else t.apply(path.points)
     _check_early(dev, style.width * scale)
-    pts, counts, _ = _geometry(path, style, tol / scale)
+    pts, counts, _ = _geometry(path, style, tol / scale, straddle=straddle)
     if not t.is_identity:
         pts = t.apply(pts)
     _check_device(pts)
     return _emit(pts, counts)
 
 
-def _geometry(path, style, tol_u, cpath=None, npaths=1):
+def _geometry(path, style, tol_u, cpath=None, npaths=1, straddle=False):
     """Outline polygons of the stroke of ``path`` in user space.
 
     ``tol_u`` is the tolerance in user units: a float, or with ``cpath`` a
@@ -1299,6 +1305,7 @@ def _geometry(path, style, tol_u, cpath=None, npaths=1):
     size below which points merge) is then computed per path, so each path
     gets the same outline as on its own.  Returns ``(points, counts,
     owner)``: the polygons and, per polygon, the entry of ``cpath`` (or 0).
+    ``straddle`` is passed on to the flattening.
     """
     pattern = dash_pattern(style.dash)
     # dash positions follow the arc length of the flattening, which falls
@@ -1306,7 +1313,7 @@ def _geometry(path, style, tol_u, cpath=None, npaths=1):
     tol_f = tol_u if pattern is None else 0.25 * tol_u
     # straight caps and sharp joins rest on the end chords of curves
     all_round = style.cap == 'round' and style.join == 'round'
-    lines, keep = _path_lines(path, tol_f, 0.0 if all_round else 0.5 * style.width)
+    lines, keep = _path_lines(path, tol_f, 0.0 if all_round else 0.5 * style.width, straddle)
     if cpath is None:
         cp = np.zeros(len(lines.counts), np.int64)
         eps = _eps(lines.points)
@@ -1376,7 +1383,7 @@ def _check_early(pts, width):
 
 def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
                 transforms: Optional[Sequence[AffineLike]] = None,
-                tolerance: float = 0.25) -> List[Path]:
+                tolerance: float = 0.25, straddle: bool = False) -> List[Path]:
     """Stroke many paths with one style in one vectorized pass.
 
     The paths are concatenated (contours numbered by the path they come
@@ -1403,6 +1410,8 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
     tolerance : float
         Largest distance, in device pixels, between each outline and its
         exact stroke.
+    straddle : bool
+        As for :func:`stroke`.
 
     Returns
     -------
@@ -1480,7 +1489,7 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
     with np.errstate(over='ignore', invalid='ignore'):         # checked in _check_early
         dev = apply_each(mu[vp], np.concatenate(upts))
     _check_early(dev, style.width * float(scales[use].max()))
-    pts, rcounts, owner = _geometry(big, style, tol_u, cpath, len(rep))
+    pts, rcounts, owner = _geometry(big, style, tol_u, cpath, len(rep), straddle)
     # polygons come out path by path
     ppath = np.repeat(owner, rcounts)
     npoly = np.bincount(owner, minlength=len(rep))

@@ -96,8 +96,9 @@ class Options:
         environment's, as the commands use).
     tolerance : float
         Flattening tolerance in device pixels at the natural size; arcs
-        become cubics ten times finer than this divided by the element's
-        scale, so a 10x zoom stays within it.
+        become cubics a hundred times finer than this divided by the
+        element's scale (:data:`raster.parser.shapes.ARC_SAFETY`), so a 100x
+        zoom stays within it.
     max_elements : int or None
         Most nodes to build (a ``use`` bomb stops there, with a warning);
         None: ``max_elements`` of :func:`raster.limits.current` when the

@@ -52,34 +52,32 @@ from ..errors import CanvasError, LimitError, PathError
 from ..geometry.flattening import flatten
 from ..geometry.rules import FillRule
 
-__all__ = ['Mask', 'coverage', 'coverage_many', 'coverage_batch', 'path_coverage', 'check_canvas_size', 'SUBSCANLINES']
-
-#: Evenly spaced sample lines per pixel used in pixels crowded with more
-#: than ``_PAIR_LIMIT`` pieces (the only non-exact case).
-SUBSCANLINES = 32
+__all__ = ['Mask', 'coverage', 'coverage_many', 'coverage_batch', 'path_coverage', 'check_canvas_size']
 
 # Coverage below this is float64 rounding residue and is set to 0.
 _RESIDUE = 1e-9
-# Most pieces generated at once; longer inputs are processed in chunks.
-_CHUNK_PIECES = 1 << 21
-# Largest box (cells) for which flagged cells are found through a dense
-# int32 map rather than a binary search.
-_CELLMAP_MAX = 1 << 25
+# Most pieces generated at once; larger boxes are processed in row bands.
+_CHUNK_PIECES = 1 << 18
 # Boxes with more than this many cells per piece accumulate cover and
 # partial sums over the touched cells only (sorting the pieces' cells
 # costs less than sweeping the whole box).
 _SPARSE_RATIO = 8
-# The dense cell map of _exact_cells is used when the box has at most this
-# many cells per piece (else a binary search over the flagged cells).
-_CELLMAP_RATIO = 16
-# Longest stretch of a chain checked for monotonicity when it visits one
-# cell several times.
+# Longest run checked for monotonicity along some direction.
 _STRETCH_MAX = 256
-# Most work items (pairs, pieces, heights) per batch of recomputed cells.
-_CHUNK_WORK = 1 << 21
-# Cells with more pieces than this are sampled on a fixed grid of
-# SUBSCANLINES heights instead of at all end points and intersections.
-_PAIR_LIMIT = 32
+# Cells holding at most this many runs and pieces get the boundary walk
+# (see _walk); busier cells are recomputed.
+_WALK_RUNS = 32
+_WALK_PIECES = 64
+# Most work items (sample crossings) per batch of recomputed cells.
+_CHUNK_WORK = 1 << 20
+# Cells with more pieces than this are refined on a _REFINE x _REFINE grid
+# instead of being sampled at all critical heights (at most _MAX_DEPTH
+# levels deep).
+_EXACT_PIECES = 12
+_REFINE = 4
+_MAX_DEPTH = 5
+# Flag every cell holding pieces (see _flag; for checking the flags).
+_FLAG_EVERYTHING = False
 # Most cells (sum of the shapes' box areas) per batch of coverage_batch.
 _BATCH_CELLS = 1 << 24
 
@@ -317,7 +315,7 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
 
 
 def path_coverage(path, width, height, fill_rule='nonzero', antialias=True, clip=None,
-                  tolerance=0.25, transform=None):
+                  tolerance=0.25, transform=None, straddle=False):
     """Coverage of a :class:`~raster.geometry.path.Path` filled on a canvas.
 
     The path is flattened with :func:`raster.geometry.flattening.flatten` (every contour
@@ -333,6 +331,10 @@ def path_coverage(path, width, height, fill_rule='nonzero', antialias=True, clip
         polyline (default 0.25); the scan conversion itself is exact.
     transform : raster.geometry.transform.Affine or None
         User space to device space.
+    straddle : bool
+        Flatten into straddled polylines (see
+        :func:`raster.geometry.flattening.flatten`): the edges of curves
+        then lie about half as far from the curves, on both sides.
 
     Returns
     -------
@@ -343,7 +345,8 @@ def path_coverage(path, width, height, fill_rule='nonzero', antialias=True, clip
     >>> m.box, float(m.data.sum())
     ((1, 1, 3, 2), 1.0)
     """
-    edges = flatten(path, tolerance=tolerance, transform=transform).edges(close_all=True)
+    edges = flatten(path, tolerance=tolerance, transform=transform,
+                    straddle=straddle).edges(close_all=True)
     return coverage(edges, width, height, fill_rule=fill_rule, antialias=antialias, clip=clip)
 
 
@@ -451,24 +454,36 @@ def _pieces(loc, w, h):
     return xa, ya, xb, yb, col, row
 
 
-def _chunks(loc, w, h):
-    """Edge index ranges whose pieces number about _CHUNK_PIECES at most."""
+def _bands(loc, w, h):
+    """Row bands ``[(r0, r1), ...]`` covering rows 0..h whose pieces number
+    about :data:`_CHUNK_PIECES` at most (a single row may hold more).
+
+    Every cell's pieces lie in one band, so a band is scan converted on its
+    own, the exact recompute included.  The pieces of an edge are estimated
+    as one plus the rows and columns it spans, spread evenly over its rows.
+    """
     n_e = len(loc)
     d = np.abs(loc[:, 1] - loc[:, 0])
     if 3 * n_e + d.sum() <= _CHUNK_PIECES:     # cheap upper bound
-        return [(0, n_e)]
+        return [(0, h)]
     xs, ys = loc[:, :, 0], loc[:, :, 1]
-    ny = np.clip(np.ceil(ys.max(1)), 0, h) - np.clip(np.floor(ys.min(1)), 0, h)
+    r0 = np.clip(np.floor(ys.min(1)), 0, h).astype(np.int64)
+    r1 = np.clip(np.ceil(ys.max(1)), 0, h).astype(np.int64)
     nx = np.clip(np.ceil(xs.max(1)), 0, w) - np.clip(np.floor(xs.min(1)), 0, w)
-    est = np.cumsum(1.0 + ny + nx)
-    if est[-1] <= _CHUNK_PIECES:
-        return [(0, n_e)]
+    ny = r1 - r0
+    est = 1.0 + ny + nx
+    if est.sum() <= _CHUNK_PIECES:
+        return [(0, h)]
+    dens = est / np.maximum(ny, 1)
+    r1e = np.maximum(r1, np.minimum(r0 + 1, h))     # one row at least (clipped)
+    per_row = np.cumsum(np.bincount(r0, dens, h + 1) - np.bincount(r1e, dens, h + 1))[:h]
+    cum = np.cumsum(per_row)
     bounds = [0]
-    while bounds[-1] < n_e:
+    while bounds[-1] < h:
         lo = bounds[-1]
-        base = est[lo - 1] if lo else 0.0
-        hi = int(np.searchsorted(est, base + _CHUNK_PIECES, side='right'))
-        bounds.append(min(max(hi, lo + 1), n_e))
+        base = cum[lo - 1] if lo else 0.0
+        hi = int(np.searchsorted(cum, base + _CHUNK_PIECES, side='right'))
+        bounds.append(min(max(hi, lo + 1), h))
     return list(zip(bounds[:-1], bounds[1:]))
 
 
@@ -489,32 +504,68 @@ def _run_lengths(starts, n):
     return out
 
 
-def _flag_cells(xa, ya, xb, yb, cell, brk=None):
-    """Cells whose winding may take more than two adjacent values.
+def _ranges(starts, lengths):
+    """Concatenated ``arange(s, s + l)`` for every (s, l), int64."""
+    lengths = np.asarray(lengths, np.int64)
+    tot = int(lengths.sum())
+    off = np.cumsum(lengths) - lengths
+    return np.repeat(np.asarray(starts, np.int64) - off, lengths) + np.arange(tot)
 
-    Parameters are the pieces of one chunk in path order; ``cell`` is < 0
-    for pieces outside the box.  Returns (cells touched, cells flagged),
-    both sorted int64 arrays of flat cell indices.  ``brk`` (bool, optional)
-    marks pieces that never continue the previous one (a new shape).
 
-    A piece *continues* the previous piece of the array when it starts
-    exactly where that one ends (split points and shared polygon vertices
-    are bitwise equal); a *run* is a maximal sequence of continuing pieces
-    in one cell (a closed chain whose first and last pieces meet in one
-    cell has those two runs merged).  A cell is left alone (it is exact)
-    when all its pieces lie on one curve that is strictly monotone along
-    some direction ``d``: for any two points p, q of the cell, the
-    crossings of the segment pq with such a curve are consecutive along it
-    (their order along d is their order along pq), so their signs
-    alternate and the winding changes by at most one.  Tested here:
+# -- which cells need the exact recompute -------------------------------------
+#
+# A cell's running-sum value f(integral of w) is exact when the winding w
+# takes at most two adjacent values in it (the fill rule f is linear
+# between adjacent integers; for nonzero also whenever w stays >= 1, <= -1,
+# in [0, 1] or in [-1, 0]).  The pieces of a cell form *runs*: maximal
+# sequences of pieces in path order each starting exactly where the
+# previous one ends.  A *simple* run does not cross itself: at most two
+# pieces, or its directions fit in an open half-plane (it is monotone along
+# some direction).  One simple run cuts the cell into two sides whose
+# windings differ by one.  Several simple runs that do not meet cut the
+# cell into faces that all reach the cell's boundary, so the windings met
+# walking once around the boundary are all the windings in the cell: the
+# *boundary walk* decides those cells (see _walk).  Every other cell is
+# flagged.
 
-    * one run of at most two pieces, or monotone in x or in y;
-    * otherwise, the directions of all pieces from the cell's first piece
-      to its last one in path order (at most _STRETCH_MAX pieces, no break
-      of the chain, possibly leaving and re-entering the cell) lie in an
-      open half-plane (zero-length pieces are ignored).
+def _flag(xa, ya, xb, yb, col, row, cell, brk, left_of, evenodd, everything=None):
+    """Cells whose coverage needs the exact recompute.
+
+    Parameters
+    ----------
+    xa, ya, xb, yb : (P,) float64 ndarray
+        Pieces in path order (box coordinates; pixel (row, col) is the
+        square [col, col + 1] x [row, row + 1]).
+    col, row : (P,) int64 ndarray
+        The cell of each piece.
+    cell : (P,) int64 ndarray
+        Flat cell key of each piece, < 0 for pieces that are in no cell
+        (the virtual column left of the box, or shapes not recomputed).
+    brk : (P,) bool ndarray or None
+        Pieces that never continue the previous one (a new shape).
+    left_of : callable
+        ``left_of(keys)``: the winding integrated over the left side of
+        each cell (float64), from the running sums.
+    evenodd : bool or (P,) bool ndarray
+        The fill rule (per piece when shapes differ).
+    everything : bool or None
+        True flags every cell holding a piece (the running sum is then
+        used nowhere: a check of the tests above); None reads
+        ``_FLAG_EVERYTHING``.
+
+    Returns
+    -------
+    flagged : (F,) int64 ndarray
+        The flagged cell keys, sorted.
+    pieces : (Q,) int64 ndarray
+        The pieces of the flagged cells, cell after cell.
+    counts : (F,) int64 ndarray
+        Pieces per flagged cell.
     """
     n = len(cell)
+    empty = (np.zeros(0, np.int64),) * 3
+    if n == 0:
+        return empty
     conn = np.zeros(n, bool)
     conn[1:] = (xa[1:] == xb[:-1]) & (ya[1:] == yb[:-1])
     if brk is not None:
@@ -528,12 +579,11 @@ def _flag_cells(xa, ya, xb, yb, cell, brk=None):
     bits = ((dy > 0).astype(np.uint8) | ((dy < 0).astype(np.uint8) << 1)
             | ((dx > 0).astype(np.uint8) << 2) | ((dx < 0).astype(np.uint8) << 3))
     rbits = np.bitwise_or.reduceat(bits, ridx)
+    # a merged run is a closed chain's end followed by its start (one cell):
+    # its own start ridx is the tail part's, hstart/hlen the head part's
     merged = np.zeros(len(ridx), bool)
-    # for a merged run: start and length of its head part (the pieces at
-    # the start of the chain); its own start ridx is the tail part's
     hstart = np.zeros(len(ridx), np.int64)
     hlen = np.zeros(len(ridx), np.int64)
-    # closed chains: merge the run at the chain's start into the run at its end
     heads = np.flatnonzero(~conn)
     tails = np.empty_like(heads)
     tails[:-1] = heads[1:] - 1
@@ -556,141 +606,817 @@ def _flag_cells(xa, ya, xb, yb, cell, brk=None):
         hstart, hlen = hstart[keep], hlen[keep]
     rcell = cell[ridx]
     inside = rcell >= 0
-    if not inside.any():
-        return np.zeros(0, np.int64), np.zeros(0, np.int64)
-    ridx, rlen, rbits, merged, rcell, hstart, hlen = (
-        ridx[inside], rlen[inside], rbits[inside], merged[inside], rcell[inside],
-        hstart[inside], hlen[inside])
-    # group the runs by cell (runs of a cell stay in path order)
+    if not inside.all():
+        ridx, rlen, rbits, merged, rcell, hstart, hlen = (
+            ridx[inside], rlen[inside], rbits[inside], merged[inside], rcell[inside],
+            hstart[inside], hlen[inside])
+    if len(ridx) == 0:
+        return empty
+    simple = (rlen <= 2) | ((rbits & 3) != 3) | ((rbits & 12) != 12)
+    hp = np.flatnonzero(~simple & (rlen <= _STRETCH_MAX))
+    if len(hp):
+        simple[hp] = _half_plane(dx, dy, ridx[hp], rlen[hp], merged[hp], hstart[hp], hlen[hp])
+    # runs grouped by cell (in path order within a cell)
     order = np.argsort(rcell, kind='stable')
-    ridx, rlen, rbits, merged, rcell, hstart, hlen = (
-        ridx[order], rlen[order], rbits[order], merged[order], rcell[order],
-        hstart[order], hlen[order])
+    ridx, rlen, merged, rcell, hstart, hlen, simple = (
+        ridx[order], rlen[order], merged[order], rcell[order], hstart[order], hlen[order],
+        simple[order])
     gstart = _group_starts(rcell)
     gcnt = _run_lengths(gstart, len(rcell))
     cells = rcell[gstart]
-    single = gcnt == 1
-    axis_ok = (rlen[gstart] <= 2) | ((rbits[gstart] & 3) != 3) | ((rbits[gstart] & 12) != 12)
-    ok = single & axis_ok
-    # the rest (no merged run involved): monotone along the chord?
-    has_merged = np.logical_or.reduceat(merged, gstart)
-    glast = gstart + gcnt - 1
-    s_first = ridx[gstart]
-    s_last = np.minimum(ridx[glast] + rlen[glast] - 1, n - 1)   # (merged runs wrap)
-    breaks = np.cumsum(~conn)
-    cand = (~ok & ~has_merged & (s_last - s_first < _STRETCH_MAX)
-            & (breaks[s_last] == breaks[s_first]))
-    # a cell holding one merged run (a closed chain's end and start) holds
-    # one unbroken chain too: its tail part, then its head part
-    cand_m = ~ok & single & merged[gstart] & (rlen[gstart] <= _STRETCH_MAX)
-    ci = np.flatnonzero(cand)
-    cm = np.flatnonzero(cand_m)
-    if len(ci) or len(cm):
-        # the piece directions fit in an open half-plane iff, sorted by
-        # angle, some circular gap between consecutive ones exceeds pi.
-        # Stretches of pieces: (first piece, count, candidate)
-        gm = gstart[cm]
-        sf = np.concatenate([s_first[ci], ridx[gm], hstart[gm]])
-        L = np.concatenate([s_last[ci] - s_first[ci] + 1, rlen[gm] - hlen[gm], hlen[gm]])
-        cand_of = np.concatenate([np.arange(len(ci)), len(ci) + np.arange(len(cm)),
-                                  len(ci) + np.arange(len(cm))])
-        ci = np.concatenate([ci, cm])
-        owner = np.repeat(cand_of, L)
-        idx = np.repeat(sf, L) + (np.arange(len(owner)) - np.repeat(np.cumsum(L) - L, L))
-        srt = np.argsort(owner, kind='stable')
-        owner, idx = owner[srt], idx[srt]
-        pdx, pdy = dx[idx], dy[idx]
-        moving = (pdx != 0) | (pdy != 0)
-        owner = owner[moving]
-        ang = np.arctan2(pdy[moving], pdx[moving]) + np.pi          # [0, 2 pi]
-        ang = np.sort(owner * 8.0 + ang) - owner * 8.0               # sorted per stretch
-        m = len(ang)
-        if m:
-            gfirst = _group_starts(owner)
-            glast = gfirst + _run_lengths(gfirst, m) - 1
-            gap = np.empty(m)
-            gap[1:] = ang[1:] - ang[:-1]
-            gap[gfirst] = ang[gfirst] + 2 * np.pi - ang[glast]
-            fits = np.maximum.reduceat(gap, gfirst) > np.pi * (1 + 1e-9)
-            good = np.ones(len(ci), bool)          # stretches of points only
-            good[owner[gfirst]] = fits
-        else:
-            good = np.ones(len(ci), bool)
-        ok[ci] = good
-    return cells, cells[~ok]
+    gsimple = np.logical_and.reduceat(simple, gstart)
+    every = _FLAG_EVERYTHING if everything is None else everything
+    ok = (gcnt == 1) & gsimple & (not every)
+    walk = ((not every) & (gcnt >= 2) & gsimple & (gcnt <= _WALK_RUNS)
+            & (np.add.reduceat(rlen, gstart) <= _WALK_PIECES))
+    wi = np.flatnonzero(walk)
+    if len(wi):
+        runs = (ridx, rlen, merged, hstart, hlen)
+        eo = evenodd if np.ndim(evenodd) == 0 else evenodd[ridx[gstart[wi]]]
+        ok[wi] = _walk(xa, ya, xb, yb, col, row, dx, dy, runs, gstart[wi], gcnt[wi],
+                       left_of(cells[wi]), eo)
+    fg = np.flatnonzero(~ok)
+    rr = _ranges(gstart[fg], gcnt[fg])
+    pieces, _ = _run_pieces(ridx[rr], rlen[rr], merged[rr], hstart[rr], hlen[rr])
+    counts = np.add.reduceat(rlen[rr], np.cumsum(gcnt[fg]) - gcnt[fg]) if len(fg) else gcnt[:0]
+    return cells[fg], pieces, counts
 
 
-def _area_coverage(loc, w, h, evenodd, exact=True):
-    ncell = w * h
-    cover = None
-    partial = None
-    touched_cells, bad_cells = [], []
-    chunks = _chunks(loc, w, h)
-    saved = None
-    sparse = None
-    for lo, hi in chunks:
-        pc = _pieces(loc[lo:hi], w, h)
-        if pc is None:
-            continue
-        xa, ya, xb, yb, col, row = pc
-        real = col >= 0
-        cacc = np.maximum(col, 0)
-        cell = row * w + cacc
-        dy = yb - ya
-        # mean x offset inside the cell; virtual pieces act as if at x = 0
-        fx = np.where(real, 0.5 * (xa + xb) - col, 0.0)
-        if len(chunks) == 1 and len(cell) * _SPARSE_RATIO < ncell:
-            # few pieces in a large box: accumulate over the touched cells
-            # only (the same sums, in the same order, as the dense bincount)
-            cells, inv = np.unique(cell, return_inverse=True)
-            sparse = (cells, np.bincount(inv, weights=dy, minlength=len(cells)),
-                      np.bincount(inv, weights=dy * fx, minlength=len(cells)))
+def _run_pieces(ridx, rlen, merged, hstart, hlen):
+    """Piece indices of runs, run after run (a merged run: tail part, then
+    head part), and the offset of each run's first one."""
+    tail = np.where(merged, rlen - hlen, rlen)
+    both = np.concatenate([ridx, hstart[merged]])
+    lens = np.concatenate([tail, hlen[merged]])
+    # order: each run's tail part then, for merged runs, its head part
+    slot = np.concatenate([2 * np.arange(len(ridx)), 2 * np.flatnonzero(merged) + 1])
+    o = np.argsort(slot, kind='stable')
+    idx = _ranges(both[o], lens[o])
+    return idx, np.cumsum(rlen) - rlen
+
+
+def _half_plane(dx, dy, ridx, rlen, merged, hstart, hlen):
+    """Whether the directions of each run's pieces fit in an open half-plane
+    (the run is then monotone along some direction, so it cannot cross
+    itself); zero-length pieces are ignored.  Sorted by angle, some
+    circular gap between consecutive directions must exceed pi."""
+    idx, _ = _run_pieces(ridx, rlen, merged, hstart, hlen)
+    owner = np.repeat(np.arange(len(ridx)), rlen)
+    pdx, pdy = dx[idx], dy[idx]
+    moving = (pdx != 0) | (pdy != 0)
+    owner = owner[moving]
+    good = np.ones(len(ridx), bool)
+    if len(owner) == 0:
+        return good
+    ang = np.arctan2(pdy[moving], pdx[moving]) + np.pi          # [0, 2 pi]
+    ang = np.sort(owner * 8.0 + ang) - owner * 8.0               # sorted per run
+    m = len(ang)
+    gfirst = _group_starts(owner)
+    glast = gfirst + _run_lengths(gfirst, m) - 1
+    gap = np.empty(m)
+    gap[1:] = ang[1:] - ang[:-1]
+    gap[gfirst] = ang[gfirst] + 2 * np.pi - ang[glast]
+    good[owner[gfirst]] = np.maximum.reduceat(gap, gfirst) > np.pi * (1 + 1e-9)
+    return good
+
+
+def _perimeter(u, v, dx, dy):
+    """Where a run's end point (u, v) (cell units) lies on the cell's
+    boundary and how the winding changes there.
+
+    The boundary is walked clockwise on screen (y down) from the top-left
+    corner: top side left to right (t = u), right side downwards
+    (t = 1 + v), bottom right to left (t = 3 - u), left side upwards
+    (t = 4 - v).  Walking just inside the boundary across a piece of
+    direction (dx, dy) changes the winding by the sign of the cross product
+    of the walking direction and (dx, dy) (a downward piece adds one to its
+    right).  Returns (t, change, ok); ok is False off the boundary, at the
+    top-left corner, for a piece along the side (no change) and at a
+    corner where the two sides disagree.
+    """
+    top, right, bottom, lside = v == 0, u == 1, v == 1, u == 0
+    t = np.where(top, u, np.where(right, 1.0 + v, np.where(bottom, 3.0 - u, 4.0 - v)))
+    s_t, s_r = np.sign(dy), -np.sign(dx)
+    s_b, s_l = -s_t, -s_r
+    d = np.where(top, s_t, np.where(right, s_r, np.where(bottom, s_b, s_l)))
+    ok = (top | right | bottom | lside) & (d != 0) & ~(top & lside)
+    ok &= ~(top & right) | (s_t == s_r)
+    ok &= ~(right & bottom) | (s_r == s_b)
+    ok &= ~(bottom & lside) | (s_b == s_l)
+    return t, d, ok
+
+
+def _walk(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd):
+    """Whether the running sum is exact in cells holding several simple
+    runs, each starting and ending on the cell's boundary.
+
+    Each such run cuts the cell in two, so the winding at a point p is
+    ``w(p) = w0 + sum(sigma_r)`` over the runs r that p lies beyond (seen
+    from the top-left corner), with ``w0`` the winding at that corner and
+    ``sigma_r`` the change where a clockwise walk around the boundary from
+    the corner first meets r.  ``w0 = left + sum(change * (1 - v))`` over
+    the run ends on the left side (``left``: the winding integrated along
+    the left side).  The windings of a cell are decided in three steps,
+    each conservative:
+
+    1. the bound ``w0 + sum(sigma < 0) <= w <= w0 + sum(sigma > 0)``;
+    2. the windings met on the walk: every face reaches the boundary or
+       has a crossing point of two runs on its border, so with the windings
+       of the four faces around every crossing point they are all of them;
+       for straight runs crossings and sides follow from the order of the
+       end points along the boundary (geometry only for a crossing point
+       whose side of a third run both its runs cross);
+    3. runs of several pieces: crossing points and sides from segment
+       tests (touching or degenerate configurations are flagged).
+
+    The cell passes when the fill rule is linear on the windings found.
+
+    Returns (G,) bool: True where the running sum is exact.
+    """
+    ridx, rlen, merged, hstart, hlen = runs
+    G = len(gstart)
+    rr = _ranges(gstart, gcnt)                      # runs, group after group
+    gid = np.repeat(np.arange(G), gcnt)
+    r_idx, r_len, r_m, r_hs, r_hl = ridx[rr], rlen[rr], merged[rr], hstart[rr], hlen[rr]
+    f = r_idx
+    last = np.where(r_m, r_hs + r_hl - 1, r_idx + r_len - 1)
+    cx = col[f].astype(np.float64)
+    cy = row[f].astype(np.float64)
+    u0, v0 = xa[f] - cx, ya[f] - cy
+    u1, v1 = xb[last] - cx, yb[last] - cy
+    t0, d0, ok0 = _perimeter(u0, v0, dx[f], dy[f])
+    t1, d1, ok1 = _perimeter(u1, v1, dx[last], dy[last])
+    bad = np.zeros(G, bool)
+    bad[gid[~(ok0 & ok1)]] = True
+    multi = r_len > 1
+    mg = np.zeros(G, bool)
+    mg[gid[multi]] = True
+    if multi.any():
+        # pieces of longer runs lying on the left side (the running sum
+        # counts them inside the cell); a single piece there has no change
+        # at its ends and is rejected above
+        mr = np.flatnonzero(multi)
+        pidx, _ = _run_pieces(r_idx[mr], r_len[mr], r_m[mr], r_hs[mr], r_hl[mr])
+        pc = np.repeat(cx[mr], r_len[mr])
+        onleft = (xa[pidx] == pc) & (xb[pidx] == pc)
+        if onleft.any():
+            bad[np.repeat(gid[mr], r_len[mr])[onleft]] = True
+    onl0 = (u0 == 0) & (v0 > 0) & (v0 < 1)
+    onl1 = (u1 == 0) & (v1 > 0) & (v1 < 1)
+    w0 = left + np.bincount(gid, weights=np.where(onl0, d0 * (1.0 - v0), 0.0)
+                            + np.where(onl1, d1 * (1.0 - v1), 0.0), minlength=G)
+    w0r = np.rint(w0)
+    bad |= np.abs(w0 - w0r) > 1e-6
+    eo = np.broadcast_to(np.asarray(evenodd, bool), (G,))
+    sig = np.where(t0 < t1, d0, d1)
+    b_lo = w0r + np.bincount(gid, weights=np.minimum(sig, 0.0), minlength=G)
+    b_hi = w0r + np.bincount(gid, weights=np.maximum(sig, 0.0), minlength=G)
+    ok = ~bad & _linear_on(b_lo, b_hi, eo)
+    und = ~bad & ~ok
+    if not und.any():
+        return ok
+    # -- the walk: end points of the undecided cells in boundary order --------
+    ur = np.flatnonzero(und[gid])
+    eg = np.concatenate([gid[ur], gid[ur]])
+    et = np.concatenate([t0[ur], t1[ur]])
+    ed = np.concatenate([d0[ur], d1[ur]])
+    o = np.argsort(eg * 8.0 + et, kind='stable')
+    eg, et, ed = eg[o], et[o], ed[o]
+    same = (eg[1:] == eg[:-1]) & (et[1:] == et[:-1])
+    bad[eg[1:][same]] = True
+    cs = np.cumsum(ed)
+    efirst = _group_starts(eg)
+    elen = _run_lengths(efirst, len(eg))
+    pre = cs - np.repeat((cs - ed)[efirst], elen)
+    ug = eg[efirst]
+    c_lo = np.zeros(G)
+    c_hi = np.zeros(G)
+    c_lo[ug] = np.minimum(np.minimum.reduceat(pre, efirst), 0.0)
+    c_hi[ug] = np.maximum(np.maximum.reduceat(pre, efirst), 0.0)
+    c_lo += w0r
+    c_hi += w0r
+    # -- crossings between runs of the undecided cells ------------------------
+    lo_t, hi_t = np.minimum(t0, t1), np.maximum(t0, t1)
+    rstart = np.cumsum(gcnt) - gcnt
+    pos = np.arange(len(rr)) - np.repeat(rstart, gcnt)
+    npair = np.where(und[gid] & ~bad[gid], np.repeat(gcnt, gcnt) - 1 - pos, 0)
+    tot = int(npair.sum())
+    if tot:
+        i = np.repeat(np.arange(len(rr)), npair)
+        j = i + 1 + (np.arange(tot) - np.repeat(np.cumsum(npair) - npair, npair))
+        inter = (((lo_t[i] < lo_t[j]) & (lo_t[j] < hi_t[i]))
+                 != ((lo_t[i] < hi_t[j]) & (hi_t[j] < hi_t[i])))
+        pg = gid[i]
+        straight = ~mg[pg]
+        # straight runs: a crossing exactly where the end points interleave
+        # (in slices of bounded work: memory stays bounded)
+        xs = np.flatnonzero(inter & straight)
+        for sl in _slices(np.maximum(gcnt[pg[xs]] - 2, 1)):
+            x = xs[sl]
+            _straight_crossings(i[x], j[x], pg[x], gcnt, rstart, u0, v0, u1, v1, lo_t, hi_t,
+                                sig, w0r, bad, c_lo, c_hi)
+        # runs of several pieces: segment tests
+        ms = np.flatnonzero(mg[pg])
+        for sl in _slices(r_len[i[ms]] * r_len[j[ms]] + r_len[i[ms]] + r_len[j[ms]]):
+            x = ms[sl]
+            _piece_crossings(i[x], j[x], pg[x], gid, gcnt, rstart, r_idx, r_len, r_m, r_hs,
+                             r_hl, cx, cy, xa, ya, xb, yb, sig, w0r, bad, c_lo, c_hi)
+    return ok | (~bad & und & _linear_on(c_lo, c_hi, eo))
+
+
+def _slices(work, limit=_CHUNK_WORK // 8):
+    """Consecutive slices of items whose summed ``work`` stays about
+    ``limit`` (one item at least)."""
+    c = np.cumsum(work)
+    out = []
+    lo = 0
+    n = len(c)
+    while lo < n:
+        base = c[lo - 1] if lo else 0
+        hi = min(max(int(np.searchsorted(c, base + limit, side='right')), lo + 1), n)
+        out.append(slice(lo, hi))
+        lo = hi
+    return out
+
+
+def _straight_crossings(i, j, g, gcnt, rstart, u0, v0, u1, v1, lo_t, hi_t, sig, w0r, bad,
+                        c_lo, c_hi):
+    """Windings around the crossing points of straight runs i and j (cells
+    g) into the ranges c_lo, c_hi: ``w0`` plus ``sigma_r`` of every other
+    run r the point lies beyond, plus any of 0, sigma_i, sigma_j and both.
+    The point lies beyond r when run i (or j) lies beyond r entirely (both
+    its ends on r's far arc of the boundary, (lo_t, hi_t)), not beyond when
+    it lies entirely on the near side, else (both cross r) by the side of
+    the crossing point of r's line."""
+    n_o = gcnt[g] - 2
+    xo = np.repeat(np.arange(len(i)), n_o)
+    k = np.arange(int(n_o.sum())) - np.repeat(np.cumsum(n_o) - n_o, n_o)
+    ii, jj = i[xo], j[xo]
+    # the other runs of the cell, skipping i and j
+    r = rstart[g[xo]] + k
+    r += (r >= np.minimum(ii, jj)).astype(np.int64)
+    r += (r >= np.maximum(ii, jj)).astype(np.int64)
+    lr, hr = lo_t[r], hi_t[r]
+
+    def side(a):
+        a_in = (lr < lo_t[a]) & (lo_t[a] < hr)
+        b_in = (lr < hi_t[a]) & (hi_t[a] < hr)
+        return a_in & b_in, ~a_in & ~b_in
+    i_far, i_near = side(ii)
+    j_far, j_near = side(jj)
+    beyond = i_far | j_far
+    known = beyond | i_near | j_near
+    geo = np.flatnonzero(~known)
+    if len(geo):
+        # crossing point of i and j, then its side of r's chord against the
+        # corner's (0, 0)
+        a, b, c = ii[geo], jj[geo], r[geo]
+        px, py = u0[a], v0[a]
+        ux, uy = u1[a] - px, v1[a] - py
+        qx, qy = u0[b], v0[b]
+        wx, wy = u1[b] - qx, v1[b] - qy
+        den = ux * wy - uy * wx
+        with np.errstate(all='ignore'):
+            tt = ((qx - px) * wy - (qy - py) * wx) / den
+        X, Y = px + tt * ux, py + tt * uy
+        sx, sy = u0[c], v0[c]
+        ex, ey = u1[c] - sx, v1[c] - sy
+        o_x = ex * (Y - sy) - ey * (X - sx)
+        o_c = ex * (0.0 - sy) - ey * (0.0 - sx)
+        degen = ~np.isfinite(o_x) | (np.abs(o_x) <= 1e-12) | (np.abs(o_c) <= 1e-12)
+        bad[g[xo[geo[degen]]]] = True
+        beyond[geo] = (o_x * o_c) < 0
+    base = w0r[g] + np.bincount(xo, weights=np.where(beyond, sig[r], 0.0), minlength=len(i))
+    s1, s2 = sig[i], sig[j]
+    np.minimum.at(c_lo, g, base + np.minimum(np.minimum(0.0, s1), np.minimum(s2, s1 + s2)))
+    np.maximum.at(c_hi, g, base + np.maximum(np.maximum(0.0, s1), np.maximum(s2, s1 + s2)))
+
+
+def _piece_crossings(i, j, g, gid, gcnt, rstart, r_idx, r_len, r_m, r_hs, r_hl, cx, cy, xa, ya,
+                     xb, yb, sig, w0r, bad, c_lo, c_hi):
+    """:func:`_straight_crossings` for run pairs of cells holding a run of
+    several pieces: the crossing points are found by segment tests over
+    all piece pairs (touching or overlapping pieces flag the cell), and
+    the side of a crossing point of a run is the parity of the run's
+    crossings with the segment from the top-left corner to the point."""
+    # the runs of the cells involved, and their pieces
+    cells = np.unique(g)
+    runs = _ranges(rstart[cells], gcnt[cells])
+    local = np.full(len(r_idx), -1, np.int64)
+    local[runs] = np.arange(len(runs))
+    pidx, poff = _run_pieces(r_idx[runs], r_len[runs], r_m[runs], r_hs[runs], r_hl[runs])
+    li, lj = r_len[i], r_len[j]
+    cnt = li * lj
+    q = np.arange(int(cnt.sum())) - np.repeat(np.cumsum(cnt) - cnt, cnt)
+    lj_r = np.repeat(lj, cnt)
+    pi = pidx[np.repeat(poff[local[i]], cnt) + q // lj_r]
+    pj = pidx[np.repeat(poff[local[j]], cnt) + q % lj_r]
+    ri = np.repeat(i, cnt)
+    ox, oy = cx[ri], cy[ri]
+    ax, ay = xa[pi] - ox, ya[pi] - oy
+    bx, by = xb[pi] - ox, yb[pi] - oy
+    px, py = xa[pj] - ox, ya[pj] - oy
+    qx, qy = xb[pj] - ox, yb[pj] - oy
+    # orientations of each segment's ends against the other segment
+    ux, uy = bx - ax, by - ay
+    vx, vy = qx - px, qy - py
+    o1 = vx * (ay - py) - vy * (ax - px)
+    o2 = vx * (by - py) - vy * (bx - px)
+    o3 = ux * (py - ay) - uy * (px - ax)
+    o4 = ux * (qy - ay) - uy * (qx - ax)
+    e = 1e-12
+    apart = (((o1 > e) & (o2 > e)) | ((o1 < -e) & (o2 < -e))
+             | ((o3 > e) & (o4 > e)) | ((o3 < -e) & (o4 < -e)))
+    mi = np.flatnonzero(~apart)
+    if len(mi) == 0:
+        return
+    a1, a2, a3, a4 = o1[mi], o2[mi], o3[mi], o4[mi]
+    proper = ((np.minimum(np.abs(a1), np.abs(a2)) > e) & (np.minimum(np.abs(a3), np.abs(a4)) > e)
+              & (a1 * a2 < 0) & (a3 * a4 < 0))
+    bad[gid[ri[mi[~proper]]]] = True                # touching, overlapping: flagged
+    keep = proper & ~bad[gid[ri[mi]]]
+    xi = mi[keep]
+    if len(xi) == 0:
+        return
+    t = a1[keep] / (a1[keep] - a2[keep])
+    Xx = ax[xi] + t * ux[xi]
+    Xy = ay[xi] + t * uy[xi]
+    x_ri, x_rj = ri[xi], np.repeat(j, cnt)[xi]
+    xg = gid[x_ri]
+    # every piece of the cell's other runs against the segment corner -> X
+    lr0 = local[rstart[xg]]                         # the cell's first run
+    gp0 = poff[lr0]
+    n_t = np.bincount(gid[runs], weights=r_len[runs], minlength=len(gcnt)).astype(np.int64)[xg]
+    xo = np.repeat(np.arange(len(xi)), n_t)
+    slot = np.repeat(gp0, n_t) + (np.arange(int(n_t.sum())) - np.repeat(np.cumsum(n_t) - n_t, n_t))
+    prun = runs[np.repeat(np.arange(len(runs)), r_len[runs])]
+    pr = prun[slot]
+    other = (pr != x_ri[xo]) & (pr != x_rj[xo])
+    xo, slot, pr = xo[other], slot[other], pr[other]
+    pp = pidx[slot]
+    sx0, sy0 = xa[pp] - cx[pr], ya[pp] - cy[pr]
+    sx1, sy1 = xb[pp] - cx[pr], yb[pp] - cy[pr]
+    tx, ty = Xx[xo], Xy[xo]
+    o1 = tx * sy0 - ty * sx0
+    o2 = tx * sy1 - ty * sx1
+    ex_, ey_ = sx1 - sx0, sy1 - sy0
+    o3 = ex_ * (0.0 - sy0) - ey_ * (0.0 - sx0)
+    o4 = ex_ * (ty - sy0) - ey_ * (tx - sx0)
+    degen = ((np.abs(o1) <= e) | (np.abs(o2) <= e) | (np.abs(o3) <= e) | (np.abs(o4) <= e))
+    hit = (o1 * o2 < 0) & (o3 * o4 < 0) & ~degen
+    bad[xg[xo[degen]]] = True
+    # parity per (crossing point, run): the listed pieces come run by run
+    new = np.ones(len(xo), bool)
+    new[1:] = (xo[1:] != xo[:-1]) | (pr[1:] != pr[:-1])
+    st = np.flatnonzero(new)
+    base = w0r[xg].copy()
+    if len(st):
+        par = np.add.reduceat(hit.astype(np.int64), st) & 1
+        base += np.bincount(xo[st], weights=par * sig[pr[st]], minlength=len(xi))
+    s1, s2 = sig[x_ri], sig[x_rj]
+    np.minimum.at(c_lo, xg, base + np.minimum(np.minimum(0.0, s1), np.minimum(s2, s1 + s2)))
+    np.maximum.at(c_hi, xg, base + np.maximum(np.maximum(0.0, s1), np.maximum(s2, s1 + s2)))
+
+
+def _linear_on(mn, mx, eo):
+    """Whether the fill rule is linear on the integers mn..mx (evenodd:
+    two adjacent values; nonzero: within [0, 1], [-1, 0], >= 1 or <= -1)."""
+    return np.where(eo, mx - mn <= 1,
+                    ((mn >= 0) & (mx <= 1)) | (mn >= 1) | ((mx <= 0) & (mn >= -1)) | (mx <= -1))
+
+
+def _segments_meet(ax, ay, bx, by, cx, cy, dx, dy):
+    """Whether segments ab and cd may intersect or touch (conservative:
+    True unless one segment lies strictly on one side of the other's line
+    by more than a rounding margin)."""
+    ux, uy = bx - ax, by - ay
+    vx, vy = dx - cx, dy - cy
+    o1 = vx * (ay - cy) - vy * (ax - cx)
+    o2 = vx * (by - cy) - vy * (bx - cx)
+    o3 = ux * (cy - ay) - uy * (cx - ax)
+    o4 = ux * (dy - ay) - uy * (dx - ax)
+    eps = 1e-12
+    apart = (((o1 > eps) & (o2 > eps)) | ((o1 < -eps) & (o2 < -eps))
+             | ((o3 > eps) & (o4 > eps)) | ((o3 < -eps) & (o4 < -eps)))
+    return ~apart
+
+
+# -- the exact recompute --------------------------------------------------------
+
+def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
+    """Exact coverage of the flagged cells.
+
+    In a cell, the covered length ``g(y)`` of the horizontal line at height
+    ``y`` is linear in ``y`` between *critical heights*: the cell's top and
+    bottom, the end points of its pieces and the heights where two of its
+    pieces intersect; the midpoint rule on those intervals is therefore
+    exact.  On a sample line, the winding just left of the cell is
+    ``A(y) = C + sum(s_e [y > y_e])``: every chain crossing the cell's left
+    side does so where one of the cell's own pieces starts (``s = -1``) or
+    ends (``s = +1``) on that side, and the constant ``C`` is fitted to the
+    running sum ``left`` (the integral of ``A``).  Crossings inside the
+    cell are sorted and the fill rule is applied span by span.  Cells with
+    more than ``_EXACT_PIECES`` distinct pieces (equal pieces merged with a
+    multiplicity) are refined instead: their pieces, scaled to a
+    ``_REFINE`` x ``_REFINE`` grid with ``A`` as edges left of it, are scan
+    converted by the same kernel (recursively, at most ``_MAX_DEPTH``
+    levels; beyond that the running sum stands).
+
+    Parameters
+    ----------
+    xa, ya, xb, yb, col, row :
+        All pieces of the box, as for :func:`_flag`.
+    pieces, counts : int64 ndarray
+        The pieces of the flagged cells, cell after cell, and their number
+        per cell (as :func:`_flag` returns them).
+    left : (F,) float64 ndarray
+        The winding integrated over each flagged cell's left side.
+    evenodd : bool or (F,) bool ndarray
+    depth : int
+        Refinement level (0 for the canvas).
+
+    Returns
+    -------
+    values : (F,) float64 ndarray
+        Coverage in [0, 1] (rounding residue set to 0).
+    done : (F,) bool ndarray
+        False where the running sum stands (refinement too deep).
+    """
+    F = len(counts)
+    k = counts
+    cx = col[pieces].astype(np.float64)
+    cy = row[pieces].astype(np.float64)
+    ua, va = xa[pieces] - cx, ya[pieces] - cy
+    ub, vb = xb[pieces] - cx, yb[pieces] - cy
+    fi = np.repeat(np.arange(F), k)
+    # left-side events: a piece starting on the left side (s = -1) or
+    # ending on it (s = +1)
+    # (<= 0: rounding may leave an end a hair left of the side)
+    la, lb = ua <= 0, ub <= 0
+    C = np.rint(left - np.bincount(fi, weights=np.where(lb, 1.0 - vb, 0.0)
+                                   - np.where(la, 1.0 - va, 0.0), minlength=F))
+    eo = np.broadcast_to(np.asarray(evenodd, bool), (F,))
+    out = np.zeros(F)
+    done = np.ones(F, bool)
+    first = np.cumsum(k) - k
+    ones = np.ones(len(ua))
+    small = k <= _EXACT_PIECES
+    # (pieces, cells, piece arrays, first piece and count of each cell)
+    groups = []
+    kb = _PIECE_BINS[np.minimum(np.searchsorted(_PIECE_BINS, k), len(_PIECE_BINS) - 1)]
+    for kk in np.unique(kb[small]).tolist():
+        c = np.flatnonzero(small & (kb == kk))
+        groups.append((kk, c, (ua, va, ub, vb, ones), first[c], k[c]))
+    big = np.flatnonzero(~small)
+    crowded = big
+    if len(big):
+        # equal pieces merged (opposite ones cancel): stacked copies of one
+        # outline are few distinct pieces
+        ix = _ranges(first[big], k[big])
+        d_f, d_p, d_m = _merge_pieces(np.repeat(np.arange(len(big)), k[big]),
+                                      [ua[ix], va[ix], ub[ix], vb[ix]], ones[ix])
+        kd = np.bincount(d_f, minlength=len(big))
+        dfirst = np.cumsum(kd) - kd
+        fits = kd <= _EXACT_PIECES
+        kdb = _PIECE_BINS[np.minimum(np.searchsorted(_PIECE_BINS, kd), len(_PIECE_BINS) - 1)]
+        for kk in np.unique(kdb[fits]).tolist():
+            sel = np.flatnonzero(fits & (kdb == kk))
+            groups.append((kk, big[sel], tuple(d_p) + (d_m,), dfirst[sel], kd[sel]))
+        crowded = big[~fits]
+    for kk, cells_k, arrays, pf, pk in groups:
+        S = 1 + 2 * kk + kk * (kk - 1) // 2
+        step = max(1, _CHUNK_WORK // (S * max(kk, 1)))
+        # a cell of fewer pieces is padded with points below the cell
+        # (no crossing, no event, no intersection)
+        pad = tuple(np.append(a, v) for a, v in zip(arrays, (2.0, 2.0, 2.0, 2.0, 0.0)))
+        dummy = len(pad[0]) - 1
+        for lo in range(0, len(cells_k), step):
+            c = cells_k[lo:lo + step]
+            r = np.arange(kk)
+            ix = np.where(r < pk[lo:lo + step][:, None], pf[lo:lo + step][:, None] + r, dummy)
+            pu, pv, qu, qv, pm = (a[ix] for a in pad)
+            out[c] = _exact_small(pu, pv, qu, qv, pm, C[c], eo[c])
+    if len(crowded):
+        if depth >= _MAX_DEPTH:
+            done[crowded] = False
         else:
-            c1 = np.bincount(cell, weights=dy, minlength=ncell)
-            p1 = np.bincount(cell, weights=dy * fx, minlength=ncell)
-            if cover is None:
-                cover, partial = c1, p1
-            else:
-                cover += c1
-                partial += p1
-        if not exact:
+            ix = _ranges(first[crowded], k[crowded])
+            out[crowded] = _refine(ua[ix], va[ix], ub[ix], vb[ix], k[crowded], C[crowded],
+                                   eo[crowded], depth)
+    np.clip(out, 0.0, 1.0, out=out)
+    out[out < _RESIDUE] = 0.0
+    return out, done
+
+
+def _merge_pieces(g, p, m):
+    """Pieces (group g, end points p = [ua, va, ub, vb], multiplicity m)
+    with equal group and end points merged, a piece and its reverse
+    cancelling (each is first directed from its lexicographically smaller
+    end, its multiplicity negated when turned); zero multiplicities are
+    dropped, the result is sorted by group."""
+    if len(g) == 0:
+        return g, p, m
+    turn = (p[0] > p[2]) | ((p[0] == p[2]) & (p[1] > p[3]))
+    p = [np.where(turn, p[2], p[0]), np.where(turn, p[3], p[1]),
+         np.where(turn, p[0], p[2]), np.where(turn, p[1], p[3])]
+    m = np.where(turn, -m, m)
+    o = np.lexsort((p[3], p[2], p[1], p[0], g))
+    g, m = g[o], m[o]
+    p = [a[o] for a in p]
+    new = np.ones(len(g), bool)
+    new[1:] = ((g[1:] != g[:-1]) | (p[0][1:] != p[0][:-1]) | (p[1][1:] != p[1][:-1])
+               | (p[2][1:] != p[2][:-1]) | (p[3][1:] != p[3][:-1]))
+    st = np.flatnonzero(new)
+    tot = np.add.reduceat(m, st)
+    keep = st[tot != 0]
+    return g[keep], [a[keep] for a in p], tot[tot != 0]
+
+
+# x positions are sorted as integer keys: x * 2**36 (x in [0, 1]) shifted
+# left by 20 bits, plus the crossing's signed multiplicity + 2**19
+_XSCALE = float(1 << 36)
+_MBITS = 20
+_MOFF = 1 << (_MBITS - 1)
+_NOKEY = ((1 << 38) << _MBITS) + _MOFF       # no crossing: x = 4, multiplicity 0
+# numbers of sample heights cells are padded to (fewer, larger batches)
+_HEIGHT_BINS = np.array([4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128])
+# numbers of pieces cells are padded to
+_PIECE_BINS = np.array([1, 2, 3, 4, 6, 8, 12])
+
+
+def _exact_small(ua, va, ub, vb, m, C, eo):
+    """:func:`_exact` for F cells of k pieces each.
+
+    Parameters
+    ----------
+    ua, va, ub, vb, m : (F, k) float64 ndarray
+        Piece ends in cell units and multiplicities (a piece counts ``m``
+        times).  A piece starting on the left side (``ua <= 0``) is a
+        left-side event of sign ``-m`` at ``va``, one ending there ``+m``
+        at ``vb``.  Padding pieces lie below the cell.
+    C : (F,) float64 ndarray
+        The winding just left of the cell before the events.
+    eo : (F,) bool ndarray
+        Fill rules.
+
+    Returns
+    -------
+    (F,) float64 ndarray
+        Coverage.
+    """
+    F, k = ua.shape
+    P = k * (k - 1) // 2
+    H = np.empty((F, 2 + 2 * k + P))
+    H[:, 0] = 0.0
+    H[:, 1] = 1.0
+    H[:, 2:2 + k] = va
+    H[:, 2 + k:2 + 2 * k] = vb
+    if P:
+        i, j = np.triu_indices(k, 1)
+        ax, ay = ua[:, i], va[:, i]
+        ux, uy = ub[:, i] - ax, vb[:, i] - ay
+        vx, vy = ub[:, j] - ua[:, j], vb[:, j] - va[:, j]
+        qx, qy = ua[:, j] - ax, va[:, j] - ay
+        den = ux * vy - uy * vx
+        with np.errstate(all='ignore'):
+            t = (qx * vy - qy * vx) / den
+            u = (qx * uy - qy * ux) / den
+        eps = 1e-9
+        hit = (den != 0) & (t >= -eps) & (t <= 1 + eps) & (u >= -eps) & (u <= 1 + eps)
+        H[:, 2 + 2 * k:] = np.where(hit, ay + np.where(hit, t, 0.0) * uy, 0.0)
+    np.clip(H, 0.0, 1.0, out=H)
+    H.sort(axis=1)
+    # distinct heights only: cells grouped by their number of them
+    new = np.empty(H.shape, bool)
+    new[:, 0] = True
+    np.not_equal(H[:, 1:], H[:, :-1], out=new[:, 1:])
+    nd = new.sum(1)
+    # a few width classes (padded with the bottom height: empty intervals)
+    width = np.searchsorted(_HEIGHT_BINS, nd)
+    width = np.where(width < len(_HEIGHT_BINS), _HEIGHT_BINS[np.minimum(width, len(_HEIGHT_BINS) - 1)],
+                     H.shape[1])
+    width = np.minimum(width, H.shape[1])
+    out = np.zeros(F)
+    for q in np.unique(width).tolist():
+        rows = np.flatnonzero(width == q)
+        sub = new[rows]
+        rank = np.cumsum(sub, axis=1) - 1
+        Hq = np.ones((len(rows), q))
+        ri, ci = np.nonzero(sub)
+        Hq[ri, rank[ri, ci]] = H[rows[ri], ci]
+        out[rows] = _sample_lines(Hq, ua[rows], va[rows], ub[rows], vb[rows], m[rows], C[rows],
+                                  eo[rows])
+    return out
+
+
+_NETWORKS = {}
+
+
+def _network(n):
+    """Comparators (i, j), i < j, of Batcher's odd-even merge sort of n
+    elements (those of the next power of two that touch only the first n:
+    the missing elements act as +infinity)."""
+    net = _NETWORKS.get(n)
+    if net is None:
+        m = 1
+        while m < n:
+            m *= 2
+        net = []
+        p = 1
+        while p < m:
+            k = p
+            while k >= 1:
+                for j in range(k % p, m - k, 2 * k):
+                    for i in range(min(k, m - j - k)):
+                        if (i + j) // (2 * p) == (i + j + k) // (2 * p):
+                            net.append((i + j, i + j + k))
+                k //= 2
+            p *= 2
+        net = _NETWORKS[n] = [(a, b) for a, b in net if b < n]
+    return net
+
+
+def _sort_last(a):
+    """``np.sort(a, axis=-1)`` for a short last axis, by a sorting network
+    (elementwise minima and maxima are much faster than one sort call per
+    row of a few elements)."""
+    n = a.shape[-1]
+    if n > 16:
+        return np.sort(a, axis=-1)
+    cols = [a[..., i] for i in range(n)]
+    for i, j in _network(n):
+        lo = np.minimum(cols[i], cols[j])
+        cols[j] = np.maximum(cols[i], cols[j])
+        cols[i] = lo
+    return np.stack(cols, axis=-1)
+
+
+def _sample_lines(H, ua, va, ub, vb, m, C, eo):
+    """The midpoint rule of :func:`_exact_small` on the sorted distinct
+    critical heights H (F, q) of each cell."""
+    ys = 0.5 * (H[:, 1:] + H[:, :-1])               # (F, S) sample heights
+    wt = H[:, 1:] - H[:, :-1]
+    y3 = ys[:, :, None]
+    ea = np.where(ua <= 0, -m, 0.0)[:, None, :]
+    eb = np.where(ub <= 0, m, 0.0)[:, None, :]
+    A = C[:, None] + (np.where(y3 > va[:, None, :], ea, 0.0)
+                      + np.where(y3 > vb[:, None, :], eb, 0.0)).sum(2)
+    A = np.rint(A).astype(np.int64)
+    fA = np.where(eo[:, None], A & 1, A != 0).astype(np.float64)
+    dv = vb - va
+    mi = (np.clip(np.sign(dv) * m, 1 - _MOFF, _MOFF - 1).astype(np.int64) + _MOFF)[:, None, :]
+    with np.errstate(all='ignore'):                 # horizontal pieces never span
+        inv = 1.0 / dv
+        tq = (y3 - va[:, None, :]) * inv[:, None, :]    # position along the piece
+        span = (tq > 0) & (tq < 1)
+        xc = ua[:, None, :] + tq * (ub - ua)[:, None, :]
+        np.clip(xc, 0.0, 1.0, out=xc)
+        xc[~span] = 0.0
+    key = _sort_last(np.where(span, ((xc * _XSCALE).astype(np.int64) << _MBITS) + mi, _NOKEY))
+    s = (key & ((1 << _MBITS) - 1)) - _MOFF
+    x = (key >> _MBITS).astype(np.float64) * (1.0 / _XSCALE)
+    w = A[:, :, None] + np.cumsum(s, axis=2)
+    f = np.where(eo[:, None, None], w & 1, w != 0).astype(np.float64)
+    prev = np.concatenate([fA[:, :, None], f[:, :, :-1]], axis=2)
+    g = fA + ((f - prev) * (1.0 - x)).sum(2)
+    return (g * wt).sum(1)
+
+
+def _refine(ua, va, ub, vb, k, C, eo, depth):
+    """Coverage of crowded cells by scan converting each on a _REFINE x
+    _REFINE grid: its pieces (cell units, cell after cell, ``k`` each)
+    scaled up, plus vertical edges left of the grid carrying the left-side
+    winding ``A(y)`` (see :func:`_exact`)."""
+    n = len(k)
+    M = float(_REFINE)
+    cid = np.repeat(np.arange(n), k)
+    own = np.stack([np.stack([ua, va], 1), np.stack([ub, vb], 1)], 1) * M
+    # events: s = +1 at y is an edge down from y to the bottom, -1 one up
+    ev = np.flatnonzero(ua <= 0)
+    eb = np.flatnonzero(ub <= 0)
+    ey = np.concatenate([va[ev], vb[eb]]) * M
+    es = np.concatenate([-np.ones(len(ev)), np.ones(len(eb))])
+    ecid = np.concatenate([cid[ev], cid[eb]])
+    nev = np.bincount(ecid, minlength=n)
+    Cw = np.where(eo, np.abs(C) % 2, np.abs(C)).astype(np.int64)
+    full = ~eo & (np.abs(C) > k + nev)            # |w| > 0 everywhere: covered
+    Cw[full] = 0
+    cs = np.repeat(np.where(C > 0, 1.0, -1.0), Cw)
+    ccid = np.repeat(np.arange(n), Cw)
+    vx = np.full(len(ey) + len(cs), -1.0)
+    y0 = np.concatenate([np.where(es > 0, ey, M), np.where(cs > 0, 0.0, M)])
+    y1 = np.concatenate([np.where(es > 0, M, ey), np.where(cs > 0, M, 0.0)])
+    virt = np.stack([np.stack([vx, y0], 1), np.stack([vx, y1], 1)], 1)
+    vcid = np.concatenate([ecid, ccid])
+    # two points (zero-length edges) left of the grid's top-left corner and
+    # right of its bottom-right one: the mask box is the whole grid (the
+    # covered region of open chains reaches the grid's sides)
+    pts = np.array([[[-1.0, 0.0], [-1.0, 0.0]], [[M + 1, M], [M + 1, M]]])
+    virt = np.concatenate([virt, np.tile(pts, (n, 1, 1))])
+    vcid = np.concatenate([vcid, np.repeat(np.arange(n), 2)])
+    # per cell: its own pieces (path order), then the virtual edges
+    allc = np.concatenate([cid, vcid])
+    edges = np.concatenate([own, virt])
+    if full.any():
+        m = ~full[allc]
+        allc, edges = allc[m], edges[m]
+    o = np.argsort(allc, kind='stable')
+    edges = edges[o]
+    counts = np.bincount(allc, minlength=n)
+    out = np.zeros(n)
+    masks = _batch(edges, counts, _REFINE, _REFINE, eo, np.ones(n, bool), np.ones(n, bool),
+                   (0, 0, _REFINE, _REFINE), depth + 1)
+    for i, m in enumerate(masks):
+        if m is not None:
+            out[i] = float(m.data.sum(dtype=np.float64)) / (M * M)
+    out[full] = 1.0
+    return out
+
+
+def _left_lookup(touched, run, w, vrow):
+    """``left_of(keys)`` for :func:`_flag` and :func:`_exact`: the winding
+    integrated over the left side of cells ``keys`` is the running sum
+    ``run`` of the last touched cell before it in its row (0 if none); in
+    column 0 it is the sum ``vrow`` of the row's pieces left of the box
+    (those are accumulated into column 0 itself)."""
+    def left_of(keys):
+        p = np.searchsorted(touched, keys, side='left') - 1
+        pc = np.maximum(p, 0)
+        r = keys // w
+        same = (p >= 0) & (touched[pc] // w == r) if len(touched) else np.zeros(len(keys), bool)
+        out = np.where(same, run[pc] if len(run) else 0.0, 0.0)
+        c0 = keys % w == 0
+        if vrow is not None and c0.any():
+            out[c0] += vrow[r[c0]]
+        return out
+    return left_of
+
+
+def _area_coverage(loc, w, h, evenodd, exact=True, depth=0):
+    """Coverage (h, w) float32 of local edges ``loc`` (box origin at 0), or
+    None without pieces; the box is processed in row bands (see
+    :func:`_bands`)."""
+    bands = _bands(loc, w, h)
+    if len(bands) == 1:
+        return _band(loc, w, h, evenodd, exact, depth)
+    data = None
+    ys = loc[:, :, 1]
+    ylo, yhi = ys.min(1), ys.max(1)
+    for r0, r1 in bands:
+        sel = np.flatnonzero((yhi > r0) & (ylo < r1))
+        if len(sel) == 0:
             continue
-        # virtual pieces get cell ids < 0 (never flagged)
-        touched, bad = _flag_cells(xa, ya, xb, yb, np.where(real, cell, -1))
-        touched_cells.append(touched)
-        bad_cells.append(bad)
-        if len(chunks) == 1:
-            saved = (xa, ya, xb, yb, col, row)
-    if sparse is not None:
-        cells, cv, pv = sparse
-        nz = (cv != 0) | (pv != 0)
-        data = _resolve_cells(cells[nz], cv[nz], pv[nz], w, h, evenodd)
-    elif cover is not None:
-        data = _resolve(cover, partial, w, h, evenodd)
-        del cover, partial
-    else:
+        sub = loc[sel]
+        sub[:, :, 1] -= r0
+        d = _band(sub, w, r1 - r0, evenodd, exact, depth)
+        del sub
+        if d is None:
+            continue
+        if data is None:
+            data = np.zeros((h, w), np.float32)
+        data[r0:r1] = d
+    return data
+
+
+def _band(loc, w, h, evenodd, exact, depth):
+    """:func:`_area_coverage` of one band: pieces, running sums, then the
+    exact recompute of the flagged cells."""
+    pc = _pieces(loc, w, h)
+    if pc is None:
         return None
-
-    # flagged cells, and cells touched by pieces of several chunks (a chain
-    # cut at a chunk boundary is not followed across it)
-    if not exact or not touched_cells:
-        return data
-    if len(touched_cells) == 1:
-        flagged = bad_cells[0]
+    xa, ya, xb, yb, col, row = pc
+    real = col >= 0
+    cell = row * w + np.maximum(col, 0)
+    dy = yb - ya
+    # mean x offset inside the cell; virtual pieces act as if at x = 0
+    fx = np.where(real, 0.5 * (xa + xb) - col, 0.0)
+    ncell = w * h
+    if len(cell) * _SPARSE_RATIO < ncell:
+        # few pieces in a large box: accumulate over the touched cells
+        # only (the same sums, in the same order, as the dense bincount)
+        cells, inv = np.unique(cell, return_inverse=True)
+        cv = np.bincount(inv, weights=dy, minlength=len(cells))
+        pv = np.bincount(inv, weights=dy * fx, minlength=len(cells))
+        nz = (cv != 0) | (pv != 0)
+        touched, cv, pv = cells[nz], cv[nz], pv[nz]
+        del inv
     else:
-        nchunks = np.bincount(np.concatenate(touched_cells), minlength=ncell)
-        for tg in bad_cells:
-            nchunks[tg] = 2
-        flagged = np.flatnonzero(nchunks >= 2)
-        del nchunks
+        cover = np.bincount(cell, weights=dy, minlength=ncell)
+        partial = np.bincount(cell, weights=dy * fx, minlength=ncell)
+        touched = np.flatnonzero((cover != 0) | (partial != 0))
+        cv, pv = cover[touched], partial[touched]
+        del cover, partial
+    data, run = _resolve_cells(touched, cv, pv, w, h, evenodd)
+    if not exact:
+        return data
+    virt = ~real
+    vrow = np.bincount(row[virt], weights=dy[virt], minlength=h) if virt.any() else None
+    left_of = _left_lookup(touched, run, w, vrow)
+    fcell = np.where(real, cell, -1)
+    flagged, fp, fc = _flag(xa, ya, xb, yb, col, row, fcell, None, left_of, evenodd)
     if len(flagged):
-        if saved is None:
-            saved = _collect_rows(loc, w, h, flagged)
-        vals = _exact_cells(saved, flagged, w, h, evenodd)
-        np.clip(vals, 0.0, 1.0, out=vals)
-        # rounding residue of cancelling edges (a path traced back on itself)
-        vals[vals < _RESIDUE] = 0.0
-        data.reshape(-1)[flagged] = vals
+        vals, done = _exact(xa, ya, xb, yb, col, row, fp, fc, left_of(flagged), evenodd, depth)
+        data.reshape(-1)[flagged[done]] = vals[done]
     return data
 
 
@@ -709,8 +1435,9 @@ def _rule(v, evenodd):
     return v
 
 
-def _resolve(cover, partial, w, h, evenodd):
-    """Coverage (h, w) float32 from the flat cover / partial accumulators.
+def _resolve_cells(touched, cv, pv, w, h, evenodd):
+    """Coverage (h, w) float32 from the touched cells only: ``touched``
+    (sorted flat indices) and their cover ``cv`` and partial ``pv`` sums.
 
     Only cells holding pieces have cover or partial terms; along a row the
     winding is constant between them.  So the running sum is taken over
@@ -718,17 +1445,13 @@ def _resolve(cover, partial, w, h, evenodd):
     runs in flat order: for every touched cell, the cell itself, then the
     rest of its row up to the next touched cell at the winding after it,
     then (when the row ends first) zeros up to the next touched cell.
+
+    Returns the coverage and ``run`` (float64, per touched cell): the
+    winding integrated along the cell's right side.
     """
-    touched = np.flatnonzero((cover != 0) | (partial != 0))
-    return _resolve_cells(touched, cover[touched], partial[touched], w, h, evenodd)
-
-
-def _resolve_cells(touched, cv, pv, w, h, evenodd):
-    """:func:`_resolve` from the touched cells only: ``touched`` (sorted
-    flat indices) and their cover ``cv`` and partial ``pv`` sums."""
     n = w * h
     if len(touched) == 0:
-        return np.zeros((h, w), np.float32)
+        return np.zeros((h, w), np.float32), np.zeros(0)
     tr = touched // w
     cs = np.cumsum(cv)
     first = np.empty(len(touched), bool)
@@ -750,322 +1473,7 @@ def _resolve_cells(touched, cv, pv, w, h, evenodd):
     lens[2::3] = gap
     lens[3::3] = zeros
     _rule(vals, evenodd)
-    return np.repeat(vals.astype(np.float32), lens).reshape(h, w)
-
-
-def _collect_rows(loc, w, h, flagged):
-    """Pieces (of all chunks) in rows holding flagged cells, left of or in the
-    rightmost flagged cell of their row."""
-    maxcol = np.full(h, -2, np.int64)
-    np.maximum.at(maxcol, flagged // w, flagged % w)
-    parts = []
-    for lo, hi in _chunks(loc, w, h):
-        pc = _pieces(loc[lo:hi], w, h)
-        if pc is None:
-            continue
-        col, row = pc[4], pc[5]
-        sel = col <= maxcol[row]
-        parts.append([a[sel] for a in pc])
-    return [np.concatenate([p[i] for p in parts]) for i in range(6)]
-
-
-def _exact_cells(pieces, flagged, w, h, evenodd, lrow=None, cellidx=None):
-    """Exact coverage of the flagged cells (sorted flat indices).
-
-    In a cell, the covered length ``g(y)`` of the horizontal line at height
-    ``y`` is linear in ``y`` between *critical heights*: the cell's top and
-    bottom, the end points of the pieces in the cell (which include every
-    point where an edge crosses the cell's left side) and the heights where
-    two pieces in the cell intersect.  The midpoint rule on those intervals
-    is therefore exact.  On each sample line the winding at the cell's left
-    side is the winding at its top-left corner (signed crossings of the top
-    grid line left of the cell) plus the crossings of the left side above the
-    sample; crossings inside the cell are sorted and the fill rule is applied
-    span by span.  Cells with more than _PAIR_LIMIT pieces skip the pairwise
-    intersections (exact only if their pieces do not cross) and, when they
-    also have more than SUBSCANLINES + 2 distinct heights, use SUBSCANLINES
-    evenly spaced heights instead (the midpoint rule is then approximate).
-    ``lrow`` (optional) is each piece's row in its own y coordinates when
-    ``row`` is a row of a stack of several boxes (see :func:`coverage_many`).
-    ``cellidx`` (optional) is ``(cells, inv)``: the sorted distinct keys
-    ``row * w + max(col, 0)`` of all the pieces (``flagged`` among them)
-    and each piece's index into ``cells``, int64 ndarrays; with it the
-    pieces are matched to the flagged cells through ``inv`` (one gather
-    per piece instead of a search) and the corner windings are summed
-    per cell.
-    """
-    xa, ya, xb, yb, col, row = pieces
-    if lrow is None:
-        lrow = row
-    F = len(flagged)
-    frow = flagged // w
-    fcol = flagged % w
-    if cellidx is not None:
-        return _exact_cells_indexed(pieces, flagged, w, h, evenodd, lrow, cellidx)
-
-    if h * (w + 1) <= min(_CELLMAP_MAX, _CELLMAP_RATIO * len(xa)):
-        # flagged index of every cell, -1 elsewhere (extra column for c = w)
-        cellmap = np.full(h * (w + 1), -1, np.int32)
-        cellmap[frow * (w + 1) + fcol] = np.arange(F)
-
-        def lookup(r, c):
-            i = cellmap[r * (w + 1) + np.maximum(c, 0)]
-            ok = (i >= 0) & (c >= 0)
-            return i.astype(np.int64), ok
-    else:
-        def lookup(r, c):
-            key = r * w + c
-            i = np.searchsorted(flagged, key)
-            np.minimum(i, F - 1, out=i)
-            return i, (flagged[i] == key) & (c >= 0) & (c < w)
-
-    # -- winding at each flagged cell's top-left corner ------------------------
-    # pieces starting on their row's top line (not horizontal) cross it; the
-    # crossing counts for cells right of the piece's column
-    dy = yb - ya
-    ymin = np.minimum(ya, yb)
-    top = (ymin == lrow) & (dy != 0)
-    tkey = row[top] * (w + 1) + (col[top] + 1)
-    torder = np.argsort(tkey, kind='stable')
-    tkey = tkey[torder]
-    tcs = np.concatenate([[0], np.cumsum(np.sign(dy[top])[torder])])
-    qrow = frow * (w + 1)
-    corner = (tcs[np.searchsorted(tkey, qrow + fcol + 1, side='left')]
-              - tcs[np.searchsorted(tkey, qrow, side='left')])
-    fl, okl = lookup(row, col + 1)
-    fi, oki = lookup(row, col)
-    return _exact_tail(pieces, lrow, fcol, corner, fl, okl, fi, oki, evenodd)
-
-
-def _exact_cells_indexed(pieces, flagged, w, h, evenodd, lrow, cellidx):
-    """:func:`_exact_cells` with the pieces' cell index ``cellidx``.
-
-    Only the pieces in rows holding a flagged cell take part (the cells'
-    own pieces, their left neighbours' and the crossings of the rows' top
-    lines left of them are all there), kept in their order.
-    """
-    cells, inv = cellidx
-    F = len(flagged)
-    fcol = flagged % w
-    U = len(cells)
-    rows = np.zeros(h, bool)
-    rows[flagged // w] = True
-    sub = np.flatnonzero(rows[pieces[5]])
-    pieces = tuple(a[sub] for a in pieces)
-    xa, ya, xb, yb, col, row = pieces
-    lrow = lrow[sub]
-    inv = inv[sub]
-    real = col >= 0
-    # flagged index of every distinct cell (-1: not flagged), and of the
-    # cell right of it in its row
-    uf = np.searchsorted(cells, flagged)            # flagged is among cells
-    here = np.full(U, -1, np.int64)
-    here[uf] = np.arange(F)
-    right = np.full(U, -1, np.int64)
-    ul = uf - 1
-    nb = np.flatnonzero((fcol > 0) & (ul >= 0))
-    nb = nb[cells[ul[nb]] == flagged[nb] - 1]
-    right[ul[nb]] = nb
-    fi = here[inv]
-    # a virtual piece (col -1) shares the key of column 0: its right
-    # neighbour is that cell itself
-    fl = np.where(real, right[inv], fi)
-    oki = (fi >= 0) & real
-    okl = fl >= 0
-    # -- winding at each flagged cell's top-left corner ------------------------
-    # the signed crossings of the row's top line (pieces starting on it)
-    # summed per distinct cell, then over the cells of the row left of the
-    # flagged cell; virtual pieces in the flagged cell's own key (column 0)
-    # are left of it too.  All sums are of small integers (exact).
-    dy = yb - ya
-    top = np.flatnonzero((np.minimum(ya, yb) == lrow) & (dy != 0))
-    tsg = np.sign(dy[top])
-    tcell = np.bincount(inv[top], weights=tsg, minlength=U)
-    tcs = np.concatenate([[0.0], np.cumsum(tcell)])
-    rstart = np.searchsorted(cells, flagged - fcol)
-    corner = tcs[uf] - tcs[rstart]
-    tv = ~real[top]
-    if tv.any():
-        vc = np.bincount(inv[top[tv]], weights=tsg[tv], minlength=U)
-        corner += vc[uf]
-    return _exact_tail(pieces, lrow, fcol, corner, fl, okl, fi, oki, evenodd)
-
-
-def _exact_tail(pieces, lrow, fcol, corner, fl, okl, fi, oki, evenodd):
-    """The rest of :func:`_exact_cells`, given the winding at each flagged
-    cell's top-left corner and, for every piece, the flagged cell right of
-    it (``fl``, valid where ``okl``) and the one holding it (``fi``, valid
-    where ``oki``)."""
-    xa, ya, xb, yb, col, row = pieces
-    F = len(fcol)
-    # -- changes of the left-side winding inside each cell --------------------
-    # every piece contributes +1 at its start height and -1 at its end height
-    # (for either direction); summed over the pieces left of the cell these
-    # cancel except where a chain crosses the cell's left side, so only the
-    # pieces of the left neighbour ending on that side (or, for column 0, the
-    # virtual column) need to be counted
-    # (tested on the pieces left of a flagged cell only, in piece order)
-    lp = np.flatnonzero(okl)
-    lv = col[lp] < 0
-    lc = col[lp] + 1
-    s_on = lp[lv | (xa[lp] == lc)]
-    e_on = lp[lv | (xb[lp] == lc)]
-    ev_f = np.concatenate([fl[s_on], fl[e_on]])
-    ev_y = np.concatenate([ya[s_on] - lrow[s_on], yb[e_on] - lrow[e_on]])
-    ev_c = np.concatenate([np.ones(len(s_on)), -np.ones(len(e_on))])
-    inner = ev_y > 0
-    ev_f, ev_y, ev_c = ev_f[inner], ev_y[inner], ev_c[inner]
-    eorder = np.argsort(ev_f * 2.0 + ev_y)
-    ev_f, ev_y, ev_c = ev_f[eorder], ev_y[eorder], ev_c[eorder]
-    ecount = np.bincount(ev_f, minlength=F)
-    efirst = np.cumsum(ecount) - ecount
-
-    # -- the pieces inside each flagged cell, grouped by cell -----------------
-    sel = np.flatnonzero(oki)
-    order = sel[np.argsort(fi[sel], kind='stable')]
-    pf = fi[order]
-    pxa, pya, pxb, pyb = xa[order], ya[order] - lrow[order], xb[order], yb[order] - lrow[order]
-    pc0 = fcol[pf].astype(np.float64)
-    pxa = pxa - pc0
-    pxb = pxb - pc0
-    gcount = np.bincount(pf, minlength=F)
-    gfirst = np.cumsum(gcount) - gcount
-
-    # -- cells in batches of bounded work -------------------------------------
-    cost = (np.where(gcount <= _PAIR_LIMIT, gcount * (gcount - 1) // 2, SUBSCANLINES * gcount)
-            + 4 * gcount + ecount + 4)
-    ccum = np.cumsum(cost)
-    out = np.empty(F)
-    f_lo = 0
-    while f_lo < F:
-        base = ccum[f_lo - 1] if f_lo else 0
-        f_hi = int(np.searchsorted(ccum, base + _CHUNK_WORK, side='right'))
-        f_hi = min(max(f_hi, f_lo + 1), F)
-        p_lo, p_hi = gfirst[f_lo], gfirst[f_hi - 1] + gcount[f_hi - 1]
-        e_lo, e_hi = efirst[f_lo], efirst[f_hi - 1] + ecount[f_hi - 1]
-        ps = slice(p_lo, p_hi)
-        es = slice(e_lo, e_hi)
-        out[f_lo:f_hi] = _exact_batch(
-            pf[ps] - f_lo, pxa[ps], pya[ps], pxb[ps], pyb[ps],
-            gcount[f_lo:f_hi], gfirst[f_lo:f_hi] - p_lo,
-            ev_f[es] - f_lo, ev_y[es], ev_c[es], corner[f_lo:f_hi], evenodd)
-        f_lo = f_hi
-    return out
-
-
-def _exact_batch(pf, pxa, pya, pxb, pyb, gcount, gfirst, ev_f, ev_y, ev_c, corner, evenodd):
-    """Exact coverage of cells 0..F-1 of a batch (see :func:`_exact_cells`).
-
-    pf : cell of each piece (sorted); pxa.. : piece ends in cell units
-    (x - column, y - row); gcount, gfirst : pieces per cell and first piece;
-    ev_* : left-side winding changes sorted by (cell, height); corner :
-    winding at each cell's top-left corner.
-    """
-    F = len(gcount)
-    # keys cell * 2 + height sort by cell, then height (heights closer than
-    # the key's float resolution may tie; such intervals have no weight)
-    ev_key = ev_f * 2.0 + ev_y
-    ev_cs = np.concatenate([[0.0], np.cumsum(ev_c)])
-
-    # -- critical heights -----------------------------------------------------
-    # crowded cells (more than _PAIR_LIMIT pieces) skip the pairwise
-    # intersections; if they also have more than SUBSCANLINES distinct end
-    # point heights, an even grid replaces those, so crossings stay <= k * S
-    crowded = gcount > _PAIR_LIMIT
-    k = gcount[pf]
-    small = k <= _PAIR_LIMIT
-    hf = [np.arange(F), np.arange(F), pf, pf, ev_f]
-    hy = [np.zeros(F), np.ones(F), pya, pyb, ev_y]
-    pos = np.arange(len(pf)) - gfirst[pf]
-    npair = np.where(small, k - 1 - pos, 0)
-    n_pairs = int(npair.sum())
-    if n_pairs:
-        i = np.repeat(np.arange(len(pf)), npair)
-        j = i + 1 + (np.arange(n_pairs) - np.repeat(np.cumsum(npair) - npair, npair))
-        ax, ay = pxa[i], pya[i]
-        ux, uy = pxb[i] - ax, pyb[i] - ay
-        vx, vy = pxb[j] - pxa[j], pyb[j] - pya[j]
-        qx, qy = pxa[j] - ax, pya[j] - ay
-        den = ux * vy - uy * vx
-        with np.errstate(all='ignore'):
-            t = (qx * vy - qy * vx) / den
-            u = (qx * uy - qy * ux) / den
-        eps = 1e-9
-        hit = (den != 0) & (t >= -eps) & (t <= 1 + eps) & (u >= -eps) & (u <= 1 + eps)
-        hf.append(pf[i[hit]])
-        hy.append(np.clip(ay[hit] + t[hit] * uy[hit], 0.0, 1.0))
-    hf = np.concatenate(hf)
-    hy = np.clip(np.concatenate(hy), 0.0, 1.0)
-    hkey = np.sort(hf * 2.0 + hy)
-    distinct = np.empty(len(hkey), bool)
-    distinct[0] = True
-    distinct[1:] = hkey[1:] != hkey[:-1]
-    hkey = hkey[distinct]
-    if crowded.any():
-        hid = np.floor(hkey * 0.5).astype(np.int64)
-        gridded = crowded & (np.bincount(hid, minlength=F) > SUBSCANLINES + 2)
-        big = np.flatnonzero(gridded)
-        if len(big):
-            grid = np.arange(SUBSCANLINES + 1) / SUBSCANLINES
-            extra = (np.repeat(big * 2.0, len(grid)) + np.tile(grid, len(big)))
-            hkey = np.sort(np.concatenate([hkey[~gridded[hid]], extra]))
-    hid = np.floor(hkey * 0.5).astype(np.int64)
-    hy = hkey - 2.0 * hid
-    same = hid[1:] == hid[:-1]
-    lo, hi = hy[:-1][same], hy[1:][same]
-    sfid = hid[:-1][same]
-    weight = hi - lo
-    keep = weight > 0
-    sfid, weight = sfid[keep], weight[keep]
-    sy = 0.5 * (lo[keep] + hi[keep])            # sample heights (cell units)
-    skey = sfid * 2.0 + sy                      # sorted ascending
-
-    # -- left-side winding at each sample -------------------------------------
-    wl = (corner[sfid]
-          + ev_cs[np.searchsorted(ev_key, skey, side='right')]
-          - ev_cs[np.searchsorted(ev_key, sfid * 2.0, side='left')])
-    wl = np.rint(wl).astype(np.int64)
-
-    # -- crossings of the sample lines by the pieces in the cell ---------------
-    moving = pya != pyb
-    mi = np.flatnonzero(moving)
-    pmin = np.minimum(pya[mi], pyb[mi])
-    pmax = np.maximum(pya[mi], pyb[mi])
-    base = pf[mi] * 2.0
-    s_lo = np.searchsorted(skey, base + pmin, side='right')
-    s_hi = np.searchsorted(skey, base + pmax, side='left')
-    cnt = np.maximum(s_hi - s_lo, 0)
-    m_total = int(cnt.sum())
-    g = (wl != 0) if not evenodd else (wl & 1).astype(bool)
-    g = g.astype(np.float64)                      # covered length per sample
-    if m_total:
-        owner = np.repeat(mi, cnt)
-        smp = np.repeat(s_lo, cnt) + (np.arange(m_total) - np.repeat(np.cumsum(cnt) - cnt, cnt))
-        oya = pya[owner]
-        oxa = pxa[owner]
-        ody = pyb[owner] - oya
-        with np.errstate(over='ignore'):
-            xc = oxa + (sy[smp] - oya) * ((pxb[owner] - oxa) / ody)
-        np.clip(xc, 0.0, 1.0, out=xc)
-        sgn = np.where(ody > 0, 1, -1)
-        corder = np.argsort(smp * 2.0 + xc, kind='stable')
-        smp, xc, sgn = smp[corder], xc[corder], sgn[corder]
-        newg = np.empty(m_total, bool)
-        newg[0] = True
-        newg[1:] = smp[1:] != smp[:-1]
-        cs = np.cumsum(sgn)
-        gstart = np.flatnonzero(newg)
-        before = (cs[gstart] - sgn[gstart])[np.cumsum(newg) - 1]
-        w_after = wl[smp] + cs - before
-        w_before = w_after - sgn
-        if evenodd:
-            fa, fb = w_after & 1, w_before & 1
-        else:
-            fa, fb = (w_after != 0), (w_before != 0)
-        # telescoping: each crossing changes f for the rest of the cell
-        delta = (fa.astype(np.float64) - fb) * (1.0 - xc)
-        g += np.bincount(smp, weights=delta, minlength=len(g))
-    return np.bincount(sfid, weights=g * weight, minlength=F)
+    return np.repeat(vals.astype(np.float32), lens).reshape(h, w), run
 
 
 # -- pixel centres ----------------------------------------------------------
@@ -1243,12 +1651,18 @@ def coverage_batch(edges, counts, width, height, fill_rules='nonzero', antialias
     eo = _rules_evenodd(_per_shape(fill_rules, n, 'fill rule', str))
     aa = np.array(_per_shape(antialias, n, 'antialias flag', (bool, np.bool_, int)), bool)
     ex = np.array(_per_shape(exact, n, 'exact flag', (bool, np.bool_, int)), bool)
-    win = _window(width, height, clip)
+    return _batch(e, counts, width, height, eo, aa, ex, _window(width, height, clip), 0)
+
+
+def _batch(e, counts, width, height, eo, aa, ex, win, depth):
+    """:func:`coverage_batch` on checked arguments: edges ``e`` (E, 2, 2),
+    ``counts`` (n,), evenodd / antialias / exact flags (n,) bool, the work
+    window ``win`` and the refinement level ``depth`` (see :func:`_exact`)."""
+    n = len(counts)
     out = [None] * n
     if n == 0 or len(e) == 0:
         return out
     first = np.cumsum(counts) - counts
-    rules = ['evenodd' if v else 'nonzero' for v in eo.tolist()]
     if (~aa & (counts > 0)).any():
         _aliased_batch(e, counts, first, ~aa & (counts > 0), eo, win, out)
     idx = np.flatnonzero(aa & (counts > 0))
@@ -1264,8 +1678,11 @@ def coverage_batch(edges, counts, width, height, fill_rules='nonzero', antialias
     alone = live & (est > _CHUNK_PIECES)
     for j in np.flatnonzero(alone).tolist():
         i = int(idx[j])
-        out[i] = coverage(e[first[i]:first[i] + counts[i]], width, height, rules[i], True, clip,
-                          bool(ex[i]))
+        x0, y0, w, h = int(X0[j]), int(Y0[j]), int(X1[j] - X0[j]), int(Y1[j] - Y0[j])
+        loc = e[first[i]:first[i] + counts[i]] - np.array([x0, y0], np.float64)
+        data = _area_coverage(loc, w, h, bool(eo[i]), bool(ex[i]), depth)
+        if data is not None and data.any():
+            out[i] = Mask(data, x0, y0)
     sel = np.flatnonzero(live & ~alone)
     if len(sel) == 0:
         return out
@@ -1289,7 +1706,7 @@ def coverage_batch(edges, counts, width, height, fill_rules='nonzero', antialias
         hi = min(max(hi, lo + 1), m)
         s = slice(lo, hi)
         _many_batch(loc[eoff[lo]:eoff[hi]], ne[s], X0[s], Y0[s], sw[s], sh[s], eo[idx[s]],
-                    ex[idx[s]], idx[s], out)
+                    ex[idx[s]], idx[s], out, depth)
         lo = hi
     return out
 
@@ -1380,7 +1797,7 @@ def _aliased_run(e, counts, first, idx, X0, Y0, sw, sh, eo, out):
             out[i_] = Mask(np.ascontiguousarray(data), int(X0[s_]), int(Y0[s_]))
 
 
-def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out):
+def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out, depth=0):
     """Masks of a batch of k shapes into ``out[ids[s]]``; see
     :func:`coverage_many`.  ``loc`` (E, 2, 2): the shapes' edges, shape
     after shape (``ne`` edges each), relative to each shape's box origin
@@ -1425,23 +1842,11 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out):
     cells, inv = _distinct_cells(cell, sid, row, np.maximum(col, 0), swp, sw, sh)
     cv = np.bincount(inv, weights=dy, minlength=len(cells))
     pv = np.bincount(inv, weights=dy * fx, minlength=len(cells))
-    # cells to recompute exactly, among the pieces of exact shapes only
-    if sex.any():
-        fcell = np.where(real, cell, -1)
-        brk = np.zeros(len(sid), bool)
-        brk[1:] = sid[1:] != sid[:-1]
-        if sex.all():
-            _, flagged = _flag_cells(xa, ya, xb, yb, fcell, brk)
-        else:
-            ps = sex[sid]
-            _, flagged = _flag_cells(xa[ps], ya[ps], xb[ps], yb[ps], fcell[ps], brk[ps])
-    else:
-        flagged = np.zeros(0, np.int64)
     nz = (cv != 0) | (pv != 0)
     T, cv, pv = cells[nz], cv[nz], pv[nz]
-    if len(T) == 0 and len(flagged) == 0:
-        return
     # -- resolve (as _resolve_cells, running sums restarted per shape) --------
+    if len(T) == 0 and not sex.any():
+        return
     tg = T // W
     tcol = T % W
     tsid = np.searchsorted(roff, tg, side='right') - 1
@@ -1453,6 +1858,21 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out):
     first[1:] = tg[1:] != tg[:-1]
     base = (cs - cv)[first][np.cumsum(first) - 1]
     run = cs - base
+    # cells to recompute exactly, among the pieces of exact shapes only
+    flagged = np.zeros(0, np.int64)
+    if sex.any():
+        fcell = np.where(real, cell, -1)
+        if not sex.all():
+            fcell[~sex[sid]] = -1
+        brk = np.zeros(len(sid), bool)
+        brk[1:] = sid[1:] != sid[:-1]
+        virt = ~real
+        vrow = (np.bincount(grow[virt], weights=dy[virt], minlength=int(sh.sum()))
+                if virt.any() else None)
+        left_of = _left_lookup(T, run, W, vrow)
+        flagged, fp, fc = _flag(xa, ya, xb, yb, col, row, fcell, brk, left_of, seo[sid])
+    if len(T) == 0 and len(flagged) == 0:
+        return
     cellv = run - pv
     tw = sw[tsid]
     li = lrow * tw + tcol                       # index in the shape's own box
@@ -1511,23 +1931,13 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out):
     ooff = np.cumsum(size) - size
     # -- exact recompute of the flagged cells ---------------------------------
     if len(flagged):
-        pieces = (xa, ya, xb, yb, col, grow)
-        H = int(sh.sum())
-        for evenodd in (False, True):
-            sel = seo[fsid] == evenodd
-            if not sel.any():
-                continue
-            fl = flagged[sel]
-            fs = fsid[sel]
-            v = _exact_cells(pieces, fl, W, H, evenodd, lrow=row, cellidx=(cells, inv))
-            np.clip(v, 0.0, 1.0, out=v)
-            v[v < _RESIDUE] = 0.0
-            fr = fl // W - roff[fs]
-            pos = ooff[fs] + fr * sw[fs] + fl % W
-            v = v.astype(np.float32)
-            nnz += np.bincount(fs, weights=(v != 0).astype(np.float64) - (flat[pos] != 0),
-                               minlength=k)
-            flat[pos] = v
+        v, done = _exact(xa, ya, xb, yb, col, row, fp, fc, left_of(flagged), seo[fsid], depth)
+        fl, fs, v = flagged[done], fsid[done], v[done].astype(np.float32)
+        fr = fl // W - roff[fs]
+        pos = ooff[fs] + fr * sw[fs] + fl % W
+        nnz += np.bincount(fs, weights=(v != 0).astype(np.float64) - (flat[pos] != 0),
+                           minlength=k)
+        flat[pos] = v
     X0l, Y0l, swl, shl, offl, idl = (X0.tolist(), Y0.tolist(), sw.tolist(), sh.tolist(),
                                       ooff.tolist(), ids.tolist())
     for s in np.flatnonzero(has & (nnz > 0.5)).tolist():

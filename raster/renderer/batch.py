@@ -170,7 +170,8 @@ class Masks:
                 self._flush_strokes(key, canvas)
             if key in self._stroke_ready:
                 return self._stroke_ready.pop(key), factor
-        outline = stroke_outline(n.path, style, transform=t, tolerance=self.tol)
+        outline = stroke_outline(n.path, style, transform=t, tolerance=self.tol,
+                                 straddle=True)
         if len(outline.verbs) == 0:
             return None, factor
         return path_coverage(outline, canvas.width, canvas.height, 'nonzero', n.antialias,
@@ -183,7 +184,7 @@ class Masks:
         key = (id(path), t)
         if self._flat_key == key and self._flat_path is path:
             return self._flat
-        pl = flatten(path, self.tol, transform=t)
+        pl = flatten(path, self.tol, transform=t, straddle=True)
         self._flat_key, self._flat_path, self._flat = key, path, pl
         return pl
 
@@ -220,7 +221,7 @@ class Masks:
             return
         try:
             pl, first = flatten_joined([it[1].path for it in items], [it[2] for it in items],
-                                       self.tol)
+                                       self.tol, straddle=True)
         except RasterError:
             return          # drawn one by one (errors where they were)
         k = len(items)
@@ -292,7 +293,8 @@ class Masks:
         try:
             for style, js in by_style.items():
                 outs = stroke_many([items[j][1].path for j in js], style,
-                                   transforms=[items[j][2] for j in js], tolerance=self.tol)
+                                   transforms=[items[j][2] for j in js], tolerance=self.tol,
+                                   straddle=True)
                 for j, o in zip(js, outs):
                     outlines[j] = o
             pl, first = flatten_joined(outlines, None, self.tol)

@@ -235,7 +235,7 @@ class Renderer:
             h, w = cov.shape
             try:
                 m = path_coverage(n.path, w, h, rule, n.antialias, tolerance=self.tol,
-                                  transform=t)
+                                  transform=t, straddle=True)
             except LimitError as e:
                 self._left_out(e)
                 return

@@ -547,3 +547,90 @@ def test_curves_flat_enough_come_back_as_chords():
     pts, counts = flatten_beziers(ctrl, 0.25)
     assert counts.tolist() == [2] * 30
     assert np.array_equal(pts[0::2], ctrl[:, 0]) and np.array_equal(pts[1::2], ctrl[:, 3])
+
+
+# -- straddled polylines -------------------------------------------------------
+def check_straddled(ctrl, tol):
+    ctrl = np.asarray(ctrl, float)
+    pts, counts = flatten_beziers(ctrl[None], tol, straddle=True)
+    assert counts.tolist() == [len(pts)]
+    # the curve's end points stay exactly
+    assert np.array_equal(pts[0], ctrl[0]) and np.array_equal(pts[-1], ctrl[-1])
+    h1, h2 = hausdorff_lower(ctrl, pts, tol)
+    assert h1 <= tol * (1 + 1e-9), (h1, tol)
+    assert h2 <= tol * (1 + 1e-9), (h2, tol)
+    return pts
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(point, min_size=4, max_size=4), st.sampled_from([0.05, 0.25, 1.0]))
+def test_straddled_cubics_within_tolerance(ctrl, tol):
+    check_straddled(ctrl, tol)
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(point, min_size=3, max_size=3), st.sampled_from([0.05, 0.25, 1.0]))
+def test_straddled_quadratics_within_tolerance(ctrl, tol):
+    check_straddled(ctrl, tol)
+
+
+@pytest.mark.parametrize('tol', [0.05, 0.25, 1.0])
+@pytest.mark.parametrize('r', [3.0, 30.0, 300.0])
+def test_straddled_circle_deviates_on_both_sides(tol, r):
+    # a circle of four cubics (within 2.8e-4 r of the true circle): the
+    # straddled polyline lies on both sides of it, about tol / 2 at most,
+    # where vertices on the curve leave every chord inside by up to tol
+    ctrl = four_cubic_circle(0, 0, r)
+    b = PathBuilder()
+    b.moveTo(tuple(ctrl[0, 0]))
+    for c in ctrl:
+        b.curveTo(tuple(c[1]), tuple(c[2]), tuple(c[3]))
+    b.closePath()
+    path = b.path()
+    dense = densify(flatten(path, tol, straddle=True).points, tol / 16)
+    err = np.linalg.norm(dense, axis=1) - r
+    plain = densify(flatten(path, tol).points, tol / 16)
+    perr = np.linalg.norm(plain, axis=1) - r
+    pe = np.abs(perr).max()
+    assert perr.max() <= 3e-4 * r and pe <= tol + 3e-4 * r      # all inside
+    assert err.max() > 0.25 * pe and err.min() < -0.25 * pe        # both sides
+    assert np.abs(err).max() <= 0.6 * pe + 3e-4 * r
+
+
+def test_straddled_corners_and_open_ends_stay():
+    # a square with one rounded corner, and an open curve: corners and open
+    # ends are vertices of the straddled polyline, unmoved
+    b = PathBuilder()
+    b.moveTo((0, 0))
+    b.lineTo((10, 0))
+    b.curveTo((15, 0), (20, 5), (20, 10))
+    b.lineTo((20, 20))
+    b.lineTo((0, 20))
+    b.closePath()
+    b.moveTo((30, 0))
+    b.qCurveTo((40, 10), (50, 0))
+    pl = flatten(b.path(), 0.1, straddle=True)
+    p = pl.points.tolist()
+    for corner in ([0, 0], [20, 20], [0, 20], [30, 0], [50, 0]):
+        assert corner in p
+    # the smooth joints (line into curve) moved by at most tol / 2
+    for joint in ([10, 0], [20, 10]):
+        d = np.linalg.norm(pl.points - joint, axis=1).min()
+        assert d <= 0.05 + 1e-12
+
+
+def test_straddle_needs_planar_curves():
+    with pytest.raises(PathError, match='planar'):
+        flatten_beziers(np.zeros((1, 4, 3)) + np.arange(4)[None, :, None] ** 2, 0.1,
+                        straddle=True)
+
+
+def test_straddled_flatten_many_equals_flatten():
+    from raster.geometry.flattening import flatten_many
+    paths = [mixed_path(), Path.polygon([(0, 0), (3, 0), (3, 3)])]
+    ts = [Affine.scale(3, 2), None]
+    many = flatten_many(paths, ts, 0.1, straddle=True)
+    for p, t, m in zip(paths, ts, many):
+        one = flatten(p, 0.1, transform=t, straddle=True)
+        assert np.array_equal(one.points, m.points)
+        assert np.array_equal(one.starts, m.starts)

@@ -217,17 +217,13 @@ def test_pentagram_areas_differ_by_the_inner_pentagon():
     assert abs((nz - eo) - inner) < 0.01 * inner
 
 
-def test_recompute_is_needed_for_overlaps():
+def test_recompute_is_needed_for_overlaps(monkeypatch):
     # without the recompute of flagged cells the accumulated area is wrong
     # by far more than the tolerance: this checks the test above can fail
     edges = CIRCLES
-    old = scan._flag_cells
-    try:
-        scan._flag_cells = lambda xa, ya, xb, yb, cell: (
-            np.unique(cell[cell >= 0]), np.zeros(0, np.int64))
-        bad = full(edges, 40, 40)
-    finally:
-        scan._flag_cells = old
+    none = np.zeros(0, np.int64)
+    monkeypatch.setattr(scan, '_flag', lambda *a, **k: (none, none, none))
+    bad = full(edges, 40, 40)
     assert np.abs(bad - reference(edges, 40, 40, 'nonzero')).max() > 0.1
 
 
@@ -344,30 +340,62 @@ def test_chunked_processing_matches(monkeypatch):
     s = full(STAR, 40, 40)
     monkeypatch.setattr(scan, '_CHUNK_PIECES', 97)
     monkeypatch.setattr(scan, '_CHUNK_WORK', 50)
-    monkeypatch.setattr(scan, '_CELLMAP_MAX', 10)
+    assert len(scan._bands(CIRCLES, 40, 40)) > 3
     b = full(CIRCLES, 40, 40, fill_rule='evenodd')
     t = full(STAR, 40, 40)
-    # chains cut at chunk boundaries flag more cells; those are exact too
+    # chains cut at band boundaries flag more cells; those are exact too
     assert np.abs(a - b).max() < 1e-5 and np.abs(s - t).max() < 1e-5
 
 
 def test_crowded_cells_with_stacked_copies_stay_exact():
     # 40 copies of one square: pixels on its sides hold 40 pieces, more than
-    # _PAIR_LIMIT; they have few distinct heights and no crossings: exact
+    # _EXACT_PIECES; equal pieces are merged, so they stay exact
     sq = [[2.3, 2.6], [7.7, 2.6], [7.7, 8.2], [2.3, 8.2]]
-    assert 40 > scan._PAIR_LIMIT
+    assert 40 > scan._EXACT_PIECES
     one = full(poly_edges(sq), 10, 10)
     many = full(poly_edges(*[sq] * 40), 10, 10)
     assert np.abs(one - many).max() < 1e-6
+    # with some copies reversed (they cancel) and a shifted one
+    mixed = poly_edges(*([sq] * 25 + [sq[::-1]] * 12 + [np.add(sq, 0.013)]))
+    a = full(mixed, 10, 10, fill_rule='evenodd')
+    b = full(poly_edges(*([sq] * 13 + [np.add(sq, 0.013)])), 10, 10, fill_rule='evenodd')
+    assert np.abs(a - b).max() < 1e-6
 
 
-def test_crowded_cells_fall_back_to_a_height_grid(monkeypatch):
-    # cells with more than _PAIR_LIMIT pieces skip pairwise intersections
-    # and add SUBSCANLINES evenly spaced sample heights: close, not exact
-    a = full(CIRCLES, 40, 40, fill_rule='evenodd')
-    monkeypatch.setattr(scan, '_PAIR_LIMIT', 1)
-    b = full(CIRCLES, 40, 40, fill_rule='evenodd')
-    assert 0 < np.abs(a - b).max() < 1.0 / scan.SUBSCANLINES
+@pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
+def test_crowded_cells_are_refined_exactly(monkeypatch, rule):
+    # cells with more than _EXACT_PIECES distinct pieces are scan converted
+    # again on a finer grid (recursively): the same coverage
+    a = full(CIRCLES, 40, 40, fill_rule=rule)
+    s = full(STAR, 40, 40, fill_rule=rule)
+    calls = []
+    real = scan._refine
+    monkeypatch.setattr(scan, '_refine', lambda *a: calls.append(len(a[4])) or real(*a))
+    monkeypatch.setattr(scan, '_EXACT_PIECES', 1)
+    b = full(CIRCLES, 40, 40, fill_rule=rule)
+    t = full(STAR, 40, 40, fill_rule=rule)
+    assert calls
+    assert np.abs(a - b).max() < 1e-5 and np.abs(s - t).max() < 1e-5
+
+
+def test_refinement_depth_is_bounded(monkeypatch):
+    # 300 lines through one point: every refinement level keeps a crowded
+    # cell there; below _MAX_DEPTH the running sum stands, wrong by at most
+    # the area of those sub-cells
+    rng = np.random.default_rng(2)
+    ang = rng.uniform(0, np.pi, 300)
+    c = np.array([5.37, 5.61])
+    polys = [np.array([c - 6 * u, c + 6 * u, c + 6 * u + 0.2 * np.r_[-u[1], u[0]]])
+             for u in np.c_[np.cos(ang), np.sin(ang)]]
+    e = poly_edges(*polys)
+    depth = []
+    real = scan._refine
+    monkeypatch.setattr(scan, '_refine', lambda *a: depth.append(a[-1]) or real(*a))
+    for rule in ('nonzero', 'evenodd'):
+        got = full(e, 11, 11, fill_rule=rule)
+        ref = reference(e, 11, 11, rule, n=64)
+        assert np.abs(got - ref).max() < 0.02
+    assert max(depth) == scan._MAX_DEPTH - 1
 
 
 # -- errors -------------------------------------------------------------------
@@ -478,7 +506,7 @@ def test_property_coverage_in_unit_interval_and_close_to_sampling(pts, rule):
 
 
 @settings(max_examples=120, deadline=None)
-@given(st.integers(0, 2**32 - 1), st.integers(4, scan._PAIR_LIMIT),
+@given(st.integers(0, 2**32 - 1), st.integers(4, 32),
        st.floats(0.5, 25), st.floats(5.0, 25.0), st.floats(5.0, 25.0))
 def test_property_area_conservation_simple_polygons(seed, n, rmax, cx, cy):
     # n <= _PAIR_LIMIT edges: no pixel holds more pieces than that (a line
@@ -574,12 +602,10 @@ def test_wiggly_star_boundary_needs_no_recompute(monkeypatch):
     r = 40 + rng.uniform(-0.5, 0.5, n)
     p = np.c_[50 + r * np.cos(th), 50 + r * np.sin(th)]
     calls = []
-    real = scan._exact_cells
-    monkeypatch.setattr(scan, '_exact_cells',
-                        lambda pieces, flagged, *a: calls.append(len(flagged))
-                        or real(pieces, flagged, *a))
+    real = scan._exact
+    monkeypatch.setattr(scan, '_exact', lambda *a: calls.append(len(a[7])) or real(*a))
     m = coverage(poly_edges(p), 100, 100)
-    assert calls and calls[0] <= 2          # only the contour's start pixel(s)
+    assert sum(calls) <= 2                  # at most the contour's start pixel(s)
     assert abs(float(m.data.sum(dtype=np.float64)) - shoelace(p)) < 1e-6 * shoelace(p)
 
 
@@ -600,16 +626,6 @@ def test_sparse_and_dense_accumulation_agree_bitwise(monkeypatch):
         assert np.array_equal(out[0, rule], out[10 ** 9, rule])
 
 
-def test_cell_map_and_binary_search_lookups_agree(monkeypatch):
-    # the flagged-cell lookup of the exact recompute: dense map or search
-    e = CIRCLES
-    monkeypatch.setattr(scan, '_CELLMAP_RATIO', 10 ** 9)
-    a = full(e, 40, 40, fill_rule='evenodd')
-    monkeypatch.setattr(scan, '_CELLMAP_RATIO', 0)
-    b = full(e, 40, 40, fill_rule='evenodd')
-    assert np.array_equal(a, b)
-
-
 @settings(max_examples=60, deadline=None)
 @given(st.integers(0, 2**32 - 1), st.integers(0, 59))
 def test_property_closed_chain_start_cell_left_alone_is_exact(seed, start):
@@ -623,16 +639,11 @@ def test_property_closed_chain_start_cell_left_alone_is_exact(seed, start):
     p = np.c_[7.1 + r * np.cos(th), 6.9 + r * np.sin(th)]
     e = poly_edges(np.roll(p, -start, axis=0))
     a = full(e, 14, 14)
-    old = scan._flag_cells
-
-    def flag_all(xa, ya, xb, yb, cell):
-        touched, _ = old(xa, ya, xb, yb, cell)
-        return touched, touched
-    scan._flag_cells = flag_all
+    scan._FLAG_EVERYTHING = True
     try:
         b = full(e, 14, 14)
     finally:
-        scan._flag_cells = old
+        scan._FLAG_EVERYTHING = False
     assert np.abs(a - b).max() < 1e-6
     assert abs(float(a.sum(dtype=np.float64)) - shoelace(p)) < 1e-6 * shoelace(p)
 
@@ -650,20 +661,14 @@ def test_merged_start_cell_needs_no_recompute(monkeypatch):
     p = np.vstack([arc, arc[-1] + 8 * t_out, arc[0] - 8 * t_in])
     p = np.roll(p, -4, axis=0)                  # start mid-arc
     calls = []
-    real = scan._exact_cells
-    monkeypatch.setattr(scan, '_exact_cells',
-                        lambda pieces, flagged, *a: calls.append(len(flagged))
-                        or real(pieces, flagged, *a))
+    real = scan._exact
+    monkeypatch.setattr(scan, '_exact', lambda *a: calls.append(len(a[7])) or real(*a))
     m = coverage(poly_edges(p), 24, 24)
     assert calls == []
     assert abs(float(m.data.sum(dtype=np.float64)) - shoelace(p)) < 1e-6 * shoelace(p)
-    monkeypatch.setattr(scan, '_flag_cells', lambda *a: (lambda t: (t, t))(
-        np.unique(a[4][a[4] >= 0])))
+    monkeypatch.setattr(scan, '_FLAG_EVERYTHING', True)
     assert np.abs(coverage(poly_edges(p), 24, 24).data - m.data).max() < 1e-6
-    monkeypatch.undo()
-    monkeypatch.setattr(scan, '_exact_cells',
-                        lambda pieces, flagged, *a: calls.append(len(flagged))
-                        or real(pieces, flagged, *a))
+    monkeypatch.setattr(scan, '_FLAG_EVERYTHING', False)
     # without the rounding's start there, the same tip is one run: also left alone
     calls.clear()
     coverage(poly_edges(np.roll(p, 4, axis=0)), 24, 24)
