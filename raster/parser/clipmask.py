@@ -39,10 +39,30 @@ def clip_property(own, kids, state, cache):
 
 def build_clip(cp, kids, state, cache):
     """A clipPath element to a ClipPath for content ``kids``; None when the
-    reference is ignored (recursion), :data:`EMPTY` when nothing is left."""
+    reference is ignored (recursion), :data:`EMPTY` when nothing is left.
+
+    A clip path in user space units with no clip path of its own does not
+    depend on the content: it is built once per viewport, CTM and ``use``
+    depth and shared (documents that clip each line of text to its row
+    refer to a few clip paths thousands of times)."""
     if cp in cache.active:
         cache.warn('clip-recursive', 'recursive clip-path reference ignored')
         return None
+    if cp.get('clipPathUnits') == 'objectBoundingBox':
+        return _build_clip(cp, kids, state, cache)
+    own = doc_style(cp, cache)[1]
+    v = own.get('clip-path')
+    if v is not None and v.strip() != 'none':
+        return _build_clip(cp, kids, state, cache)
+    memo = cache.table('clip_paths')
+    key = (cp, state.vw, state.vh, state.ctm, state.use_depth)
+    r = memo.get(key, memo)
+    if r is memo:
+        r = memo[key] = _build_clip(cp, kids, state, cache)
+    return r
+
+
+def _build_clip(cp, kids, state, cache):
     with cache.referencing(cp):
         inh, own = doc_style(cp, cache)
         ctx = length_context(inh, state, cache)

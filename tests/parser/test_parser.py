@@ -1040,3 +1040,29 @@ def test_external_use_is_refused_inside_svg_images(tmp_path):
 def test_system_language_compares_primary_subtags(user, listed, passes):
     t = tree_of('<rect systemLanguage="%s" width="5" height="5"/>' % listed, languages=user)
     assert bool([n for n, _ in walk(t.root) if isinstance(n, PathNode)]) == passes
+
+
+def test_a_user_space_clip_path_is_built_once_and_shared():
+    # many elements clipped by one userSpaceOnUse clip path share one
+    # ClipPath; objectBoundingBox clip paths still follow each element's box
+    body = ('<clipPath id="u"><rect width="50" height="50"/></clipPath>'
+            '<clipPath id="o" clipPathUnits="objectBoundingBox">'
+            '<rect width="0.5" height="0.5"/></clipPath>'
+            + ''.join('<rect x="%d" width="10" height="10" clip-path="url(#u)"/>' % (20 * i)
+                      for i in range(4))
+            + '<rect width="10" height="10" clip-path="url(#o)"/>'
+              '<rect width="40" height="40" clip-path="url(#o)"/>'
+              '<g transform="scale(2)"><rect width="10" height="10" clip-path="url(#u)"/></g>')
+    t = tree_of(body)
+    clips = [n.clip_path for n, _ in walk(t.root)
+             if isinstance(n, Group) and n.clip_path is not None]
+    user = [c for c in clips if c.id == 'u']
+    obb = [c for c in clips if c.id == 'o']
+    # one per CTM (arcs are converted for the device size): the four rects
+    # share theirs, the scaled one has its own
+    assert len(user) == 5 and len({id(c) for c in user[:4]}) == 1 and user[4] is not user[0]
+    assert len(obb) == 2 and obb[0].transform != obb[1].transform
+    img = raster.render(('<svg xmlns="http://www.w3.org/2000/svg" width="200" height="200">'
+                         '%s</svg>' % body).encode())
+    # the rects at x = 60 (outside the 50 px clip) draw nothing; x = 40 half
+    assert img[5, 45, 3] == 255 and img[5, 65, 3] == 0 and img[5, 55, 3] == 0
