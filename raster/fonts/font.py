@@ -18,6 +18,7 @@ from ..geometry.path import Path
 from ..geometry.pens import PathBuilder
 from .files import FontError, FontFace, check_font_data, quiet_fonttools, read_font_bytes, sfnt_bytes
 from .color import ColorFont
+from .matching import cached
 
 __all__ = ['Font', 'Shaped', 'register_memory_font', 'memory_font_data']
 
@@ -32,16 +33,6 @@ _ATLAS_MAX_POINTS = 1 << 22
 #: outlines remembered, ``_RUN_LIMIT`` sequences per :class:`Font`.
 _RUN_GLYPHS = 32
 _RUN_LIMIT = 1024
-
-
-def _cached(cache, key, make, limit):
-    value = cache.get(key)
-    if value is None:
-        value = make()
-        if len(cache) > limit:
-            cache.clear()
-        cache[key] = value
-    return value
 
 
 def register_memory_font(data):
@@ -234,7 +225,7 @@ class Font:
                 mt = os.stat(face.path).st_mtime_ns
             except OSError as e:
                 raise FontError('cannot read font %s: %s' % (face.path, e.strerror)) from None
-        return _cached(_FONT_CACHE, (face.path, face.index, mt), lambda: cls(face), 64)
+        return cached(_FONT_CACHE, (face.path, face.index, mt), lambda: cls(face), 64)
 
     def has_char(self, ch):
         """True when the font maps the character to a glyph."""
@@ -268,7 +259,7 @@ class Font:
             ``'ttb'``) overrides HarfBuzz's guess (the bidi level of a run).
         """
         key = (text, tuple(sorted(features.items())) if features else (), direction)
-        return _cached(self._shaped, key, lambda: self._shape(text, features, direction),
+        return cached(self._shaped, key, lambda: self._shape(text, features, direction),
                        _SHAPE_LIMIT)
 
     def _shape(self, text, features, direction=None):
