@@ -499,18 +499,26 @@ def load_image(href, cache, tolerance=None):
         return payload
     if tolerance is None:
         tolerance = cache.options.tolerance
-    tkey = ('tree', key, float(tolerance))
-    r = images.get(tkey)
+    base = os.path.dirname(key[1]) if key[0] == 'file' else None
+    return _remembered(images, ('tree', key, float(tolerance)), 'SVG image', href,
+                       lambda: _load_svg(payload, ImageSource(base, (), False), cache,
+                                         tolerance))
+
+
+def _remembered(table, key, what, name, load):
+    """``table[key]``, made by ``load()`` when missing; a failure is
+    remembered too, as the ImageError ``cannot use <what> <name> (...)``,
+    and raised on every use."""
+    r = table.get(key)
     if r is None:
-        base = os.path.dirname(key[1]) if key[0] == 'file' else None
         try:
-            r = _load_svg(payload, ImageSource(base, (), False), cache, tolerance)
+            r = load()
         except ImageError as e:
             r = e
         except (RasterError, OSError, ValueError) as e:
             msg = str(e).splitlines()[0] if str(e) else type(e).__name__
-            r = ImageError('cannot use SVG image %s (%s)' % (_short(href, 40), msg))
-        images[tkey] = r
+            r = ImageError('cannot use %s %s (%s)' % (what, _short(name, 40), msg))
+        table[key] = r
     if isinstance(r, ImageError):
         raise r
     return r
@@ -542,19 +550,8 @@ def fetch_document(path, options, documents):
         The file is refused, missing, unreadable or not an SVG document.
     """
     real = _resolve_file(path, image_source(options))
-    r = documents.get(real)
-    if r is None:
-        try:
-            r = (real, load_document(_read_file(real), max_bytes=_max_bytes()))
-        except ImageError as e:
-            r = e
-        except (RasterError, OSError, ValueError) as e:
-            msg = str(e).splitlines()[0] if str(e) else type(e).__name__
-            r = ImageError('cannot use document %s (%s)' % (_short(path, 40), msg))
-        documents[real] = r
-    if isinstance(r, ImageError):
-        raise r
-    return r
+    return _remembered(documents, real, 'document', path,
+                       lambda: (real, load_document(_read_file(real), max_bytes=_max_bytes())))
 
 
 def fetch_stylesheet(href, base_dir, options):
