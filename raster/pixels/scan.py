@@ -918,16 +918,9 @@ def _piece_crossings(i, j, g, gid, gcnt, rstart, r_idx, r_len, r_m, r_hs, r_hl, 
     px, py = xa[pj] - ox, ya[pj] - oy
     qx, qy = xb[pj] - ox, yb[pj] - oy
     # orientations of each segment's ends against the other segment
-    ux, uy = bx - ax, by - ay
-    vx, vy = qx - px, qy - py
-    o1 = vx * (ay - py) - vy * (ax - px)
-    o2 = vx * (by - py) - vy * (bx - px)
-    o3 = ux * (py - ay) - uy * (px - ax)
-    o4 = ux * (qy - ay) - uy * (qx - ax)
-    e = 1e-12
-    apart = (((o1 > e) & (o2 > e)) | ((o1 < -e) & (o2 < -e))
-             | ((o3 > e) & (o4 > e)) | ((o3 < -e) & (o4 < -e)))
-    mi = np.flatnonzero(~apart)
+    o1, o2, o3, o4 = _orientations(ax, ay, bx, by, px, py, qx, qy)
+    e = _MEET_EPS
+    mi = np.flatnonzero(~_apart(o1, o2, o3, o4))
     if len(mi) == 0:
         return
     a1, a2, a3, a4 = o1[mi], o2[mi], o3[mi], o4[mi]
@@ -939,8 +932,8 @@ def _piece_crossings(i, j, g, gid, gcnt, rstart, r_idx, r_len, r_m, r_hs, r_hl, 
     if len(xi) == 0:
         return
     t = a1[keep] / (a1[keep] - a2[keep])
-    Xx = ax[xi] + t * ux[xi]
-    Xy = ay[xi] + t * uy[xi]
+    Xx = ax[xi] + t * (bx[xi] - ax[xi])
+    Xy = ay[xi] + t * (by[xi] - ay[xi])
     x_ri, x_rj = ri[xi], np.repeat(j, cnt)[xi]
     xg = gid[x_ri]
     # every piece of the cell's other runs against the segment corner -> X
@@ -989,16 +982,27 @@ def _segments_meet(ax, ay, bx, by, cx, cy, dx, dy):
     """Whether segments ab and cd may intersect or touch (conservative:
     True unless one segment lies strictly on one side of the other's line
     by more than a rounding margin)."""
+    return ~_apart(*_orientations(ax, ay, bx, by, cx, cy, dx, dy))
+
+
+#: Rounding margin of the orientation tests of :func:`_apart`.
+_MEET_EPS = 1e-12
+
+
+def _orientations(ax, ay, bx, by, cx, cy, dx, dy):
+    """Cross products ``(o1, o2, o3, o4)``: the sides of a and b relative
+    to line cd (o1, o2) and of c and d relative to line ab (o3, o4)."""
     ux, uy = bx - ax, by - ay
     vx, vy = dx - cx, dy - cy
-    o1 = vx * (ay - cy) - vy * (ax - cx)
-    o2 = vx * (by - cy) - vy * (bx - cx)
-    o3 = ux * (cy - ay) - uy * (cx - ax)
-    o4 = ux * (dy - ay) - uy * (dx - ax)
-    eps = 1e-12
-    apart = (((o1 > eps) & (o2 > eps)) | ((o1 < -eps) & (o2 < -eps))
-             | ((o3 > eps) & (o4 > eps)) | ((o3 < -eps) & (o4 < -eps)))
-    return ~apart
+    return (vx * (ay - cy) - vy * (ax - cx), vx * (by - cy) - vy * (bx - cx),
+            ux * (cy - ay) - uy * (cx - ax), ux * (dy - ay) - uy * (dx - ax))
+
+
+def _apart(o1, o2, o3, o4, eps=_MEET_EPS):
+    """Where one segment lies strictly on one side of the other's line (by
+    more than ``eps``): the pairs that cannot meet."""
+    return (((o1 > eps) & (o2 > eps)) | ((o1 < -eps) & (o2 < -eps))
+            | ((o3 > eps) & (o4 > eps)) | ((o3 < -eps) & (o4 < -eps)))
 
 
 # -- the exact recompute --------------------------------------------------------
