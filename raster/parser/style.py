@@ -4,7 +4,8 @@ The computed style of an element is a pair of dicts ``(inh, own)``: the
 inherited properties (every inherited property present, with the font size
 resolved to px under ``'_fs'`` and the colour to RGBA under ``'_color'``)
 and the element's own non-inherited declarations.  Both are shared between
-elements with the same declarations under the same parent style, so they
+elements with the same declarations under the same parent style (``inh``
+also between elements whose inherited declarations are the same), so they
 must never be modified.  ``inherit`` takes the parent's computed value.
 """
 
@@ -67,6 +68,16 @@ def declared_style(decl, pinh, pown, cache):
     if hit is not None:
         return hit[2], hit[3]
     inh, own = _compute(decl, pinh, pown, cache.options)
+    if inh is not pinh:
+        # elements that differ only in non-inherited declarations (their
+        # clip paths, positions) share one inherited style too
+        shared = cache.table('style_inh')
+        ikey = (id(pinh), tuple(kv for kv in decl.items() if kv[0] in INHERITED))
+        hit = shared.get(ikey)
+        if hit is None:
+            shared[ikey] = (pinh, inh)
+        else:
+            inh = hit[1]
     # the parents are kept alive with the result, so their ids stay unique
     memo[key] = (pinh, pown, inh, own)
     return inh, own
