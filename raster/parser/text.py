@@ -169,28 +169,39 @@ def convert_text(el, state, cache, parent):
     if not cache.spend('glyphs', sum(map(len, el.itertext())), 'text'):
         return
     try:
-        with log_warnings('fontTools'):         # a broken font's log lines: our warnings
-            _build(el, state, cache, parent)
+        _build(el, state, cache, parent)
     except Exception as e:      # text must never break a document (RasterError too)
         del parent[mark:]
         cache.warn('text-error', 'text element not rendered: %s' % (e,))
 
 
 def _build(el, state, cache, out):
-    st = state
-    pinh, pown = state.inh, state.own
-    inh, own = style_of(el, pinh, pown, cache)
-    ctx = length_context(inh, st, cache)
+    inh, own = style_of(el, state.inh, state.own, cache)
+    ctx = length_context(inh, state, cache)
     t = transform_of(el, own, ctx)
     if t is None:
         return
-    wm = (inh.get('writing-mode') or 'lr-tb').strip()
-    vertical = wm in ('tb', 'tb-rl', 'vertical-rl', 'vertical-lr')
-    db = _font_db(cache)
-    if db.bundled_only:
-        cache.warn('text-nofont', 'no usable fonts found; text is drawn with the bundled '
-                   'Noto Sans (ASCII only)')
-    # -- collect characters ---------------------------------------------------
+    if (len(el) == 0 and el.get('dx') is None and el.get('dy') is None
+            and el.get('rotate') is None and _leaf(el, inh, own, ctx, t, state, cache, out)):
+        return
+    with log_warnings('fontTools'):         # a broken font's log lines: our warnings
+        _build_any(el, inh, own, ctx, t, state, cache, out)
+
+
+class _Text:
+    """The characters of one text element after whitespace processing
+    and what they belong to: ``chars`` (list of str), ``owner`` (span index
+    of each character), ``spans`` (:class:`_Span`, the text element's
+    first), ``lists`` ((start, attribute, values, element) of x, y, dx,
+    dy), ``rot`` ([start, angles, element]), ``ends`` (element -> index
+    after its last character), ``path_ranges`` ((first, end, text path
+    geometry))."""
+    __slots__ = ('chars', 'owner', 'spans', 'lists', 'rot', 'ends', 'path_ranges')
+
+
+def _collect(el, inh, own, ctx, st, cache):
+    """The :class:`_Text` of text element ``el`` (computed style ``inh``,
+    ``own``, lengths ``ctx``) in state ``st``."""
     chars = []          # characters after whitespace processing
     owner = []          # span index of each character
     spans = []
@@ -266,45 +277,22 @@ def _build(el, state, cache, out):
             add_text(ch.tail)
         ends[e] = len(chars)
 
-    root_span = _Span(None, pinh, pown, ctx, None, _parent_weight(el, cache))
+    root_span = _Span(None, st.inh, st.own, ctx, None, _parent_weight(el, cache))
     walk(el, inh, own, ctx, root_span, el.get(_XML_SPACE) == 'preserve')
     spans[0].parent = None
     # default mode: drop trailing spaces
     while chars and chars[-1] == ' ' and not _preserved(spans[owner[-1]].el):
         chars.pop()
         owner.pop()
-    n = len(chars)
-    if n == 0:
-        return
-    owner_l = owner
-    owner = np.asarray(owner_l, np.int64)
-    ax = np.full(n, np.nan)
-    ay = np.full(n, np.nan)
-    arrs = {'x': ax, 'y': ay}       # dx, dy, angle: None while all zero
-    for start, name, vals, e in lists:
-        k = min(len(vals), min(ends.get(e, n), n) - start)   # own characters only
-        if k > 0:
-            a = arrs.get(name)
-            if a is None:
-                a = arrs[name] = np.zeros(n)
-            a[start:start + k] = vals[:k]
-    dx, dy = arrs.get('dx'), arrs.get('dy')
-    angle = np.zeros(n) if rot else None
-    last = 0.0
-    for start, vals, e in rot:      # document order; the last angle given repeats
-        end = min(ends.get(e, n), n)
-        if start >= end:
-            continue
-        k = min(len(vals), end - start)
-        angle[start:start + k] = vals[:k]
-        if k:
-            last = vals[k - 1]
-        angle[start + k:end] = last
-    if math.isnan(ax[0]):
-        ax[0] = 0.0
-    if math.isnan(ay[0]):
-        ay[0] = 0.0
-    # -- fonts and per-span metrics --------------------------------------------
+    tx = _Text()
+    tx.chars, tx.owner, tx.spans, tx.lists, tx.rot = chars, owner, spans, lists, rot
+    tx.ends, tx.path_ranges = ends, path_ranges
+    return tx
+
+
+def _set_up_spans(spans, db, cache, vertical):
+    """Fonts and metrics of every span (its ``face``, ``font``, spacings,
+    ``textLength``, features, baseline shift and memo ``key``)."""
     fonts_of = _span_fonts(db, cache)
     for sp in spans:
         i = sp.inh
@@ -332,24 +320,14 @@ def _build(el, state, cache, out):
         sp.shift = _span_shift(sp, vertical)
         sp.key = (sp.font, None if sp.features is None else tuple(sorted(sp.features.items())),
                   sp.fs, sp.ls, sp.ws, sp.tl, sp.glyph_adjust, sp.shift, sp.families)
+
+
+def _chunk_env(el, spans, db, cache, vertical):
+    """The :class:`_ChunkEnv` of a text element's spans (set up)."""
     decor = _decorations(el, spans, cache)
     spacing = any(sp.ls or sp.ws for sp in spans)
     ls = np.array([sp.ls for sp in spans]) if spacing else None
     ws = np.array([sp.ws for sp in spans]) if spacing else None
-    # -- chunks ------------------------------------------------------------------
-    brk = ~np.isnan(np.fmin(ax, ay))     # an absolute x or y
-    onpath = np.full(n, -1, np.int64) if path_ranges else None
-    for pi, (p0, p1, tp) in enumerate(path_ranges):
-        p1 = min(p1, n)
-        if p0 >= p1:
-            continue
-        brk[p0] = True
-        if p1 < n:
-            brk[p1] = True
-        onpath[p0:p1] = pi
-    bounds = np.flatnonzero(brk).tolist() + [n]
-    text = ''.join(chars)
-    memo = cache.table('text_shaped')
     fallbacks = cache.table('text_fallback')
 
     def fallback(font, ch, sp):
@@ -360,66 +338,140 @@ def _build(el, state, cache, out):
         if f is None:
             f = fallbacks[k] = _fallback_font(db, ch, font, sp, cache)
         return f
-    env = _ChunkEnv(spans, decor, vertical, spacing, ls, ws, fallback, memo)
-    pieces = []         # (span index, kind, Path) in user space
-    corners = []        # metric box corners in user space
-    cur_x = cur_y = 0.0
-    for c0, c1 in zip(bounds[:-1], bounds[1:]):
-        tp = path_ranges[int(onpath[c0])][2] if onpath is not None and onpath[c0] >= 0 else None
-        own_c = owner[c0:c1]
-        anchor = (spans[owner_l[c0]].inh.get('text-anchor') or 'start').strip()
-        sub = (lambda a: None if a is None else a[c0:c1])
-        chunk_text = text[c0:c1]
-        cuts = (np.flatnonzero(own_c[1:] != own_c[:-1]) + 1).tolist()
-        run_starts = [0] + cuts
-        order = []              # the chunk's spans in order of first use
-        for a in run_starts:
-            si = owner_l[c0 + a]
-            if si not in order:
-                order.append(si)
-        res = None
-        key = None
-        if tp is None and dx is None and dy is None and angle is None:
-            key = (db, _chunk_key(chunk_text, own_c, run_starts, order, anchor, env))
-            res = _CHUNKS.get(key)
-        if res is None:
-            res = _lay_chunk(chunk_text, own_c, run_starts, order, anchor, tp, sub(dx), sub(dy),
-                             sub(angle), _path_start(tp, ax[c0], ay[c0], vertical), env)
-            if key is not None:
-                _CHUNKS.put(key, res)
-        if res.empty:
-            continue
-        if res.missing:
-            _warn_missing(res.missing, cache)
-        if tp is None:
-            cx = ax[c0] if not math.isnan(ax[c0]) else None
-            cy = ay[c0] if not math.isnan(ay[c0]) else None
-            x0 = cur_x if cx is None else cx
-            y0 = cur_y if cy is None else cy
-            ex, ey = res.end
-            if vertical:
-                base = Affine.translate(x0, y0) @ Affine.rotate(90.0)
-                ex, ey = ey, ex
-            else:
-                base = (x0, y0)
-            cur_x, cur_y = x0 + ex, y0 + ey
+    return _ChunkEnv(spans, decor, vertical, spacing, ls, ws, fallback,
+                     cache.table('text_shaped'))
+
+
+def _vertical(inh):
+    wm = (inh.get('writing-mode') or 'lr-tb').strip()
+    return wm in ('tb', 'tb-rl', 'vertical-rl', 'vertical-lr')
+
+
+def _line_chunk(db, chunk_text, own_c, run_starts, order, anchor, env):
+    """A chunk laid out along a line without per-character positions,
+    through the process's chunk memo."""
+    key = (db, _chunk_key(chunk_text, own_c, run_starts, order, anchor, env))
+    res = _CHUNKS.get(key)
+    if res is None:
+        res = _lay_chunk(chunk_text, own_c, run_starts, order, anchor, None, None, None,
+                         None, 0.0, env)
+        _CHUNKS.put(key, res)
+    return res
+
+
+#: Styles of leaf text elements remembered per document (see _leaf)
+_LEAF_MEMO = 4096
+
+
+class _LeafStyle:
+    """What a leaf text element's layout depends on but its text and
+    position (see :func:`_leaf`): its computed style (kept alive, so that
+    the memo's ids stay unique), set-up spans, chunk environment, anchor,
+    writing mode and the style part of its chunk memo key."""
+    __slots__ = ('inh', 'spans', 'env', 'anchor', 'vertical', 'props')
+
+
+def _leaf(el, inh, own, ctx, t, st, cache, out):
+    """Convert a text element with character data only (no children, no
+    ``dx``, ``dy``, ``rotate``; at most one ``x`` and ``y`` for more than
+    one character): what its layout depends on but its text and position
+    (computed style, lengths, ``textLength``, ``lengthAdjust``, inherited
+    weight and decorations) is set up once per document, and its chunk
+    comes from the process's chunk memo, so that a document of many such
+    elements (a terminal screenshot) spends little per element.  The
+    result is that of the general path.  False when the element needs the
+    general path (no fonts loaded yet, several positions)."""
+    db = cache.table('text').get('fontdb')
+    if db is None:
+        return False
+    s = el.text
+    txt = collapse_whitespace(s, el.get(_XML_SPACE) == 'preserve')[0] if s else ''
+    if txt.endswith(' ') and not _preserved(el):
+        txt = txt.rstrip(' ')
+    n = len(txt)
+    if n == 0:
+        return True
+    x, y = el.get('x'), el.get('y')
+    xs = None if x is None else parse_length_list(x, 'x', ctx)
+    ys = None if y is None else parse_length_list(y, 'y', ctx)
+    if n > 1 and ((xs and len(xs) > 1) or (ys and len(ys) > 1)):
+        return False
+    parent = el.getparent()
+    # of the own (non-inherited) properties only these two reach the
+    # layout (a text element's baseline-shift does not): elements that
+    # differ in their clip paths share a style
+    key = (id(inh), own.get('alignment-baseline'), own.get('text-decoration'), ctx,
+           el.get('textLength'), el.get('lengthAdjust'), el.get('text-decoration'),
+           (400, ()) if parent is None else _ancestry(parent, cache))
+    memo = cache.table('text_leaf')
+    ls = memo.get(key)
+    if ls is None or ls.inh is not inh:
+        with log_warnings('fontTools'):
+            ls = _leaf_style(el, inh, own, ctx, st, cache, db)
+        if len(memo) < _LEAF_MEMO:
+            memo[key] = ls
+    ckey = (db, (txt, ((0, 0),), ls.props, ls.anchor, ls.vertical))   # as _chunk_key
+    res = _CHUNKS.get(ckey)
+    if res is None:
+        with log_warnings('fontTools'):
+            res = _lay_chunk(txt, np.zeros(n, np.int64), [0], [0], ls.anchor, None, None, None,
+                             None, 0.0, ls.env)
+        _CHUNKS.put(ckey, res)
+    if res.empty:
+        return True
+    if res.missing:
+        _warn_missing(res.missing, cache)
+    x0 = float(xs[0]) if xs else 0.0
+    y0 = float(ys[0]) if ys else 0.0
+    base = Affine.translate(x0, y0) @ Affine.rotate(90.0) if ls.vertical else (x0, y0)
+    pieces = []
+    corners = []
+    _place(res, base, (0,), corners, pieces)
+    if any(kind == 'color' for _, kind, _ in pieces):
+        with log_warnings('fontTools'):
+            _emit(el, own, t, st, cache, out, ls.spans, ls.env.decor, pieces, corners)
+    else:
+        _emit(el, own, t, st, cache, out, ls.spans, ls.env.decor, pieces, corners)
+    return True
+
+
+def _leaf_style(el, inh, own, ctx, st, cache, db):
+    """The :class:`_LeafStyle` of a leaf text element with some text,
+    set up as the general path does."""
+    ls = _LeafStyle()
+    ls.inh = inh
+    ls.vertical = _vertical(inh)
+    spans = ls.spans = _collect(el, inh, own, ctx, st, cache).spans
+    _set_up_spans(spans, db, cache, ls.vertical)
+    ls.env = _chunk_env(el, spans, db, cache, ls.vertical)
+    ls.anchor = (spans[0].inh.get('text-anchor') or 'start').strip()
+    ls.props = _chunk_key('', np.zeros(1, np.int64), [0], [0], ls.anchor, ls.env)[2]
+    return ls
+
+
+def _place(res, base, order, corners, pieces):
+    """Append the metric box and the pieces of chunk ``res`` placed at
+    ``base`` (None, a translation ``(x, y)`` or an Affine) to ``corners``
+    and ``pieces`` (span ranks mapped to span indices by ``order``)."""
+    if res.box is not None:
+        if isinstance(base, tuple):
+            x, y = base
+            b = res.box
+            corners.append((b[0] + x, b[1] + y, b[2] + x, b[3] + y))
         else:
-            base = None
-            cur_x, cur_y = res.end
-        if res.box is not None:
-            if isinstance(base, tuple):
-                x, y = base
-                b = res.box
-                corners.append((b[0] + x, b[1] + y, b[2] + x, b[3] + y))
-            else:
-                c = _moved_points(res.corners, base)
-                lo, hi = c.min(0), c.max(0)
-                corners.append((float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])))
-        for rel, kind, path in res.pieces:
-            if kind == 'color':
-                pieces.append((order[rel], kind, _moved_color(path, base)))
-            else:
-                pieces.append((order[rel], kind, _moved_path(path, base)))
+            c = _moved_points(res.corners, base)
+            lo, hi = c.min(0), c.max(0)
+            corners.append((float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])))
+    for rel, kind, path in res.pieces:
+        if kind == 'color':
+            pieces.append((order[rel], kind, _moved_color(path, base)))
+        else:
+            pieces.append((order[rel], kind, _moved_path(path, base)))
+
+
+def _emit(el, own, t, st, cache, out, spans, decor, pieces, corners):
+    """Paint the placed pieces of a text element (see :func:`_place`) and
+    append them, with its effects, to ``out``."""
     if not pieces:
         return
     bbox = None
@@ -461,6 +513,108 @@ def _build(el, state, cache, out):
         # box resvg gives text (painting/visibility/bbox-impact-3)
         kids.append(PathNode(id='', path=rect_path(*box)))
     out.extend(wrap(el, own, t, Boxed(kids, box), st, cache))
+
+
+def _build_any(el, inh, own, ctx, t, st, cache, out):
+    """The general path: any text element."""
+    vertical = _vertical(inh)
+    db = _font_db(cache)
+    if db.bundled_only:
+        cache.warn('text-nofont', 'no usable fonts found; text is drawn with the bundled '
+                   'Noto Sans (ASCII only)')
+    # -- collect characters ---------------------------------------------------
+    tx = _collect(el, inh, own, ctx, st, cache)
+    chars, spans, path_ranges = tx.chars, tx.spans, tx.path_ranges
+    n = len(chars)
+    if n == 0:
+        return
+    owner_l = tx.owner
+    owner = np.asarray(owner_l, np.int64)
+    ax = np.full(n, np.nan)
+    ay = np.full(n, np.nan)
+    arrs = {'x': ax, 'y': ay}       # dx, dy, angle: None while all zero
+    ends = tx.ends
+    for start, name, vals, e in tx.lists:
+        k = min(len(vals), min(ends.get(e, n), n) - start)   # own characters only
+        if k > 0:
+            a = arrs.get(name)
+            if a is None:
+                a = arrs[name] = np.zeros(n)
+            a[start:start + k] = vals[:k]
+    dx, dy = arrs.get('dx'), arrs.get('dy')
+    angle = np.zeros(n) if tx.rot else None
+    last = 0.0
+    for start, vals, e in tx.rot:      # document order; the last angle given repeats
+        end = min(ends.get(e, n), n)
+        if start >= end:
+            continue
+        k = min(len(vals), end - start)
+        angle[start:start + k] = vals[:k]
+        if k:
+            last = vals[k - 1]
+        angle[start + k:end] = last
+    if math.isnan(ax[0]):
+        ax[0] = 0.0
+    if math.isnan(ay[0]):
+        ay[0] = 0.0
+    # -- fonts and per-span metrics --------------------------------------------
+    _set_up_spans(spans, db, cache, vertical)
+    env = _chunk_env(el, spans, db, cache, vertical)
+    # -- chunks ------------------------------------------------------------------
+    brk = ~np.isnan(np.fmin(ax, ay))     # an absolute x or y
+    onpath = np.full(n, -1, np.int64) if path_ranges else None
+    for pi, (p0, p1, tp) in enumerate(path_ranges):
+        p1 = min(p1, n)
+        if p0 >= p1:
+            continue
+        brk[p0] = True
+        if p1 < n:
+            brk[p1] = True
+        onpath[p0:p1] = pi
+    bounds = np.flatnonzero(brk).tolist() + [n]
+    text = ''.join(chars)
+    pieces = []         # (span index, kind, Path) in user space
+    corners = []        # metric box corners in user space
+    cur_x = cur_y = 0.0
+    for c0, c1 in zip(bounds[:-1], bounds[1:]):
+        tp = path_ranges[int(onpath[c0])][2] if onpath is not None and onpath[c0] >= 0 else None
+        own_c = owner[c0:c1]
+        anchor = (spans[owner_l[c0]].inh.get('text-anchor') or 'start').strip()
+        sub = (lambda a: None if a is None else a[c0:c1])
+        chunk_text = text[c0:c1]
+        cuts = (np.flatnonzero(own_c[1:] != own_c[:-1]) + 1).tolist()
+        run_starts = [0] + cuts
+        order = []              # the chunk's spans in order of first use
+        for a in run_starts:
+            si = owner_l[c0 + a]
+            if si not in order:
+                order.append(si)
+        if tp is None and dx is None and dy is None and angle is None:
+            res = _line_chunk(db, chunk_text, own_c, run_starts, order, anchor, env)
+        else:
+            res = _lay_chunk(chunk_text, own_c, run_starts, order, anchor, tp, sub(dx), sub(dy),
+                             sub(angle), _path_start(tp, ax[c0], ay[c0], vertical), env)
+        if res.empty:
+            continue
+        if res.missing:
+            _warn_missing(res.missing, cache)
+        if tp is None:
+            cx = ax[c0] if not math.isnan(ax[c0]) else None
+            cy = ay[c0] if not math.isnan(ay[c0]) else None
+            x0 = cur_x if cx is None else cx
+            y0 = cur_y if cy is None else cy
+            ex, ey = res.end
+            if vertical:
+                base = Affine.translate(x0, y0) @ Affine.rotate(90.0)
+                ex, ey = ey, ex
+            else:
+                base = (x0, y0)
+            cur_x, cur_y = x0 + ex, y0 + ey
+        else:
+            base = None
+            cur_x, cur_y = res.end
+        _place(res, base, order, corners, pieces)
+    _emit(el, own, t, st, cache, out, spans, env.decor, pieces, corners)
 
 
 class _ChunkEnv:
