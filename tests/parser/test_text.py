@@ -538,3 +538,77 @@ def test_fallback_tries_the_font_family_list_first():
         return [n for n, _ in walk(tree.root) if isinstance(n, ImageNode)]
     assert images('Noto Sans, Twitter Color Emoji') == []
     assert len(images('Noto Sans, Noto Color Emoji')) == 1
+
+
+# -- the leaf path (text elements of character data only) ------------------------
+
+_LEAF_STYLES = st.sampled_from([
+    '', 'text-anchor="middle"', 'text-anchor="end"', 'textLength="120"',
+    'textLength="90" lengthAdjust="spacingAndGlyphs"', 'text-decoration="underline"',
+    'letter-spacing="3" word-spacing="5"', 'dominant-baseline="central"',
+    'writing-mode="tb"', 'font-weight="bold" fill="red"', 'style="font-size:30px"',
+    'font-family="Noto Sans, Noto Serif"', 'xml:space="preserve"'])
+
+
+@settings(max_examples=40, deadline=None)
+@given(text=st.text(st.sampled_from('ab W.\u00e9\u05d0\u4e2d'), min_size=0, max_size=8),
+       attrs=_LEAF_STYLES, x=st.sampled_from(['0', '12.5', '10 20 30', '-40', '5%']),
+       y=st.floats(-50, 200))
+def test_leaf_text_equals_the_general_path(text, attrs, x, y):
+    """Text elements of character data only (the leaf path, their layout
+    shared per style) draw what the general path draws for them."""
+    from raster.parser import text as text_module
+    body = ('<g text-decoration="overline"><text x="%s" y="%r" %s>%s</text>'
+            '<text y="%s" %s>%s</text><text %s>%s</text></g>'
+            % (x, y, attrs, text, x, attrs, text[::-1], attrs, text))
+    real = text_module._leaf
+    with warnings.catch_warnings():
+        warnings.simplefilter('ignore')
+        leaf = text_paths(body)
+        text_module._leaf = lambda *a: False
+        try:
+            general = text_paths(body)
+        finally:
+            text_module._leaf = real
+    assert len(leaf) == len(general)
+    for (p, n), (q, m) in zip(leaf, general):
+        assert p == q
+        assert n.fill == m.fill and n.stroke == m.stroke
+
+
+def test_leaf_texts_differing_in_clip_paths_share_one_style_set_up():
+    """A terminal screenshot's rows: many leaf text elements of a few
+    classes, each row with its own clip path.  The spans are set up once
+    per class (the clip path does not reach the layout), every element is
+    placed at its own position and keeps its own clip path."""
+    from raster.parser import build_tree
+    from raster.parser.document import load_document
+    from raster.parser import text as text_module
+    rows = ''.join('<clipPath id="c%d"><rect y="%d" width="400" height="20"/></clipPath>'
+                   % (i, 20 * i) for i in range(5))
+    texts = ''.join('<text class="%s" x="%d" y="%d" clip-path="url(#c%d)">%s</text>'
+                    % ('ab'[i % 2], 7 * j, 20 * i + 15, i, 'xyz'[j % 3])
+                    for i in range(5) for j in range(8))
+    src = ('<svg %s width="400" height="200"><style>.a {fill: red; font-family: Noto Sans}'
+           '.b {fill: blue; font-family: Noto Sans; font-weight: bold}</style>%s%s</svg>'
+           % (NS, rows, texts)).encode()
+    calls = []
+    real = text_module._leaf_style
+
+    def counting(*a):
+        calls.append(1)
+        return real(*a)
+    text_module._leaf_style = counting
+    try:
+        tree = build_tree(load_document(src), fonts=SUITE_FONTS)
+    finally:
+        text_module._leaf_style = real
+    assert len(calls) <= 2          # one per class (the first element takes the general path)
+    groups = [n for n in tree.root.children]
+    assert len(groups) == 40
+    lefts = [bbox(g.children[0].path)[0] for g in groups]
+    for i in range(5):
+        row = lefts[8 * i:8 * i + 8]
+        assert all(b > a for a, b in zip(row, row[1:]))     # each at its own x
+    clips = [g.clip_path for g in groups]
+    assert len({id(c) for c in clips}) == 5                 # one per row, shared
