@@ -98,14 +98,23 @@ def external_target(el, cache):
 
 def reference(value, kind, prop, cache):
     """The element of local name ``kind`` that a ``url(#id)`` value of
-    property ``prop`` references, or None."""
+    property ``prop`` references, or None.  Remembered per document (the
+    ids do not change): thousands of elements may share one value."""
+    memo = cache.table('references')
+    key = (value, kind, prop)
+    tgt = memo.get(key, memo)
+    if tgt is not memo:
+        return tgt
     u = parse_url(value)
     if u is None:
         cache.warn(prop + '-syntax', 'unsupported %s value %r ignored' % (prop, value))
-        return None
-    tgt = cache.by_id.get(u[0])
-    if tgt is None or local_name(tgt) != kind:
-        return None
+        tgt = None
+    else:
+        tgt = cache.by_id.get(u[0])
+        if tgt is not None and local_name(tgt) != kind:
+            tgt = None
+    if len(memo) < 65536:
+        memo[key] = tgt
     return tgt
 
 
