@@ -430,8 +430,14 @@ def _leaf(el, inh, own, ctx, t, st, cache, out):
     if any(kind == 'color' for _, kind, _ in pieces):
         with log_warnings('fontTools'):
             _emit(el, own, t, st, cache, out, ls.spans, ls.env.decor, pieces, corners)
-    else:
-        _emit(el, own, t, st, cache, out, ls.spans, ls.env.decor, pieces, corners)
+        return True
+    if res.reach is None:
+        res.reach = max((float(np.abs(p.points).max()) for _, _, p in res.pieces
+                         if len(p.points)), default=0.0)
+    # the pieces moved by (x0, y0) stay well inside the coordinate limit
+    # (a NaN reach fails this and the pieces are checked one by one)
+    inside = res.reach + abs(x0) + abs(y0) < 0.5 * limits.MAX_COORD
+    _emit(el, own, t, st, cache, out, ls.spans, ls.env.decor, pieces, corners, inside)
     return True
 
 
@@ -469,9 +475,10 @@ def _place(res, base, order, corners, pieces):
             pieces.append((order[rel], kind, _moved_path(path, base)))
 
 
-def _emit(el, own, t, st, cache, out, spans, decor, pieces, corners):
+def _emit(el, own, t, st, cache, out, spans, decor, pieces, corners, inside=False):
     """Paint the placed pieces of a text element (see :func:`_place`) and
-    append them, with its effects, to ``out``."""
+    append them, with its effects, to ``out`` (``inside``: the pieces are
+    known to be finite and within the coordinate limit)."""
     if not pieces:
         return
     bbox = None
@@ -497,7 +504,7 @@ def _emit(el, own, t, st, cache, out, spans, decor, pieces, corners):
             undrawn = True
             continue
         pts = path.points
-        if len(pts):
+        if not inside and len(pts):
             big = np.abs(pts).max()
             if not big <= limits.MAX_COORD:
                 if not np.isfinite(big):    # (glyph paths are not validated)
@@ -636,11 +643,14 @@ class _Chunk:
     ``corners``: (K, 2) float64 corners of the clusters' metric boxes;
     ``box``: their extent (x0, y0, x1, y1) or None; ``end``: the pen
     position after the chunk; ``empty``: no clusters; ``missing``: the
-    characters no font has a glyph for.
+    characters no font has a glyph for; ``reach``: the largest absolute
+    coordinate of its outline and decoration pieces (see :func:`_leaf`),
+    None until asked for.
     """
-    __slots__ = ('pieces', 'corners', 'box', 'end', 'empty', 'missing')
+    __slots__ = ('pieces', 'corners', 'box', 'end', 'empty', 'missing', 'reach')
 
     def __init__(self):
+        self.reach = None
         self.missing = ''
         self.pieces = []
         self.corners = np.zeros((0, 2))
