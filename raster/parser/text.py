@@ -34,7 +34,10 @@ font matching and loading per build, shaped chunks per build, shaped
 strings and glyph outlines per font (:meth:`raster.fonts.Font.shape_arrays`,
 :meth:`raster.fonts.Font.outlines`).  A chunk is laid out on arrays (one
 entry per glyph) and its outlines are scaled, turned and moved in one
-array operation per run of glyphs of one span.
+array operation per run of glyphs of one span.  A text element of
+character data only (a terminal screenshot's thousands of them) sets up
+its span once per document and style and takes its chunk from the chunk
+memo: per element only its position, paint and effects are resolved.
 
 Not supported, ignored or approximated: vertical writing modes (laid out
 horizontally, with a :class:`~raster.errors.RasterWarning`), ``lengthAdjust="spacingAndGlyphs"`` (spacing only), the
