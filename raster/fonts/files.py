@@ -80,6 +80,10 @@ class FontFace:
         tables (``isFixedPitch``, PANOSE, the IBM font class) and the name.
     color : bool
         The face has colour glyphs (COLR, sbix, CBDT or SVG tables).
+    unicode_range : tuple of int
+        The code points the face may be used for (``@font-face``
+        ``unicode-range``) as flat sorted inclusive ranges ``lo0, hi0, lo1,
+        hi1, ...``; empty: every code point (faces of font files).
     """
     path: str
     index: int
@@ -91,6 +95,7 @@ class FontFace:
     postscript_name: str = ''
     generic: str = ''
     color: bool = field(default=False)
+    unicode_range: tuple = ()
 
     @property
     def family(self):

@@ -19,6 +19,7 @@ from ..geometry.pens import PathBuilder
 from .files import FontError, FontFace, check_font_data, quiet_fonttools, read_font_bytes, sfnt_bytes
 from .color import ColorFont
 from .matching import cached
+from .ranges import in_ranges
 
 __all__ = ['Font', 'Shaped', 'register_memory_font', 'memory_font_data']
 
@@ -225,11 +226,16 @@ class Font:
                 mt = os.stat(face.path).st_mtime_ns
             except OSError as e:
                 raise FontError('cannot read font %s: %s' % (face.path, e.strerror)) from None
-        return cached(_FONT_CACHE, (face.path, face.index, mt), lambda: cls(face), 64)
+        return cached(_FONT_CACHE, (face.path, face.index, mt, face.unicode_range),
+                      lambda: cls(face), 64)
 
     def has_char(self, ch):
-        """True when the font maps the character to a glyph."""
-        return ord(ch) in self._cmap
+        """True when the font maps the character to a glyph (and its face
+        may be used for it: ``unicode_range``)."""
+        cp = ord(ch)
+        if self.face.unicode_range and not in_ranges(self.face.unicode_range, [cp])[0]:
+            return False
+        return cp in self._cmap
 
     def shape(self, text, features=None):
         """Shape ``text`` (direction/script/language guessed).
@@ -265,7 +271,19 @@ class Font:
     def _shape(self, text, features, direction=None):
         import uharfbuzz as hb
         buf = hb.Buffer()
-        buf.add_codepoints([ord(c) for c in text])
+        cps = [ord(c) for c in text]
+        outside = None
+        if self.face.unicode_range:
+            # characters outside the face's unicode-range are not this
+            # face's: shaped as a character the font does not map, so that
+            # they get glyph 0 (and a fallback font) and no ligature or
+            # kerning joins them to the characters around them
+            outside = ~in_ranges(self.face.unicode_range, cps)
+            if outside.any():
+                cps = np.where(outside, self._unmapped(), cps).tolist()
+            else:
+                outside = None
+        buf.add_codepoints(cps)
         buf.guess_segment_properties()
         if direction is not None:
             buf.direction = direction
@@ -276,10 +294,19 @@ class Font:
         # GlyphPosition.position is (x_offset, y_offset, x_advance, y_advance)
         raw = np.array([p.position for p in buf.glyph_positions], np.float64).reshape(-1, 4)
         pos = raw[:, [2, 3, 0, 1]]
+        if outside is not None and len(gid):
+            gid[outside[cluster]] = 0
         for a in (gid, cluster, pos):
             a.flags.writeable = False
         ordered = len(gid) == len(text) and bool((cluster == np.arange(len(gid))).all())
         return Shaped(gid, cluster, pos, ordered)
+
+    def _unmapped(self):
+        """A code point the font's cmap does not map (a noncharacter)."""
+        for cp in (0x10FFFF, 0x10FFFE, 0xFFFF, 0xFFFE, 0xFDD0):
+            if cp not in self._cmap:
+                return cp
+        return 0x10FFFF         # (its glyphs are set to 0 after shaping anyway)
 
     def outline(self, gid):
         """The outline of glyph ``gid`` as a :class:`~raster.geometry.path.Path` in

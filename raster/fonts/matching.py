@@ -493,7 +493,8 @@ class FontDB:
         faces : sequence of FontFace
             Their families hide installed families of the same name (CSS
             Fonts: the document's faces come first); per-character fallback
-            tries them after the installed faces.
+            tries them after the installed faces.  The faces of a family
+            any of which has a ``unicode_range`` are listed last first.
         coverage : sequence of list of int
             Each face's characters as flat inclusive ranges
             (:func:`~raster.fonts.files.coverage_ranges`).
@@ -522,6 +523,11 @@ class FontDB:
                     lst = own.setdefault(fam.lower(), [])
                     if f not in lst:
                         lst.append(f)
+            for fam, lst in own.items():
+                if any(f.unicode_range for f in lst):
+                    # a family split by unicode-range: the last rule is
+                    # checked first for a character (CSS Fonts 4, 4.5)
+                    lst.reverse()
             db._by_family.update(own)
             db._coverage = dict(self._coverage)
             for f, ranges in zip(key, coverage):

@@ -22,7 +22,15 @@ where a descriptor is missing or ``auto``; the first value of a range).
 A network URL or a missing ``local()`` face is skipped silently (a
 browser offline does the same: the next source, then the next family of
 ``font-family``); a refused or missing file or bad font data warns once
-per family.  ``unicode-range`` is not applied.
+per family.
+
+``unicode-range`` (CSS Fonts 4, section 4.5) restricts a face to the code
+points of its ranges (:func:`raster.fonts.ranges.parse_unicode_range`; an
+invalid value is ignored: every code point): other characters are not
+shaped with it and go to the per-character fallback, which tries the
+family's other faces with the same weight, style and stretch (the last
+rule first, as CSS orders a family's faces that differ in their ranges),
+then the next families of ``font-family``, then every face.
 """
 
 import re
@@ -30,6 +38,7 @@ import re
 from ..fonts import FontError, generic_keyword, parse_font_family, register_memory_font
 from ..fonts.files import scan_faces
 from ..fonts.font import memory_font_data
+from ..fonts.ranges import MAX_CODE_POINT, intersect_ranges, parse_unicode_range
 from .css import font_face_rules
 from .imageload import ImageError, image_source, is_network_reference, read_reference
 
@@ -131,6 +140,17 @@ def _stretch(value, own):
     return own
 
 
+def _unicode_range(value):
+    """The ``unicode_range`` of a rule's face: () for every code point
+    (no descriptor, an invalid one, or one covering everything)."""
+    if value is None:
+        return ()
+    ranges = parse_unicode_range(value)
+    if ranges is None or ranges == (0, MAX_CODE_POINT):
+        return ()
+    return ranges
+
+
 def _scan_bytes(data):
     """``(faces, coverage)`` of font bytes (registered as a memory font)."""
     key = register_memory_font(data)
@@ -167,10 +187,13 @@ def _face_of(rule, family, db, cache):
                 problems.append(str(e))
                 continue
             face, cover = faces[0], covers[0]
+        ranges = _unicode_range(rule.get('unicode-range'))
+        if ranges:
+            cover = intersect_ranges(cover, ranges)
         face = dataclasses.replace(
             face, families=(family,), weight=_weight(rule.get('font-weight'), face.weight),
             style=_style(rule.get('font-style'), face.style),
-            stretch=_stretch(rule.get('font-stretch'), face.stretch))
+            stretch=_stretch(rule.get('font-stretch'), face.stretch), unicode_range=ranges)
         return face, cover
     if problems:
         cache.warn('font-face-' + family, '@font-face for %r not used: %s'

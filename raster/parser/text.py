@@ -1253,19 +1253,26 @@ def _fallback_font(db, ch, font, sp, cache):
     for it (``font`` itself when no face has one): CSS Fonts' order, the
     span's other ``font-family`` entries first (their best face for the
     span's weight, style and stretch), then every face
-    (:meth:`raster.fonts.FontDB.fallback_face`)."""
+    (:meth:`raster.fonts.FontDB.fallback_face`).  The faces of a family
+    split by ``unicode-range`` are tried one by one."""
     cp = ord(ch)
     for fam in sp.families:
         cands = db.match_family([fam])
         if not cands:
             continue
-        face = best_face(cands, sp.weight, sp.style, _STRETCH_CLASS.get(sp.stretch, 5))
-        if face == font.face or not db.has_char(face, cp):
-            continue
-        try:
-            return Font.load(face)
-        except RasterError:
-            continue
+        best = best_face(cands, sp.weight, sp.style, _STRETCH_CLASS.get(sp.stretch, 5))
+        # a family split by unicode-range: its faces with the same weight,
+        # style and stretch make one face (in the family's order)
+        same = [best] + [f for f in cands if f != best and f.unicode_range
+                         and (f.weight, f.style, f.stretch) ==
+                         (best.weight, best.style, best.stretch)]
+        for face in same:
+            if face == font.face or not db.has_char(face, cp):
+                continue
+            try:
+                return Font.load(face)
+            except RasterError:
+                continue
     face = db.fallback_face(font.face, ch)
     if face is None:
         return font

@@ -505,9 +505,11 @@ def _fallbacks(text, runs, owner, spans, fonts, fallback, memo, gid, cl, adv, xo
         if covered[c]:
             continue
         ch = text[c]
-        if ch in ' \u00a0\t' or ord(ch) < 32:
-            continue
         font = fonts[int(fi[st[k]])]
+        # a space keeps the font's missing glyph, unless the font's face may
+        # not be used for it (unicode-range): then it is another font's
+        if ord(ch) < 32 or (ch in ' \u00a0\t' and not font.face.unicode_range):
+            continue
         tried = {id(font)}
         for _ in range(8):
             f = fallback(font, ch, spans[int(owner[c])])

@@ -8,6 +8,7 @@ import os
 import shutil
 import warnings
 
+import numpy as np
 import pytest
 from fontTools.ttLib import TTFont
 from lxml import etree
@@ -167,3 +168,84 @@ def test_weight_descriptors_choose_the_face(yellowtail):
 def test_generic_family_names_cannot_be_declared():
     rule = '@font-face { font-family: serif; src: url("%s") }' % data_uri(flavoured(None))
     assert paths(doc(rule, 'serif')) == paths(doc('', 'serif'))
+
+
+# -- unicode-range ----------------------------------------------------------------------
+
+def glyphs(svg):
+    """The glyph outlines of a document as a multiset of points: the
+    sorted (P, 2) points of all its paths (the same glyphs in other
+    pieces or another order give the same array)."""
+    pts = np.concatenate([p.points for p in paths(svg)])
+    return pts[np.lexsort(pts.T[::-1])]
+
+
+def same(a, b, atol=0.0):
+    return a.shape == b.shape and np.allclose(a, b, rtol=0, atol=atol)
+
+
+def test_unicode_range_face_draws_only_its_characters():
+    """Digits from the face declared for U+30-39, everything else (the
+    spaces too) from the next family: the same outlines as tspans in the
+    two installed families."""
+    rule = ('@font-face { font-family: Digits; src: local("NotoSerif-Regular"); '
+            'unicode-range: U+30-39 }')
+    got = glyphs(doc(rule, 'Digits, Noto Sans', 'Ab 2024 x9'))
+    want = glyphs(doc('', 'Noto Sans', 'Ab <tspan font-family="Noto Serif">2024</tspan> '
+                                       'x<tspan font-family="Noto Serif">9</tspan>'))
+    assert same(got, want)
+    assert not same(got, glyphs(doc('', 'Noto Sans', 'Ab 2024 x9')))
+
+
+def test_unicode_range_missing_every_character_leaves_the_face_unused():
+    rule = ('@font-face { font-family: Cyr; src: local("NotoSerif-Regular"); '
+            'unicode-range: U+4?? }')
+    assert same(glyphs(doc(rule, 'Cyr, Noto Sans', 'Hello')), glyphs(doc('', 'Noto Sans', 'Hello')))
+    # and the Cyrillic letters are the face's
+    assert same(glyphs(doc(rule, 'Cyr, Noto Sans', 'Мир')), glyphs(doc('', 'Noto Serif', 'Мир')))
+
+
+@pytest.mark.parametrize('value', ['U+00FF-0025', 'U+41, U+4?4', 'U+110000', 'U+0-10FFFF',
+                                   'bogus'])
+def test_invalid_or_full_unicode_range_means_every_character(value):
+    rule = ('@font-face { font-family: Whole; src: local("NotoSerif-Regular"); '
+            'unicode-range: %s }' % value)
+    assert same(glyphs(doc(rule, 'Whole, Noto Sans', 'Ab 2024')),
+                glyphs(doc('', 'Noto Serif', 'Ab 2024')))
+
+
+def test_family_split_by_unicode_range_checks_the_last_rule_first():
+    """Two faces of one family whose ranges overlap on the capitals: the
+    rule defined last wins there (CSS Fonts 4, 4.5); swapping the rules
+    swaps the faces."""
+    sans = '@font-face { font-family: Split; src: local("NotoSans-Regular"); unicode-range: U+0-7F }'
+    serif = ('@font-face { font-family: Split; src: local("NotoSerif-Regular"); '
+             'unicode-range: U+41-5A }')
+    got = glyphs(doc(sans + serif, 'Split', 'Hello World'))
+    want = glyphs(doc('', 'Noto Sans', '<tspan font-family="Noto Serif">H</tspan>ello '
+                                       '<tspan font-family="Noto Serif">W</tspan>orld'))
+    assert got.shape == want.shape
+    # the faces' pieces as tspans of the two families would draw them, but
+    # for kerning: the Sans face shapes the whole text (capitals included)
+    assert not same(got, glyphs(doc('', 'Noto Sans', 'Hello World')), atol=1.0)
+    # serif defined last for U+0-7F: every character is serif
+    serif_all = ('@font-face { font-family: Split; src: local("NotoSerif-Regular"); '
+                 'unicode-range: U+0-7F }')
+    sans_caps = ('@font-face { font-family: Split; src: local("NotoSans-Regular"); '
+                 'unicode-range: U+41-5A }')
+    got = glyphs(doc(sans_caps + serif_all, 'Split', 'Hello'))
+    assert same(got, glyphs(doc('', 'Noto Serif', 'Hello')))
+
+
+def test_font_of_a_unicode_range_face_has_only_its_characters():
+    import dataclasses
+    from raster.fonts import Font, FontDB
+    face = FontDB([SUITE_FONTS]).match(['Noto Sans'])
+    whole = Font.load(face)
+    part = Font.load(dataclasses.replace(face, unicode_range=(0x30, 0x39)))
+    assert part is not whole
+    assert whole.has_char('A') and whole.has_char('5')
+    assert part.has_char('5') and not part.has_char('A')
+    shaped = part.shape_arrays('A5 ')
+    assert shaped.gid.tolist()[1] == whole.shape_arrays('A5 ').gid.tolist()[1]
+    assert shaped.gid.tolist()[0] == 0 and shaped.gid.tolist()[2] == 0
