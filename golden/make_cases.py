@@ -175,6 +175,11 @@ TEXT_CASES = {
     'text-fontface-file': ('@font-face with a font file next to the document', '<desc>resvg ignores @font-face: the reference is golden/equivalent/text-fontface-file.svg, the same text in the installed family (Yellowtail) the file holds.</desc><style>@font-face { font-family: "Doc Script"; src: url(fonts/yellowtail-subset.ttf) format("truetype"); }</style><text x="20" y="110" font-family="Doc Script" font-size="48">Hello</text>'),
     'text-fontface-woff2-data': ('@font-face with a WOFF2 data URI', None),
     'text-fontface-local-and-weight': ('@font-face local() with a weight descriptor', '<desc>resvg ignores @font-face: the reference is golden/equivalent/text-fontface-local-and-weight.svg, where the family is the installed Noto Sans Black that local() names.</desc><style>@font-face { font-family: "Heavy"; src: local("Nope"), local("NotoSans-Black"); font-weight: 700; }</style><text x="20" y="110" font-family="Heavy" font-size="40" font-weight="bold">Heavy</text>'),
+    # --- @font-face unicode-range (CSS Fonts 4, 4.5) ---------------------------------------------------
+    'text-fontface-unicode-range-digits': ('unicode-range: a face for the digits only', '<desc>A face declared with unicode-range U+30-39 draws the digits only; the other characters (the spaces too) come from the next family of font-family. resvg ignores @font-face: the reference is golden/equivalent/text-fontface-unicode-range-digits.svg, the digits in a tspan of the installed family (Noto Serif).</desc><style>@font-face { font-family: "Digits"; src: local("NotoSerif-Regular"); unicode-range: U+30-39; }</style><text x="15" y="110" font-family="Digits, Noto Sans" font-size="30">Ab 2024 x9</text>'),
+    'text-fontface-unicode-range-composite': ('unicode-range: one family split over two faces, the last rule first', '<desc>Two rules of one family: Noto Sans for U+0-7F and Noto Serif for the capitals U+41-5A. Where their ranges overlap the rule defined last is used (CSS Fonts 4, 4.5): the capitals are Noto Serif, the rest Noto Sans. resvg ignores @font-face: the reference is golden/equivalent/text-fontface-unicode-range-composite.svg, with tspans of the installed families.</desc><style>@font-face { font-family: "Split"; src: local("NotoSans-Regular"); unicode-range: U+0-7F; } @font-face { font-family: "Split"; src: local("NotoSerif-Regular"); unicode-range: U+41-5A; }</style><text x="15" y="110" font-family="Split" font-size="28">Hello World</text>'),
+    'text-fontface-unicode-range-wildcard-list': ('unicode-range: a wildcard and a comma list', '<desc>unicode-range U+4??, U+26 (Cyrillic U+400-4FF and the ampersand) on a Noto Serif face: those characters are Noto Serif, the Latin ones and spaces the next family (Noto Sans). resvg ignores @font-face: the reference is golden/equivalent/text-fontface-unicode-range-wildcard-list.svg, with tspans of the installed families.</desc><style>@font-face { font-family: "Cyr"; src: local("NotoSerif-Regular"); unicode-range: u+4??, U+26; }</style><text x="15" y="110" font-family="Cyr, Noto Sans" font-size="30">Мир &amp; peace</text>'),
+    'text-fontface-unicode-range-invalid': ('unicode-range: an invalid range drops the descriptor', '<desc>unicode-range U+0041, U+00FF-0025 has a range that ends before it starts: the descriptor is invalid and ignored, so the face (Noto Serif) draws every character. resvg ignores @font-face: the reference is golden/equivalent/text-fontface-unicode-range-invalid.svg, the text in the installed Noto Serif.</desc><style>@font-face { font-family: "Whole"; src: local("NotoSerif-Regular"); unicode-range: U+0041, U+00FF-0025; }</style><text x="15" y="110" font-family="Whole, Noto Sans" font-size="30">Ab 2024 x9</text>'),
 }
 
 
@@ -195,6 +200,20 @@ STANDINS = {
     'text-fontface-woff2-data': [('font-family="Inline Script"', 'font-family="Yellowtail"')],
     'text-fontface-local-and-weight': [('font-family="Heavy"', 'font-family="Noto Sans"'),
                                        ('font-weight="bold"', 'font-weight="900"')],
+    'text-fontface-unicode-range-digits': [
+        ('font-family="Digits, Noto Sans" font-size="30">Ab 2024 x9',
+         'font-family="Noto Sans" font-size="30">Ab <tspan font-family="Noto Serif">2024</tspan> '
+         'x<tspan font-family="Noto Serif">9</tspan>')],
+    'text-fontface-unicode-range-composite': [
+        ('font-family="Split" font-size="28">Hello World',
+         'font-family="Noto Sans" font-size="28"><tspan font-family="Noto Serif">H</tspan>ello '
+         '<tspan font-family="Noto Serif">W</tspan>orld')],
+    'text-fontface-unicode-range-wildcard-list': [
+        ('font-family="Cyr, Noto Sans" font-size="30">Мир &amp; peace',
+         'font-family="Noto Sans" font-size="30"><tspan font-family="Noto Serif">Мир</tspan> '
+         '<tspan font-family="Noto Serif">&amp;</tspan> peace')],
+    'text-fontface-unicode-range-invalid': [('font-family="Whole, Noto Sans"',
+                                             'font-family="Noto Serif"')],
     'text-font-relative-weights': [('font-weight="lighter"', 'font-weight="400"'),
                                    ('font-weight="bolder"', 'font-weight="400"')],
 }
