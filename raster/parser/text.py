@@ -10,7 +10,11 @@ What is laid out:
 * characters of ``text`` and nested ``tspan`` (and ``a``) elements, with
   ``xml:space`` handling (default: newlines removed, tabs to spaces, runs of
   spaces collapsed, leading and trailing spaces dropped; ``preserve``:
-  newlines and tabs become spaces);
+  newlines and tabs become spaces; where a child element's characters end
+  with a space and the text after it starts with one, the later space is
+  kept, as usvg and Chrome do: at the end of a ``textPath`` the space
+  starts the next chunk; an undrawn ``textPath``'s characters still take
+  part);
 * ``x``/``y``/``dx``/``dy`` lists, one value per character, on any element
   (an absolute ``x`` or ``y`` starts a new *text chunk*), ``rotate`` (one
   angle per character about its glyph origin, the last angle repeating);
@@ -213,6 +217,8 @@ def _collect(el, inh, own, ctx, st, cache):
     ends = {}           # element -> index after its last character
     path_ranges = []    # (first char, end, text path geometry)
     state = {'prev': True}
+    keeps = []          # xml:space="preserve" of each span
+    ended = []          # elements whose characters end at len(chars)
 
     def add_lists(e, ectx, start):
         for name, axis in (('x', 'x'), ('y', 'y'), ('dx', 'x'), ('dy', 'y'), ('rotate', None)):
@@ -234,6 +240,7 @@ def _collect(el, inh, own, ctx, st, cache):
         si = len(spans)
         sp.index = si
         spans.append(sp)
+        keeps.append(preserve)
         if local_name(e) != 'textPath':         # positions on a textPath are ignored
             add_lists(e, ectx, len(chars))
 
@@ -241,11 +248,29 @@ def _collect(el, inh, own, ctx, st, cache):
             if not s:
                 return
             txt, state['prev'] = collapse_whitespace(s, preserve, state['prev'])
-            chars.extend(txt)
-            owner.extend([si] * len(txt))
+            if txt:
+                chars.extend(txt)
+                owner.extend([si] * len(txt))
+                del ended[:]
+
+        def hand_over_space(tail):
+            # a space ending the characters before the end of a child,
+            # followed by one starting the child's tail: the tail keeps its
+            # space and the child loses its own (usvg's and Chrome's rule:
+            # at a textPath's end the space goes to the next chunk)
+            if (preserve or not tail or not chars or chars[-1] != ' '
+                    or keeps[owner[-1]]):
+                return
+            if collapse_whitespace(tail, False, False)[0].startswith(' '):
+                chars.pop()
+                owner.pop()
+                for done in ended:
+                    ends[done] -= 1
+                state['prev'] = False
         if content is not None:         # tref: the referenced element's text
             add_text(content)
             ends[e] = len(chars)
+            ended.append(e)
             return
         add_text(e.text)
         for ch in e:
@@ -267,7 +292,17 @@ def _collect(el, inh, own, ctx, st, cache):
                         sp_pres = ch.get(_XML_SPACE)
                         walk(ch, cinh, cown, cctx, sp,
                              preserve if sp_pres is None else sp_pres == 'preserve')
+                        hand_over_space(ch.tail)
                         path_ranges.append((first, len(chars), tp))
+                        add_text(ch.tail)
+                        continue
+                # a textPath that is not drawn still takes part in the
+                # whitespace processing (as in usvg): after its characters
+                # the tail keeps its leading space
+                if collapse_whitespace(''.join(ch.itertext()), preserve, True)[0].strip():
+                    state['prev'] = False
+                    add_text(ch.tail)
+                    continue
             elif name == 'tref':
                 href = ch.get('{http://www.w3.org/1999/xlink}href') or ch.get('href') or ''
                 tgt = cache.by_id.get(href[1:].strip()) if href.startswith('#') else None
@@ -277,8 +312,11 @@ def _collect(el, inh, own, ctx, st, cache):
                     walk(ch, cinh, cown, length_context(cinh, st, cache), sp,
                          preserve if sp_pres is None else sp_pres == 'preserve',
                          ''.join(t for t in tgt.itertext() if isinstance(t, str)))
+            if isinstance(ch.tag, str):
+                hand_over_space(ch.tail)
             add_text(ch.tail)
         ends[e] = len(chars)
+        ended.append(e)
 
     root_span = _Span(None, st.inh, st.own, ctx, None, _parent_weight(el, cache))
     walk(el, inh, own, ctx, root_span, el.get(_XML_SPACE) == 'preserve')

@@ -612,3 +612,49 @@ def test_leaf_texts_differing_in_clip_paths_share_one_style_set_up():
         assert all(b > a for a, b in zip(row, row[1:]))     # each at its own x
     clips = [g.clip_path for g in groups]
     assert len({id(c) for c in clips}) == 5                 # one per row, shared
+
+
+# -- spaces at the end of a child (usvg's and Chrome's rule) -----------------------
+
+def test_space_before_a_tail_moves_out_of_a_text_path(noto):
+    """'abc ' on a path followed by ' X': the space leaves the path and
+    starts the next chunk, so X sits one space advance (Noto Sans: 260
+    units) further than without the spaces, and the path's glyphs are the
+    same."""
+    size = 20.0
+    path = '<defs><path id="p" d="M 10 100 L 190 100"/></defs>'
+
+    def body(inner, tail):
+        return ('%s<text font-family="Noto Sans" font-size="%g"><textPath href="#p">%s'
+                '</textPath>%s<tspan fill="green">X</tspan></text>' % (path, size, inner, tail))
+    spaced = text_paths(body('abc ', ' '))
+    tight = text_paths(body('abc', ''))
+    assert spaced[0][0] == tight[0][0]
+    shift = bbox(spaced[1][0])[0] - bbox(tight[1][0])[0]
+    assert shift == pytest.approx(advance(noto, ' ', size), abs=1e-6)
+    assert advance(noto, ' ', size) == pytest.approx(260 * size / 1000)
+
+
+def test_space_before_a_tail_belongs_to_the_parent_span():
+    """'a <tspan>b </tspan> c' draws the space after b in the text's own
+    style: an underline of the tspan ends with b."""
+    with_space = text_paths('<text x="10" y="50" font-family="Noto Sans" font-size="30">a '
+                            '<tspan text-decoration="underline">b </tspan> c</text>')
+    without = text_paths('<text x="10" y="50" font-family="Noto Sans" font-size="30">a '
+                         '<tspan text-decoration="underline">b</tspan> c</text>')
+    assert [p for p, _ in with_space] == [p for p, _ in without]
+
+
+def test_text_of_an_invalid_text_path_still_separates_spaces():
+    """An invalid textPath draws nothing, but its characters take part in
+    the whitespace processing: 'Some <textPath>long</textPath> text' lays
+    out as 'Some  text' with both spaces."""
+    got = text_paths('<text x="10" y="50" font-family="Noto Sans" font-size="24">Some '
+                     '<textPath>long</textPath> text</text>')
+    want = text_paths('<text x="10" y="50" font-family="Noto Sans" font-size="24" '
+                      'xml:space="preserve">Some  text</text>')
+    assert [p for p, _ in got] == [p for p, _ in want]
+    blank = text_paths('<text x="10" y="50" font-family="Noto Sans" font-size="24">Some '
+                       '<textPath> </textPath> text</text>')
+    assert [p for p, _ in blank] == [p for p, _ in text_paths(
+        '<text x="10" y="50" font-family="Noto Sans" font-size="24">Some text</text>')]
