@@ -879,3 +879,37 @@ EQUIVALENT.update({
         'translate(-110 -110)"/><rect x="100" y="80" width="40" height="20" fill="#2a9d8f" '
         'transform="rotate(90 110 85)"/>'),
 })
+
+# -- issue 10: spaces at the end of a child element, text after a textPath ----------------------
+_ARC = '<defs><path id="arc" d="M 20 120 C 40 60 100 60 120 110"/></defs>' \
+    '<use href="#arc" fill="none" stroke="#bbb"/>'
+CASES.update({
+    'text-space-after-textpath': (
+        'a space ending a textPath starts the next chunk',
+        'The characters of the textPath end with a space and the text after it starts with '
+        'one: the later space is kept (usvg and Chrome), so the space is not on the path and '
+        'the green word starts one space after the last glyph on the path.',
+        _ARC + '<text font-family="Noto Sans" font-size="22"><textPath href="#arc">Arc '
+        '</textPath> <tspan fill="green">next</tspan></text>'),
+    'text-after-textpath-past-its-end': (
+        'text after a textPath continues from the last glyph on the path',
+        'Glyphs past the end of the path are not drawn; the text after the textPath starts '
+        'after the last glyph drawn (its point on the path plus its advance), on that '
+        'point\'s baseline.',
+        _ARC + '<text font-family="Noto Sans" font-size="22"><textPath href="#arc">'
+        'Far too long for the arc</textPath><tspan fill="green">end</tspan></text>'),
+    'text-space-after-tspan': (
+        'a space ending a tspan before a space goes to the text after it',
+        'In "a <tspan>b </tspan> c" the tspan loses its space and the text keeps its own: '
+        'the tspan\'s underline and larger size end with b, and the space is the text\'s '
+        '(its font size), as usvg resolves it.',
+        '<text x="12" y="110" font-family="Noto Sans" font-size="20">one '
+        '<tspan font-size="34" text-decoration="underline" fill="#e76f51">two </tspan> '
+        'three</text>'),
+    'text-invalid-textpath-separates-spaces': (
+        'the characters of an invalid textPath still take part in whitespace',
+        'The textPath has no path, so it draws nothing; its characters still count in the '
+        'whitespace processing, so the spaces on both sides of it are both kept.',
+        '<text x="100" y="110" font-family="Noto Sans" font-size="24" text-anchor="middle">'
+        'Some <textPath>long</textPath> text|</text>'),
+})
