@@ -206,9 +206,10 @@ class _Text:
     __slots__ = ('chars', 'owner', 'spans', 'lists', 'rot', 'ends', 'path_ranges')
 
 
-def _collect(el, inh, own, ctx, st, cache):
+def _collect(el, inh, own, ctx, st, cache, scale=1.0):
     """The :class:`_Text` of text element ``el`` (computed style ``inh``,
-    ``own``, lengths ``ctx``) in state ``st``."""
+    ``own``, lengths ``ctx``) in state ``st``; ``scale``: device pixels per
+    unit of its user space (how finely text paths are followed)."""
     chars = []          # characters after whitespace processing
     owner = []          # span index of each character
     spans = []
@@ -286,7 +287,7 @@ def _collect(el, inh, own, ctx, st, cache):
                 if is_displayed(ch, cache):
                     cinh, cown = style_of(ch, einh, eown, cache)
                     cctx = length_context(cinh, st, cache)
-                    tp = _text_path_geometry(ch, cctx, cache)
+                    tp = _text_path_geometry(ch, cctx, cache, 0.01 / max(scale, 1.0))
                     if tp is not None:
                         first = len(chars)
                         sp_pres = ch.get(_XML_SPACE)
@@ -571,7 +572,7 @@ def _build_any(el, inh, own, ctx, t, st, cache, out):
         cache.warn('text-nofont', 'no usable fonts found; text is drawn with the bundled '
                    'Noto Sans (ASCII only)')
     # -- collect characters ---------------------------------------------------
-    tx = _collect(el, inh, own, ctx, st, cache)
+    tx = _collect(el, inh, own, ctx, st, cache, st.scale() * t.max_scale())
     chars, spans, path_ranges = tx.chars, tx.spans, tx.path_ranges
     n = len(chars)
     if n == 0:
@@ -1330,9 +1331,13 @@ def _families(value):
     return tuple(parse_font_family(value))
 
 
-def _text_path_geometry(tp_el, ctx, cache):
+def _text_path_geometry(tp_el, ctx, cache, tolerance=0.01):
     """(edges (E, 2, 2), cumulative start lengths (E,), start offset) of
-    the path a textPath follows, or None when it has no usable path."""
+    the path a textPath follows, or None when it has no usable path; the
+    path is flattened within ``tolerance`` (in its user units: the
+    callers ask for 0.01, and 0.01 device pixels when the text is scaled
+    up, so that a tiny path scaled up is followed as closely as a large
+    one)."""
     # the SVG 2 ``path`` attribute is not used (resvg ignores it too)
     href = tp_el.get('{http://www.w3.org/1999/xlink}href') or tp_el.get('href')
     if not href or not href.startswith('#'):
@@ -1343,12 +1348,12 @@ def _text_path_geometry(tp_el, ctx, cache):
         return None
     ts = tgt.get('transform')
     t = parse_transform(ts) if ts else None
-    path = geometry(tgt, name, ctx, 0.01, cache)     # basic shapes too (SVG 2)
+    path = geometry(tgt, name, ctx, tolerance, cache)     # basic shapes too (SVG 2)
     if path is None or not len(path.verbs):
         return None
     if t is not None:
         path = path.transform(t)
-    pl = flatten(path, 0.01)
+    pl = flatten(path, tolerance)
     if not len(pl):
         return None
     edges = pl.edges(close_all=False)

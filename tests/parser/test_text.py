@@ -658,3 +658,21 @@ def test_text_of_an_invalid_text_path_still_separates_spaces():
                        '<textPath> </textPath> text</text>')
     assert [p for p, _ in blank] == [p for p, _ in text_paths(
         '<text x="10" y="50" font-family="Noto Sans" font-size="24">Some text</text>')]
+
+
+def test_text_path_is_followed_as_closely_when_scaled_up():
+    """Text on a tiny curve scaled up 100 times draws what the same text
+    on the curve 100 times larger draws (the path is flattened within
+    0.01 device pixels, not only 0.01 user units: the glyphs' positions
+    and turns agree within 0.05 pixels)."""
+    def body(k, extra):
+        return ('<g transform="scale(%g)"><defs><path id="c" d="M %g %g C %g %g %g %g %g %g"/>'
+                '</defs><text font-family="Noto Sans" font-size="%g" dy="%g"><textPath href="#c">'
+                'Some long text</textPath></text></g>' % (
+                    (k,) + tuple(v / k for v in (20, 73, 35, 108, 85, 108, 180, 73, 24, 15))))
+    small = text_paths(body(100.0, ''))
+    large = text_paths(body(1.0, ''))
+    assert len(small) == len(large) == 1
+    p, q = small[0][0].points, large[0][0].points
+    assert p.shape == q.shape
+    assert np.abs(p - q).max() < 0.05
