@@ -913,3 +913,12 @@ CASES.update({
         '<text x="100" y="110" font-family="Noto Sans" font-size="24" text-anchor="middle">'
         'Some <textPath>long</textPath> text|</text>'),
 })
+CASES['text-textpath-tiny-path-scaled-up'] = (
+    'text on a tiny path scaled up 100 times',
+    'The path and the text are a hundred times smaller than the drawing and scaled up by the '
+    'group: the glyphs sit on the curve and turn with it as closely as on a large path (the '
+    'path is followed within a fraction of a device pixel, not of its own units).',
+    '<g transform="scale(100)"><path id="tiny" d="M 0.2 0.9 C 0.45 0.3 1.2 1.5 1.8 0.8" '
+    'fill="none" stroke="#bbb" stroke-width="0.01"/><text font-family="Noto Sans" '
+    'font-size="0.22" fill="#264653"><textPath href="#tiny">Tiny but smooth text</textPath>'
+    '</text></g>')
