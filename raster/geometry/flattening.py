@@ -199,10 +199,12 @@ def _deviation(Q):
     return np.where(nz, e, hull)
 
 
-def _deviation_planar(Q):
+def _deviation_planar(Q, shift=False):
     """:func:`_deviation` for planar pieces (D = 2), written with
     coordinate arrays and few numpy calls (the pieces are often few, so the
-    cost per call matters).  Same bound, same formulas."""
+    cost per call matters).  Same bound, same formulas.  With ``shift``
+    (quadratics and cubics only) also the rows of :func:`_straddle_shift`,
+    from the same offset range: ``(e, rows)``."""
     n1, _, m = Q.shape
     n = n1 - 1
     ax, ay = Q[0, 0], Q[0, 1]
@@ -226,6 +228,11 @@ def _deviation_planar(Q):
         lo, hi = bernstein_range(c, normalize=False)     # |c| < 1e150: exact as is
         perp = np.maximum(-lo[:m], hi[:m])
         ulo, uhi = lo[m:], hi[m:]
+        if shift:
+            rows = np.empty((m, 3))
+            rows[:, 0] = np.where(nz, 0.5 * (lo[:m] + hi[:m]), 0.0)
+            rows[:, 1] = -dy / L
+            rows[:, 2] = dx / L
     else:
         px, py = rx - u * dx, ry - u * dy
         perp = (1.0 - 2.0 ** (1 - n)) * np.sqrt((px * px + py * py).max(axis=0))
@@ -233,7 +240,7 @@ def _deviation_planar(Q):
     over = np.maximum(np.maximum(-ulo, uhi - 1.0), 0.0) * L
     e = np.minimum(np.sqrt(perp * perp + over * over), hull)
     e[~nz] = hull[~nz]
-    return e
+    return (e, rows) if shift else e
 
 
 # Local parameters where the deviation density is sampled (midpoint rule)
@@ -530,7 +537,11 @@ def _flatten(ctrl, tolerance, straddle=False, smooth=None):
             ca, cb = a[lo:lo + _CHUNK], b[lo:lo + _CHUNK]
             # first round: the pieces are the whole curves (Q = P exactly)
             Q = PT[:, :, c] if rnd == 0 else blossom_pieces(PT[:, :, c], ca, cb)
-            e = _deviation(Q)
+            if straddle and n <= 3:
+                # the straddle shifts come from the same offset range
+                e, sh = _deviation_planar(Q, shift=True)
+            else:
+                e, sh = _deviation(Q), None
             lim = tol
             if straddle:
                 # a curve's end stays on it, so its end chords are straddled
@@ -546,7 +557,7 @@ def _flatten(ctrl, tolerance, straddle=False, smooth=None):
                 acc_t.append(cb[ok])
                 acc_pt.append(Q[n][:, ok].T)
                 if straddle:
-                    acc_sh.append(_straddle_shift(Q[:, :, ok]))
+                    acc_sh.append(_straddle_shift(Q[:, :, ok]) if sh is None else sh[ok])
                 n_acc += int(ok.sum())
             bad = ~ok
             if not np.any(bad):

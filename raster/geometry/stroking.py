@@ -49,7 +49,11 @@ cubics of a circle, the arcs and sides of a rounded rectangle) the meeting
 point is such a smooth vertex too: the exact stroke has no corner there.
 For butt and square caps and sharp joins on fat strokes, the flattening is
 refined near the other curve ends so that the end chords leave the curve
-along its tangent (see :func:`_refine_ends`).
+along its tangent (see :func:`_refine_ends`).  An undashed open contour of
+curves that ends exactly at its start with the same tangent (a circle
+written without ``Z``, as vega writes its symbols) is stroked as the closed
+ring when the caps are butt: the two caps coincide, and the ring's
+outline (two loops, a smooth join at the seam) does not cross itself there.
 
 Batches
 -------
@@ -476,12 +480,23 @@ def _refine_ends(ctrl, points, counts, r, tol, ends=None):
     return out, new_counts
 
 
-def _path_lines(path, tol, r=0.0, straddle=False):
+def _path_lines(path, tol, r=0.0, straddle=False, seal=False):
     """Flatten every segment of ``path`` within ``tol`` (user units) with
     :func:`raster.geometry.flattening.flatten_beziers` (``straddle`` passed
     on), keeping track of which vertices
     lie inside a curve (smooth joins).  ``tol`` is a float or a (C,) array,
     one tolerance per contour (``MOVE``) of ``path``.
+
+    With ``seal`` (undashed strokes with butt caps) an open contour of
+    curves that ends exactly at its start point with the tangent it started
+    with is returned closed, its start a smooth vertex: the butt caps there
+    coincide (with opposite directions) and the stroke of the curve has no
+    corner, so the closed ring is the same stroke without the two caps
+    crossing the outline (no cells where the outline meets itself).  The
+    only difference is at the seam, where the two end chords of the
+    flattening may meet at a small angle: the ring's round join fills the
+    sliver of outer wedge (at most the tolerance wide) that the open
+    contour leaves out.
 
     Returns ``(lines, keep)``: the polylines of the contours where the (C,)
     bool ``keep`` is True; lone ``MOVE`` contours are dropped (SVG does not
@@ -497,9 +512,20 @@ def _path_lines(path, tol, r=0.0, straddle=False):
     C = len(seg.contour_start)
     S = len(seg.degree)
     deg = seg.degree
+    g1 = None
+    if seal:
+        cand = (~seg.contour_closed & (seg.contour_nseg > 0)
+                & np.all(seg.contour_start == seg.contour_end, axis=1))
+        if cand.any():
+            g1 = _g1_ends(seg._replace(contour_closed=seg.contour_closed | cand))
+            ci = np.flatnonzero(cand)
+            sealed = np.zeros(C, bool)
+            sealed[ci] = g1[0][_starts(seg.contour_nseg)[ci]]
+            if sealed.any():
+                seg = seg._replace(contour_closed=seg.contour_closed | sealed)
+            g1 = None
     n = np.ones(S, np.int64)                          # pieces per segment
     seg_pts = [None, None, None, None]                # flattened points per degree
-    g1 = None
     for k in (2, 3):
         sel = deg == k
         if np.any(sel):
@@ -1313,7 +1339,8 @@ def _geometry(path, style, tol_u, cpath=None, npaths=1, straddle=False):
     tol_f = tol_u if pattern is None else 0.25 * tol_u
     # straight caps and sharp joins rest on the end chords of curves
     all_round = style.cap == 'round' and style.join == 'round'
-    lines, keep = _path_lines(path, tol_f, 0.0 if all_round else 0.5 * style.width, straddle)
+    lines, keep = _path_lines(path, tol_f, 0.0 if all_round else 0.5 * style.width, straddle,
+                              seal=pattern is None and style.cap == 'butt')
     if cpath is None:
         cp = np.zeros(len(lines.counts), np.int64)
         eps = _eps(lines.points)

@@ -1068,6 +1068,7 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
     # (pieces, cells, piece arrays, first piece and count of each cell)
     groups = []
     kb = _PIECE_BINS[np.minimum(np.searchsorted(_PIECE_BINS, k), len(_PIECE_BINS) - 1)]
+    kb[small] = _coarsen(kb[small], _piece_work)
     for kk in np.unique(kb[small]).tolist():
         c = np.flatnonzero(small & (kb == kk))
         groups.append((kk, c, (ua, va, ub, vb, ones), first[c], k[c]))
@@ -1083,6 +1084,7 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
         dfirst = np.cumsum(kd) - kd
         fits = kd <= _EXACT_PIECES
         kdb = _PIECE_BINS[np.minimum(np.searchsorted(_PIECE_BINS, kd), len(_PIECE_BINS) - 1)]
+        kdb[fits] = _coarsen(kdb[fits], _piece_work)
         for kk in np.unique(kdb[fits]).tolist():
             sel = np.flatnonzero(fits & (kdb == kk))
             groups.append((kk, big[sel], tuple(d_p) + (d_m,), dfirst[sel], kd[sel]))
@@ -1134,6 +1136,46 @@ def _merge_pieces(g, p, m):
     tot = np.add.reduceat(m, st)
     keep = st[tot != 0]
     return g[keep], [a[keep] for a in p], tot[tot != 0]
+
+
+# Work (in elements of the arrays of _sample_lines) that costs about as
+# much as one more call of it: classes of cells are merged into the next
+# larger class (padded) while the padding costs less than this.
+_CLASS_WORK = 3000
+
+
+def _piece_work(kk):
+    """Work per cell of :func:`_exact_small` with ``kk`` pieces: sample
+    heights times pieces."""
+    return (1 + 2 * kk + kk * (kk - 1) // 2) * max(kk, 1)
+
+
+def _coarsen(b, work, budget=_CLASS_WORK):
+    """Class sizes ``b`` (int array, one per cell) with small classes
+    merged upwards: from the smallest class on, a class joins the next
+    larger one when its cells padded to that size cost at most ``budget``
+    more work (``work(size)`` per cell).  Fewer, larger batches where the
+    cells are few; the same classes where they are many."""
+    if len(b) == 0:
+        return b
+    u, cnt = np.unique(b, return_counts=True)
+    if len(u) == 1:
+        return b
+    u = u.tolist()
+    cnt = cnt.tolist()
+    to = list(u)
+    acc = 0
+    for i in range(len(u) - 1):
+        acc += cnt[i]
+        if acc * (work(u[i + 1]) - work(u[i])) <= budget:
+            for j in range(i + 1):
+                if to[j] == u[i]:
+                    to[j] = u[i + 1]
+        else:
+            acc = 0
+    if to == u:
+        return b
+    return np.asarray(to, dtype=b.dtype)[np.searchsorted(u, b)]
 
 
 # x positions are sorted as integer keys: x * 2**36 (x in [0, 1]) shifted
@@ -1200,6 +1242,7 @@ def _exact_small(ua, va, ub, vb, m, C, eo):
     width = np.where(width < len(_HEIGHT_BINS), _HEIGHT_BINS[np.minimum(width, len(_HEIGHT_BINS) - 1)],
                      H.shape[1])
     width = np.minimum(width, H.shape[1])
+    width = _coarsen(width, lambda q: q * k)
     out = np.zeros(F)
     for q in np.unique(width).tolist():
         rows = np.flatnonzero(width == q)
@@ -1865,16 +1908,25 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out, depth=0):
     # cells to recompute exactly, among the pieces of exact shapes only
     flagged = np.zeros(0, np.int64)
     if sex.any():
-        fcell = np.where(real, cell, -1)
-        if not sex.all():
-            fcell[~sex[sid]] = -1
-        brk = np.zeros(len(sid), bool)
-        brk[1:] = sid[1:] != sid[:-1]
         virt = ~real
         vrow = (np.bincount(grow[virt], weights=dy[virt], minlength=int(sh.sum()))
                 if virt.any() else None)
         left_of = _left_lookup(T, run, W, vrow)
-        flagged, fp, fc = _flag(xa, ya, xb, yb, col, row, fcell, brk, left_of, seo[sid])
+        if sex.all():
+            brk = np.zeros(len(sid), bool)
+            brk[1:] = sid[1:] != sid[:-1]
+            flagged, fp, fc = _flag(xa, ya, xb, yb, col, row, np.where(real, cell, -1), brk,
+                                    left_of, seo[sid])
+        else:
+            # only the pieces of exact shapes are looked at (hairlines are
+            # not: their runs need no test)
+            ep = np.flatnonzero(sex[sid])
+            es = sid[ep]
+            brk = np.zeros(len(ep), bool)
+            brk[1:] = es[1:] != es[:-1]
+            flagged, fp, fc = _flag(xa[ep], ya[ep], xb[ep], yb[ep], col[ep], row[ep],
+                                    np.where(real[ep], cell[ep], -1), brk, left_of, seo[es])
+            fp = ep[fp]
     if len(T) == 0 and len(flagged) == 0:
         return
     cellv = run - pv

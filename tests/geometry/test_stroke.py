@@ -978,3 +978,44 @@ def test_circle_of_cubics_with_sharp_joins_is_annulus_within_tolerance(join, w, 
     err = np.minimum(np.abs(rad - (10 + w / 2)), np.abs(rad - (10 - w / 2)))
     assert np.all(err * s <= tol + 2.7e-3 * s)
     assert np.any(rad > 10 + w / 2 - tol / s) and np.any(rad < 10 - w / 2 + tol / s)
+
+
+# -- open contours ending where they started ------------------------------------
+
+_RING = ('M 3 0 C 3 1.657 1.657 3 0 3 C -1.657 3 -3 1.657 -3 0 '
+         'C -3 -1.657 -1.657 -3 0 -3 C 1.657 -3 3 -1.657 3 0')
+
+
+@pytest.mark.parametrize('scale', [1.5, 6.0, 25.0])
+def test_open_smooth_ring_with_butt_caps_is_the_closed_ring(scale):
+    """Invariance: a curve that ends at its start with the tangent it
+    started with (a circle drawn without Z, as vega writes its symbols),
+    stroked with butt caps, is the stroke of the closed circle: same
+    outline loops, and the annulus' area is met within the flattening
+    (the open contour used to leave a notch at the seam)."""
+    t = Affine(scale, 0, 0, scale, 0, 0)
+    st_ = StrokeStyle(width=2.0, cap='butt')
+    o_open = stroke(parse(_RING), st_, transform=t, tolerance=0.05)
+    o_closed = stroke(parse(_RING + ' Z'), st_, transform=t, tolerance=0.05)
+    assert o_open.verbs.tolist() == o_closed.verbs.tolist()
+    assert np.allclose(o_open.points, o_closed.points, atol=1e-9)
+    # the kappa circle's radius wobbles by 0.03 %: the annulus of radii
+    # 3 -+ 1 (times the scale) within that and the tolerance
+    area = sum(shoelace(p) for p in polygons(o_open))
+    exact = math.pi * ((4 * scale) ** 2 - (2 * scale) ** 2)
+    assert abs(abs(area) - exact) <= 2 * math.pi * 6 * scale * (0.05 + 3e-4 * scale) + 1e-9
+
+
+@pytest.mark.parametrize('d,cap', [
+    (_RING, 'square'),                                  # caps protrude: kept
+    ('M 3 0 L 0 3 C -1.657 3 -3 1.657 -3 0 C -3 -1.657 -1.657 -3 0 -3 '
+     'C 1.657 -3 3 -1.657 3 0', 'butt'),                # a corner at the seam: kept
+])
+def test_open_ring_stays_open_when_the_seam_shows(d, cap):
+    """An open contour ending at its start keeps its caps when they show:
+    square caps, or a corner at the seam (no join there)."""
+    st_ = StrokeStyle(width=1.0, cap=cap)
+    o_open = stroke(parse(d), st_, tolerance=0.05)
+    o_closed = stroke(parse(d + ' Z'), st_, tolerance=0.05)
+    assert len(polygons(o_open)) == 1
+    assert len(polygons(o_closed)) == 2
