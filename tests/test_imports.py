@@ -28,6 +28,8 @@ HEAVY = ('fontTools', 'uharfbuzz', 'PIL', 'raster.fonts.font', 'raster.fonts.mat
          'raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
          'raster.tree.filter', 'raster.parser.images', 'raster.parser.imageload',
          'raster.parser.markers', 'raster.parser.clipmask')
+#: Modules of numpy and the standard library a plain document does not need.
+LIGHT_EXTRAS = ('numpy.ma', 'logging', 'hashlib', '_hashlib', 'tempfile', 'shutil')
 FILTERS = ('raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
            'raster.tree.filter')
 
@@ -67,6 +69,10 @@ def test_a_plain_document_loads_nothing_heavy():
     mods = modules_after(render_code(SVG % (RECT + '<g opacity="0.5">%s</g>' % RECT)))
     assert 'raster.renderer.draw' in mods and 'lxml.etree' in mods
     assert loaded(mods, HEAVY) == []
+    # nor what only some documents need from numpy and the standard library:
+    # masked arrays (np.unique imports them), logging (fontTools' log lines
+    # become warnings), OpenSSL's hashes (@font-face data)
+    assert loaded(mods, LIGHT_EXTRAS) == []
 
 
 def test_the_command_on_a_plain_document_loads_nothing_heavy(tmp_path):
@@ -110,6 +116,11 @@ def test_text_loads_the_fonts():
     assert loaded(mods, ('fontTools', 'uharfbuzz', 'raster.fonts', 'raster.parser.text')) == [
         'fontTools', 'raster.fonts', 'raster.parser.text', 'uharfbuzz']
     assert loaded(mods, FILTERS) == []
+    # text without @font-face data maps no OpenSSL (hashlib's 3 MB of RSS);
+    # the font scan cache, once written, is read without tempfile
+    assert loaded(mods, ('hashlib', '_hashlib')) == []
+    mods = modules_after(render_code(doc, font_dirs=[SUITE_FONTS]))
+    assert loaded(mods, ('hashlib', '_hashlib', 'tempfile', 'shutil')) == []
 
 
 def test_an_image_loads_pillow():

@@ -27,7 +27,6 @@ import json
 import os
 import re
 import sys
-import tempfile
 import warnings
 
 from ..errors import RasterWarning
@@ -196,6 +195,7 @@ def _load_json(path):
 def _write_json(folder, name, files):
     """Write ``{'format', 'files'}`` atomically; False when the folder
     cannot be written (not an error)."""
+    import tempfile             # (and shutil, bz2, lzma): only when the cache is written
     try:
         os.makedirs(folder, exist_ok=True)
         fd, tmp = tempfile.mkstemp(prefix='.' + name + '.', suffix='.tmp', dir=folder)

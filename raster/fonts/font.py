@@ -6,7 +6,6 @@ index and modification time).  Fonts given as bytes (``@font-face`` with a
 ``memory:`` key and load like files.
 """
 
-import hashlib
 import io
 import os
 from typing import NamedTuple
@@ -44,6 +43,9 @@ def register_memory_font(data):
     FontError
         Not a usable font container.
     """
+    # imported here: hashlib maps OpenSSL (3 MB of RSS), which text
+    # without @font-face data never needs
+    import hashlib
     key = 'memory:' + hashlib.sha1(data).hexdigest()
     if key not in _MEMORY:
         kind = check_font_data(data)
