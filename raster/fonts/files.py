@@ -107,23 +107,30 @@ class FontFace:
                    int(stretch), str(full), str(ps), str(generic), bool(color))
 
 
+_CAPTURE_CLASS = None
+
+
 def _capture():
     """A new logging handler collecting messages (:mod:`logging` is
-    imported with the first font read, not with the package)."""
-    import logging
+    imported with the first font read, not with the package; the class
+    is made once)."""
+    global _CAPTURE_CLASS
+    if _CAPTURE_CLASS is None:
+        import logging
 
-    class _Capture(logging.Handler):
-        def __init__(self):
-            super().__init__(logging.WARNING)
-            self.messages = []
+        class _Capture(logging.Handler):
+            def __init__(self):
+                super().__init__(logging.WARNING)
+                self.messages = []
 
-        def emit(self, record):
-            try:
-                self.messages.append(record.getMessage())
-            except Exception:       # a record that cannot be formatted
-                self.messages.append(str(record.msg))
+            def emit(self, record):
+                try:
+                    self.messages.append(record.getMessage())
+                except Exception:       # a record that cannot be formatted
+                    self.messages.append(str(record.msg))
 
-    return _Capture()
+        _CAPTURE_CLASS = _Capture
+    return _CAPTURE_CLASS()
 
 
 @contextlib.contextmanager
