@@ -123,6 +123,19 @@ def test_text_loads_the_fonts():
     assert loaded(mods, ('hashlib', '_hashlib', 'tempfile', 'shutil')) == []
 
 
+def test_text_finds_the_font_cache_folder_without_platformdirs_on_linux(tmp_path):
+    # the user cache folder ($XDG_CACHE_HOME here, not the suite's
+    # RASTER_CACHE_DIR) found as platformdirs would, without importing it
+    doc = SVG % '<text x="1" y="8" font-family="Noto Sans" font-size="8">Hi</text>'
+    code = ('import os\nos.environ.pop("RASTER_CACHE_DIR", None)\n'
+            'os.environ["XDG_CACHE_HOME"] = %r\n' % str(tmp_path))
+    mods = modules_after(code + render_code(doc, font_dirs=[SUITE_FONTS]))
+    assert 'raster.fonts.discovery' in mods
+    assert (tmp_path / 'raster').is_dir()               # the scan cache went there
+    assert loaded(mods, ('platformdirs',)) == ([] if sys.platform.startswith('linux')
+                                              else ['platformdirs'])
+
+
 def test_an_image_loads_pillow():
     buf = io.BytesIO()
     Image.new('RGBA', (2, 2), (0, 255, 0, 255)).save(buf, 'PNG')
