@@ -116,6 +116,9 @@ def test_text_loads_the_fonts():
     assert loaded(mods, ('fontTools', 'uharfbuzz', 'raster.fonts', 'raster.parser.text')) == [
         'fontTools', 'raster.fonts', 'raster.parser.text', 'uharfbuzz']
     assert loaded(mods, FILTERS) == []
+    # colour glyphs and the image loading of @font-face sources load with
+    # the first colour font and the first rule
+    assert loaded(mods, ('raster.fonts.color', 'raster.parser.imageload', 'PIL')) == []
     # text without @font-face data maps no OpenSSL (hashlib's 3 MB of RSS);
     # the font scan cache, once written, is read without tempfile
     assert loaded(mods, ('hashlib', '_hashlib')) == []

@@ -16,7 +16,6 @@ from ..errors import RasterError
 from ..geometry.path import Path
 from ..geometry.pens import PathBuilder
 from .files import FontError, FontFace, check_font_data, quiet_fonttools, read_font_bytes, sfnt_bytes
-from .color import ColorFont
 from .matching import cached
 
 __all__ = ['Font', 'Shaped', 'register_memory_font', 'memory_font_data']
@@ -152,6 +151,7 @@ class Font:
         if self._color is None:
             cf = False
             if any(t in self.tt for t in ('COLR', 'SVG ', 'sbix', 'CBDT')):
+                from .color import ColorFont        # (only fonts with colour tables)
                 try:
                     cf = ColorFont(self)
                 except FontError:
