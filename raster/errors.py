@@ -15,7 +15,6 @@ a library logs (fontTools on broken fonts) into one-line
 
 import contextlib
 import contextvars
-import logging
 import threading
 import warnings
 
@@ -85,24 +84,31 @@ _LOCK = threading.Lock()
 _HANDLERS: dict = {}
 
 
-class _ToWarnings(logging.Handler):
-    """Turns the records of the contexts capturing them into warnings."""
+def _to_warnings():
+    """A new logging handler turning the records of the contexts capturing
+    them into warnings (:mod:`logging` is imported on first use: most
+    documents never capture a library's log)."""
+    import logging
 
-    def __init__(self):
-        super().__init__(logging.WARNING)
-        self.users = 0
+    class _ToWarnings(logging.Handler):
 
-    def emit(self, record):
-        names = _CAPTURE.get()
-        if names is None or not any(record.name == n or record.name.startswith(n + '.')
-                                    for n in names):
-            return
-        try:
-            msg = record.getMessage()
-        except Exception:               # a broken format: the template
-            msg = str(record.msg)
-        warnings.warn('%s: %s' % (record.name.split('.')[0], one_line(msg)), RasterWarning,
-                      stacklevel=2)
+        def __init__(self):
+            super().__init__(logging.WARNING)
+            self.users = 0
+
+        def emit(self, record):
+            names = _CAPTURE.get()
+            if names is None or not any(record.name == n or record.name.startswith(n + '.')
+                                        for n in names):
+                return
+            try:
+                msg = record.getMessage()
+            except Exception:               # a broken format: the template
+                msg = str(record.msg)
+            warnings.warn('%s: %s' % (record.name.split('.')[0], one_line(msg)), RasterWarning,
+                          stacklevel=2)
+
+    return _ToWarnings()
 
 
 @contextlib.contextmanager
@@ -121,11 +127,12 @@ def log_warnings(name: str = 'fontTools'):
         with log_warnings('fontTools'):
             font = TTFont(path)
     """
+    import logging
     logger = logging.getLogger(name)
     with _LOCK:
         h = _HANDLERS.get(name)
         if h is None:
-            h = _HANDLERS[name] = _ToWarnings()
+            h = _HANDLERS[name] = _to_warnings()
         if h.users == 0:
             logger.addHandler(h)
         h.users += 1

@@ -28,6 +28,8 @@ HEAVY = ('fontTools', 'uharfbuzz', 'PIL', 'raster.fonts.font', 'raster.fonts.mat
          'raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
          'raster.tree.filter', 'raster.parser.images', 'raster.parser.imageload',
          'raster.parser.markers', 'raster.parser.clipmask')
+#: Modules of numpy and the standard library a plain document does not need.
+LIGHT_EXTRAS = ('numpy.ma', 'logging', 'hashlib', '_hashlib', 'tempfile', 'shutil')
 FILTERS = ('raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
            'raster.tree.filter')
 
@@ -67,6 +69,10 @@ def test_a_plain_document_loads_nothing_heavy():
     mods = modules_after(render_code(SVG % (RECT + '<g opacity="0.5">%s</g>' % RECT)))
     assert 'raster.renderer.draw' in mods and 'lxml.etree' in mods
     assert loaded(mods, HEAVY) == []
+    # nor what only some documents need from numpy and the standard library:
+    # masked arrays (np.unique imports them), logging (fontTools' log lines
+    # become warnings), OpenSSL's hashes (@font-face data)
+    assert loaded(mods, LIGHT_EXTRAS) == []
 
 
 def test_the_command_on_a_plain_document_loads_nothing_heavy(tmp_path):
@@ -110,6 +116,27 @@ def test_text_loads_the_fonts():
     assert loaded(mods, ('fontTools', 'uharfbuzz', 'raster.fonts', 'raster.parser.text')) == [
         'fontTools', 'raster.fonts', 'raster.parser.text', 'uharfbuzz']
     assert loaded(mods, FILTERS) == []
+    # colour glyphs and the image loading of @font-face sources load with
+    # the first colour font and the first rule
+    assert loaded(mods, ('raster.fonts.color', 'raster.parser.imageload', 'PIL')) == []
+    # text without @font-face data maps no OpenSSL (hashlib's 3 MB of RSS);
+    # the font scan cache, once written, is read without tempfile
+    assert loaded(mods, ('hashlib', '_hashlib')) == []
+    mods = modules_after(render_code(doc, font_dirs=[SUITE_FONTS]))
+    assert loaded(mods, ('hashlib', '_hashlib', 'tempfile', 'shutil')) == []
+
+
+def test_text_finds_the_font_cache_folder_without_platformdirs_on_linux(tmp_path):
+    # the user cache folder ($XDG_CACHE_HOME here, not the suite's
+    # RASTER_CACHE_DIR) found as platformdirs would, without importing it
+    doc = SVG % '<text x="1" y="8" font-family="Noto Sans" font-size="8">Hi</text>'
+    code = ('import os\nos.environ.pop("RASTER_CACHE_DIR", None)\n'
+            'os.environ["XDG_CACHE_HOME"] = %r\n' % str(tmp_path))
+    mods = modules_after(code + render_code(doc, font_dirs=[SUITE_FONTS]))
+    assert 'raster.fonts.discovery' in mods
+    assert (tmp_path / 'raster').is_dir()               # the scan cache went there
+    assert loaded(mods, ('platformdirs',)) == ([] if sys.platform.startswith('linux')
+                                              else ['platformdirs'])
 
 
 def test_an_image_loads_pillow():

@@ -27,7 +27,6 @@ import json
 import os
 import re
 import sys
-import tempfile
 import warnings
 
 from ..errors import RasterWarning
@@ -172,6 +171,12 @@ def cache_dir():
     d = os.environ.get('RASTER_CACHE_DIR')
     if d:
         return d
+    if sys.platform.startswith('linux') and 'ANDROID_DATA' not in os.environ:
+        # platformdirs' answer on Linux, without importing it: its unix
+        # module imports tempfile (and shutil, bz2, lzma), 7 ms of start-up
+        base = os.environ.get('XDG_CACHE_HOME', '').strip() or \
+            os.path.join(os.path.expanduser('~'), '.cache')
+        return os.path.join(base, 'raster')
     try:
         import platformdirs
         return platformdirs.user_cache_dir('raster', appauthor=False)
@@ -196,6 +201,7 @@ def _load_json(path):
 def _write_json(folder, name, files):
     """Write ``{'format', 'files'}`` atomically; False when the folder
     cannot be written (not an error)."""
+    import tempfile             # (and shutil, bz2, lzma): only when the cache is written
     try:
         os.makedirs(folder, exist_ok=True)
         fd, tmp = tempfile.mkstemp(prefix='.' + name + '.', suffix='.tmp', dir=folder)

@@ -26,7 +26,6 @@ class it belongs to) and its character coverage as ranges.
 
 import contextlib
 import io
-import logging
 import os
 import struct
 import zlib
@@ -113,16 +112,30 @@ class FontFace:
                    int(stretch), str(full), str(ps), str(generic), bool(color))
 
 
-class _Capture(logging.Handler):
-    def __init__(self):
-        super().__init__(logging.WARNING)
-        self.messages = []
+_CAPTURE_CLASS = None
 
-    def emit(self, record):
-        try:
-            self.messages.append(record.getMessage())
-        except Exception:       # a record that cannot be formatted
-            self.messages.append(str(record.msg))
+
+def _capture():
+    """A new logging handler collecting messages (:mod:`logging` is
+    imported with the first font read, not with the package; the class
+    is made once)."""
+    global _CAPTURE_CLASS
+    if _CAPTURE_CLASS is None:
+        import logging
+
+        class _Capture(logging.Handler):
+            def __init__(self):
+                super().__init__(logging.WARNING)
+                self.messages = []
+
+            def emit(self, record):
+                try:
+                    self.messages.append(record.getMessage())
+                except Exception:       # a record that cannot be formatted
+                    self.messages.append(str(record.msg))
+
+        _CAPTURE_CLASS = _Capture
+    return _CAPTURE_CLASS()
 
 
 @contextlib.contextmanager
@@ -131,8 +144,9 @@ def quiet_fonttools():
     tables, ...) are collected instead of reaching the host's handlers
     or stderr.  Yields the list of captured messages.  The ``fontTools``
     logger's handlers and ``propagate`` flag are restored afterwards."""
+    import logging
     logger = logging.getLogger('fontTools')
-    cap = _Capture()
+    cap = _capture()
     old_prop = logger.propagate
     logger.addHandler(cap)
     logger.propagate = False
@@ -157,7 +171,11 @@ def read_font_bytes(path):
         if size > MAX_FONT_BYTES:
             raise FontError('font file is larger than %d bytes' % MAX_FONT_BYTES)
         with open(path, 'rb') as fh:
-            data = fh.read(MAX_FONT_BYTES + 1)
+            # read what the file holds, not a buffer of the limit (a file
+            # that grew since is still read only up to the limit)
+            data = fh.read(size + 1)
+            if len(data) > size:
+                data += fh.read(MAX_FONT_BYTES + 1 - len(data))
     except OSError as e:
         raise FontError('cannot read font file: %s' % (e.strerror or e)) from None
     check_font_data(data)

@@ -6,7 +6,6 @@ index and modification time).  Fonts given as bytes (``@font-face`` with a
 ``memory:`` key and load like files.
 """
 
-import hashlib
 import io
 import os
 from typing import NamedTuple
@@ -17,7 +16,6 @@ from ..errors import RasterError
 from ..geometry.path import Path
 from ..geometry.pens import PathBuilder
 from .files import FontError, FontFace, check_font_data, quiet_fonttools, read_font_bytes, sfnt_bytes
-from .color import ColorFont
 from .matching import cached
 from .ranges import in_ranges
 
@@ -45,6 +43,9 @@ def register_memory_font(data):
     FontError
         Not a usable font container.
     """
+    # imported here: hashlib maps OpenSSL (3 MB of RSS), which text
+    # without @font-face data never needs
+    import hashlib
     key = 'memory:' + hashlib.sha1(data).hexdigest()
     if key not in _MEMORY:
         kind = check_font_data(data)
@@ -151,6 +152,7 @@ class Font:
         if self._color is None:
             cf = False
             if any(t in self.tt for t in ('COLR', 'SVG ', 'sbix', 'CBDT')):
+                from .color import ColorFont        # (only fonts with colour tables)
                 try:
                     cf = ColorFont(self)
                 except FontError:

@@ -40,7 +40,6 @@ from ..fonts.files import scan_faces
 from ..fonts.font import memory_font_data
 from ..fonts.ranges import MAX_CODE_POINT, intersect_ranges, parse_unicode_range
 from .css import font_face_rules
-from .imageload import ImageError, image_source, is_network_reference, read_reference
 
 __all__ = ['document_font_db', 'parse_src']
 
@@ -167,6 +166,8 @@ def _face_of(rule, family, db, cache):
     """``(FontFace, coverage)`` of the first usable source of a rule, or
     None."""
     import dataclasses
+    # (imported here: text without @font-face rules loads no image loading)
+    from .imageload import ImageError, image_source, is_network_reference, read_reference
     problems = []
     for entry in parse_src(rule.get('src', '')):
         if entry[0] == 'local':

@@ -165,7 +165,10 @@ def is_recursive(use, cache):
         memo[u] = res
         return res
 
-    return visit(use, 0)
+    try:
+        return visit(use, 0)
+    finally:
+        del visit       # it calls itself through its closure: break the cycle
 
 
 #: Sizes above this are all "too many" (keeps the arithmetic small).

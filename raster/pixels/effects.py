@@ -573,12 +573,14 @@ class FilterImage:
 _BLOCK_BYTES = 1 << 19
 
 
-def _by_rows(fn, img):
+def _by_rows(fn, img, out=None):
     """``fn`` (a per-pixel map of (h, W, 4) float32 blocks to (h, W, 4)
     float32) applied to cache-sized blocks of rows of ``img`` (H, W, 4):
-    its temporaries stay small."""
+    its temporaries stay small.  The result goes to ``out`` ((H, W, 4)
+    float32, any strides: e.g. a window of a larger array) if given."""
     h, w = img.shape[:2]
-    out = np.empty((h, w, 4), np.float32)
+    if out is None:
+        out = np.empty((h, w, 4), np.float32)
     step = max(1, _BLOCK_BYTES // (16 * max(w, 1)))
     for y in range(0, h, step):          # loop over blocks of rows
         out[y:y + step] = fn(img[y:y + step])
@@ -598,11 +600,11 @@ def _convert_pixels(img, fn):
         c, a = unpremultiply(b)
         return premultiply(fn(c), a)
 
-    res = _by_rows(block, img[y0:y1, x0:x1])
-    if res.shape == img.shape:
-        return res
+    if (y1 - y0, x1 - x0) == img.shape[:2]:
+        return _by_rows(block, img)
+    # written in place into the zero image: no box-sized intermediate
     out = np.zeros_like(img)
-    out[y0:y1, x0:x1] = res
+    _by_rows(block, img[y0:y1, x0:x1], out[y0:y1, x0:x1])
     return out
 
 
@@ -762,20 +764,34 @@ def box_sigma(sigma):
 
 def _gauss_axis(a, s, axis):
     """Blur along ``axis`` with a Gaussian kernel of deviation ``s`` px
-    truncated at ``ceil(4 s)`` and renormalised (zeros outside)."""
+    truncated at ``ceil(4 s)`` and renormalised (zeros outside).
+
+    The other axes are processed in blocks of columns (axis 1 after the
+    blurred one) of about :data:`_BLOCK_BYTES` of padded input, so the
+    padded copy and the products are block-sized, not layer-sized; every
+    output value is the same sum in the same order whatever the blocks.
+    """
+    if a.ndim == 1:
+        return _gauss_axis(a[:, None], s, 0)[:, 0]
     r = max(1, int(math.ceil(4.0 * s)))
     x = np.arange(-r, r + 1, dtype=np.float64)
     k = np.exp(-0.5 * (x / s) ** 2)
     k /= k.sum()
+    taps = [np.float32(w) for w in k]
     a = np.moveaxis(a, axis, 0)
     n = a.shape[0]
-    pad = np.zeros((n + 2 * r,) + a.shape[1:], np.float32)
-    pad[r:r + n] = a
-    out = np.zeros(pad[:n].shape, np.float32)
-    tmp = np.empty_like(out)
-    for j, w in enumerate(k):            # loop over kernel taps, not pixels
-        np.multiply(pad[j:j + n], np.float32(w), out=tmp)
-        out += tmp
+    out = np.zeros(a.shape, np.float32)
+    inner = int(np.prod(a.shape[2:], dtype=np.int64))
+    cm = max(1, min(a.shape[1], _BLOCK_BYTES // max(1, 4 * (n + 2 * r) * inner)))
+    for sl in [slice(c0, c0 + cm) for c0 in range(0, a.shape[1], cm)]:                    # loop over blocks of columns
+        ab = a[:, sl]
+        ob = out[:, sl]
+        pad = np.zeros((n + 2 * r,) + ab.shape[1:], np.float32)
+        pad[r:r + n] = ab
+        tmp = np.empty(ob.shape, np.float32)
+        for j, w in enumerate(taps):     # loop over kernel taps, not pixels
+            np.multiply(pad[j:j + n], w, out=tmp)
+            ob += tmp
     return np.moveaxis(out, 0, axis)
 
 

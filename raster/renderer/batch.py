@@ -25,10 +25,11 @@ whose batch failed) is drawn on its own.
 
 import numpy as np
 
+from .. import limits
 from ..errors import RasterError
 from ..geometry.flattening import flatten, flatten_joined
 from ..pixels.hairline import hairline_edges, hairline_outline
-from ..pixels.scan import coverage, coverage_batch, path_coverage
+from ..pixels.scan import Mask, coverage, coverage_batch, path_coverage
 from ..geometry.stroking import StrokeStyle, hairline_scale, stroke as stroke_outline, stroke_many
 from ..tree import Group, PathNode
 from .bounds import clip_rect, device_area, stroke_reach
@@ -71,6 +72,10 @@ class Masks:
         # (key -> the canvas size it was planned for)
         self._outside_fill = {}
         self._outside_stroke = {}
+        # keys of fills that are rectangles covering their whole canvas
+        # (backgrounds): coverage 1 everywhere, never scan converted (key ->
+        # the canvas size it was planned for)
+        self._cover_fill = {}
 
     # -- planning ----------------------------------------------------------------
     def plan(self, nodes, t, canvas):
@@ -99,6 +104,9 @@ class Masks:
                     continue
                 area = device_area(n.path, m, size)
                 key = (id(n), m)
+                if wf and key not in geo and covers_canvas(n.path, m, *size):
+                    self._cover_fill[key] = size
+                    wf = False
                 if wf or wh:
                     if area > 0:
                         geo.setdefault(key, (n, m, size, area, wf, wh))
@@ -119,9 +127,15 @@ class Masks:
         """The fill coverage Mask of PathNode ``n`` under ``t`` on
         ``canvas`` (None: nothing covered)."""
         key = (id(n), t)
-        if self._outside_fill.get(key) == (canvas.width, canvas.height):
+        size = (canvas.width, canvas.height)
+        if self._outside_fill.get(key) == size:
             del self._outside_fill[key]
             return None
+        if self._cover_fill.get(key) == size or (
+                key not in self._geo_pending and key not in self._fill_ready
+                and covers_canvas(n.path, t, *size)):
+            self._cover_fill.pop(key, None)
+            return full_mask(*size)
         if key in self._geo_pending:
             self._flush_geometry(key, canvas)
         if key in self._fill_ready:
@@ -325,3 +339,34 @@ def _wants_hair(n, t):
     s = n.stroke
     return (s is not None and s.style.dash is None and s.opacity > 0 and n.antialias
             and 0.0 < s.style.width * t.mean_scale() < 1.0)
+
+
+def covers_canvas(path, t, width, height):
+    """True when ``path`` under ``t`` is one closed axis-aligned rectangle
+    (``M L L L Z``) containing the whole ``width`` x ``height`` canvas,
+    within ``max_coord``: its exact-area coverage is 1 at every pixel
+    under both fill rules (winding +-1 everywhere inside), aliased or not,
+    so it needs no scan conversion (a chart's background)."""
+    v = path.verbs
+    if len(v) != 5 or v[0] != 0 or v[4] != 4 or not (v[1:4] == 1).all():
+        return False
+    p = t.apply(path.points[:4])
+    # consecutive corners (cyclically) differ in x or in y, alternately:
+    # the four sides are horizontal, vertical, horizontal, vertical (or the
+    # other way round), each of non-zero length
+    q = np.roll(p, -1, axis=0)
+    dx, dy = p[:, 0] != q[:, 0], p[:, 1] != q[:, 1]
+    if (dx == dy).any() or not ((dx == [True, False, True, False]).all()
+                                or (dx == [False, True, False, True]).all()):
+        return False
+    with np.errstate(invalid='ignore'):
+        lo, hi = p.min(axis=0), p.max(axis=0)
+        inside = bool(np.abs(p).max() <= limits.current().max_coord)
+    return inside and lo[0] <= 0 and lo[1] <= 0 and hi[0] >= width and hi[1] >= height
+
+
+def full_mask(width, height):
+    """A Mask of coverage 1 over the whole ``width`` x ``height`` canvas
+    whose data is one float32 value broadcast (read-only, no pixels
+    stored)."""
+    return Mask(np.broadcast_to(np.float32(1.0), (height, width)), 0, 0)

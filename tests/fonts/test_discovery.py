@@ -284,3 +284,18 @@ def test_system_fonts_resolve_generic_classes_by_advance_widths():
         assert a[0] < a[1], g
     assert db.match(['sans-serif']).generic == 'sans-serif'
     assert db.match(['serif']).generic == 'serif'
+
+
+@pytest.mark.parametrize('xdg', [None, '', '   ', '/tmp/some cache'])
+def test_cache_dir_is_platformdirs_answer_on_linux(monkeypatch, xdg):
+    # on Linux computed without importing platformdirs (whose unix module
+    # imports tempfile, shutil, bz2 and lzma): the same folder; elsewhere
+    # platformdirs' own answer
+    import platformdirs
+    monkeypatch.delenv('RASTER_CACHE_DIR', raising=False)
+    monkeypatch.delenv('ANDROID_DATA', raising=False)
+    if xdg is None:
+        monkeypatch.delenv('XDG_CACHE_HOME', raising=False)
+    else:
+        monkeypatch.setenv('XDG_CACHE_HOME', xdg)
+    assert discovery.cache_dir() == platformdirs.user_cache_dir('raster', appauthor=False)

@@ -708,3 +708,15 @@ def test_property_split_pieces_chain_between_grid_lines(seed, per_segment_hi):
         assert np.allclose(VB[s[:-1]], va[i] + t * (vb[i] - va[i]), atol=1e-12)
     # without a tag: the same pieces
     assert all(np.array_equal(a, b) for a, b in zip(scan._split(ua, va, ub, vb, hi), (UA, VA, UB, VB)))
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.integers(-2**40, 2**40), max_size=60), st.integers(1, 3))
+def test_distinct_is_sorted_unique(values, cols):
+    # the scan converter's np.unique without the masked-array import:
+    # same values, same order, same dtype, for any shape
+    a = np.array(values, np.int64)
+    a = a[:len(a) // cols * cols].reshape(-1, cols)
+    got = scan._distinct(a)
+    assert got.dtype == np.int64 and got.ndim == 1
+    np.testing.assert_array_equal(got, np.unique(a))

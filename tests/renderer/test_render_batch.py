@@ -78,3 +78,70 @@ def test_batched_strokes_match_single_strokes(seed, monkeypatch):
     single = render_tree(stroke_scene(seed)).to_rgba8().astype(int)
     assert batched.max() > 0
     assert np.abs(batched - single).max() <= 1
+
+
+# -- rectangles covering the canvas (backgrounds) ------------------------------
+
+from hypothesis import given, settings, strategies as st  # noqa: E402
+
+from raster import limits  # noqa: E402
+from raster.geometry.pathdata import rect_path  # noqa: E402
+from raster.pixels.scan import path_coverage  # noqa: E402
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.integers(2, 120), st.integers(2, 120), st.floats(0, 40), st.floats(0, 40),
+       st.floats(0, 40), st.floats(0, 40), st.floats(0.1, 4), st.floats(0.1, 4),
+       st.sampled_from(['nonzero', 'evenodd']), st.booleans())
+def test_a_rectangle_covering_the_canvas_is_covered_everywhere(w, h, l, t, r, b, sx, sy,
+                                                               rule, aa):
+    # a user-space rectangle from the origin mapped by a scale and a
+    # translation (-l, -t) to about [-l, w + r] x [-t, h + b]; the canvas
+    # is cut at the whole pixels it reaches: the scan converter's exact
+    # coverage is 1 at every pixel, which the batch's shortcut gives
+    # without scan converting it
+    m = Affine(sx, 0, 0, sy, -l, -t)
+    p = rect_path(0, 0, (w + r + l) / sx, (h + b + t) / sy)
+    x1, y1 = m.apply(p.points[2:3])[0]
+    cw, ch = int(np.floor(x1)), int(np.floor(y1))
+    assert batch_mod.covers_canvas(p, m, cw, ch)
+    assert not batch_mod.covers_canvas(p, m, cw + 1, ch) or x1 >= cw + 1
+    scanned = path_coverage(p, cw, ch, rule, aa, transform=m, straddle=True).full(cw, ch)
+    shortcut = batch_mod.full_mask(cw, ch).full(cw, ch)
+    np.testing.assert_array_equal(scanned, shortcut)
+
+
+def test_what_does_not_cover_the_canvas_is_scan_converted():
+    w, h = 20, 10
+    ident = Affine(1, 0, 0, 1, 0, 0)
+    assert batch_mod.covers_canvas(rect_path(0, 0, 20, 10), ident, w, h)
+    assert not batch_mod.covers_canvas(rect_path(0, 0, 19.5, 10), ident, w, h)   # a column short
+    assert not batch_mod.covers_canvas(rect_path(0.1, 0, 20, 10), ident, w, h)   # edge inside
+    assert not batch_mod.covers_canvas(rect_path(0, 0, 20, 10),
+                                       Affine.rotate(0.1), w, h)                  # not axis-aligned
+    assert not batch_mod.covers_canvas(rect_path(-5, -5, 30, 20, rx=2), ident, w, h)  # rounded
+    bowtie = Path(np.array([0, 1, 1, 1, 4], np.uint8),
+                  np.array([[-1, -1], [30, -1], [-1, 20], [30, 20]], float))
+    assert not batch_mod.covers_canvas(bowtie, ident, w, h)                      # sides cross
+    with limits.applied(limits.Limits(max_coord=25)):
+        # beyond max_coord the scan converter refuses it: so does the shortcut
+        assert not batch_mod.covers_canvas(rect_path(-30, -30, 60, 60), ident, w, h)
+
+
+def test_a_background_renders_as_scan_converted():
+    # the same document with the background scan converted (a rectangle a
+    # hair inside the canvas on the right is not covering: drawn by the
+    # scan converter; the covering one by the shortcut) gives the same pixels
+    # where both cover
+    def doc(width):
+        bg = PathNode(path=rect_path(0, 0, width, 30), fill=Fill(SolidPaint((0.2, 0.4, 0.6, 0.8))))
+        disc = PathNode(path=circle(20, 15, 9), fill=Fill(SolidPaint((1, 0, 0, 0.5))))
+        return Tree(40, 30, Group(children=[bg, disc]))
+    a = render_tree(doc(40), dtype='uint8').to_rgba8()
+    old = batch_mod.covers_canvas
+    try:
+        batch_mod.covers_canvas = lambda *args: False
+        b = render_tree(doc(40), dtype='uint8').to_rgba8()
+    finally:
+        batch_mod.covers_canvas = old
+    np.testing.assert_array_equal(a, b)
