@@ -8,6 +8,8 @@ import gc
 import raster
 from _shared import SUITE_FONTS
 
+FONTS = raster.FontOptions(dirs=[SUITE_FONTS], system=False)
+
 DOC = b'''<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink"
      width="60" height="30">
   <defs><g id="a"><rect width="4" height="4"/><use xlink:href="#b" x="5"/></g>
@@ -37,8 +39,8 @@ def _garbage(fn):
 
 
 def test_text_and_use_leave_no_cycles():
-    raster.load_svg(DOC, font_dirs=[SUITE_FONTS])          # modules and fonts loaded once
-    left = _garbage(lambda: raster.load_svg(DOC, font_dirs=[SUITE_FONTS]))
+    raster.load_svg(DOC, fonts=FONTS)          # modules and fonts loaded once
+    left = _garbage(lambda: raster.load_svg(DOC, fonts=FONTS))
     names = sorted({type(o).__name__ for o in left})
     # (one small cycle per document remains: the CSS @import loader, which
     # calls itself for nested imports, with the options it reads)
