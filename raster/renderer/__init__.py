@@ -204,11 +204,11 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
         else:
             x0, y0, x1, y1 = check_window(window, g.width, g.height)
         canvas = Canvas(x1 - x0, y1 - y0, background, dtype)
-        t = g.transform if window is None else Affine.translate(-x0, -y0) @ g.transform
-        frame = None if window is None else (-x0, -y0, g.width - x0, g.height - y0)
         # the whole-render budgets (pixel work, flattened points) of raster.limits
         with limits.metering(limits.Meter(limits.current(), canvas.width * canvas.height)):
-            Renderer(tol, canvas.dtype).draw(g.node, t, canvas, frame=frame)
+            # a window is drawn with the whole output's CTM at its place
+            Renderer(tol, canvas.dtype).draw(g.node, g.transform, canvas, origin=(x0, y0),
+                                             size=(g.width, g.height))
     return canvas
 
 

@@ -28,7 +28,7 @@ import numpy as np
 from ..errors import RasterError
 from ..geometry.flattening import flatten, flatten_joined
 from ..pixels.hairline import hairline_edges, hairline_outline
-from ..pixels.scan import coverage, coverage_batch, path_coverage
+from ..pixels.scan import coverage, coverage_batch
 from ..geometry.stroking import StrokeStyle, hairline_scale, stroke as stroke_outline, stroke_many
 from ..tree import Group, PathNode
 from .bounds import clip_rect, device_area, stroke_reach
@@ -73,13 +73,15 @@ class Masks:
         self._outside_stroke = {}
 
     # -- planning ----------------------------------------------------------------
-    def plan(self, nodes, t, canvas):
-        """Queue the paths of ``nodes`` (with CTM ``t``) drawn directly on
+    def plan(self, nodes, t, canvas, off=(0, 0)):
+        """Queue the paths of ``nodes`` (with CTM ``t`` to the canvas's
+        frame, where the canvas lies at ``off`` (ox, oy): see
+        :meth:`raster.renderer.draw.Renderer.draw`) drawn directly on
         ``canvas`` (not inside layered groups)."""
         stack = [(n, t) for n in reversed(nodes)]
         geo = self._geo_pending
         strokes = self._stroke_pending
-        size = (canvas.width, canvas.height)
+        size = (canvas.width, canvas.height, int(off[0]), int(off[1]))
         while stack:
             n, m = stack.pop()
             if isinstance(n, Group):
@@ -97,7 +99,7 @@ class Masks:
                 style = None if wh else _batch_stroke_style(n, m)
                 if not (wf or wh or style is not None):
                     continue
-                area = device_area(n.path, m, size)
+                area = device_area(n.path, m, size[:2], off=size[2:])
                 key = (id(n), m)
                 if wf or wh:
                     if area > 0:
@@ -108,30 +110,31 @@ class Masks:
                             self._outside_stroke[key] = size
                 if style is not None:
                     reach = stroke_reach(style) * m.max_scale() + 1.0
-                    sarea = device_area(n.path, m, size, reach)
+                    sarea = device_area(n.path, m, size[:2], reach, off=size[2:])
                     if sarea > 0:
                         strokes.setdefault(key, (n, m, size, sarea, style))
                     elif key not in strokes:
                         self._outside_stroke[key] = size
 
     # -- masks -------------------------------------------------------------------
-    def fill(self, n, t, canvas):
+    def fill(self, n, t, canvas, off=(0, 0)):
         """The fill coverage Mask of PathNode ``n`` under ``t`` on
-        ``canvas`` (None: nothing covered)."""
+        ``canvas`` at ``off`` (as for :meth:`plan`; None: nothing covered)."""
         key = (id(n), t)
-        if self._outside_fill.get(key) == (canvas.width, canvas.height):
+        size = (canvas.width, canvas.height, int(off[0]), int(off[1]))
+        if self._outside_fill.get(key) == size:
             del self._outside_fill[key]
             return None
         if key in self._geo_pending:
-            self._flush_geometry(key, canvas)
+            self._flush_geometry(key, size)
         if key in self._fill_ready:
             return self._fill_ready.pop(key)
-        edges = self.flat(n.path, t).edges(close_all=True)
+        edges = _shift(self.flat(n.path, t).edges(close_all=True), size)
         if len(edges) == 0:
             return None
         return coverage(edges, canvas.width, canvas.height, n.fill.rule, n.antialias)
 
-    def stroke(self, n, t, canvas):
+    def stroke(self, n, t, canvas, off=(0, 0)):
         """``(Mask or None, opacity factor)`` of PathNode ``n``'s stroke
         under ``t`` on ``canvas``.  A stroke thinner than one device pixel
         is drawn one pixel wide with its coverage scaled by its device width
@@ -140,11 +143,12 @@ class Masks:
         fill's polylines (:func:`raster.pixels.hairline.hairline_edges`)."""
         s = n.stroke.style
         key = (id(n), t)
-        if self._outside_stroke.get(key) == (canvas.width, canvas.height):
+        size = (canvas.width, canvas.height, int(off[0]), int(off[1]))
+        if self._outside_stroke.get(key) == size:
             del self._outside_stroke[key]
             return None, 1.0
         if key in self._geo_pending:
-            self._flush_geometry(key, canvas)
+            self._flush_geometry(key, size)
         m = self._hair_ready.pop(key, _ABSENT)
         if m is not _ABSENT:            # a batched hairline
             return m, s.width * t.mean_scale()
@@ -163,19 +167,19 @@ class Masks:
                 if edges is not None:
                     if not len(edges):
                         return None, factor
-                    return coverage(edges, canvas.width, canvas.height, 'nonzero',
+                    return coverage(_shift(edges, size), canvas.width, canvas.height, 'nonzero',
                                     n.antialias, exact=False), factor
         else:
             if key in self._stroke_pending:
-                self._flush_strokes(key, canvas)
+                self._flush_strokes(key, size)
             if key in self._stroke_ready:
                 return self._stroke_ready.pop(key), factor
         outline = stroke_outline(n.path, style, transform=t, tolerance=self.tol,
                                  straddle=True)
         if len(outline.verbs) == 0:
             return None, factor
-        return path_coverage(outline, canvas.width, canvas.height, 'nonzero', n.antialias,
-                             tolerance=self.tol), factor
+        edges = _shift(flatten(outline, self.tol).edges(close_all=True), size)
+        return coverage(edges, canvas.width, canvas.height, 'nonzero', n.antialias), factor
 
     def flat(self, path, t):
         """Polylines of ``path`` flattened under ``t`` (device pixels).  The
@@ -189,12 +193,12 @@ class Masks:
         return pl
 
     # -- batches -----------------------------------------------------------------
-    def _take(self, pending, key, canvas, verbs_max):
+    def _take(self, pending, key, size, verbs_max):
         """Pop queued entries of ``pending`` in document order, up to and
         including ``key`` and then while the batch holds fewer than
         ``verbs_max`` verbs and :data:`BATCH_AREA` pixels of masks; return
-        those drawn on ``canvas`` (others are drawn one by one)."""
-        size = (canvas.width, canvas.height)
+        those drawn on a canvas of ``size`` (w, h, ox, oy) (others are
+        drawn one by one)."""
         keys, verbs, area, seen = [], 0, 0.0, False
         for k in pending:
             v = pending[k]
@@ -212,11 +216,11 @@ class Masks:
                 out.append((k,) + v)
         return out
 
-    def _flush_geometry(self, key, canvas):
+    def _flush_geometry(self, key, size):
         """Masks of queued fills and undashed hairlines for ``canvas``, in
         document order up to and including ``key`` and then while the batch
         has room."""
-        items = self._take(self._geo_pending, key, canvas, BATCH_VERBS)
+        items = self._take(self._geo_pending, key, size, BATCH_VERBS)
         if not items:
             return
         try:
@@ -234,7 +238,7 @@ class Masks:
         if len(fi):
             sub = pl if wf.all() else pl.take(np.flatnonzero(wf[poly_item]))
             e, own = sub.edges(close_all=True, owners=True)
-            parts.append(e)
+            parts.append(_shift(e, size))
             counts.append(np.bincount(np.repeat(np.arange(len(fi)), npl[fi])[own]
                                       if len(own) else own, minlength=len(fi)))
             for i in fi.tolist():
@@ -257,7 +261,7 @@ class Masks:
             dotted = np.zeros(len(hi), bool)
             dotted[hair_of[dots]] = True
             keep = ~dotted[hair_of[own]]
-            parts.append(e[keep])
+            parts.append(_shift(e[keep], size))
             cnt = np.bincount(hair_of[own[keep]], minlength=len(hi))
             cnt[dotted] = 0
             counts.append(cnt)
@@ -270,20 +274,20 @@ class Masks:
                 keys.append(None if dotted[j] else (self._hair_ready, items[i][0]))
         try:
             masks = coverage_batch(np.concatenate(parts), np.concatenate(counts),
-                                   canvas.width, canvas.height, rules, aas, exact=exact)
+                                   size[0], size[1], rules, aas, exact=exact)
         except RasterError:
             return          # drawn one by one (errors where they were)
         for where, m in zip(keys, masks):
             if where is not None:
                 where[0][where[1]] = m
 
-    def _flush_strokes(self, key, canvas):
+    def _flush_strokes(self, key, size):
         """Outline queued strokes for ``canvas`` in document order, up to
         and including ``key`` and then while the batch has room: one
         :func:`raster.geometry.stroking.stroke_many` call per stroke style, then one
         :func:`raster.geometry.flattening.flatten_joined` and one
         :func:`raster.pixels.scan.coverage_batch` call for all outlines."""
-        items = self._take(self._stroke_pending, key, canvas, BATCH_VERBS // 4)
+        items = self._take(self._stroke_pending, key, size, BATCH_VERBS // 4)
         if not items:
             return
         by_style = {}
@@ -301,11 +305,20 @@ class Masks:
             e, own = pl.edges(close_all=True, owners=True)
             counts = np.bincount(np.repeat(np.arange(len(items)), np.diff(first))[own]
                                  if len(own) else own, minlength=len(items))
-            masks = coverage_batch(e, counts, canvas.width, canvas.height, 'nonzero',
+            masks = coverage_batch(_shift(e, size), counts, size[0], size[1], 'nonzero',
                                    [bool(it[1].antialias) for it in items])
         except RasterError:
             return          # stroked one by one (errors where they were)
         self._stroke_ready.update(zip([it[0] for it in items], masks))
+
+
+def _shift(edges, size):
+    """Edges ((E, 2, 2) float64, in the pixels of a canvas's frame) moved
+    onto a canvas of ``size`` (w, h, ox, oy) lying at (ox, oy) in it:
+    whole pixels, so the fractional parts stay as they are."""
+    if size[2] or size[3]:
+        return edges - np.array(size[2:4], np.float64)
+    return edges
 
 
 def _batch_stroke_style(n, t):

@@ -119,14 +119,33 @@ def test_corpus_windows_are_exact(name):
     assert_windows_equal(tree, 0, seed=1, width=600)
 
 
-def test_corpus_windows_of_curved_strokes_within_the_tolerance():
-    # the tiger's strokes: a window may flatten a curve into other pieces
-    # than the whole render does (a few pixels differ by up to 4 levels
-    # today), but each polyline straddles the curve within the tolerance:
-    # a pixel differs by at most a tolerance-wide sliver (255 x tolerance)
-    from raster.renderer import DEFAULT_TOLERANCE
+def test_corpus_windows_of_curved_strokes_equal_the_whole_render():
+    # the tiger's curved fills and strokes: every outline is flattened and
+    # stroked in the whole output's pixels whatever the window (a window
+    # moves the edges by whole pixels only), so windows equal the whole
+    # render within one level (a sum of coverage started at another column)
     tree = load_svg(os.path.join(CORPUS, 'tiger.svg'))
-    assert_windows_equal(tree, math.ceil(255 * DEFAULT_TOLERANCE), seed=1, width=600)
+    assert_windows_equal(tree, 1, seed=1, width=600)
+    assert_windows_equal(tree, 1, seed=5, width=457)
+
+
+def test_flattening_is_done_in_the_whole_outputs_pixels(monkeypatch):
+    # the transforms the renderer flattens with are those of the whole
+    # render, never translated by the window's corner
+    from raster.renderer import batch
+    seen = {'whole': set(), 'window': set()}
+    real = batch.flatten_joined
+
+    def spy(paths, transforms, *a, **k):
+        seen[mode].update(tuple(t) for t in (transforms or ()) if t is not None)
+        return real(paths, transforms, *a, **k)
+    monkeypatch.setattr(batch, 'flatten_joined', spy)
+    tree = load_svg((SVG % CASES['paths']).encode())
+    mode = 'whole'
+    render_tree(tree, dtype='uint8')
+    mode = 'window'
+    render_tree(tree, dtype='uint8', window=(37, 21, 141, 97))
+    assert seen['window'] and seen['window'] <= seen['whole']
 
 
 def test_render_window_front_door():
