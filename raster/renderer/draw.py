@@ -51,14 +51,15 @@ _LAYER_FIXED = 1 << 21
 
 class Renderer:
     """Draws tree nodes onto canvases with flattening ``tolerance`` (device
-    pixels).  The layers it makes (groups, masks, SVG images) have the
-    storage ``dtype`` (float32, or uint8 when drawing onto an 8-bit canvas:
+    pixels), keeping the outlines that reach past a window in ``store``
+    (a :class:`~raster.renderer.batch.EdgeStore` or None).  The layers it
+    makes (groups, masks, SVG images) have the storage ``dtype`` (float32, or uint8 when drawing onto an 8-bit canvas:
     a quarter of the memory); clip coverage is one float32 channel."""
 
-    def __init__(self, tolerance, dtype=np.float32):
+    def __init__(self, tolerance, dtype=np.float32, store=None):
         self.tol = tolerance
         self.dtype = np.dtype(dtype)
-        self.masks = Masks(tolerance)
+        self.masks = Masks(tolerance, store)
         self._limit_warned = False
         # windowed rendering: id(canvas) -> (ox, oy, fw, fh), see draw()
         self._places = {}
@@ -87,7 +88,7 @@ class Renderer:
         if windowed:
             self._places[id(canvas)] = place
         try:
-            self.masks.plan([node], t, canvas, (ox, oy))
+            self.masks.plan([node], t, canvas, (ox, oy), output=True)
             self.node(node, t, canvas)
         finally:
             if windowed:

@@ -205,3 +205,36 @@ def test_paths_outside_the_canvas_cover_nothing():
     assert np.array_equal(a, b)
     win = raster.render((SVG % (outside + inside)).encode(), window=(55, 35, 95, 75))
     assert np.array_equal(win, a[35:75, 55:95])
+
+
+def test_an_edge_store_keeps_outlines_across_windows_with_the_same_pixels():
+    # tiles of the tiger drawn row by row with one EdgeStore: the outlines
+    # crossing several tiles are flattened once (the store answers for
+    # them) and the tiles still equal the whole render
+    from raster.renderer import EdgeStore
+    tree = load_svg(os.path.join(CORPUS, 'tiger.svg'))
+    full = render_tree(tree, dtype='uint8', width=500).to_rgba8()
+    store = EdgeStore()
+    h, w = full.shape[:2]
+    for y0 in range(0, h, 128):
+        for x0 in range(0, w, 128):
+            win = (x0, y0, min(w, x0 + 128), min(h, y0 + 128))
+            part = render_tree(tree, dtype='uint8', width=500, window=win,
+                               store=store).to_rgba8()
+            assert np.array_equal(part, full[win[1]:win[3], win[0]:win[2]]), win
+    assert store.hits > 50
+
+
+def test_an_edge_store_serves_one_tree():
+    # a store given another tree (or output size) forgets what it held
+    from raster.renderer import EdgeStore
+    a = load_svg((SVG % CASES['paths']).encode())
+    b = load_svg((SVG % CASES['gradient']).encode())
+    store = EdgeStore()
+    render_tree(a, dtype='uint8', window=(0, 0, 160, 40), store=store)
+    assert len(store) > 0
+    want = render_tree(b, dtype='uint8').to_rgba8()[40:]
+    got = render_tree(b, dtype='uint8', window=(0, 40, 160, 120), store=store).to_rgba8()
+    assert np.array_equal(got, want)
+    store.bind(a, Affine.scale(2.0), 0.05, 0)
+    assert len(store) == 0
