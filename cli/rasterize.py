@@ -36,8 +36,9 @@ Large PNG output is rendered in strips of rows (windows of the whole
 render, equal to it) and written as the strips finish, so memory stays
 within ``--memory-budget`` (MB of strip pixels per process, default 256)
 whatever the size, up to 4 000 million pixels; ``--jobs`` spreads the
-strips of one large image over worker processes (for an image beyond the
-budget: the same strips and file bytes whatever the number of workers).  Other formats are encoded by Pillow
+strips of one large image over worker processes (a few strips a worker,
+of about equal work, taken as workers finish; the same pixels whatever
+the number of workers).  Other formats are encoded by Pillow
 from the whole image (at most 100 million pixels).
 
 Many files: every input (folders are walked for ``.svg``/``.svgz``,
@@ -256,7 +257,8 @@ def convert(args, dpi, fmt, bg, inp, out, jobs=1):
     from raster import limits
     from raster.errors import CanvasError
     from raster.renderer import MAX_WINDOWED_PIXELS, output_geometry, render_tree
-    from raster.renderer.tiles import BYTES_PER_PIXEL, strip_rows, strip_spans
+    from raster.renderer.tiles import (BYTES_PER_PIXEL, balanced_spans, row_work, strip_rows,
+                                       strip_spans)
     tree = _load(args, dpi, inp)
     kw = _render_kw(args, bg)
     g = output_geometry(tree, kw['width'], kw['height'], kw['zoom'], kw['node_id'], kw['crop'],
@@ -269,13 +271,18 @@ def convert(args, dpi, fmt, bg, inp, out, jobs=1):
         from raster.pixels.png import DEFAULT_LEVEL, PNGWriter
         level = DEFAULT_LEVEL if args.compress_level is None else args.compress_level
         workers = max(1, jobs)
-        # the budget is per process: the strips are the same whatever the
-        # number of workers (so is the file), and a worker pays the fixed
-        # cost of a strip (the tree walked, the outlines crossing it
-        # flattened) no more often than one process alone would
-        spans = strip_spans(g.height, strip_rows(g.width, budget))
-        if len(spans) == 1 and workers > 1:
-            spans = strip_spans(g.height, -(-g.height // workers))
+        # the budget is per process.  The strips are of about equal
+        # estimated work (row_work: where the paths are), at least
+        # MIN_STRIPS of them, whatever the number of workers (so is the
+        # file); workers take them in order as each finishes one, so none
+        # waits long for the last.  A process keeps the outlines crossing
+        # into its next strips (EdgeStore): the strips cost about the whole
+        # render's flattening.  An image within the budget drawn in strips
+        # only to use the workers gets STRIPS_PER_WORKER a worker.
+        rows = strip_rows(g.width, budget)
+        count = max(len(strip_spans(g.height, rows)),
+                    MIN_STRIPS if big else STRIPS_PER_WORKER * workers)
+        spans = balanced_spans(row_work(g.node, g.transform, g.width, g.height), count, rows)
         job = (tree, kw, level)
         with open_output(out) as f:
             png = PNGWriter(f, g.width, g.height, level, dpi=res)
@@ -289,8 +296,11 @@ def convert(args, dpi, fmt, bg, inp, out, jobs=1):
                 finally:
                     _JOB = None
             else:
-                for span in spans:
-                    png.write_compressed(_compress_strip(job, span))
+                try:
+                    for span in spans:
+                        png.write_compressed(_compress_strip(job, span))
+                finally:
+                    _forget_store()
             png.close()
         return
     if pixels > limits.current().max_pixels:
@@ -307,6 +317,28 @@ def convert(args, dpi, fmt, bg, inp, out, jobs=1):
 #: What forked workers of one image render: (tree, render_tree options, level).
 _JOB = None
 
+#: Fewest strips of an image beyond the memory budget, and strips per
+#: worker of one within it spread over workers.
+MIN_STRIPS = 6
+STRIPS_PER_WORKER = 3
+
+#: The EdgeStore of this process's windows (the strips or tiles of one
+#: output at a time; see raster.renderer.EdgeStore).
+_STORE = None
+
+
+def _store():
+    global _STORE
+    if _STORE is None:
+        from raster.renderer import EdgeStore
+        _STORE = EdgeStore()
+    return _STORE
+
+
+def _forget_store():
+    global _STORE
+    _STORE = None
+
 
 def _compress_strip(job, span):
     from raster.pixels.png import compress_strip
@@ -316,7 +348,7 @@ def _compress_strip(job, span):
     from raster.renderer import MAX_WINDOWED_PIXELS, output_geometry
     g = output_geometry(tree, kw['width'], kw['height'], kw['zoom'], kw['node_id'], kw['crop'],
                         max_pixels=MAX_WINDOWED_PIXELS)
-    canvas = render_tree(tree, dtype='uint8', window=(0, y0, g.width, y1), **kw)
+    canvas = render_tree(tree, dtype='uint8', window=(0, y0, g.width, y1), store=_store(), **kw)
     rgba = canvas.to_rgba8()
     del canvas
     return compress_strip(rgba, level, first=y0 == 0)
@@ -480,6 +512,7 @@ def _tiles(args, dpi, inp):
                     bar.update(1)
     finally:
         _TILES = None
+        _forget_store()
         if bar is not None:
             bar.close()
     meta = {'scheme': 'xyz', 'format': 'png', 'tile_size': TILE_SIZE,
@@ -515,7 +548,7 @@ def _tile_piece(task):
     x1, y1 = min(lv.width, c1 * T), min(lv.height, (row + 1) * T)
     side = dict(width=lv.width) if tree.width >= tree.height else dict(height=lv.height)
     canvas = render_tree(tree, background=bg, node_id=args.id, tolerance=_tolerance(args),
-                         dtype='uint8', window=(x0, y0, x1, y1), **side)
+                         dtype='uint8', window=(x0, y0, x1, y1), store=_store(), **side)
     rgba = canvas.to_rgba8()
     del canvas
     n = 0
