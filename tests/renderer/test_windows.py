@@ -238,3 +238,33 @@ def test_an_edge_store_serves_one_tree():
     assert np.array_equal(got, want)
     store.bind(a, Affine.scale(2.0), 0.05, 0)
     assert len(store) == 0
+
+
+def _svg_image_doc(preserve='xMidYMid meet'):
+    # an SVG document drawn as an image: curves, a blur reaching past the
+    # window, a clipped group and a mask inside, the image placed off the
+    # pixel grid, scaled and clipped to its viewport
+    import base64
+    inner = ('<svg xmlns="http://www.w3.org/2000/svg" width="50" height="40" '
+             'viewBox="0 0 50 40"><defs><filter id="b" x="-50%" y="-50%" width="200%" '
+             'height="200%"><feGaussianBlur stdDeviation="2.5"/></filter>'
+             '<clipPath id="c"><circle cx="25" cy="20" r="15"/></clipPath>'
+             '<mask id="m"><rect width="50" height="40" fill="white"/>'
+             '<circle cx="30" cy="15" r="6" fill="black"/></mask></defs>'
+             '<rect width="50" height="40" fill="#eef"/>'
+             '<ellipse cx="18" cy="22" rx="12" ry="9" fill="crimson" filter="url(#b)"/>'
+             '<g clip-path="url(#c)" mask="url(#m)"><path d="M0 40 C 20 -10 30 50 50 0" '
+             'stroke="navy" stroke-width="4" fill="none"/></g></svg>')
+    href = 'data:image/svg+xml;base64,' + base64.b64encode(inner.encode()).decode()
+    return (SVG % ('<image x="13.3" y="9.7" width="117" height="93" '
+                   'preserveAspectRatio="%s" href="%s"/>' % (preserve, href))).encode()
+
+
+@pytest.mark.parametrize('preserve', ['xMidYMid meet', 'xMinYMin slice', 'none'])
+def test_windows_of_a_nested_svg_image_equal_the_whole_render(preserve):
+    tree = load_svg(_svg_image_doc(preserve))
+    full = assert_windows_equal(tree, 1, seed=7, width=331)
+    assert full[..., 3].any()
+    # a window that cuts through the image and its blur
+    part = render_tree(tree, dtype='uint8', width=331, window=(61, 47, 140, 130)).to_rgba8()
+    assert np.abs(part.astype(int) - full[47:130, 61:140]).max() <= 1
