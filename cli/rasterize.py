@@ -132,6 +132,9 @@ def build_parser():
     g.add_argument('--max-zoom', type=int, metavar='Z',
                    help='with --tiles: last zoom level (default: where the longer side '
                         'reaches the natural size)')
+    g.add_argument('--all-tiles', action='store_true',
+                   help='with --tiles: write fully transparent tiles too (by default they '
+                        'are left out: map clients draw a missing tile as blank)')
     add_font_options(ap)
     add_languages(ap)
     add_limit_options(ap)
@@ -496,18 +499,21 @@ def _tiles(args, dpi, inp):
                 tasks.append((lv, row, c0, min(lv.columns, c0 + per)))
     global _TILES
     _TILES = (tree, bg, args, level, args.tiles)
-    count = 0
+    count = skipped = 0
     bar = _progress(len(tasks))
     try:
         if jobs > 1 and len(tasks) > 1:
             with process_pool(min(jobs, len(tasks))) as pool:
-                for n in pool.imap_unordered(_tile_piece, tasks):
+                for n, k in pool.imap(_tile_piece, tasks):
                     count += n
+                    skipped += k
                     if bar is not None:
                         bar.update(1)
         else:
             for t in tasks:
-                count += _tile_piece(t)
+                n, k = _tile_piece(t)
+                count += n
+                skipped += k
                 if bar is not None:
                     bar.update(1)
     finally:
@@ -521,12 +527,17 @@ def _tiles(args, dpi, inp):
             'bounds_units': 'document px (x right, y down) of level 0 to its width, height',
             'levels': [{'zoom': lv.zoom, 'width': lv.width, 'height': lv.height,
                         'columns': lv.columns, 'rows': lv.rows,
-                        'scale': lv.width / tree.width} for lv in levels]}
+                        'scale': lv.width / tree.width} for lv in levels],
+            # as web map tile generators do for sparse maps: a missing tile
+            # is a fully transparent one (clients draw it blank)
+            'empty_tiles': 'written' if args.all_tiles else 'omitted',
+            'tiles_written': count, 'tiles_omitted': skipped}
     os.makedirs(args.tiles, exist_ok=True)
     write_output(os.path.join(args.tiles, 'tiles.json'),
                  (json.dumps(meta, indent=1) + '\n').encode('utf-8'))
-    print('%s: %d tiles, zoom %d-%d, in %s' % (PROG, count, levels[0].zoom, levels[-1].zoom,
-                                              args.tiles), file=sys.stderr)
+    print('%s: %d tiles, zoom %d-%d, in %s%s'
+          % (PROG, count, levels[0].zoom, levels[-1].zoom, args.tiles,
+             ' (%d empty tiles omitted)' % skipped if skipped else ''), file=sys.stderr)
     return 0
 
 
@@ -536,7 +547,8 @@ _TILES = None
 
 def _tile_piece(task):
     """Render tiles ``c0 .. c1 - 1`` of one tile row of a level as one
-    window and write them; returns how many were written."""
+    window and write them (fully transparent ones only with
+    ``--all-tiles``); returns ``(written, omitted)``."""
     import numpy as np
     from raster.pixels.png import encode_png
     from raster.renderer import render_tree
@@ -551,16 +563,19 @@ def _tile_piece(task):
                          dtype='uint8', window=(x0, y0, x1, y1), store=_store(), **side)
     rgba = canvas.to_rgba8()
     del canvas
-    n = 0
+    n = k = 0
     for c in range(c0, c1):
-        tile = np.zeros((T, T, 4), np.uint8)
         part = rgba[:, (c - c0) * T:(c - c0 + 1) * T]
+        if not args.all_tiles and not part[..., 3].any():
+            k += 1
+            continue
+        tile = np.zeros((T, T, 4), np.uint8)
         tile[:part.shape[0], :part.shape[1]] = part
         d = os.path.join(folder, str(lv.zoom), str(c))
         os.makedirs(d, exist_ok=True)
         write_output(os.path.join(d, '%d.png' % row), encode_png(tile, level))
         n += 1
-    return n
+    return n, k
 
 
 def main(argv=None):
