@@ -359,14 +359,16 @@ class Renderer:
 
     def paint(self, canvas, mask, paint, opacity, t):
         """Composite ``paint`` (in the user space that ``t`` maps to the
-        canvas) through coverage ``mask`` with ``opacity``.  Gradient and
+        canvas's frame) through coverage ``mask`` with ``opacity``.  Gradient and
         pattern colours are made and composited a strip of rows at a time
         (:data:`raster.renderer.paint.STRIP_PIXELS`)."""
         limits.spend_work(mask.data.size, 'a path')
         if isinstance(paint, SolidPaint):
             canvas.fill(mask, paint.color, opacity)
             return
-        t = self.local(t, canvas)
+        # colours are computed at the pixel centres of the canvas's frame
+        # with the frame's CTM: a window gets the whole render's colours
+        ox, oy = self.place(canvas)[:2]
         if isinstance(paint, (LinearGradient, RadialGradient, SweepGradient)):
             def colors(m):
                 return gradient_colors(paint, m, t)
@@ -387,7 +389,7 @@ class Renderer:
         step = max(1, STRIP_PIXELS // max(1, w))
         for r0 in range(0, h, step):
             m = mask if h <= step else Mask(mask.data[r0:r0 + step], mask.x0, mask.y0 + r0)
-            src = colors(m)
+            src = colors(m if not (ox or oy) else Mask(m.data, m.x0 + ox, m.y0 + oy))
             if src is not None:
                 canvas.composite(src, m.x0, m.y0, opacity)
 

@@ -1,9 +1,9 @@
 """Windows of a render (render_tree(window=...), raster.render(window=)):
 a window equals that part of the whole image -- bit for bit for paths,
 gradients, patterns, clip paths, masks, groups and most filters, within one
-level of 255 where a blur's or gradient's float sums round differently at
+level of 255 where a blur's or the scan's float sums round differently at
 another layer origin -- including effects that reach across the window's
-border (blurs, offsets, shadows, morphology, feTile)."""
+border (blurs, offsets, shadows, morphology, feTile, lighting)."""
 
 import math
 import os
@@ -19,7 +19,7 @@ from raster.geometry.transform import Affine
 from raster.svg import load_svg
 from raster.tree import filter as F
 
-from _shared import CORPUS
+from _shared import CORPUS, SUITE_TESTS
 
 SVG = '<svg xmlns="http://www.w3.org/2000/svg" width="160" height="120">%s</svg>'
 
@@ -59,6 +59,17 @@ CASES = {
             '<feFlood flood-color="green" x="10" y="10" width="23" height="17" result="a"/>'
             '<feOffset dx="5" dy="3"/><feTile/></filter></defs>'
             '<rect x="5" y="5" width="150" height="110" filter="url(#f)"/>',
+    'lighting': '<defs><radialGradient id="g" r="0.5"><stop offset="0.4" stop-color="white"/>'
+                '<stop offset="1" stop-color="white" stop-opacity="0"/></radialGradient>'
+                '<filter id="d" color-interpolation-filters="sRGB"><feDiffuseLighting '
+                'surfaceScale="10"><feDistantLight azimuth="45" elevation="45"/>'
+                '</feDiffuseLighting></filter><filter id="s"><feSpecularLighting '
+                'in="SourceAlpha" surfaceScale="7" specularExponent="8" '
+                'lighting-color="seagreen"><feSpotLight x="110" y="90" z="25" pointsAtX="60" '
+                'pointsAtY="40" specularExponent="3" limitingConeAngle="40"/>'
+                '</feSpecularLighting></filter></defs>'
+                '<rect x="10" y="10" width="70" height="100" fill="url(#g)" filter="url(#d)"/>'
+                '<ellipse cx="115" cy="60" rx="40" ry="50" fill="url(#g)" filter="url(#s)"/>',
     'nested': '<defs><filter id="f" x="-40%" y="-40%" width="180%" height="180%">'
               '<feGaussianBlur stdDeviation="3"/></filter></defs>'
               '<g opacity="0.7" filter="url(#f)"><g filter="url(#f)">'
@@ -94,10 +105,32 @@ def test_windows_equal_the_whole_render(name):
     assert full[..., 3].any()                    # the case draws something
 
 
-@pytest.mark.parametrize('name', ['blur', 'shadow-offset', 'pattern', 'clip-mask'])
+@pytest.mark.parametrize('name', ['blur', 'shadow-offset', 'pattern', 'clip-mask', 'lighting'])
 def test_windows_equal_the_whole_render_scaled(name):
     tree = load_svg((SVG % CASES[name]).encode())
     assert_windows_equal(tree, 1, seed=3, width=397)
+
+
+def test_lighting_windows_of_the_resvg_suite_equal_the_whole_render():
+    # feDiffuseLighting / feSpecularLighting with every light source: the
+    # surface normal at a window's edge comes from the neighbouring pixels
+    # (the layer reaches past the window) and the bump map's gradient
+    # colours are those of the whole render (each pixel's paint position
+    # rounded once), so surfaceScale has no rounding difference to magnify
+    import glob
+    files = sorted(f for d in ('feDiffuseLighting', 'feSpecularLighting', 'feDistantLight',
+                               'fePointLight', 'feSpotLight')
+                   for f in glob.glob(os.path.join(SUITE_TESTS, 'filters', d, '*.svg')))
+    assert len(files) > 30
+    drawn = 0
+    for f in files:
+        try:
+            tree = load_svg(f)
+        except raster.errors.RasterError:
+            continue
+        full = assert_windows_equal(tree, 1, seed=len(f))
+        drawn += bool(full[..., 3].any())
+    assert drawn > 30
 
 
 def test_blur_windows_are_exact_where_the_window_is_far_from_content():
