@@ -87,7 +87,10 @@ class EdgeStore:
         return v[0]
 
     def put(self, key, edges, bottom):
+        """Keep a copy of ``edges`` (an array, or a fill's and hairline's
+        pair) under ``key`` until a window starts below row ``bottom``."""
         if self._edges + len(edges) <= self._max:
+            edges = edges.copy()
             old = self._d.pop(key, None)
             if old is not None:
                 self._edges -= len(old[0])
@@ -481,6 +484,10 @@ class _Pair:
     def __init__(self, fill, hair):
         self.fill, self.hair = fill, hair
 
+    def copy(self):
+        return _Pair(None if self.fill is None else self.fill.copy(),
+                     None if self.hair is None else self.hair.copy())
+
     def __len__(self):
         return (0 if self.fill is None else len(self.fill)) + \
             (0 if self.hair is None else len(self.hair))
@@ -492,21 +499,25 @@ def _onto(edges, size, counts=None):
     by whole pixels, so the fractional parts stay as they are -- without
     those wholly above or below it (they touch no row of it; those beside
     it take part in the scan's running sums and stay).  ``counts`` (edges
-    per mask, consecutive) are recounted; returns ``(edges, counts)``."""
-    if size[2] or size[3]:
-        edges = edges - np.array(size[2:4], np.float64)
-    if not len(edges):
-        return edges, counts
-    y = edges[:, :, 1]
-    off = (y <= 0.0).all(axis=1) | (y >= size[1]).all(axis=1)
-    if not off.any():
-        return edges, counts
-    keep = ~off
-    if counts is not None:
-        counts = np.asarray(counts, np.int64)
-        owner = np.repeat(np.arange(len(counts)), counts)
-        counts = np.bincount(owner[keep], minlength=len(counts))
-    return edges[keep], counts
+    per mask, consecutive) are recounted; returns ``(edges, counts)``
+    (``edges`` is never modified)."""
+    w, h, ox, oy = size
+    if len(edges):
+        ya, yb = edges[:, 0, 1], edges[:, 1, 1]
+        top, bottom = float(oy), float(oy + h)
+        off = ((ya <= top) & (yb <= top)) | ((ya >= bottom) & (yb >= bottom))
+        if off.any():
+            keep = ~off
+            if counts is not None:
+                owner = np.repeat(np.arange(len(counts)), np.asarray(counts, np.int64))
+                counts = np.bincount(owner[keep], minlength=len(counts))
+            edges = edges[keep]             # a copy: moved in place below
+            if ox or oy:
+                edges -= np.array((ox, oy), np.float64)
+            return edges, counts
+    if ox or oy:
+        edges = edges - np.array((ox, oy), np.float64)
+    return edges, counts
 
 
 def _batch_stroke_style(n, t):

@@ -301,3 +301,17 @@ def test_windows_of_a_nested_svg_image_equal_the_whole_render(preserve):
     # a window that cuts through the image and its blur
     part = render_tree(tree, dtype='uint8', width=331, window=(61, 47, 140, 130)).to_rgba8()
     assert np.abs(part.astype(int) - full[47:130, 61:140]).max() <= 1
+
+
+def test_an_edge_store_holds_at_most_its_edges():
+    # a store too small for any outline keeps none and changes no pixel
+    from raster.renderer import EdgeStore
+    tree = load_svg(os.path.join(CORPUS, 'tiger.svg'))
+    full = render_tree(tree, dtype='uint8', width=300).to_rgba8()
+    small, big = EdgeStore(max_edges=5), EdgeStore()
+    for y0 in range(0, full.shape[0], 60):
+        win = (0, y0, 300, min(full.shape[0], y0 + 60))
+        for st in (small, big):
+            part = render_tree(tree, dtype='uint8', width=300, window=win, store=st).to_rgba8()
+            assert np.array_equal(part, full[win[1]:win[3]])
+    assert len(small) == 0 and small.hits == 0 and big.hits > 0
