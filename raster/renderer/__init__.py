@@ -35,7 +35,8 @@ from .batch import EdgeStore
 from .draw import Renderer
 
 __all__ = ['render_tree', 'output_size', 'output_geometry', 'OutputGeometry', 'find_node', 'DEFAULT_TOLERANCE',
-           'Renderer', 'check_window', 'MAX_WINDOWED_PIXELS', 'EdgeStore']
+           'Renderer', 'check_window', 'MAX_WINDOWED_PIXELS',
+           'EdgeStore']
 
 #: Largest whole output (pixels) that is rendered a window at a time
 #: (``render_tree(window=...)``, the strips of ``rasterize``, map tiles):

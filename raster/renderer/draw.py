@@ -53,8 +53,9 @@ class Renderer:
     """Draws tree nodes onto canvases with flattening ``tolerance`` (device
     pixels), keeping the outlines that reach past a window in ``store``
     (a :class:`~raster.renderer.batch.EdgeStore` or None).  The layers it
-    makes (groups, masks, SVG images) have the storage ``dtype`` (float32, or uint8 when drawing onto an 8-bit canvas:
-    a quarter of the memory); clip coverage is one float32 channel."""
+    makes (groups, masks, SVG images) have the storage ``dtype`` (float32,
+    or uint8 when drawing onto an 8-bit canvas: a quarter of the memory);
+    clip coverage is one float32 channel."""
 
     def __init__(self, tolerance, dtype=np.float32, store=None):
         self.tol = tolerance
