@@ -322,8 +322,8 @@ _JOB = None
 
 #: Fewest strips of an image beyond the memory budget, and strips per
 #: worker of one within it spread over workers.
-MIN_STRIPS = 6
-STRIPS_PER_WORKER = 3
+MIN_STRIPS = 4
+STRIPS_PER_WORKER = 2
 
 #: The EdgeStore of this process's windows (the strips or tiles of one
 #: output at a time; see raster.renderer.EdgeStore).
