@@ -36,8 +36,9 @@ Large PNG output is rendered in strips of rows (windows of the whole
 render, equal to it) and written as the strips finish, so memory stays
 within ``--memory-budget`` (MB of strip pixels per process, default 256)
 whatever the size, up to 4 000 million pixels; ``--jobs`` spreads the
-strips of one large image over worker processes (for an image beyond the
-budget: the same strips and file bytes whatever the number of workers).  Other formats are encoded by Pillow
+strips of one large image over worker processes (a few strips a worker,
+of about equal work, taken as workers finish; the same pixels whatever
+the number of workers).  Other formats are encoded by Pillow
 from the whole image (at most 100 million pixels).
 
 Many files: every input (folders are walked for ``.svg``/``.svgz``,
@@ -131,6 +132,9 @@ def build_parser():
     g.add_argument('--max-zoom', type=int, metavar='Z',
                    help='with --tiles: last zoom level (default: where the longer side '
                         'reaches the natural size)')
+    g.add_argument('--all-tiles', action='store_true',
+                   help='with --tiles: write fully transparent tiles too (by default they '
+                        'are left out: map clients draw a missing tile as blank)')
     add_font_options(ap)
     add_languages(ap)
     add_limit_options(ap)
@@ -256,7 +260,8 @@ def convert(args, dpi, fmt, bg, inp, out, jobs=1):
     from raster import limits
     from raster.errors import CanvasError
     from raster.renderer import MAX_WINDOWED_PIXELS, output_geometry, render_tree
-    from raster.renderer.tiles import BYTES_PER_PIXEL, strip_rows, strip_spans
+    from raster.renderer.tiles import (BYTES_PER_PIXEL, balanced_spans, row_work, strip_rows,
+                                       strip_spans)
     tree = _load(args, dpi, inp)
     kw = _render_kw(args, bg)
     g = output_geometry(tree, kw['width'], kw['height'], kw['zoom'], kw['node_id'], kw['crop'],
@@ -269,13 +274,18 @@ def convert(args, dpi, fmt, bg, inp, out, jobs=1):
         from raster.pixels.png import DEFAULT_LEVEL, PNGWriter
         level = DEFAULT_LEVEL if args.compress_level is None else args.compress_level
         workers = max(1, jobs)
-        # the budget is per process: the strips are the same whatever the
-        # number of workers (so is the file), and a worker pays the fixed
-        # cost of a strip (the tree walked, the outlines crossing it
-        # flattened) no more often than one process alone would
-        spans = strip_spans(g.height, strip_rows(g.width, budget))
-        if len(spans) == 1 and workers > 1:
-            spans = strip_spans(g.height, -(-g.height // workers))
+        # the budget is per process.  The strips are of about equal
+        # estimated work (row_work: where the paths are), at least
+        # MIN_STRIPS of them, whatever the number of workers (so is the
+        # file); workers take them in order as each finishes one, so none
+        # waits long for the last.  A process keeps the outlines crossing
+        # into its next strips (EdgeStore): the strips cost about the whole
+        # render's flattening.  An image within the budget drawn in strips
+        # only to use the workers gets STRIPS_PER_WORKER a worker.
+        rows = strip_rows(g.width, budget)
+        count = max(len(strip_spans(g.height, rows)),
+                    MIN_STRIPS if big else STRIPS_PER_WORKER * workers)
+        spans = balanced_spans(row_work(g.node, g.transform, g.width, g.height), count, rows)
         job = (tree, kw, level)
         with open_output(out) as f:
             png = PNGWriter(f, g.width, g.height, level, dpi=res)
@@ -289,8 +299,11 @@ def convert(args, dpi, fmt, bg, inp, out, jobs=1):
                 finally:
                     _JOB = None
             else:
-                for span in spans:
-                    png.write_compressed(_compress_strip(job, span))
+                try:
+                    for span in spans:
+                        png.write_compressed(_compress_strip(job, span))
+                finally:
+                    _forget_store()
             png.close()
         return
     if pixels > limits.current().max_pixels:
@@ -307,6 +320,28 @@ def convert(args, dpi, fmt, bg, inp, out, jobs=1):
 #: What forked workers of one image render: (tree, render_tree options, level).
 _JOB = None
 
+#: Fewest strips of an image beyond the memory budget, and strips per
+#: worker of one within it spread over workers.
+MIN_STRIPS = 4
+STRIPS_PER_WORKER = 2
+
+#: The EdgeStore of this process's windows (the strips or tiles of one
+#: output at a time; see raster.renderer.EdgeStore).
+_STORE = None
+
+
+def _store():
+    global _STORE
+    if _STORE is None:
+        from raster.renderer import EdgeStore
+        _STORE = EdgeStore()
+    return _STORE
+
+
+def _forget_store():
+    global _STORE
+    _STORE = None
+
 
 def _compress_strip(job, span):
     from raster.pixels.png import compress_strip
@@ -316,7 +351,7 @@ def _compress_strip(job, span):
     from raster.renderer import MAX_WINDOWED_PIXELS, output_geometry
     g = output_geometry(tree, kw['width'], kw['height'], kw['zoom'], kw['node_id'], kw['crop'],
                         max_pixels=MAX_WINDOWED_PIXELS)
-    canvas = render_tree(tree, dtype='uint8', window=(0, y0, g.width, y1), **kw)
+    canvas = render_tree(tree, dtype='uint8', window=(0, y0, g.width, y1), store=_store(), **kw)
     rgba = canvas.to_rgba8()
     del canvas
     return compress_strip(rgba, level, first=y0 == 0)
@@ -464,22 +499,26 @@ def _tiles(args, dpi, inp):
                 tasks.append((lv, row, c0, min(lv.columns, c0 + per)))
     global _TILES
     _TILES = (tree, bg, args, level, args.tiles)
-    count = 0
+    count = skipped = 0
     bar = _progress(len(tasks))
     try:
         if jobs > 1 and len(tasks) > 1:
             with process_pool(min(jobs, len(tasks))) as pool:
-                for n in pool.imap_unordered(_tile_piece, tasks):
+                for n, k in pool.imap(_tile_piece, tasks):
                     count += n
+                    skipped += k
                     if bar is not None:
                         bar.update(1)
         else:
             for t in tasks:
-                count += _tile_piece(t)
+                n, k = _tile_piece(t)
+                count += n
+                skipped += k
                 if bar is not None:
                     bar.update(1)
     finally:
         _TILES = None
+        _forget_store()
         if bar is not None:
             bar.close()
     meta = {'scheme': 'xyz', 'format': 'png', 'tile_size': TILE_SIZE,
@@ -488,12 +527,17 @@ def _tiles(args, dpi, inp):
             'bounds_units': 'document px (x right, y down) of level 0 to its width, height',
             'levels': [{'zoom': lv.zoom, 'width': lv.width, 'height': lv.height,
                         'columns': lv.columns, 'rows': lv.rows,
-                        'scale': lv.width / tree.width} for lv in levels]}
+                        'scale': lv.width / tree.width} for lv in levels],
+            # as web map tile generators do for sparse maps: a missing tile
+            # is a fully transparent one (clients draw it blank)
+            'empty_tiles': 'written' if args.all_tiles else 'omitted',
+            'tiles_written': count, 'tiles_omitted': skipped}
     os.makedirs(args.tiles, exist_ok=True)
     write_output(os.path.join(args.tiles, 'tiles.json'),
                  (json.dumps(meta, indent=1) + '\n').encode('utf-8'))
-    print('%s: %d tiles, zoom %d-%d, in %s' % (PROG, count, levels[0].zoom, levels[-1].zoom,
-                                              args.tiles), file=sys.stderr)
+    print('%s: %d tiles, zoom %d-%d, in %s%s'
+          % (PROG, count, levels[0].zoom, levels[-1].zoom, args.tiles,
+             ' (%d empty tiles omitted)' % skipped if skipped else ''), file=sys.stderr)
     return 0
 
 
@@ -503,7 +547,8 @@ _TILES = None
 
 def _tile_piece(task):
     """Render tiles ``c0 .. c1 - 1`` of one tile row of a level as one
-    window and write them; returns how many were written."""
+    window and write them (fully transparent ones only with
+    ``--all-tiles``); returns ``(written, omitted)``."""
     import numpy as np
     from raster.pixels.png import encode_png
     from raster.renderer import render_tree
@@ -515,19 +560,22 @@ def _tile_piece(task):
     x1, y1 = min(lv.width, c1 * T), min(lv.height, (row + 1) * T)
     side = dict(width=lv.width) if tree.width >= tree.height else dict(height=lv.height)
     canvas = render_tree(tree, background=bg, node_id=args.id, tolerance=_tolerance(args),
-                         dtype='uint8', window=(x0, y0, x1, y1), **side)
+                         dtype='uint8', window=(x0, y0, x1, y1), store=_store(), **side)
     rgba = canvas.to_rgba8()
     del canvas
-    n = 0
+    n = k = 0
     for c in range(c0, c1):
-        tile = np.zeros((T, T, 4), np.uint8)
         part = rgba[:, (c - c0) * T:(c - c0 + 1) * T]
+        if not args.all_tiles and not part[..., 3].any():
+            k += 1
+            continue
+        tile = np.zeros((T, T, 4), np.uint8)
         tile[:part.shape[0], :part.shape[1]] = part
         d = os.path.join(folder, str(lv.zoom), str(c))
         os.makedirs(d, exist_ok=True)
         write_output(os.path.join(d, '%d.png' % row), encode_png(tile, level))
         n += 1
-    return n
+    return n, k
 
 
 def main(argv=None):

@@ -50,6 +50,22 @@ def test_chunks_rendered_on_workers_equal_the_single_render(client):
     assert len(pids) == 2 and os.getpid() not in pids
 
 
+def test_stored_to_zarr_on_the_cluster_and_read_back(client, tmp_path):
+    # the use: a lazy render stored to zarr, chunk by chunk on the
+    # workers (each chunk a window written by the worker that rendered it),
+    # read back equal to the single render
+    zarr = pytest.importorskip('zarr')
+    arr = render_array(DOC, width=333, chunks=(64, 100))
+    path = str(tmp_path / 'map.zarr')
+    arr.to_zarr(path, compute=True)
+    z = zarr.open_array(path, mode='r')
+    assert z.shape == (217, 333, 4) and z.dtype == np.uint8 and z.chunks == (64, 100, 4)
+    whole = raster.render(DOC, 333)
+    assert int(np.abs(z[...].astype(int) - whole).max()) <= 1
+    back = da.from_zarr(path)
+    assert np.array_equal(back[100:200, 50:300].compute(), z[100:200, 50:300])
+
+
 def test_reductions_and_slices(client):
     arr = render_array(DOC, chunks=64, background='white')
     whole = raster.render(DOC, background='white')

@@ -31,10 +31,12 @@ from ..pixels.canvas import Canvas
 from ..geometry.transform import IDENTITY, Affine
 from ..tree import Group, Tree
 from ..tree.extent import drawn_box
+from .batch import EdgeStore
 from .draw import Renderer
 
 __all__ = ['render_tree', 'output_size', 'output_geometry', 'OutputGeometry', 'find_node', 'DEFAULT_TOLERANCE',
-           'Renderer', 'check_window', 'MAX_WINDOWED_PIXELS']
+           'Renderer', 'check_window', 'MAX_WINDOWED_PIXELS',
+           'EdgeStore']
 
 #: Largest whole output (pixels) that is rendered a window at a time
 #: (``render_tree(window=...)``, the strips of ``rasterize``, map tiles):
@@ -140,7 +142,8 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
                 background: Optional[Tuple[float, float, float, float]] = None,
                 node_id: Optional[str] = None, tolerance: float = DEFAULT_TOLERANCE,
                 crop: bool = False, dtype='float32',
-                window: Optional[Tuple[int, int, int, int]] = None) -> Canvas:
+                window: Optional[Tuple[int, int, int, int]] = None,
+                store: Optional[EdgeStore] = None) -> Canvas:
     """Render a resolved tree.
 
     Parameters
@@ -176,6 +179,12 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
         one level of 255 where a blur's sums round differently).  The
         whole output may then be up to :data:`MAX_WINDOWED_PIXELS` pixels;
         the window at most :data:`raster.limits.MAX_PIXELS`.
+    store : raster.renderer.EdgeStore or None
+        With ``window``: keeps the edges of outlines that reach past this
+        window for the next windows of the same output (pass one store to
+        all of them, top to bottom): a path crossing several strips or
+        tiles is flattened and stroked once.  The pixels are the same
+        with or without it.
 
     Returns
     -------
@@ -204,11 +213,13 @@ def render_tree(tree: Tree, width: Optional[int] = None, height: Optional[int] =
         else:
             x0, y0, x1, y1 = check_window(window, g.width, g.height)
         canvas = Canvas(x1 - x0, y1 - y0, background, dtype)
-        t = g.transform if window is None else Affine.translate(-x0, -y0) @ g.transform
-        frame = None if window is None else (-x0, -y0, g.width - x0, g.height - y0)
         # the whole-render budgets (pixel work, flattened points) of raster.limits
         with limits.metering(limits.Meter(limits.current(), canvas.width * canvas.height)):
-            Renderer(tol, canvas.dtype).draw(g.node, t, canvas, frame=frame)
+            # a window is drawn with the whole output's CTM at its place
+            if store is not None:
+                store.bind(tree, g.transform, tol, y0)
+            Renderer(tol, canvas.dtype, store).draw(g.node, g.transform, canvas,
+                                                    origin=(x0, y0), size=(g.width, g.height))
     return canvas
 
 

@@ -29,12 +29,12 @@ from .. import limits
 from ..errors import RasterError
 from ..geometry.flattening import flatten, flatten_joined
 from ..pixels.hairline import hairline_edges, hairline_outline
-from ..pixels.scan import Mask, coverage, coverage_batch, path_coverage
+from ..pixels.scan import Mask, coverage, coverage_batch
 from ..geometry.stroking import StrokeStyle, hairline_scale, stroke as stroke_outline, stroke_many
 from ..tree import Group, PathNode
 from .bounds import clip_rect, device_area, stroke_reach
 
-__all__ = ['Masks', 'BATCH_VERBS', 'BATCH_AREA']
+__all__ = ['Masks', 'EdgeStore', 'BATCH_VERBS', 'BATCH_AREA', 'STORE_EDGES']
 
 #: Verbs per batch of fills and hairlines (a quarter of it for strokes):
 #: bounds the batch's geometry.
@@ -43,7 +43,63 @@ BATCH_VERBS = 5_000
 #: Mask pixels per batch (the masks of a batch are held until drawn).
 BATCH_AREA = 1_000_000
 
+#: Most edges an :class:`EdgeStore` holds (32 bytes each).
+STORE_EDGES = 2_000_000
+
 _ABSENT = object()
+
+
+class EdgeStore:
+    """Edges of outlines that reach past the window being drawn, kept
+    for the next windows of the same output (:func:`raster.renderer.render_tree`
+    with ``store=``): a path crossing several strips or tiles is flattened
+    and stroked once.  Edges are in the output's pixels (windows draw with
+    the whole output's CTM), so they are the same for every window; an
+    entry is dropped once a window starts below its device box (windows
+    drawn top to bottom, as strips and tile rows are; in another order
+    an outline is only flattened again).  Holds at most
+    :data:`STORE_EDGES` edges.  One store serves one tree, output and
+    tolerance: :meth:`bind` empties it for another."""
+
+    def __init__(self, max_edges: int = STORE_EDGES) -> None:
+        self._d = {}
+        self._edges = 0
+        self._max = int(max_edges)
+        self._bound = None
+        self.hits = 0
+
+    def bind(self, tree, transform, tolerance, y0):
+        """Use the store for a window of ``tree`` drawn with the output
+        CTM ``transform`` and ``tolerance``, starting at row ``y0``."""
+        bound = (tree, tuple(transform), float(tolerance))
+        if self._bound is None or self._bound[0] is not tree or self._bound[1:] != bound[1:]:
+            self._d.clear()
+            self._edges = 0
+            self._bound = bound
+        gone = [k for k, v in self._d.items() if v[1] <= y0]
+        for k in gone:
+            self._edges -= len(self._d.pop(k)[0])
+
+    def get(self, key):
+        v = self._d.get(key)
+        if v is None:
+            return None
+        self.hits += 1
+        return v[0]
+
+    def put(self, key, edges, bottom):
+        """Keep a copy of ``edges`` (an array, or a fill's and hairline's
+        pair) under ``key`` until a window starts below row ``bottom``."""
+        if self._edges + len(edges) <= self._max:
+            edges = edges.copy()
+            old = self._d.pop(key, None)
+            if old is not None:
+                self._edges -= len(old[0])
+            self._d[key] = (edges, bottom)
+            self._edges += len(edges)
+
+    def __len__(self):
+        return len(self._d)
 
 
 class Masks:
@@ -51,8 +107,12 @@ class Masks:
     docstring); ``tolerance`` is the flattening tolerance in device
     pixels."""
 
-    def __init__(self, tolerance):
+    def __init__(self, tolerance, store=None):
         self.tol = tolerance
+        # an EdgeStore shared by the windows of one output (or None), and
+        # the canvas (w, h, ox, oy) whose paths it serves (the window's own)
+        self.store = store
+        self._store_size = None
         self._flat_key = self._flat_path = self._flat = None
         # fills and undashed hairlines: key -> (node, t, size, area, fill?,
         # hair?) waiting in document order, and key -> Mask or None of
@@ -78,13 +138,18 @@ class Masks:
         self._cover_fill = {}
 
     # -- planning ----------------------------------------------------------------
-    def plan(self, nodes, t, canvas):
-        """Queue the paths of ``nodes`` (with CTM ``t``) drawn directly on
-        ``canvas`` (not inside layered groups)."""
+    def plan(self, nodes, t, canvas, off=(0, 0), output=False):
+        """Queue the paths of ``nodes`` (with CTM ``t`` to the canvas's
+        frame, where the canvas lies at ``off`` (ox, oy): see
+        :meth:`raster.renderer.draw.Renderer.draw`) drawn directly on
+        ``canvas`` (not inside layered groups).  ``output``: the canvas is
+        (a window of) the output, whose outlines the store keeps."""
         stack = [(n, t) for n in reversed(nodes)]
         geo = self._geo_pending
         strokes = self._stroke_pending
-        size = (canvas.width, canvas.height)
+        size = (canvas.width, canvas.height, int(off[0]), int(off[1]))
+        if output and self.store is not None:
+            self._store_size = size
         while stack:
             n, m = stack.pop()
             if isinstance(n, Group):
@@ -102,7 +167,7 @@ class Masks:
                 style = None if wh else _batch_stroke_style(n, m)
                 if not (wf or wh or style is not None):
                     continue
-                area = device_area(n.path, m, size)
+                area = device_area(n.path, m, size[:2], off=size[2:])
                 key = (id(n), m)
                 if wf and key not in geo and covers_canvas(n.path, m, *size):
                     self._cover_fill[key] = size
@@ -116,18 +181,18 @@ class Masks:
                             self._outside_stroke[key] = size
                 if style is not None:
                     reach = stroke_reach(style) * m.max_scale() + 1.0
-                    sarea = device_area(n.path, m, size, reach)
+                    sarea = device_area(n.path, m, size[:2], reach, off=size[2:])
                     if sarea > 0:
                         strokes.setdefault(key, (n, m, size, sarea, style))
                     elif key not in strokes:
                         self._outside_stroke[key] = size
 
     # -- masks -------------------------------------------------------------------
-    def fill(self, n, t, canvas):
+    def fill(self, n, t, canvas, off=(0, 0)):
         """The fill coverage Mask of PathNode ``n`` under ``t`` on
-        ``canvas`` (None: nothing covered)."""
+        ``canvas`` at ``off`` (as for :meth:`plan`; None: nothing covered)."""
         key = (id(n), t)
-        size = (canvas.width, canvas.height)
+        size = (canvas.width, canvas.height, int(off[0]), int(off[1]))
         if self._outside_fill.get(key) == size:
             del self._outside_fill[key]
             return None
@@ -135,17 +200,17 @@ class Masks:
                 key not in self._geo_pending and key not in self._fill_ready
                 and covers_canvas(n.path, t, *size)):
             self._cover_fill.pop(key, None)
-            return full_mask(*size)
+            return full_mask(*size[:2])
         if key in self._geo_pending:
-            self._flush_geometry(key, canvas)
+            self._flush_geometry(key, size)
         if key in self._fill_ready:
             return self._fill_ready.pop(key)
-        edges = self.flat(n.path, t).edges(close_all=True)
+        edges = _onto(self.flat(n.path, t).edges(close_all=True), size)[0]
         if len(edges) == 0:
             return None
         return coverage(edges, canvas.width, canvas.height, n.fill.rule, n.antialias)
 
-    def stroke(self, n, t, canvas):
+    def stroke(self, n, t, canvas, off=(0, 0)):
         """``(Mask or None, opacity factor)`` of PathNode ``n``'s stroke
         under ``t`` on ``canvas``.  A stroke thinner than one device pixel
         is drawn one pixel wide with its coverage scaled by its device width
@@ -154,11 +219,12 @@ class Masks:
         fill's polylines (:func:`raster.pixels.hairline.hairline_edges`)."""
         s = n.stroke.style
         key = (id(n), t)
-        if self._outside_stroke.get(key) == (canvas.width, canvas.height):
+        size = (canvas.width, canvas.height, int(off[0]), int(off[1]))
+        if self._outside_stroke.get(key) == size:
             del self._outside_stroke[key]
             return None, 1.0
         if key in self._geo_pending:
-            self._flush_geometry(key, canvas)
+            self._flush_geometry(key, size)
         m = self._hair_ready.pop(key, _ABSENT)
         if m is not _ABSENT:            # a batched hairline
             return m, s.width * t.mean_scale()
@@ -177,19 +243,19 @@ class Masks:
                 if edges is not None:
                     if not len(edges):
                         return None, factor
-                    return coverage(edges, canvas.width, canvas.height, 'nonzero',
+                    return coverage(_onto(edges, size)[0], canvas.width, canvas.height, 'nonzero',
                                     n.antialias, exact=False), factor
         else:
             if key in self._stroke_pending:
-                self._flush_strokes(key, canvas)
+                self._flush_strokes(key, size)
             if key in self._stroke_ready:
                 return self._stroke_ready.pop(key), factor
         outline = stroke_outline(n.path, style, transform=t, tolerance=self.tol,
                                  straddle=True)
         if len(outline.verbs) == 0:
             return None, factor
-        return path_coverage(outline, canvas.width, canvas.height, 'nonzero', n.antialias,
-                             tolerance=self.tol), factor
+        edges = _onto(flatten(outline, self.tol).edges(close_all=True), size)[0]
+        return coverage(edges, canvas.width, canvas.height, 'nonzero', n.antialias), factor
 
     def flat(self, path, t):
         """Polylines of ``path`` flattened under ``t`` (device pixels).  The
@@ -203,12 +269,12 @@ class Masks:
         return pl
 
     # -- batches -----------------------------------------------------------------
-    def _take(self, pending, key, canvas, verbs_max):
+    def _take(self, pending, key, size, verbs_max):
         """Pop queued entries of ``pending`` in document order, up to and
         including ``key`` and then while the batch holds fewer than
         ``verbs_max`` verbs and :data:`BATCH_AREA` pixels of masks; return
-        those drawn on ``canvas`` (others are drawn one by one)."""
-        size = (canvas.width, canvas.height)
+        those drawn on a canvas of ``size`` (w, h, ox, oy) (others are
+        drawn one by one)."""
         keys, verbs, area, seen = [], 0, 0.0, False
         for k in pending:
             v = pending[k]
@@ -226,12 +292,54 @@ class Masks:
                 out.append((k,) + v)
         return out
 
-    def _flush_geometry(self, key, canvas):
+    def _kept(self, items, size, tag):
+        """``(todo, kept)``: the items to outline, and for the others the
+        stored edges (``(item, edges)``; see :class:`EdgeStore`)."""
+        if self.store is None or size != self._store_size:
+            return items, []
+        todo, kept = [], []
+        for it in items:
+            e = self.store.get((tag, it[0]))
+            if e is None:
+                todo.append(it)
+            else:
+                kept.append((it, e))
+        return todo, kept
+
+    def _keep(self, items, edges, size, tag):
+        """Store ``edges[i]`` (what the store keeps of ``items[i]``) of
+        the items whose device box reaches past the window's right or
+        bottom."""
+        w, h, ox, oy = size
+        for it, e in zip(items, edges):
+            x0, y0, x1, y1 = it[1].path.control_box()
+            m = it[2]
+            ys = (m.b * x0 + m.d * y0, m.b * x1 + m.d * y0, m.b * x0 + m.d * y1,
+                  m.b * x1 + m.d * y1)
+            xs = (m.a * x0 + m.c * y0, m.a * x1 + m.c * y0, m.a * x0 + m.c * y1,
+                  m.a * x1 + m.c * y1)
+            reach = 2.0
+            if tag == 'stroke':
+                reach += stroke_reach(it[5]) * m.max_scale()
+            bottom = max(ys) + m.f + reach
+            if bottom > oy + h or max(xs) + m.e + reach > ox + w:
+                self.store.put((tag, it[0]), e, bottom)
+
+    def _flush_geometry(self, key, size):
         """Masks of queued fills and undashed hairlines for ``canvas``, in
         document order up to and including ``key`` and then while the batch
         has room."""
-        items = self._take(self._geo_pending, key, canvas, BATCH_VERBS)
+        items = self._take(self._geo_pending, key, size, BATCH_VERBS)
         if not items:
+            return
+        items, kept = self._kept(items, size, 'geo')
+        self._geometry(items, kept, size)
+
+    def _geometry(self, items, kept, size):
+        """Masks of fills and hairlines: ``items`` outlined now, ``kept``
+        with stored edges (``(item, (fill edges, hair edges or None))``)."""
+        if not items:
+            self._scan_geometry([], [], [], [], [], [], kept, size)
             return
         try:
             pl, first = flatten_joined([it[1].path for it in items], [it[2] for it in items],
@@ -282,24 +390,71 @@ class Masks:
                 exact.append(False)
                 # a dotted hairline is left to the general stroker
                 keys.append(None if dotted[j] else (self._hair_ready, items[i][0]))
+        self._scan_geometry(items, parts, counts, rules, aas, exact, kept, size, keys)
+
+    def _scan_geometry(self, items, parts, counts, rules, aas, exact, kept, size, keys=()):
+        """Scan convert the masks of :meth:`_geometry` in one batch; the
+        edges of items reaching past the window are stored."""
+        keys = list(keys)
+        e = np.concatenate(parts) if parts else np.zeros((0, 2, 2))
+        cnt = np.concatenate(counts) if counts else np.zeros(0, np.int64)
+        if self.store is not None and size == self._store_size and items:
+            # per item: its fill edges, then its hairline edges (None: dotted)
+            nf = sum(1 for it in items if it[5])
+            fill_items = [it for it in items if it[5]]
+            hair_items = [it for it in items if it[6]]
+            ends = np.cumsum(cnt)
+            starts = ends - cnt
+            fe = {it[0]: e[a:b] for it, a, b in zip(fill_items, starts[:nf].tolist(),
+                                                    ends[:nf].tolist())}
+            he = {}
+            for j, it in enumerate(hair_items):
+                a, b = int(starts[nf + j]), int(ends[nf + j])
+                he[it[0]] = None if keys[nf + j] is None else e[a:b]
+            self._keep(items, [_Pair(fe.get(it[0]), he.get(it[0])) for it in items], size,
+                       'geo')
+        if kept:
+            ep, cp = [e], [cnt]
+            for it, pair in kept:
+                n = it[1]
+                if it[5]:
+                    ep.append(pair.fill)
+                    cp.append([len(pair.fill)])
+                    rules.append(n.fill.rule)
+                    aas.append(bool(n.antialias))
+                    exact.append(True)
+                    keys.append((self._fill_ready, it[0]))
+                if it[6]:
+                    h = pair.hair
+                    ep.append(np.zeros((0, 2, 2)) if h is None else h)
+                    cp.append([0 if h is None else len(h)])
+                    rules.append('nonzero')
+                    aas.append(bool(n.antialias))
+                    exact.append(False)
+                    keys.append(None if h is None else (self._hair_ready, it[0]))
+            e = np.concatenate(ep)
+            cnt = np.concatenate([np.asarray(c, np.int64) for c in cp])
+        if not keys:
+            return
         try:
-            masks = coverage_batch(np.concatenate(parts), np.concatenate(counts),
-                                   canvas.width, canvas.height, rules, aas, exact=exact)
+            e, cnt = _onto(e, size, cnt)
+            masks = coverage_batch(e, cnt, size[0], size[1], rules, aas, exact=exact)
         except RasterError:
             return          # drawn one by one (errors where they were)
         for where, m in zip(keys, masks):
             if where is not None:
                 where[0][where[1]] = m
 
-    def _flush_strokes(self, key, canvas):
+    def _flush_strokes(self, key, size):
         """Outline queued strokes for ``canvas`` in document order, up to
         and including ``key`` and then while the batch has room: one
         :func:`raster.geometry.stroking.stroke_many` call per stroke style, then one
         :func:`raster.geometry.flattening.flatten_joined` and one
         :func:`raster.pixels.scan.coverage_batch` call for all outlines."""
-        items = self._take(self._stroke_pending, key, canvas, BATCH_VERBS // 4)
+        items = self._take(self._stroke_pending, key, size, BATCH_VERBS // 4)
         if not items:
             return
+        items, kept = self._kept(items, size, 'stroke')
         by_style = {}
         for j, it in enumerate(items):
             by_style.setdefault(it[5], []).append(j)
@@ -311,15 +466,71 @@ class Masks:
                                    straddle=True)
                 for j, o in zip(js, outs):
                     outlines[j] = o
-            pl, first = flatten_joined(outlines, None, self.tol)
-            e, own = pl.edges(close_all=True, owners=True)
-            counts = np.bincount(np.repeat(np.arange(len(items)), np.diff(first))[own]
-                                 if len(own) else own, minlength=len(items))
-            masks = coverage_batch(e, counts, canvas.width, canvas.height, 'nonzero',
+            if items:
+                pl, first = flatten_joined(outlines, None, self.tol)
+                e, own = pl.edges(close_all=True, owners=True)
+                counts = np.bincount(np.repeat(np.arange(len(items)), np.diff(first))[own]
+                                     if len(own) else own, minlength=len(items))
+                if self.store is not None and size == self._store_size:
+                    ends = np.cumsum(counts)
+                    self._keep(items, [e[a:b] for a, b in zip((ends - counts).tolist(),
+                                                              ends.tolist())], size, 'stroke')
+            else:
+                e, counts = np.zeros((0, 2, 2)), np.zeros(0, np.int64)
+            if kept:
+                items = items + [it for it, _ in kept]
+                e = np.concatenate([e] + [k for _, k in kept])
+                counts = np.concatenate([counts, [len(k) for _, k in kept]]).astype(np.int64)
+            e, counts = _onto(e, size, counts)
+            masks = coverage_batch(e, counts, size[0], size[1], 'nonzero',
                                    [bool(it[1].antialias) for it in items])
         except RasterError:
             return          # stroked one by one (errors where they were)
         self._stroke_ready.update(zip([it[0] for it in items], masks))
+
+
+class _Pair:
+    """The stored edges of a fill and of its hairline (None: none, or a
+    dotted hairline left to the general stroker)."""
+    __slots__ = ('fill', 'hair')
+
+    def __init__(self, fill, hair):
+        self.fill, self.hair = fill, hair
+
+    def copy(self):
+        return _Pair(None if self.fill is None else self.fill.copy(),
+                     None if self.hair is None else self.hair.copy())
+
+    def __len__(self):
+        return (0 if self.fill is None else len(self.fill)) + \
+            (0 if self.hair is None else len(self.hair))
+
+
+def _onto(edges, size, counts=None):
+    """Edges ((E, 2, 2) float64, in the pixels of a canvas's frame) moved
+    onto a canvas of ``size`` (w, h, ox, oy) lying at (ox, oy) in it --
+    by whole pixels, so the fractional parts stay as they are -- without
+    those wholly above or below it (they touch no row of it; those beside
+    it take part in the scan's running sums and stay).  ``counts`` (edges
+    per mask, consecutive) are recounted; returns ``(edges, counts)``
+    (``edges`` is never modified)."""
+    w, h, ox, oy = size
+    if len(edges):
+        ya, yb = edges[:, 0, 1], edges[:, 1, 1]
+        top, bottom = float(oy), float(oy + h)
+        off = ((ya <= top) & (yb <= top)) | ((ya >= bottom) & (yb >= bottom))
+        if off.any():
+            keep = ~off
+            if counts is not None:
+                owner = np.repeat(np.arange(len(counts)), np.asarray(counts, np.int64))
+                counts = np.bincount(owner[keep], minlength=len(counts))
+            edges = edges[keep]             # a copy: moved in place below
+            if ox or oy:
+                edges -= np.array((ox, oy), np.float64)
+            return edges, counts
+    if ox or oy:
+        edges = edges - np.array((ox, oy), np.float64)
+    return edges, counts
 
 
 def _batch_stroke_style(n, t):
@@ -341,10 +552,11 @@ def _wants_hair(n, t):
             and 0.0 < s.style.width * t.mean_scale() < 1.0)
 
 
-def covers_canvas(path, t, width, height):
+def covers_canvas(path, t, width, height, ox=0, oy=0):
     """True when ``path`` under ``t`` is one closed axis-aligned rectangle
-    (``M L L L Z``) containing the whole ``width`` x ``height`` canvas,
-    within ``max_coord``: its exact-area coverage is 1 at every pixel
+    (``M L L L Z``) containing the whole ``width`` x ``height`` canvas
+    lying at (``ox``, ``oy``) in the pixels of ``t`` (a window's canvas in
+    its frame), within ``max_coord``: its exact-area coverage is 1 at every pixel
     under both fill rules (winding +-1 everywhere inside), aliased or not,
     so it needs no scan conversion (a chart's background)."""
     v = path.verbs
@@ -362,7 +574,8 @@ def covers_canvas(path, t, width, height):
     with np.errstate(invalid='ignore'):
         lo, hi = p.min(axis=0), p.max(axis=0)
         inside = bool(np.abs(p).max() <= limits.current().max_coord)
-    return inside and lo[0] <= 0 and lo[1] <= 0 and hi[0] >= width and hi[1] >= height
+    return (inside and lo[0] <= ox and lo[1] <= oy and hi[0] >= ox + width
+            and hi[1] >= oy + height)
 
 
 def full_mask(width, height):

@@ -107,12 +107,13 @@ def group_box(g, ct):
     return box
 
 
-def device_area(path, t, size, reach=1.0):
+def device_area(path, t, size, reach=1.0, off=(0, 0)):
     """Pixels of the device box of ``path``'s control points under ``t``,
-    grown by ``reach`` and clipped to the canvas ``size`` (w, h): a bound
-    of the mask area, for batch budgets."""
+    grown by ``reach`` and clipped to the canvas ``size`` (w, h) lying at
+    ``off`` (ox, oy) in the pixels ``t`` maps to: a bound of the mask
+    area, for batch budgets."""
     x0, y0, x1, y1 = path.control_box()
-    a, b, c, d, e, f = t.a, t.b, t.c, t.d, t.e, t.f
+    a, b, c, d, e, f = t.a, t.b, t.c, t.d, t.e - off[0], t.f - off[1]
     xs = (a * x0 + c * y0, a * x1 + c * y0, a * x0 + c * y1, a * x1 + c * y1)
     ys = (b * x0 + d * y0, b * x1 + d * y0, b * x0 + d * y1, b * x1 + d * y1)
     w = min(max(xs) + e + reach, size[0]) - max(min(xs) + e - reach, 0.0)

@@ -28,7 +28,8 @@ from ..errors import LimitError, RasterError, RasterWarning
 from ..geometry.path import Path
 from ..pixels.canvas import Canvas
 from ..pixels.compositing import blend_layer
-from ..pixels.scan import Mask, path_coverage
+from ..geometry.flattening import flatten
+from ..pixels.scan import Mask, coverage
 from ..pixels.views import ClipRect
 from ..geometry.transform import Affine
 from ..tree import (Group, ImageNode, LinearGradient, MaskType, MeshGradient, PaintItem, PathNode,
@@ -50,86 +51,118 @@ _LAYER_FIXED = 1 << 21
 
 class Renderer:
     """Draws tree nodes onto canvases with flattening ``tolerance`` (device
-    pixels).  The layers it makes (groups, masks, SVG images) have the
-    storage ``dtype`` (float32, or uint8 when drawing onto an 8-bit canvas:
-    a quarter of the memory); clip coverage is one float32 channel."""
+    pixels), keeping the outlines that reach past a window in ``store``
+    (a :class:`~raster.renderer.batch.EdgeStore` or None).  The layers it
+    makes (groups, masks, SVG images) have the storage ``dtype`` (float32,
+    or uint8 when drawing onto an 8-bit canvas: a quarter of the memory);
+    clip coverage is one float32 channel."""
 
-    def __init__(self, tolerance, dtype=np.float32):
+    def __init__(self, tolerance, dtype=np.float32, store=None):
         self.tol = tolerance
         self.dtype = np.dtype(dtype)
-        self.masks = Masks(tolerance)
+        self.masks = Masks(tolerance, store)
         self._limit_warned = False
-        # windowed rendering: id(canvas) -> (frame, need), see draw()
-        self._frames = {}
+        # windowed rendering: id(canvas) -> (ox, oy, fw, fh), see draw()
+        self._places = {}
         self._too_deep = False
 
-    def draw(self, node, t, canvas, frame=None):
+    def draw(self, node, t, canvas, origin=(0, 0), size=None):
         """Draw ``node`` (and what is below it) with CTM ``t`` on ``canvas``,
         planning the masks of its subtree first.
 
-        ``frame`` : (x0, y0, x1, y1) ints or None
-            When ``canvas`` is a window of a larger output, the rectangle of
-            that whole output in the canvas's pixel coordinates.  Layers are
-            then placed and clipped as they would be on the whole output,
-            and filter layers reach past the window by the margin their
-            primitives read (:func:`raster.renderer.filters.filter_margin`),
-            so the window's pixels are those of the whole render."""
-        if frame is not None:
-            self._frames[id(canvas)] = (tuple(int(v) for v in frame),
-                                        (0, 0, canvas.width, canvas.height))
+        ``origin`` : (ox, oy) ints
+            Where the canvas's pixel (0, 0) lies in the output that ``t``
+            maps to (its *frame*, of ``size`` (w, h) pixels, default the
+            canvas's size): a canvas that is a window of a larger output is
+            drawn with the whole output's CTM.  Every path is then
+            flattened and stroked in the whole output's pixels, exactly as
+            the whole render does, and only its edges are moved onto the
+            window (by whole pixels: exact); layers are placed and clipped
+            as on the whole output, and filter layers reach past the window
+            by the margin their primitives read
+            (:func:`raster.renderer.filters.filter_margin`), so the
+            window's pixels are those of the whole render."""
+        ox, oy = (int(v) for v in origin)
+        fw, fh = (canvas.width, canvas.height) if size is None else (int(v) for v in size)
+        place = (ox, oy, fw, fh)
+        windowed = place != (0, 0, canvas.width, canvas.height)
+        if windowed:
+            self._places[id(canvas)] = place
         try:
-            self.masks.plan([node], t, canvas)
+            self.masks.plan([node], t, canvas, (ox, oy), output=True)
             self.node(node, t, canvas)
         finally:
-            if frame is not None:
-                self._frames.pop(id(canvas), None)
+            if windowed:
+                self._places.pop(id(canvas), None)
         if self._too_deep:
             self._too_deep = False
             self._left_out(LimitError('nested too deeply'))
 
-    def _layer_box(self, g, ct, canvas):
-        """``(px, frame)``: the pixel box of a group's layer on ``canvas``
-        and the layer's frame (the whole render's layer in the layer's own
-        pixel coordinates), or ``(None, None)``; ``frame`` is None outside
-        windowed rendering."""
+    def place(self, canvas):
+        """``(ox, oy, fw, fh)``: where ``canvas`` (or the canvas of a
+        view) lies in its frame, and the frame's size (see :meth:`draw`)."""
         base = canvas
-        while isinstance(base, ClipRect):       # a view: its canvas's frame
+        while isinstance(base, ClipRect):       # a view: its canvas's place
             base = base.canvas
-        entry = self._frames.get(id(base))
+        p = self._places.get(id(base))
+        return (0, 0, base.width, base.height) if p is None else p
+
+    def local(self, t, canvas):
+        """The CTM ``t`` (to ``canvas``'s frame) as a CTM to the canvas's
+        own pixels: for paints, images and filters, which work in them."""
+        p = self._places.get(id(canvas))
+        if p is None and isinstance(canvas, ClipRect):
+            p = self.place(canvas)
+        if p is None or (p[0] == 0 and p[1] == 0):
+            return t
+        return Affine.translate(-p[0], -p[1]) @ t
+
+    def _push(self, canvas, place):
+        """Record ``canvas``'s place (see :meth:`place`) unless it is the
+        whole of its frame; returns whether it was recorded."""
+        if place == (0, 0, canvas.width, canvas.height):
+            return False
+        self._places[id(canvas)] = place
+        return True
+
+    def coverage(self, path, t, w, h, off, rule='nonzero', antialias=True, straddle=True):
+        """Coverage Mask (or None) of ``path`` under ``t`` (CTM to the
+        frame) on a ``w x h`` canvas at ``off`` (ox, oy) in that frame:
+        flattened in the frame's pixels, the edges moved by whole pixels."""
+        e = flatten(path, self.tol, transform=t, straddle=straddle).edges(close_all=True)
+        if off[0] or off[1]:
+            e = e - np.array(off[:2], np.float64)
+        return coverage(e, w, h, rule, antialias)
+
+    def _layer_box(self, g, ct, canvas):
+        """``(px, full)``: the pixel box of a group's layer and the box of
+        the whole render's layer, both in the frame of ``canvas``
+        (:meth:`place`), or None.  ``px`` is ``full`` clipped to the
+        canvas, grown by the reach of the group's filters."""
+        ox, oy, fw, fh = self.place(canvas)
         if g.filters:
             from .filters import filter_box, filter_margin, filter_pixel_box
             box = filter_box(g.filters, ct, lambda: group_box(g, ct))
         else:
             box = group_box(g, ct)
-        if entry is None:
-            if box is None:
-                return None, None
-            if g.filters:
-                return filter_pixel_box(box, canvas.width, canvas.height), None
-            return pixel_box(box, canvas.width, canvas.height), None
-        (fx0, fy0, fx1, fy1), need = entry
         if box is None:
-            return None, None
-        sbox = (box[0] - fx0, box[1] - fy0, box[2] - fx0, box[3] - fy0)
-        if g.filters:
-            full = filter_pixel_box(sbox, fx1 - fx0, fy1 - fy0)
-            m = filter_margin(g.filters, ct)
-        else:
-            full = pixel_box(sbox, fx1 - fx0, fy1 - fy0)
-            m = 0
+            return None
+        full = filter_pixel_box(box, fw, fh) if g.filters else pixel_box(box, fw, fh)
         if full is None:
-            return None, None
-        full = (full[0] + fx0, full[1] + fy0, full[2] + fx0, full[3] + fy0)
+            return None
+        w, h = canvas.width, canvas.height
+        if ox == 0 and oy == 0 and w == fw and h == fh:
+            return full, full
+        m = filter_margin(g.filters, ct) if g.filters else 0
         if m is None:                   # reads the whole region (feTile...)
             px = full
         else:
             m = int(math.ceil(m))
-            px = (max(full[0], need[0] - m), max(full[1], need[1] - m),
-                  min(full[2], need[2] + m), min(full[3], need[3] + m))
+            px = (max(full[0], ox - m), max(full[1], oy - m),
+                  min(full[2], ox + w + m), min(full[3], oy + h + m))
         if px[2] <= px[0] or px[3] <= px[1]:
-            return None, None
-        frame = (full[0] - px[0], full[1] - px[1], full[2] - px[0], full[3] - px[1])
-        return px, frame
+            return None
+        return px, full
 
     def node(self, node, t, canvas):
         try:
@@ -157,6 +190,9 @@ class Renderer:
         if box is not None:
             # clipped by an axis-aligned rectangle only: no layer, the
             # children are drawn through the rectangle's coverage
+            ox, oy = self.place(canvas)[:2]
+            if ox or oy:
+                box = (box[0] - ox, box[1] - oy, box[2] - ox, box[3] - oy)
             view = ClipRect(canvas, box)
             if not view.empty:
                 for c in g.children:
@@ -167,30 +203,33 @@ class Renderer:
         # the layer: the group's box, or its filter region (effects draw
         # outside the content); the filter machinery loads with the first
         # filter drawn
-        px, frame = self._layer_box(g, ct, canvas)
-        if px is None:
+        boxes = self._layer_box(g, ct, canvas)
+        if boxes is None:
             return
-        x0, y0, x1, y1 = px
+        (x0, y0, x1, y1), full = boxes
         limits.spend_work(_LAYER_PASSES * (x1 - x0) * (y1 - y0), 'a group layer')
         layer = Canvas(x1 - x0, y1 - y0, dtype=self.dtype)
-        lt = Affine.translate(-x0, -y0) @ ct
-        if frame is not None:
-            self._frames[id(layer)] = (frame, (0, 0, layer.width, layer.height))
+        # the CTM of the whole render's layer (its pixels from full's corner)
+        lt = Affine.translate(-full[0], -full[1]) @ ct
+        place = (x0 - full[0], y0 - full[1], full[2] - full[0], full[3] - full[1])
+        pushed = self._push(layer, place)
         try:
-            self.masks.plan(g.children, lt, layer)
+            self.masks.plan(g.children, lt, layer, place[:2])
             for c in g.children:
                 self.node(c, lt, layer)
             if g.filters:
                 from .filters import filter_layer
-                filter_layer(g.filters, layer, lt, draw=self._draw_new)
+                filter_layer(g.filters, layer, self.local(lt, layer), draw=self._draw_new)
             if g.clip_path is not None:
-                layer.scale(self.clip_coverage(g.clip_path, lt, layer.width, layer.height))
+                layer.scale(self.clip_coverage(g.clip_path, lt, layer.width, layer.height,
+                                               place[:2]))
             if g.mask is not None:
-                layer.scale(self.mask_values(g.mask, lt, layer.width, layer.height, frame))
+                layer.scale(self.mask_values(g.mask, lt, layer.width, layer.height, place))
         finally:
-            if frame is not None:
-                self._frames.pop(id(layer), None)
-        blend_layer(canvas, layer.data, x0, y0, float(g.opacity), g.blend_mode)
+            if pushed:
+                self._places.pop(id(layer), None)
+        ox, oy = self.place(canvas)[:2]
+        blend_layer(canvas, layer.data, x0 - ox, y0 - oy, float(g.opacity), g.blend_mode)
 
     def _draw_new(self, node, m, w, h):
         """``node`` drawn with CTM ``m`` into a new (h, w, 4) premultiplied
@@ -200,17 +239,18 @@ class Renderer:
         return img.data
 
     # -- clip paths and masks ------------------------------------------------
-    def clip_coverage(self, clip, t, w, h):
+    def clip_coverage(self, clip, t, w, h, off=(0, 0)):
         """(h, w) float32 coverage of a ClipPath with CTM ``t`` (the
-        clipped group's user space to layer pixels)."""
+        clipped group's user space to the layer's frame; the layer lies at
+        ``off`` in it, see :meth:`draw`)."""
         limits.spend_work(_LAYER_PASSES * w * h + _LAYER_FIXED, 'a clip path')
         cov = np.zeros((h, w), np.float32)
-        self._clip_node(clip.root, t @ clip.transform, cov)
+        self._clip_node(clip.root, t @ clip.transform, cov, off)
         if clip.clip_path is not None:
-            cov *= self.clip_coverage(clip.clip_path, t, w, h)
+            cov *= self.clip_coverage(clip.clip_path, t, w, h, off)
         return cov
 
-    def _clip_node(self, n, t, cov):
+    def _clip_node(self, n, t, cov, off=(0, 0)):
         """Inside a clip path only geometry counts: the coverage of each path
         (with its rule, which carries ``clip-rule``, whatever its paint) is
         united with ``cov`` ((h, w) float32, in place) as alpha composites:
@@ -222,20 +262,19 @@ class Renderer:
                 limits.spend_work(_LAYER_PASSES * cov.size + _LAYER_FIXED, 'a clip path')
                 sub = np.zeros_like(cov)
                 for c in n.children:
-                    self._clip_node(c, ct, sub)
+                    self._clip_node(c, ct, sub, off)
                 h, w = cov.shape
-                sub *= self.clip_coverage(n.clip_path, ct, w, h)
+                sub *= self.clip_coverage(n.clip_path, ct, w, h, off)
                 sub *= 1.0 - cov
                 cov += sub
                 return
             for c in n.children:
-                self._clip_node(c, ct, cov)
+                self._clip_node(c, ct, cov, off)
         elif isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
             rule = n.fill.rule if n.fill is not None else 'nonzero'
             h, w = cov.shape
             try:
-                m = path_coverage(n.path, w, h, rule, n.antialias, tolerance=self.tol,
-                                  transform=t, straddle=True)
+                m = self.coverage(n.path, t, w, h, off, rule, n.antialias)
             except LimitError as e:
                 self._left_out(e)
                 return
@@ -243,18 +282,18 @@ class Renderer:
                 limits.spend_work(m.data.size, 'a clip path')
                 _unite(cov, m)
 
-    def mask_values(self, mask, t, w, h, frame=None):
-        """(h, w) float32 values of a Mask with CTM ``t`` (``frame``: that
-        of the masked layer in windowed rendering, see :meth:`draw`)."""
+    def mask_values(self, mask, t, w, h, place=None):
+        """(h, w) float32 values of a Mask with CTM ``t`` (to the masked
+        layer's frame; ``place``: the layer's, see :meth:`place`)."""
         limits.spend_work(_LAYER_PASSES * w * h + _LAYER_FIXED, 'a mask')
         layer = Canvas(w, h, dtype=self.dtype)
-        if frame is not None:
-            self._frames[id(layer)] = (frame, (0, 0, w, h))
+        place = (0, 0, w, h) if place is None else place
+        pushed = self._push(layer, place)
         try:
             self.node(mask.root, t, layer)
         finally:
-            if frame is not None:
-                self._frames.pop(id(layer), None)
+            if pushed:
+                self._places.pop(id(layer), None)
         if mask.kind == MaskType.ALPHA:
             m = layer.combine((0.0, 0.0, 0.0, 1.0))
         else:
@@ -266,15 +305,16 @@ class Renderer:
             # an axis-aligned rectangle: exact-area coverage, separable
             x0, x1 = sorted((t.a * x + t.e, t.a * (x + rw) + t.e))
             y0, y1 = sorted((t.d * y + t.f, t.d * (y + rh) + t.f))
-            _times_rect(m, x0, y0, x1, y1)
+            ox, oy = place[:2]
+            _times_rect(m, x0 - ox, y0 - oy, x1 - ox, y1 - oy)
         else:
             rect = Path.polygon([(x, y), (x + rw, y), (x + rw, y + rh), (x, y + rh)])
-            rc = path_coverage(rect, w, h, 'nonzero', True, tolerance=self.tol, transform=t)
+            rc = self.coverage(rect, t, w, h, place, straddle=False)
             if rc is None:
                 return np.zeros((h, w), np.float32)
             _times_mask(m, rc)
         if mask.mask is not None:
-            m *= self.mask_values(mask.mask, t, w, h, frame)
+            m *= self.mask_values(mask.mask, t, w, h, place)
         np.clip(m, 0.0, 1.0, out=m)
         return m
 
@@ -306,7 +346,7 @@ class Renderer:
         f = n.fill
         if f.opacity <= 0:
             return
-        m = self.masks.fill(n, t, canvas)
+        m = self.masks.fill(n, t, canvas, self.place(canvas)[:2])
         if m is not None:
             self.paint(canvas, m, f.paint, f.opacity, t)
 
@@ -314,19 +354,22 @@ class Renderer:
         s = n.stroke
         if s.opacity <= 0 or s.style.width <= 0:
             return
-        m, factor = self.masks.stroke(n, t, canvas)
+        m, factor = self.masks.stroke(n, t, canvas, self.place(canvas)[:2])
         if m is not None:
             self.paint(canvas, m, s.paint, s.opacity * factor, t)
 
     def paint(self, canvas, mask, paint, opacity, t):
         """Composite ``paint`` (in the user space that ``t`` maps to the
-        canvas) through coverage ``mask`` with ``opacity``.  Gradient and
+        canvas's frame) through coverage ``mask`` with ``opacity``.  Gradient and
         pattern colours are made and composited a strip of rows at a time
         (:data:`raster.renderer.paint.STRIP_PIXELS`)."""
         limits.spend_work(mask.data.size, 'a path')
         if isinstance(paint, SolidPaint):
             canvas.fill(mask, paint.color, opacity)
             return
+        # colours are computed at the pixel centres of the canvas's frame
+        # with the frame's CTM: a window gets the whole render's colours
+        ox, oy = self.place(canvas)[:2]
         if isinstance(paint, (LinearGradient, RadialGradient, SweepGradient)):
             def colors(m):
                 return gradient_colors(paint, m, t)
@@ -347,7 +390,7 @@ class Renderer:
         step = max(1, STRIP_PIXELS // max(1, w))
         for r0 in range(0, h, step):
             m = mask if h <= step else Mask(mask.data[r0:r0 + step], mask.x0, mask.y0 + r0)
-            src = colors(m)
+            src = colors(m if not (ox or oy) else Mask(m.data, m.x0 + ox, m.y0 + oy))
             if src is not None:
                 canvas.composite(src, m.x0, m.y0, opacity)
 
@@ -397,7 +440,7 @@ class Renderer:
         if n.tree is not None:
             self.svg_image(n, t, canvas)
         elif n.pixels is not None:
-            draw_pixels(n, t, canvas, self.tol)
+            draw_pixels(n, self.local(t, canvas), canvas, self.tol)
 
     def svg_image(self, n, t, canvas):
         it = t @ n.transform
@@ -406,24 +449,36 @@ class Renderer:
             self.node(g, it, canvas)
             return
         x, y, w, h = n.clip
+        # the layer of the whole render (the clip's pixel box in the frame),
+        # clipped to the canvas
+        ox, oy, fw, fh = self.place(canvas)
         box = t.apply(np.array([[x, y], [x + w, y], [x + w, y + h], [x, y + h]], float))
-        px = pixel_box((box[:, 0].min(), box[:, 1].min(), box[:, 0].max(), box[:, 1].max()),
-                       canvas.width, canvas.height)
-        if px is None:
+        full = pixel_box((box[:, 0].min(), box[:, 1].min(), box[:, 0].max(), box[:, 1].max()),
+                         fw, fh)
+        if full is None:
             return
-        x0, y0, x1, y1 = px
+        x0, y0 = max(full[0], ox), max(full[1], oy)
+        x1, y1 = min(full[2], ox + canvas.width), min(full[3], oy + canvas.height)
+        if x1 <= x0 or y1 <= y0:
+            return
         limits.spend_work(_LAYER_PASSES * (x1 - x0) * (y1 - y0) + _LAYER_FIXED,
                           'an SVG image')
         layer = Canvas(x1 - x0, y1 - y0, dtype=self.dtype)
-        lt = Affine.translate(-x0, -y0)
-        self.node(g, lt @ it, layer)
+        lt = Affine.translate(-full[0], -full[1])
+        place = (x0 - full[0], y0 - full[1], full[2] - full[0], full[3] - full[1])
+        pushed = self._push(layer, place)
+        try:
+            self.masks.plan([g], lt @ it, layer, place[:2])
+            self.node(g, lt @ it, layer)
+        finally:
+            if pushed:
+                self._places.pop(id(layer), None)
         rect = Path.polygon([(x, y), (x + w, y), (x + w, y + h), (x, y + h)])
-        rc = path_coverage(rect, layer.width, layer.height, 'nonzero', True,
-                           tolerance=self.tol, transform=lt @ t)
+        rc = self.coverage(rect, lt @ t, layer.width, layer.height, place, straddle=False)
         if rc is None:
             return
         layer.scale(rc.full(layer.width, layer.height))
-        canvas.composite(layer.data, x0, y0, n.opacity)
+        canvas.composite(layer.data, x0 - ox, y0 - oy, n.opacity)
 
 
 def _sample_tile(tile, mask):

@@ -109,15 +109,14 @@ def gradient_colors(paint, mask, t):
             return (kx * xs + k0)[jj] + (ky * ys)[ii]
     else:
         flat = None
-        xc, yc = xs[w // 2], ys[h // 2]
 
         def field(kx, ky, k0):
-            """(h, w) float32 values of kx*X + ky*Y + k0 over the window (the
-            sum of a row and a column term, both centred on the window so
-            that float32 keeps the precision of the result)."""
-            col = (kx * (xs - xc)).astype(_F32)
-            row = (ky * (ys - yc) + (kx * xc + ky * yc + k0)).astype(_F32)
-            return np.add(row[:, None], col[None, :])
+            """(h, w) float32 values of kx*X + ky*Y + k0 over the window:
+            the sum of a row and a column term in float64, rounded once, so
+            a pixel's value depends on its centre only (a window of a
+            render gets the whole render's colours)."""
+            out = np.add((ky * ys + k0)[:, None], (kx * xs)[None, :])
+            return out.astype(_F32)
 
     if isinstance(paint, LinearGradient):
         dx, dy = paint.x2 - paint.x1, paint.y2 - paint.y1

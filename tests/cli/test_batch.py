@@ -197,6 +197,53 @@ def test_xyz_tiles(tmp_path, capsys):
     assert '11 tiles, zoom 0-2' in capsys.readouterr().err    # 1 + 2 + 8
 
 
+SPARSE = ('<svg xmlns="http://www.w3.org/2000/svg" width="1000" height="500">'
+          '<circle cx="860" cy="90" r="40" fill="navy"/>'
+          '<rect x="100" y="380" width="30" height="20" fill="orange" opacity="0.5"/></svg>')
+
+
+@pytest.mark.parametrize('jobs', ['1', '2'])
+def test_xyz_tiles_leave_out_empty_tiles(tmp_path, capsys, jobs):
+    # a sparse map: only tiles with a drawn pixel are written, as web map
+    # tile generators do (a client draws a missing tile blank); tiles.json
+    # says so and counts them; every omitted tile is blank in the render
+    src = write(tmp_path, 'sparse.svg', SPARSE.encode())
+    d = tmp_path / 'tiles'
+    assert rasterize.main([src, '--tiles', str(d), '--max-zoom', '3', '--jobs', jobs]) == 0
+    meta = json.loads((d / 'tiles.json').read_text())
+    assert meta['empty_tiles'] == 'omitted'
+    total = sum(lv['columns'] * lv['rows'] for lv in meta['levels'])
+    assert meta['tiles_written'] + meta['tiles_omitted'] == total
+    assert meta['tiles_omitted'] > meta['tiles_written'] > 0
+    written = 0
+    for lv in meta['levels']:
+        z = lv['zoom']
+        whole = raster.render(src, lv['width'])
+        for x in range(lv['columns']):
+            for y in range(lv['rows']):
+                part = whole[256 * y:256 * (y + 1), 256 * x:256 * (x + 1)]
+                f = d / str(z) / str(x) / ('%d.png' % y)
+                assert f.exists() == bool(part[..., 3].any()), (z, x, y)
+                if f.exists():
+                    written += 1
+                    assert np.array_equal(png(f)[:part.shape[0], :part.shape[1]], part)
+    assert written == meta['tiles_written']
+    err = capsys.readouterr().err
+    assert '%d tiles' % written in err and '%d empty tiles omitted' % meta['tiles_omitted'] in err
+
+
+def test_xyz_tiles_all_tiles_writes_the_empty_ones(tmp_path, capsys):
+    src = write(tmp_path, 'sparse.svg', SPARSE.encode())
+    d = tmp_path / 'tiles'
+    assert rasterize.main([src, '--tiles', str(d), '--max-zoom', '2', '--all-tiles']) == 0
+    meta = json.loads((d / 'tiles.json').read_text())
+    assert meta['empty_tiles'] == 'written' and meta['tiles_omitted'] == 0
+    total = sum(lv['columns'] * lv['rows'] for lv in meta['levels'])
+    assert meta['tiles_written'] == total
+    blank = png(d / '2' / '0' / '0.png')
+    assert blank.shape == (256, 256, 4) and not blank.any()
+
+
 def test_tiles_usage_errors(tmp_path, capsys):
     src = write(tmp_path, 'map.svg', doc())
     d = str(tmp_path / 't')

@@ -42,7 +42,7 @@ def scene(seed):
 @pytest.mark.parametrize('seed', range(4))
 def test_batched_render_equals_unbatched(seed, monkeypatch):
     batched = render_tree(scene(seed)).data.copy()
-    monkeypatch.setattr(batch_mod.Masks, 'plan', lambda self, *a: None)
+    monkeypatch.setattr(batch_mod.Masks, 'plan', lambda self, *a, **k: None)
     single = render_tree(scene(seed)).data
     assert np.array_equal(batched, single)
 
@@ -74,7 +74,7 @@ def test_batched_strokes_match_single_strokes(seed, monkeypatch):
     """Batched stroke outlines equal single ones up to float rounding: the
     8-bit images agree within 1 level everywhere."""
     batched = render_tree(stroke_scene(seed)).to_rgba8().astype(int)
-    monkeypatch.setattr(batch_mod.Masks, 'plan', lambda self, *a: None)
+    monkeypatch.setattr(batch_mod.Masks, 'plan', lambda self, *a, **k: None)
     single = render_tree(stroke_scene(seed)).to_rgba8().astype(int)
     assert batched.max() > 0
     assert np.abs(batched - single).max() <= 1

@@ -1,9 +1,9 @@
 """Windows of a render (render_tree(window=...), raster.render(window=)):
 a window equals that part of the whole image -- bit for bit for paths,
 gradients, patterns, clip paths, masks, groups and most filters, within one
-level of 255 where a blur's or gradient's float sums round differently at
+level of 255 where a blur's or the scan's float sums round differently at
 another layer origin -- including effects that reach across the window's
-border (blurs, offsets, shadows, morphology, feTile)."""
+border (blurs, offsets, shadows, morphology, feTile, lighting)."""
 
 import math
 import os
@@ -19,7 +19,7 @@ from raster.geometry.transform import Affine
 from raster.svg import load_svg
 from raster.tree import filter as F
 
-from _shared import CORPUS
+from _shared import CORPUS, SUITE_TESTS
 
 SVG = '<svg xmlns="http://www.w3.org/2000/svg" width="160" height="120">%s</svg>'
 
@@ -59,6 +59,17 @@ CASES = {
             '<feFlood flood-color="green" x="10" y="10" width="23" height="17" result="a"/>'
             '<feOffset dx="5" dy="3"/><feTile/></filter></defs>'
             '<rect x="5" y="5" width="150" height="110" filter="url(#f)"/>',
+    'lighting': '<defs><radialGradient id="g" r="0.5"><stop offset="0.4" stop-color="white"/>'
+                '<stop offset="1" stop-color="white" stop-opacity="0"/></radialGradient>'
+                '<filter id="d" color-interpolation-filters="sRGB"><feDiffuseLighting '
+                'surfaceScale="10"><feDistantLight azimuth="45" elevation="45"/>'
+                '</feDiffuseLighting></filter><filter id="s"><feSpecularLighting '
+                'in="SourceAlpha" surfaceScale="7" specularExponent="8" '
+                'lighting-color="seagreen"><feSpotLight x="110" y="90" z="25" pointsAtX="60" '
+                'pointsAtY="40" specularExponent="3" limitingConeAngle="40"/>'
+                '</feSpecularLighting></filter></defs>'
+                '<rect x="10" y="10" width="70" height="100" fill="url(#g)" filter="url(#d)"/>'
+                '<ellipse cx="115" cy="60" rx="40" ry="50" fill="url(#g)" filter="url(#s)"/>',
     'nested': '<defs><filter id="f" x="-40%" y="-40%" width="180%" height="180%">'
               '<feGaussianBlur stdDeviation="3"/></filter></defs>'
               '<g opacity="0.7" filter="url(#f)"><g filter="url(#f)">'
@@ -94,10 +105,32 @@ def test_windows_equal_the_whole_render(name):
     assert full[..., 3].any()                    # the case draws something
 
 
-@pytest.mark.parametrize('name', ['blur', 'shadow-offset', 'pattern', 'clip-mask'])
+@pytest.mark.parametrize('name', ['blur', 'shadow-offset', 'pattern', 'clip-mask', 'lighting'])
 def test_windows_equal_the_whole_render_scaled(name):
     tree = load_svg((SVG % CASES[name]).encode())
     assert_windows_equal(tree, 1, seed=3, width=397)
+
+
+def test_lighting_windows_of_the_resvg_suite_equal_the_whole_render():
+    # feDiffuseLighting / feSpecularLighting with every light source: the
+    # surface normal at a window's edge comes from the neighbouring pixels
+    # (the layer reaches past the window) and the bump map's gradient
+    # colours are those of the whole render (each pixel's paint position
+    # rounded once), so surfaceScale has no rounding difference to magnify
+    import glob
+    files = sorted(f for d in ('feDiffuseLighting', 'feSpecularLighting', 'feDistantLight',
+                               'fePointLight', 'feSpotLight')
+                   for f in glob.glob(os.path.join(SUITE_TESTS, 'filters', d, '*.svg')))
+    assert len(files) > 30
+    drawn = 0
+    for f in files:
+        try:
+            tree = load_svg(f)
+        except raster.errors.RasterError:
+            continue
+        full = assert_windows_equal(tree, 1, seed=len(f))
+        drawn += bool(full[..., 3].any())
+    assert drawn > 30
 
 
 def test_blur_windows_are_exact_where_the_window_is_far_from_content():
@@ -119,14 +152,33 @@ def test_corpus_windows_are_exact(name):
     assert_windows_equal(tree, 0, seed=1, width=600)
 
 
-def test_corpus_windows_of_curved_strokes_within_the_tolerance():
-    # the tiger's strokes: a window may flatten a curve into other pieces
-    # than the whole render does (a few pixels differ by up to 4 levels
-    # today), but each polyline straddles the curve within the tolerance:
-    # a pixel differs by at most a tolerance-wide sliver (255 x tolerance)
-    from raster.renderer import DEFAULT_TOLERANCE
+def test_corpus_windows_of_curved_strokes_equal_the_whole_render():
+    # the tiger's curved fills and strokes: every outline is flattened and
+    # stroked in the whole output's pixels whatever the window (a window
+    # moves the edges by whole pixels only), so windows equal the whole
+    # render within one level (a sum of coverage started at another column)
     tree = load_svg(os.path.join(CORPUS, 'tiger.svg'))
-    assert_windows_equal(tree, math.ceil(255 * DEFAULT_TOLERANCE), seed=1, width=600)
+    assert_windows_equal(tree, 1, seed=1, width=600)
+    assert_windows_equal(tree, 1, seed=5, width=457)
+
+
+def test_flattening_is_done_in_the_whole_outputs_pixels(monkeypatch):
+    # the transforms the renderer flattens with are those of the whole
+    # render, never translated by the window's corner
+    from raster.renderer import batch
+    seen = {'whole': set(), 'window': set()}
+    real = batch.flatten_joined
+
+    def spy(paths, transforms, *a, **k):
+        seen[mode].update(tuple(t) for t in (transforms or ()) if t is not None)
+        return real(paths, transforms, *a, **k)
+    monkeypatch.setattr(batch, 'flatten_joined', spy)
+    tree = load_svg((SVG % CASES['paths']).encode())
+    mode = 'whole'
+    render_tree(tree, dtype='uint8')
+    mode = 'window'
+    render_tree(tree, dtype='uint8', window=(37, 21, 141, 97))
+    assert seen['window'] and seen['window'] <= seen['whole']
 
 
 def test_render_window_front_door():
@@ -186,3 +238,80 @@ def test_paths_outside_the_canvas_cover_nothing():
     assert np.array_equal(a, b)
     win = raster.render((SVG % (outside + inside)).encode(), window=(55, 35, 95, 75))
     assert np.array_equal(win, a[35:75, 55:95])
+
+
+def test_an_edge_store_keeps_outlines_across_windows_with_the_same_pixels():
+    # tiles of the tiger drawn row by row with one EdgeStore: the outlines
+    # crossing several tiles are flattened once (the store answers for
+    # them) and the tiles still equal the whole render
+    from raster.renderer import EdgeStore
+    tree = load_svg(os.path.join(CORPUS, 'tiger.svg'))
+    full = render_tree(tree, dtype='uint8', width=500).to_rgba8()
+    store = EdgeStore()
+    h, w = full.shape[:2]
+    for y0 in range(0, h, 128):
+        for x0 in range(0, w, 128):
+            win = (x0, y0, min(w, x0 + 128), min(h, y0 + 128))
+            part = render_tree(tree, dtype='uint8', width=500, window=win,
+                               store=store).to_rgba8()
+            assert np.array_equal(part, full[win[1]:win[3], win[0]:win[2]]), win
+    assert store.hits > 50
+
+
+def test_an_edge_store_serves_one_tree():
+    # a store given another tree (or output size) forgets what it held
+    from raster.renderer import EdgeStore
+    a = load_svg((SVG % CASES['paths']).encode())
+    b = load_svg((SVG % CASES['gradient']).encode())
+    store = EdgeStore()
+    render_tree(a, dtype='uint8', window=(0, 0, 160, 40), store=store)
+    assert len(store) > 0
+    want = render_tree(b, dtype='uint8').to_rgba8()[40:]
+    got = render_tree(b, dtype='uint8', window=(0, 40, 160, 120), store=store).to_rgba8()
+    assert np.array_equal(got, want)
+    store.bind(a, Affine.scale(2.0), 0.05, 0)
+    assert len(store) == 0
+
+
+def _svg_image_doc(preserve='xMidYMid meet'):
+    # an SVG document drawn as an image: curves, a blur reaching past the
+    # window, a clipped group and a mask inside, the image placed off the
+    # pixel grid, scaled and clipped to its viewport
+    import base64
+    inner = ('<svg xmlns="http://www.w3.org/2000/svg" width="50" height="40" '
+             'viewBox="0 0 50 40"><defs><filter id="b" x="-50%" y="-50%" width="200%" '
+             'height="200%"><feGaussianBlur stdDeviation="2.5"/></filter>'
+             '<clipPath id="c"><circle cx="25" cy="20" r="15"/></clipPath>'
+             '<mask id="m"><rect width="50" height="40" fill="white"/>'
+             '<circle cx="30" cy="15" r="6" fill="black"/></mask></defs>'
+             '<rect width="50" height="40" fill="#eef"/>'
+             '<ellipse cx="18" cy="22" rx="12" ry="9" fill="crimson" filter="url(#b)"/>'
+             '<g clip-path="url(#c)" mask="url(#m)"><path d="M0 40 C 20 -10 30 50 50 0" '
+             'stroke="navy" stroke-width="4" fill="none"/></g></svg>')
+    href = 'data:image/svg+xml;base64,' + base64.b64encode(inner.encode()).decode()
+    return (SVG % ('<image x="13.3" y="9.7" width="117" height="93" '
+                   'preserveAspectRatio="%s" href="%s"/>' % (preserve, href))).encode()
+
+
+@pytest.mark.parametrize('preserve', ['xMidYMid meet', 'xMinYMin slice', 'none'])
+def test_windows_of_a_nested_svg_image_equal_the_whole_render(preserve):
+    tree = load_svg(_svg_image_doc(preserve))
+    full = assert_windows_equal(tree, 1, seed=7, width=331)
+    assert full[..., 3].any()
+    # a window that cuts through the image and its blur
+    part = render_tree(tree, dtype='uint8', width=331, window=(61, 47, 140, 130)).to_rgba8()
+    assert np.abs(part.astype(int) - full[47:130, 61:140]).max() <= 1
+
+
+def test_an_edge_store_holds_at_most_its_edges():
+    # a store too small for any outline keeps none and changes no pixel
+    from raster.renderer import EdgeStore
+    tree = load_svg(os.path.join(CORPUS, 'tiger.svg'))
+    full = render_tree(tree, dtype='uint8', width=300).to_rgba8()
+    small, big = EdgeStore(max_edges=5), EdgeStore()
+    for y0 in range(0, full.shape[0], 60):
+        win = (0, y0, 300, min(full.shape[0], y0 + 60))
+        for st in (small, big):
+            part = render_tree(tree, dtype='uint8', width=300, window=win, store=st).to_rgba8()
+            assert np.array_equal(part, full[win[1]:win[3]])
+    assert len(small) == 0 and small.hits == 0 and big.hits > 0
