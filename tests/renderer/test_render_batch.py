@@ -126,6 +126,12 @@ def test_what_does_not_cover_the_canvas_is_scan_converted():
     with limits.applied(limits.Limits(max_coord=25)):
         # beyond max_coord the scan converter refuses it: so does the shortcut
         assert not batch_mod.covers_canvas(rect_path(-30, -30, 60, 60), ident, w, h)
+    # a window's canvas lying at (ox, oy) in its frame: covered when the
+    # rectangle contains that part of the frame, whatever lies outside it
+    assert batch_mod.covers_canvas(rect_path(30, 5, 20, 10), ident, w, h, 30, 5)
+    assert not batch_mod.covers_canvas(rect_path(30, 5, 20, 10), ident, w, h, 31, 5)
+    assert not batch_mod.covers_canvas(rect_path(30, 5, 20, 10), ident, w, h, 30, 4)
+    assert not batch_mod.covers_canvas(rect_path(30, 5, 20, 10), ident, w, h)
 
 
 def test_a_background_renders_as_scan_converted():

@@ -27,6 +27,10 @@ CASES = {
     'paths': '<rect x="10" y="10" width="100" height="60" fill="#336699" stroke="red" '
              'stroke-width="7"/><circle cx="100" cy="80" r="37" fill="green" opacity="0.6"/>'
              '<path d="M5 115 L155 5" stroke="black" stroke-width="0.5"/>',
+    'part-covering': '<rect width="40" height="40" fill="orange"/>'
+                     '<rect x="80" y="0" width="80" height="70" fill="#336699"/>'
+                     '<rect x="0" y="50" width="160" height="70" fill="#993366" opacity="0.8"/>'
+                     '<circle cx="80" cy="60" r="30" fill="green"/>',
     'gradient': '<defs><linearGradient id="g" x1="0" x2="1"><stop offset="0" stop-color="red"/>'
                 '<stop offset="1" stop-color="blue"/></linearGradient><radialGradient id="r">'
                 '<stop offset="0" stop-color="yellow"/><stop offset="1" stop-color="purple" '
