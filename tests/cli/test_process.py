@@ -1,6 +1,7 @@
 """What the commands do to their own process: Python's garbage collector
-is paused while a command's body runs and restored afterwards (the
-library never touches it: tests/parser/test_parser.py)."""
+is paused while a command's body runs and restored afterwards, the run's
+objects frozen when the command is its process's own (the library never
+touches it: tests/parser/test_parser.py)."""
 
 import gc
 
@@ -47,6 +48,31 @@ def test_a_command_body_runs_with_the_collector_paused(monkeypatch, tmp_path):
     assert gc.isenabled()
 
 
+def test_freezing_moves_the_objects_of_the_block_to_the_permanent_generation():
+    assert gc.get_freeze_count() == 0
+    try:
+        with _common.collector_paused(freeze=True):
+            made = [[i] for i in range(1000)]
+        assert gc.isenabled() and gc.get_freeze_count() >= len(made)
+    finally:
+        gc.unfreeze()
+    gc.disable()
+    try:
+        with _common.collector_paused(freeze=True):
+            pass
+        assert not gc.isenabled()       # left as the caller had it, nothing frozen
+    finally:
+        gc.enable()
+    assert gc.get_freeze_count() == 0
+
+
+def test_a_command_called_with_arguments_freezes_nothing(tmp_path):
+    src = tmp_path / 'a.svg'
+    src.write_bytes(SVG)
+    assert rasterize([str(src), str(tmp_path / 'a.png')]) == 0
+    assert gc.get_freeze_count() == 0 and gc.isenabled()
+
+
 def run_code(code, env_extra=None):
     import os
     import subprocess
@@ -74,3 +100,17 @@ def test_from_the_command_line_numpy_gets_one_blas_thread():
     assert run_code(BLAS % 'None', {'OPENBLAS_NUM_THREADS': '3'}) == ['3']   # the user's
     assert run_code(BLAS % '[]') == ['-']          # called with arguments: not a command line
     assert run_code('import numpy\n' + BLAS % 'None') == ['-']    # numpy already loaded
+
+
+FROZEN = '''
+import gc, sys
+from raster_cli import _common
+_common.run('rasterize', lambda a: print(gc.get_freeze_count()), _common.Parser(prog='rasterize'), %s)
+print(gc.get_freeze_count(), gc.isenabled())
+'''
+
+
+def test_from_the_command_line_the_objects_of_the_run_are_frozen():
+    before, after, enabled = run_code(FROZEN % 'None')
+    assert before == '0' and int(after) > 1000 and enabled == 'True'
+    assert run_code(FROZEN % '[]') == ['0', '0', 'True']
