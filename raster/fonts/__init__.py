@@ -22,12 +22,12 @@
 
 import importlib
 
-from .files import FONT_EXTENSIONS, FontError, FontFace
 from .options import FontOptions
 
 #: Names of the heavier submodules, imported on first use (a document
 #: without text loads only :mod:`raster.fonts.options`).
-_LAZY = {'Font': 'font', 'Shaped': 'font', 'register_memory_font': 'font',
+_LAZY = {'FONT_EXTENSIONS': 'files', 'FontError': 'files', 'FontFace': 'files',
+         'Font': 'font', 'Shaped': 'font', 'register_memory_font': 'font',
          'BUNDLED_FONT': 'matching', 'FAMILY_CLASSES': 'matching',
          'GENERIC_PREFERENCES': 'matching', 'METRIC_ALIASES': 'matching', 'FontDB': 'matching',
          'cached': 'matching', 'generic_keyword': 'matching', 'parse_font_family': 'matching'}

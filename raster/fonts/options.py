@@ -5,12 +5,18 @@ import os
 from dataclasses import dataclass, fields
 from typing import Optional, Tuple
 
-from .files import FontError
-
 __all__ = ['FontOptions', 'GENERIC_NAMES']
 
 #: Generic family keywords of CSS that :class:`FontOptions` can override.
 GENERIC_NAMES = ('serif', 'sans-serif', 'monospace', 'cursive', 'fantasy')
+
+
+def _font_error(message):
+    """:class:`raster.fonts.files.FontError` with ``message``, its module
+    imported only now: options are made for every document, fonts read
+    only for text."""
+    from .files import FontError
+    return FontError(message)
 
 
 def _paths(name, value):
@@ -21,8 +27,8 @@ def _paths(name, value):
     try:
         out = tuple(os.fspath(v) for v in value)
     except TypeError:
-        raise FontError('%s must be a path or a sequence of paths, got %r'
-                        % (name, value)) from None
+        raise _font_error('%s must be a path or a sequence of paths, got %r'
+                          % (name, value)) from None
     return out
 
 
@@ -76,7 +82,7 @@ class FontOptions:
             v = getattr(self, f.name)
             if f.name.endswith('_family') and v is not None:
                 if not isinstance(v, str) or not v.strip():
-                    raise FontError('%s must be a non-empty family name, got %r' % (f.name, v))
+                    raise _font_error('%s must be a non-empty family name, got %r' % (f.name, v))
                 object.__setattr__(self, f.name, v.strip())
         object.__setattr__(self, 'system', bool(self.system))
         object.__setattr__(self, 'cache', bool(self.cache))
@@ -102,6 +108,6 @@ class FontOptions:
             try:
                 return cls(**value)
             except TypeError as e:
-                raise FontError('bad font options: %s' % e) from None
-        raise FontError('fonts must be a raster.FontOptions, a dict or None, got %s'
-                        % type(value).__name__)
+                raise _font_error('bad font options: %s' % e) from None
+        raise _font_error('fonts must be a raster.FontOptions, a dict or None, got %s'
+                          % type(value).__name__)
