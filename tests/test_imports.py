@@ -27,7 +27,9 @@ HEAVY = ('fontTools', 'uharfbuzz', 'PIL', 'raster.fonts.font', 'raster.fonts.mat
          'raster.parser.fontface',
          'raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
          'raster.tree.filter', 'raster.parser.images', 'raster.parser.imageload',
-         'raster.parser.markers', 'raster.parser.clipmask')
+         'raster.parser.markers', 'raster.parser.clipmask', 'raster.fonts.files',
+         'raster.parser.mesh', 'raster.pixels.mesh', 'raster.geometry.patches')
+MESH = ('raster.parser.mesh', 'raster.pixels.mesh', 'raster.geometry.patches')
 #: Modules of numpy and the standard library a plain document does not need.
 LIGHT_EXTRAS = ('numpy.ma', 'logging', 'hashlib', '_hashlib', 'tempfile', 'shutil')
 FILTERS = ('raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
@@ -108,6 +110,17 @@ def test_a_filter_loads_the_filter_modules():
     mods = modules_after(render_code(doc))
     assert loaded(mods, FILTERS) == sorted(FILTERS)
     assert loaded(mods, ('fontTools', 'uharfbuzz', 'PIL')) == []
+
+
+def test_a_mesh_gradient_loads_the_mesh_modules():
+    patch = ''.join('<stop stop-color="%s" path="%s"/>' % sp for sp in (
+        ('red', 'l 8,0'), ('blue', 'l 0,6'), ('lime', 'l -8,0'), ('black', 'l 0,-6')))
+    doc = SVG % ('<meshgradient id="m" gradientUnits="userSpaceOnUse" x="1" y="1">'
+                 '<meshrow><meshpatch>%s</meshpatch></meshrow></meshgradient>'
+                 '<rect width="10" height="8" fill="url(#m) lime"/>' % patch)
+    mods = modules_after(render_code(doc))
+    assert loaded(mods, MESH) == sorted(MESH)
+    assert loaded(mods, FILTERS + ('raster.fonts.files', 'fontTools', 'PIL')) == []
 
 
 def test_text_loads_the_fonts():

@@ -39,7 +39,6 @@ from ..tree import (GradientStop, Group, LinearGradient, Pattern, RadialGradient
 from .context import SVG_NS, State
 from .convert import convert_children
 from .document import chain_attr
-from .mesh import mesh_gradient
 from .refs import href_chain
 from .style import BLACK, doc_style, local_name, number_or_percent, opacity
 from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length, parse_paint,
@@ -215,6 +214,7 @@ def server_of(el, name, ctx, cache):
     if name == 'pattern':
         r = _pattern(el, ctx, cache)
     elif name == 'meshgradient':
+        from .mesh import mesh_gradient      # loaded by the first mesh gradient
         m = mesh_gradient(el, ctx, cache)
         r = UNSUPPORTED if m is None else GradientServer(*m)
     else:

@@ -23,7 +23,6 @@ from ..errors import RasterError
 from ..geometry.path import Path
 from ..pixels.scan import path_coverage
 from ..geometry.transform import Affine
-from ..pixels.mesh import mesh_gradient
 from ..tree import LinearGradient, SweepGradient
 
 __all__ = ['gradient_colors', 'mesh_colors', 'draw_pixels', 'sample', 'resample_window', 'STRIP_PIXELS']
@@ -182,6 +181,7 @@ def mesh_colors(paint, mask, t, tolerance):
     h, w = cover.shape
     if h == 0 or w == 0 or not cover.any():
         return None
+    from ..pixels.mesh import mesh_gradient      # loaded by the first mesh gradient
     m = t @ paint.transform
     dev = m.apply(np.asarray(paint.patches).reshape(-1, 2)).reshape(-1, 12, 2)
     col = mesh_gradient(dev, paint.colors, (int(mask.x0), int(mask.y0), w, h),
