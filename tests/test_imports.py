@@ -31,7 +31,8 @@ HEAVY = ('fontTools', 'uharfbuzz', 'PIL', 'raster.fonts.font', 'raster.fonts.mat
          'raster.parser.mesh', 'raster.pixels.mesh', 'raster.geometry.patches')
 MESH = ('raster.parser.mesh', 'raster.pixels.mesh', 'raster.geometry.patches')
 #: Modules of numpy and the standard library a plain document does not need.
-LIGHT_EXTRAS = ('numpy.ma', 'logging', 'hashlib', '_hashlib', 'tempfile', 'shutil')
+LIGHT_EXTRAS = ('numpy.ma', 'numpy.typing', 'logging', 'hashlib', '_hashlib', 'tempfile',
+                'shutil')
 FILTERS = ('raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
            'raster.tree.filter')
 
@@ -72,8 +73,9 @@ def test_a_plain_document_loads_nothing_heavy():
     assert 'raster.renderer.draw' in mods and 'lxml.etree' in mods
     assert loaded(mods, HEAVY) == []
     # nor what only some documents need from numpy and the standard library:
-    # masked arrays (np.unique imports them), logging (fontTools' log lines
-    # become warnings), OpenSSL's hashes (@font-face data)
+    # masked arrays (np.unique imports them), numpy.typing (annotations
+    # only), logging (fontTools' log lines become warnings), OpenSSL's
+    # hashes (@font-face data)
     assert loaded(mods, LIGHT_EXTRAS) == []
 
 
@@ -86,7 +88,7 @@ def test_the_command_on_a_plain_document_loads_nothing_heavy(tmp_path):
     ''') % (str(src), str(tmp_path / 'out.png')))
     assert 'raster.renderer.draw' in mods
     # nor the network and temporary-file modules of the standard library
-    assert loaded(mods, HEAVY + ('urllib.request', 'http', 'email', 'tempfile', 'shutil')) == []
+    assert loaded(mods, HEAVY + LIGHT_EXTRAS + ('urllib.request', 'http', 'email')) == []
     assert (tmp_path / 'out.png').read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'
 
 

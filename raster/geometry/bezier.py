@@ -36,12 +36,15 @@ derivatives come from :mod:`raster.geometry.roots`.
 ([0.0, 0.0], [4.0, 1.5])
 """
 
+from __future__ import annotations
+
 import functools
 import math
-from typing import Tuple
+from typing import TYPE_CHECKING, Tuple
 
 import numpy as np
-from numpy.typing import ArrayLike
+if TYPE_CHECKING:              # numpy.typing costs 1 ms of every start-up
+    from numpy.typing import ArrayLike
 
 from ..errors import PathError
 from .roots import solve_quadratic, unit_interval_roots

@@ -11,10 +11,13 @@ applied to the control points *before* the box is taken (the box of a
 transformed curve, not the transformed box).
 """
 
-from typing import Any, Tuple
+from __future__ import annotations
+
+from typing import Any, TYPE_CHECKING, Tuple
 
 import numpy as np
-from numpy.typing import ArrayLike
+if TYPE_CHECKING:              # numpy.typing costs 1 ms of every start-up
+    from numpy.typing import ArrayLike
 
 from ..errors import PathError
 from .bezier import bounds, segment_bounds

@@ -90,12 +90,15 @@ subdivision always terminates.
 ([14], [0.0, 0.0], [100.0, 0.0])
 """
 
+from __future__ import annotations
+
 import math
 
-from typing import List, Optional, Sequence, Tuple, Union
+from typing import List, Optional, Sequence, TYPE_CHECKING, Tuple, Union
 
 import numpy as np
-from numpy.typing import ArrayLike
+if TYPE_CHECKING:              # numpy.typing costs 1 ms of every start-up
+    from numpy.typing import ArrayLike
 
 from ..errors import PathError, LimitError
 from .. import limits

@@ -9,8 +9,13 @@ same polygon runs clockwise.
 [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]]
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
-from numpy.typing import ArrayLike
+if TYPE_CHECKING:              # numpy.typing costs 1 ms of every start-up
+    from numpy.typing import ArrayLike
 
 from ..errors import PathError
 

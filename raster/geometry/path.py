@@ -35,10 +35,13 @@ The pens that make and consume paths are in :mod:`raster.geometry.pens`;
 'M 0 0 L 10 0 C 10 5 5 10 0 10 Z'
 """
 
-from typing import Any, Iterable, NamedTuple, Optional, Tuple
+from __future__ import annotations
+
+from typing import Any, Iterable, NamedTuple, Optional, TYPE_CHECKING, Tuple
 
 import numpy as np
-from numpy.typing import ArrayLike
+if TYPE_CHECKING:              # numpy.typing costs 1 ms of every start-up
+    from numpy.typing import ArrayLike
 
 from ..errors import PathError
 from .transform import AffineLike, as_affine

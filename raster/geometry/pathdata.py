@@ -36,14 +36,17 @@ what SVG renderers draw.
 'M 0 0 L 10 0'
 """
 
+from __future__ import annotations
+
 import math
 import re
 import sys
 
-from typing import List, Optional, Sequence
+from typing import List, Optional, Sequence, TYPE_CHECKING
 
 import numpy as np
-from numpy.typing import ArrayLike
+if TYPE_CHECKING:              # numpy.typing costs 1 ms of every start-up
+    from numpy.typing import ArrayLike
 
 from .._regex import lazy
 from ..errors import LimitError, PathError

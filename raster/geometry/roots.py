@@ -21,10 +21,13 @@ squares and cubes of coefficients away from overflow and underflow.
 [1.0, 2.0, 3.0]
 """
 
-from typing import Tuple
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Tuple
 
 import numpy as np
-from numpy.typing import ArrayLike
+if TYPE_CHECKING:              # numpy.typing costs 1 ms of every start-up
+    from numpy.typing import ArrayLike
 
 __all__ = ['solve_quadratic', 'solve_cubic', 'unit_interval_roots']
 

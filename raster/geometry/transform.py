@@ -13,11 +13,14 @@ then ``A`` (so ``transform="translate(..) scale(..)"`` is
 [[12.0, 2.0]]
 """
 
+from __future__ import annotations
+
 import math
-from typing import Optional, Sequence, Union
+from typing import Optional, Sequence, TYPE_CHECKING, Union
 
 import numpy as np
-from numpy.typing import ArrayLike
+if TYPE_CHECKING:              # numpy.typing costs 1 ms of every start-up
+    from numpy.typing import ArrayLike
 
 from ..errors import TransformError
 
