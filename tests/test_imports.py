@@ -31,8 +31,8 @@ HEAVY = ('fontTools', 'uharfbuzz', 'PIL', 'raster.fonts.font', 'raster.fonts.mat
          'raster.parser.mesh', 'raster.pixels.mesh', 'raster.geometry.patches')
 MESH = ('raster.parser.mesh', 'raster.pixels.mesh', 'raster.geometry.patches')
 #: Modules of numpy and the standard library a plain document does not need.
-LIGHT_EXTRAS = ('numpy.ma', 'numpy.typing', 'logging', 'hashlib', '_hashlib', 'tempfile',
-                'shutil')
+LIGHT_EXTRAS = ('numpy.ma', 'numpy.typing', 'logging', 'threading', 'hashlib', '_hashlib',
+                'tempfile', 'shutil')
 FILTERS = ('raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
            'raster.tree.filter')
 
@@ -74,8 +74,8 @@ def test_a_plain_document_loads_nothing_heavy():
     assert loaded(mods, HEAVY) == []
     # nor what only some documents need from numpy and the standard library:
     # masked arrays (np.unique imports them), numpy.typing (annotations
-    # only), logging (fontTools' log lines become warnings), OpenSSL's
-    # hashes (@font-face data)
+    # only), logging (fontTools' log lines become warnings), threading
+    # (thread pools of large renders), OpenSSL's hashes (@font-face data)
     assert loaded(mods, LIGHT_EXTRAS) == []
 
 
