@@ -171,3 +171,26 @@ def test_markers_and_clip_paths_load_their_modules():
     mods = modules_after(render_code(doc))
     assert loaded(mods, ('raster.parser.markers', 'raster.parser.clipmask')) == [
         'raster.parser.clipmask', 'raster.parser.markers']
+
+
+PATTERNS = textwrap.dedent('''
+    import raster.parser.css, raster.parser.document, raster.parser.context
+    from raster._regex import LazyPattern
+    for m in (raster.parser.css, raster.parser.document, raster.parser.context):
+        print(m.__name__, sorted(k for k, v in vars(m).items() if isinstance(v, LazyPattern)))
+''')
+
+
+def test_a_plain_document_compiles_none_of_the_css_patterns():
+    out = subprocess.run([sys.executable, '-c', render_code(SVG % RECT) + PATTERNS],
+                         capture_output=True, text=True, check=True).stdout
+    lines = dict(line.split(' ', 1) for line in out.strip().splitlines())
+    assert '_IDENT_RE' in lines['raster.parser.css'] and '_IMPORT_RE' in lines['raster.parser.css']
+    assert '_XLINK_HREF_IN_DTD' in lines['raster.parser.document']
+    assert '_LANG_TAG' in lines['raster.parser.context']
+    # a style sheet with selectors compiles what it uses
+    styled = SVG % ('<style>rect.a { fill: blue }</style><rect class="a" width="4" height="4"/>')
+    out = subprocess.run([sys.executable, '-c', render_code(styled) + PATTERNS],
+                         capture_output=True, text=True, check=True).stdout
+    lines = dict(line.split(' ', 1) for line in out.strip().splitlines())
+    assert '_IDENT_RE' not in lines['raster.parser.css']

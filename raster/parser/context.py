@@ -12,12 +12,12 @@ keeps state of its own between calls: everything shared lives on the
 import contextlib
 import math
 import os
-import re
 import types
 import warnings
 from dataclasses import dataclass, field
 from typing import Optional, Tuple
 
+from .._regex import lazy
 from ..limits import Limits, current as current_limits
 from ..errors import RasterWarning, SVGError, TransformError
 from ..fonts import FontOptions
@@ -33,7 +33,7 @@ XLINK_HREF = '{http://www.w3.org/1999/xlink}href'
 NO_OWN = types.MappingProxyType({})
 
 
-_LANG_TAG = re.compile(r'[A-Za-z]{1,8}(-[A-Za-z0-9]{1,8})*')
+_LANG_TAG = lazy(globals(), '_LANG_TAG', r'[A-Za-z]{1,8}(-[A-Za-z0-9]{1,8})*')
 
 
 def parse_languages(s):

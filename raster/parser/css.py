@@ -65,6 +65,7 @@ import re
 import warnings
 from typing import NamedTuple
 
+from .._regex import lazy
 from .. import limits
 from ..errors import RasterWarning, SVGError
 from .properties import PROPERTIES, PRESENTATION_ATTRIBUTES
@@ -92,7 +93,7 @@ class Declaration(NamedTuple):
 # tokenizing helpers
 # --------------------------------------------------------------------------
 
-_STRING_OR_COMMENT_RE = re.compile(
+_STRING_OR_COMMENT_RE = lazy(globals(), '_STRING_OR_COMMENT_RE', 
     r'"(?:[^"\\\n]|\\.)*"|\'(?:[^\'\\\n]|\\.)*\'|/\*.*?(?:\*/|\Z)', re.S)
 
 
@@ -153,8 +154,8 @@ def _skip_block(text, pos):
 # declarations
 # --------------------------------------------------------------------------
 
-_IMPORTANT_RE = re.compile(r'!\s*important\s*$', re.I)
-_PROP_NAME_RE = re.compile(r'-?[_a-zA-Z][_a-zA-Z0-9-]*')
+_IMPORTANT_RE = lazy(globals(), '_IMPORTANT_RE', r'!\s*important\s*$', re.I)
+_PROP_NAME_RE = lazy(globals(), '_PROP_NAME_RE', r'-?[_a-zA-Z][_a-zA-Z0-9-]*')
 
 
 def _split_decls(text):
@@ -227,7 +228,7 @@ _FONT_STRETCH = {'ultra-condensed', 'extra-condensed', 'condensed',
                  'extra-expanded', 'ultra-expanded'}
 _FONT_SIZE_KW = {'xx-small', 'x-small', 'small', 'medium', 'large', 'x-large',
                  'xx-large', 'xxx-large', 'larger', 'smaller'}
-_SIZE_RE = re.compile(r'(?:[+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?'
+_SIZE_RE = lazy(globals(), '_SIZE_RE', r'(?:[+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?'
                       r'(?:[a-zA-Z]+|%)?)$')
 
 
@@ -315,12 +316,12 @@ def _expand(name, value, important):
 # --------------------------------------------------------------------------
 
 _IDENT = r'-?(?:[_a-zA-Z]|[^\x00-\x7f]|\\.)(?:[_a-zA-Z0-9-]|[^\x00-\x7f]|\\.)*'
-_IDENT_RE = re.compile(_IDENT)
-_ATTR_RE = re.compile(
+_IDENT_RE = lazy(globals(), '_IDENT_RE', _IDENT)
+_ATTR_RE = lazy(globals(), '_ATTR_RE', 
     r'\[\s*(' + _IDENT + r')\s*(?:([~|^$*]?=)\s*(?:(' + _IDENT + r')|"((?:[^"\\]|\\.)*)"'
     r'|\'((?:[^\'\\]|\\.)*)\')\s*(?:([iIsS])\s*)?)?\]')
-_ESC_RE = re.compile(r'\\(.)', re.S)
-_NAME_RE = re.compile(r'(?:[_a-zA-Z0-9-]|[^\x00-\x7f]|\\.)+')
+_ESC_RE = lazy(globals(), '_ESC_RE', r'\\(.)', re.S)
+_NAME_RE = lazy(globals(), '_NAME_RE', r'(?:[_a-zA-Z0-9-]|[^\x00-\x7f]|\\.)+')
 
 
 def _unescape(s):
@@ -397,7 +398,7 @@ class _Compound:
 
 # --- structural pseudo-classes (Selectors level 4, without ``of S``) -------
 
-_NTH_RE = re.compile(r'^([+-]?)(\d*)n\s*(?:([+-])\s*(\d+))?$', re.I)
+_NTH_RE = lazy(globals(), '_NTH_RE', r'^([+-]?)(\d*)n\s*(?:([+-])\s*(\d+))?$', re.I)
 
 
 def _parse_nth(text):
@@ -759,7 +760,7 @@ def _parse_compound(text, pos):
     return comp, pos
 
 
-_COMB_RE = re.compile(r'\s*([>+~])\s*|\s+')
+_COMB_RE = lazy(globals(), '_COMB_RE', r'\s*([>+~])\s*|\s+')
 
 
 def _parse_complex(text):
@@ -829,7 +830,7 @@ class Rule(NamedTuple):
     order: int
 
 
-_IMPORT_RE = re.compile(
+_IMPORT_RE = lazy(globals(), '_IMPORT_RE', 
     r'@import\s*(?:url\(\s*(?:"((?:[^"\\]|\\.)*)"|\'((?:[^\'\\]|\\.)*)\'|([^)\s"\']*))\s*\)'
     r'|"((?:[^"\\]|\\.)*)"|\'((?:[^\'\\]|\\.)*)\')\s*(.*)$', re.I | re.S)
 

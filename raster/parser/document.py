@@ -31,6 +31,7 @@ import zlib
 
 from lxml import etree
 
+from .._regex import lazy
 from .. import limits
 from ..errors import InputLimitError, SVGError
 from ..sources import CHUNK, file_chunks, stream_chunks, too_large
@@ -233,7 +234,8 @@ def load_document(source, *, max_bytes=None):
     return root
 
 
-_HUGE_ADVICE = re.compile(r',?\s*(?:try|use) XML_PARSE_HUGE(?: option)?', re.I)
+_HUGE_ADVICE = lazy(globals(), '_HUGE_ADVICE', r',?\s*(?:try|use) XML_PARSE_HUGE(?: option)?',
+                    re.I)
 
 
 def _huge_hint(msg):
@@ -244,7 +246,7 @@ def _huge_hint(msg):
         ' (libxml2\'s limit: raise max_xml_text_bytes above 10 MB)'
 
 
-_XLINK_HREF_IN_DTD = re.compile(rb'(\s)xlink:href(\s*=)')
+_XLINK_HREF_IN_DTD = lazy(globals(), '_XLINK_HREF_IN_DTD', rb'(\s)xlink:href(\s*=)')
 
 
 def _xlink_in_entities(data, err):
