@@ -404,7 +404,10 @@ def _batch(args, dpi, paths, out_dir):
     try:
         if jobs > 1:
             with process_pool(jobs) as pool:
-                results = pool.imap_unordered(_batch_one, tasks)
+                # a few files per hand-over: one round trip per file
+                # costs the parent (on the same cores) more than the
+                # small imbalance of the last chunks
+                results = pool.imap_unordered(_batch_one, tasks, batch_chunk(len(tasks), jobs))
                 for r in results:
                     failed += _report(bar, r)
                     done += 1
@@ -425,6 +428,18 @@ def _batch(args, dpi, paths, out_dir):
 
 #: What forked batch workers convert with: (args, dpi, format, background, jobs).
 _BATCH = None
+
+#: Hand-overs per worker a batch is cut into at least (more of them keep
+#: the workers' loads even when file sizes differ; fewer cost fewer round
+#: trips between the processes).
+CHUNKS_PER_WORKER = 16
+
+
+def batch_chunk(files, jobs):
+    """Files per hand-over to a worker for a batch of ``files`` over
+    ``jobs`` workers: at least 1, and at least ``CHUNKS_PER_WORKER``
+    hand-overs per worker."""
+    return max(1, files // (max(1, jobs) * CHUNKS_PER_WORKER))
 
 
 def _batch_one(task):

@@ -263,3 +263,27 @@ def test_the_file_does_not_depend_on_the_number_of_workers(tmp_path):
                                '--jobs', jobs]) == 0
         outs.append(out.read_bytes())
     assert outs[0] == outs[1]
+
+
+def test_batch_chunks_cover_every_file_and_keep_workers_busy():
+    # at least CHUNKS_PER_WORKER hand-overs per worker, never an empty one
+    for files in (1, 2, 31, 32, 33, 200, 1000):
+        for jobs in (1, 2, 3, 8):
+            k = rasterize.batch_chunk(files, jobs)
+            assert k >= 1
+            assert k == 1 or -(-files // k) >= jobs * rasterize.CHUNKS_PER_WORKER
+
+
+def test_a_chunked_batch_reports_a_bad_file_inside_a_chunk(tmp_path, capsys, monkeypatch):
+    # files go to the workers several at a time: a bad file in the middle
+    # of a hand-over gets its line and the files after it are converted
+    monkeypatch.setattr(rasterize, 'CHUNKS_PER_WORKER', 1)
+    d = folder(tmp_path, 7)
+    (d / 'icon3.svg').write_bytes(b'<svg')
+    assert rasterize.batch_chunk(7, 2) == 3
+    out = tmp_path / 'out'
+    assert rasterize.main([str(d), '--out-dir', str(out), '--jobs', '2']) == 1
+    err = capsys.readouterr().err
+    assert sorted(os.listdir(out)) == ['icon%d.png' % i for i in range(7) if i != 3]
+    assert len([ln for ln in err.splitlines() if 'error' in ln and 'icon3.svg' in ln]) == 1
+    assert '6 of 7 files converted, 0 skipped, 1 failed' in summary(err)
