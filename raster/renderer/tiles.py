@@ -18,7 +18,7 @@ from typing import List, NamedTuple, Tuple
 import numpy as np
 
 from ..errors import CanvasError
-from ..tree import Group, ImageNode, PathNode
+from ..tree import ImageNode, PathNode, walk
 
 __all__ = ['DEFAULT_BUDGET', 'BYTES_PER_PIXEL', 'TILE_SIZE', 'strip_rows', 'strip_spans',
            'row_work', 'balanced_spans', 'XYZLevel', 'xyz_levels', 'default_max_zoom']
@@ -85,30 +85,27 @@ def row_work(node, transform, width: int, height: int) -> np.ndarray:
     height, width = int(height), int(width)
     d = np.zeros(height + 1)
     y0s, y1s, ws = [], [], []
-    stack = [(node, transform)]
-    while stack:
-        n, t = stack.pop()
-        if isinstance(n, Group):
-            ct = t @ n.transform
-            stack.extend((c, ct) for c in n.children)
-        elif isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
-            if n.markers is not None:
-                stack.append((n.markers, t))
-            x0, y0, x1, y1 = n.path.control_box()
-            xs = (t.a * x0 + t.c * y0, t.a * x1 + t.c * y0, t.a * x0 + t.c * y1,
-                  t.a * x1 + t.c * y1)
-            ys = (t.b * x0 + t.d * y0, t.b * x1 + t.d * y0, t.b * x0 + t.d * y1,
-                  t.b * x1 + t.d * y1)
-            bx0, bx1 = max(min(xs) + t.e, 0.0), min(max(xs) + t.e, width)
-            by0, by1 = max(min(ys) + t.f, 0.0), min(max(ys) + t.f, height)
-            if not (bx1 > bx0 and by1 > by0) or not math.isfinite(by1 - by0):
-                continue
-            y0s.append(by0)
-            y1s.append(by1)
-            ws.append(len(n.path.verbs) + BOX_PIXEL_WORK * (bx1 - bx0) * (by1 - by0))
-        elif isinstance(n, ImageNode):
-            if n.tree is not None:
-                stack.append((n.tree.root, t @ n.transform))
+    pending = [(node, transform)]           # subtrees: the root, markers, SVG images
+    while pending:
+        root, t0 = pending.pop()
+        for n, t in walk(root, t0):
+            if isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
+                if n.markers is not None:
+                    pending.append((n.markers, t))
+                x0, y0, x1, y1 = n.path.control_box()
+                xs = (t.a * x0 + t.c * y0, t.a * x1 + t.c * y0, t.a * x0 + t.c * y1,
+                      t.a * x1 + t.c * y1)
+                ys = (t.b * x0 + t.d * y0, t.b * x1 + t.d * y0, t.b * x0 + t.d * y1,
+                      t.b * x1 + t.d * y1)
+                bx0, bx1 = max(min(xs) + t.e, 0.0), min(max(xs) + t.e, width)
+                by0, by1 = max(min(ys) + t.f, 0.0), min(max(ys) + t.f, height)
+                if not (bx1 > bx0 and by1 > by0) or not math.isfinite(by1 - by0):
+                    continue
+                y0s.append(by0)
+                y1s.append(by1)
+                ws.append(len(n.path.verbs) + BOX_PIXEL_WORK * (bx1 - bx0) * (by1 - by0))
+            elif isinstance(n, ImageNode) and n.tree is not None:
+                pending.append((n.tree.root, t @ n.transform))
     if ws:
         a = np.floor(np.array(y0s)).astype(np.int64)
         b = np.maximum(np.ceil(np.array(y1s)).astype(np.int64), a + 1)

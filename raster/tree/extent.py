@@ -17,7 +17,7 @@ import numpy as np
 from ..errors import RasterError
 from ..geometry.bounds import bbox
 from ..geometry.transform import IDENTITY, Affine
-from .nodes import Group, ImageNode, PathNode
+from .nodes import Group, ImageNode, PathNode, walk
 
 __all__ = ['drawn_box']
 
@@ -62,7 +62,7 @@ def _clip_box(clip, t, tolerance):
     """Box of a clip path's geometry (its own clip path applied)."""
     ct = t @ clip.transform
     box = None
-    for n, m in _walk(clip.root, ct):
+    for n, m in walk(clip.root, ct):
         if isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
             try:
                 box = _union(box, bbox(n.path, m))
@@ -71,17 +71,6 @@ def _clip_box(clip, t, tolerance):
     if clip.clip_path is not None:
         box = _intersect(box, _clip_box(clip.clip_path, t, tolerance))
     return box
-
-
-def _walk(node, t):
-    stack = [(node, t)]
-    while stack:
-        n, m = stack.pop()
-        if isinstance(n, Group):
-            cm = m @ n.transform
-            stack.extend((c, cm) for c in n.children)
-        else:
-            yield n, m
 
 
 def drawn_box(node, transform: Affine = IDENTITY, tolerance: float = 0.1) -> Optional[Box]:

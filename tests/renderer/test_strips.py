@@ -31,6 +31,36 @@ def test_row_work_lies_where_the_paths_are():
     assert w[10:30].sum() > 10 * (w[60:80].sum() - 20 * base)
 
 
+def test_row_work_counts_groups_markers_and_nested_images():
+    # a path under a translated group lies on the rows the group moves it
+    # to; its markers' content and a nested SVG image add work on theirs
+    base_doc = ('<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100">'
+                '<defs><marker id="m" markerWidth="6" markerHeight="6" refX="3" refY="3" '
+                'markerUnits="userSpaceOnUse"><path d="M0 0 L6 0 L6 6 L0 6 Z M1 1 L5 1 L5 5 Z"/>'
+                '</marker></defs><g transform="translate(0 40)">'
+                '<path d="M10 4 L90 6" stroke="black" %s/></g>%s</svg>')
+    image = ('<image x="0" y="80" width="100" height="10" href="data:image/svg+xml;utf8,'
+             '%3Csvg xmlns=%22http://www.w3.org/2000/svg%22 width=%2210%22 height=%2210%22%3E'
+             '%3Cpath d=%22M0 0 L10 0 L10 10 L0 10 Z%22/%3E%3C/svg%3E"/>')
+
+    def work(markers, img):
+        doc = base_doc % ('marker-start="url(#m)" marker-end="url(#m)"' if markers else '',
+                          image if img else '')
+        g = output_geometry(load_svg(doc.encode()))
+        return row_work(g.node, g.transform, g.width, g.height)
+
+    plain, marked, with_image = work(False, False), work(True, False), work(False, True)
+    base = PIXEL_WORK * 100
+    # the line spans y 44-46 once moved: rows 44 and 45
+    assert np.allclose(plain[:44], base) and (plain[44:46] > base).all()
+    assert np.allclose(plain[46:], base)
+    # the markers' 6 px boxes about (10, 44) and (90, 46) reach rows 41-48
+    assert (marked[41:49] > plain[41:49]).all()
+    assert np.allclose(marked[:41], plain[:41]) and np.allclose(marked[49:], plain[49:])
+    # the image's path covers rows 80-89
+    assert (with_image[80:90] > plain[80:90]).all() and np.allclose(with_image[:80], plain[:80])
+
+
 @settings(max_examples=60, deadline=None)
 @given(st.lists(st.floats(0.0, 100.0), min_size=1, max_size=300), st.integers(1, 9),
        st.integers(1, 120))
