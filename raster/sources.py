@@ -165,20 +165,8 @@ def file_chunks(path: str | os.PathLike, max_bytes: float, chunk: int = CHUNK) -
             raise _io_error(e, p) from e
         if stat.S_ISREG(st.st_mode) and st.st_size > max_bytes:
             raise too_large(max_bytes)
-        total = 0
-        while True:
-            try:
-                data = f.read(chunk)
-            except OSError as e:
-                raise _io_error(e, p) from e
-            if not data:
-                return
-            total += len(data)
-            if total > max_bytes:
-                raise too_large(max_bytes)
-            yield data
-            if chunk < 0:
-                return
+        # (a failing read names the file: f.name is the path opened)
+        yield from stream_chunks(f, max_bytes, chunk)
 
 
 def read_stream(fileobj, max_bytes: float) -> bytes | str:

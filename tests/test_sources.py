@@ -13,7 +13,7 @@ import pytest
 
 import raster
 from raster.errors import RasterError, RasterIOError, SVGError
-from raster.sources import local_path, read_file, read_stream, url_scheme
+from raster.sources import file_chunks, local_path, read_file, read_stream, url_scheme
 from raster.parser.document import load_document
 
 DOC = (b'<svg xmlns="http://www.w3.org/2000/svg" width="4" height="2">'
@@ -185,3 +185,13 @@ def test_cli_reads_a_file_url(tmp_path):
     assert rasterize.main([p.as_uri(), str(out)]) == 0
     from PIL import Image
     assert Image.open(out).size == (4, 2)
+
+
+@pytest.mark.skipif(not os.path.exists('/proc/self/mem'), reason='needs Linux /proc')
+def test_a_failing_read_of_a_file_names_the_file():
+    # /proc/self/mem opens but its first read fails (EIO): the error is a
+    # RasterIOError naming the path, whether read whole or in pieces
+    for chunk in (-1, 16):
+        with pytest.raises(RasterIOError) as info:
+            list(file_chunks('/proc/self/mem', 1000, chunk))
+        assert '/proc/self/mem' in str(info.value)
