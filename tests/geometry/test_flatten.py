@@ -574,6 +574,21 @@ def test_straddled_quadratics_within_tolerance(ctrl, tol):
     check_straddled(ctrl, tol)
 
 
+def test_straddled_cusps_within_tolerance():
+    # cubics whose inner control points swap sides make a cusp or a tight
+    # loop: the chords around the tip turn by more than 90 degrees, and
+    # the vertex there must stay on the curve (a blend of the two chords'
+    # shifts pulled it up to 0.16 tolerance too far off the tip).  The
+    # first curve is the one hypothesis found.
+    check_straddled([(0, 0), (74, 97), (68, 0), (14, 97)], 1.0)
+    rng = np.random.default_rng(12)
+    for k in range(60):
+        p0, p3 = rng.integers(0, 100, (2, 2)).astype(float)
+        side = rng.uniform(20, 80) * np.array([1.0, 0.0])
+        ctrl = [p0, p3 + side + rng.normal(0, 3, 2), p0 + side + rng.normal(0, 3, 2), p3]
+        check_straddled(ctrl, [0.05, 0.25, 1.0][k % 3])
+
+
 @pytest.mark.parametrize('tol', [0.05, 0.25, 1.0])
 @pytest.mark.parametrize('r', [3.0, 30.0, 300.0])
 def test_straddled_circle_deviates_on_both_sides(tol, r):
