@@ -15,7 +15,8 @@ import numpy as np
 
 from ..geometry.path import CLOSE as _CLOSE, CUBIC as _CUBIC, LINE as _LINE, MOVE as _MOVE, \
     QUAD as _QUAD, Path
-from .files import FontError, FontFace, check_font_data, quiet_fonttools, read_font_bytes, sfnt_bytes
+from .files import MAX_FONT_BYTES, FontError, FontFace, check_font_data, quiet_fonttools, \
+    read_font_bytes, sfnt_bytes
 from .matching import cached
 from .ranges import in_ranges
 
@@ -74,9 +75,46 @@ def _font_data(path):
 
 def _font_blob(path):
     """A HarfBuzz blob of the sfnt data of a font file or ``memory:`` key
-    (checked like :func:`_font_data`)."""
+    (checked like :func:`_font_data`).
+
+    An sfnt file (or collection) is mapped into memory by HarfBuzz instead
+    of read: only the pages of the tables it uses become resident, and
+    they are the page cache's, not copies.  Its container is checked
+    through a read-only mapping of its own first (sizes, the table
+    directory).  (As with any mapped font file, a file cut short while a
+    process uses it is unsafe; fonts are replaced, not truncated, by
+    installers.)
+    """
     import uharfbuzz as hb
+    if not path.startswith('memory:'):
+        kind, size = _check_font_file(path)
+        if kind in ('sfnt', 'ttc'):
+            try:
+                blob = hb.Blob.from_file_path(path)
+            except Exception:           # HarfBuzzError: then read it
+                blob = None
+            if blob is not None and len(blob) == size:
+                return blob
     return hb.Blob(_font_data(path))
+
+
+def _check_font_file(path):
+    """(kind, size) of a font file, checked by
+    :func:`~raster.fonts.files.check_font_data` through a read-only memory
+    mapping (the file is not read).  Raises :class:`FontError`."""
+    import mmap
+    try:
+        with open(path, 'rb') as fh:
+            size = os.fstat(fh.fileno()).st_size
+            if size > MAX_FONT_BYTES:
+                raise FontError('font file is larger than %d bytes' % MAX_FONT_BYTES)
+            if size < 12:
+                raise FontError('not a font file (too short)')
+            with mmap.mmap(fh.fileno(), 0, access=mmap.ACCESS_READ) as mm:
+                return check_font_data(mm), size
+    except (OSError, ValueError) as e:
+        raise FontError('cannot read font file: %s' % (getattr(e, 'strerror', None) or e)) \
+            from None
 
 
 class Font:
@@ -559,7 +597,7 @@ class _GlyphAtlas:
         gids = np.where((gids >= 0) & (gids < self.nglyphs), gids, self.nglyphs)
         missing = gids[self.vstart[gids] < 0]
         if len(missing):
-            for g in np.unique(missing).tolist():
+            for g in sorted(set(missing.tolist())):     # (np.unique imports numpy.ma)
                 self._add(g)
         vs, vn = self.vstart[gids], self.vcount[gids]
         ps, pn = self.pstart[gids], self.pcount[gids]
