@@ -10,8 +10,8 @@
 * :mod:`raster.fonts.matching` -- :class:`FontDB`: generic families,
   metric-compatible aliases, CSS weight/style/stretch matching, per
   character fallback, the bundled fallback font;
-* :mod:`raster.fonts.font` -- :class:`Font`: shaping (HarfBuzz) and packed
-  glyph outlines (fontTools);
+* :mod:`raster.fonts.font` -- :class:`Font`: shaping, metrics and packed
+  glyph outlines (HarfBuzz);
 * :mod:`raster.fonts.color` -- colour glyphs (COLRv0, COLRv1, sbix,
   CBDT/CBLC, SVG) as neutral layer descriptions.
 

@@ -153,7 +153,7 @@ class ColorFont:
     """The colour tables of one :class:`~raster.fonts.Font`.
 
     ``font`` gives glyph outlines (``outline(gid)``), the fontTools font
-    (``tt``) and the glyph order.  Descriptions are made on first use and
+    (``tt``) and the number of glyphs.  Descriptions are made on first use and
     remembered per glyph.
 
     Attributes
@@ -172,7 +172,7 @@ class ColorFont:
         self._clips = {}
         self._svg = None
         self._bitmaps = None
-        n = len(font.glyph_order)
+        n = font.num_glyphs
         mask = np.zeros(n, bool)
         has = False
         with quiet_fonttools():

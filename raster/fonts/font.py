@@ -1,4 +1,4 @@
-"""A loaded face: shaping with HarfBuzz (uharfbuzz), outlines with fontTools.
+"""A loaded face: shaping, metrics and outlines with HarfBuzz (uharfbuzz).
 
 :meth:`Font.load` keeps loaded fonts per process (keyed by path, face
 index and modification time).  Fonts given as bytes (``@font-face`` with a
@@ -8,14 +8,15 @@ index and modification time).  Fonts given as bytes (``@font-face`` with a
 
 import io
 import os
+import struct
 from typing import NamedTuple
 
 import numpy as np
 
-from ..errors import RasterError
-from ..geometry.path import Path
-from ..geometry.pens import PathBuilder
-from .files import FontError, FontFace, check_font_data, quiet_fonttools, read_font_bytes, sfnt_bytes
+from ..geometry.path import CLOSE as _CLOSE, CUBIC as _CUBIC, LINE as _LINE, MOVE as _MOVE, \
+    QUAD as _QUAD, Path
+from .files import MAX_FONT_BYTES, FontError, FontFace, check_font_data, quiet_fonttools, \
+    read_font_bytes, sfnt_bytes
 from .matching import cached
 from .ranges import in_ranges
 
@@ -61,6 +62,8 @@ def memory_font_data(key):
 
 
 def _font_data(path):
+    """The sfnt bytes of a font file or ``memory:`` key (checked; WOFF and
+    WOFF2 unpacked)."""
     if path.startswith('memory:'):
         data = _MEMORY.get(path)
         if data is None:
@@ -70,15 +73,69 @@ def _font_data(path):
     return sfnt_bytes(data)
 
 
+def _font_blob(path):
+    """A HarfBuzz blob of the sfnt data of a font file or ``memory:`` key
+    (checked like :func:`_font_data`).
+
+    An sfnt file (or collection) is mapped into memory by HarfBuzz instead
+    of read: only the pages of the tables it uses become resident, and
+    they are the page cache's, not copies.  Its container is checked
+    through a read-only mapping of its own first (sizes, the table
+    directory).  (As with any mapped font file, a file cut short while a
+    process uses it is unsafe; fonts are replaced, not truncated, by
+    installers.)
+    """
+    import uharfbuzz as hb
+    if not path.startswith('memory:'):
+        kind, size = _check_font_file(path)
+        if kind in ('sfnt', 'ttc'):
+            try:
+                blob = hb.Blob.from_file_path(path)
+            except Exception:           # HarfBuzzError: then read it
+                blob = None
+            if blob is not None and len(blob) == size:
+                return blob
+    return hb.Blob(_font_data(path))
+
+
+def _check_font_file(path):
+    """(kind, size) of a font file, checked by
+    :func:`~raster.fonts.files.check_font_data` through a read-only memory
+    mapping (the file is not read).  Raises :class:`FontError`."""
+    import mmap
+    try:
+        with open(path, 'rb') as fh:
+            size = os.fstat(fh.fileno()).st_size
+            if size > MAX_FONT_BYTES:
+                raise FontError('font file is larger than %d bytes' % MAX_FONT_BYTES)
+            if size < 12:
+                raise FontError('not a font file (too short)')
+            with mmap.mmap(fh.fileno(), 0, access=mmap.ACCESS_READ) as mm:
+                return check_font_data(mm), size
+    except (OSError, ValueError) as e:
+        raise FontError('cannot read font file: %s' % (getattr(e, 'strerror', None) or e)) \
+            from None
+
+
 class Font:
-    """A loaded face: shaping with uharfbuzz, outlines with fontTools.
+    """A loaded face: shaping, metrics, the character map and glyph
+    outlines, all through HarfBuzz (uharfbuzz).
+
+    fontTools is not imported for a font in the common case (an sfnt font
+    with TrueType or CFF outlines and no colour tables): only the colour
+    tables (:attr:`color`), :attr:`tt` and :attr:`glyph_order` load it,
+    on first use.
 
     Attributes
     ----------
     face : FontFace
-    upem : int
-        Units per em; all metrics below are in font units (y up).
+    upem : float
+        Units per em (``head``); all metrics below are in font units (y up).
+    num_glyphs : int
+        Number of glyphs (``maxp``); glyph ids are ``0 .. num_glyphs - 1``.
     ascender, descender, x_height, cap_height : float
+        ``hhea`` ascent and descent (``OS/2`` typographic ones when its
+        ``USE_TYPO_METRICS`` bit is set), ``OS/2`` x and cap heights.
     underline_position, underline_thickness : float
         From the ``post`` table (position of the top of the underline... as
         stored: the centre line offset below the baseline is negative).
@@ -86,64 +143,106 @@ class Font:
         From ``OS/2``.
     subscript_y, superscript_y : float
         ``OS/2`` subscript/superscript offsets (subscript positive = down).
+
+    The metrics are the default instance's, also for a :meth:`variant`.
     """
 
     def __init__(self, face):
         import uharfbuzz as hb
-        from fontTools.ttLib import TTFont
         self.face = face
         try:
-            data = _font_data(face.path)
+            blob = _font_blob(face.path)
         except FontError as e:
             raise FontError('cannot load font %s: %s' % (face.path, e)) from None
-        with quiet_fonttools():
-            try:
-                self.tt = TTFont(io.BytesIO(data), fontNumber=face.index, lazy=True)
-                # a bitmap-only font (CBDT, sbix without outlines) has empty outlines
-                self.glyph_set = self.tt.getGlyphSet() if any(
-                    t in self.tt for t in ('glyf', 'CFF ', 'CFF2')) else None
-                self.glyph_order = self.tt.getGlyphOrder()
-                self.upem = float(self.tt['head'].unitsPerEm)
-                if not 16 <= self.upem <= 16384:
-                    raise FontError('unitsPerEm %g out of range' % self.upem)
-                self.hb_face = hb.Face(hb.Blob(data), face.index)
-                self.hb_font = hb.Font(self.hb_face)
-                self._init_metrics()
-            except Exception as e:      # fontTools raises many kinds on bad fonts
-                raise FontError('cannot load font %s: %s'
-                                % (face.path, ' '.join(str(e).split()) or type(e).__name__)) \
-                    from None
-        self._data = data
+        self.hb_face = hb.Face(blob, face.index)
+        tags = self.hb_face.table_tags
+        try:
+            if not tags:
+                raise FontError('no face %d in the file' % face.index)
+            head = self._table('head')
+            if len(head) < 54:
+                raise FontError("no 'head' table" if not head else "truncated 'head' table")
+            self.upem = float(struct.unpack_from('>H', head, 18)[0])
+            if not 16 <= self.upem <= 16384:
+                raise FontError('unitsPerEm %g out of range' % self.upem)
+            self.num_glyphs = int(self.hb_face.glyph_count)
+            if self.num_glyphs <= 0:
+                raise FontError("no glyphs (no 'maxp' table)")
+            self._init_metrics()
+        except (FontError, struct.error) as e:
+            raise FontError('cannot load font %s: %s' % (face.path, e)) from None
+        # a bitmap-only font (CBDT, sbix without outlines) has empty outlines
+        self._has_outlines = any(t in tags for t in ('glyf', 'CFF ', 'CFF2'))
+        self._color_tables = any(t in tags for t in ('COLR', 'SVG ', 'sbix', 'CBDT'))
+        self.hb_font = hb.Font(self.hb_face)
+        self.location = {}
+        self._base = self
+        self._tt = None
         self._axes = None
         self._color = None
         self._reset_caches()
 
+    def _table(self, tag):
+        """The bytes of table ``tag`` (empty when the face has none)."""
+        return self.hb_face.reference_table(tag).data
+
     def _init_metrics(self):
-        tt = self.tt
-        hhea = tt['hhea'] if 'hhea' in tt else None
-        os2 = tt['OS/2'] if 'OS/2' in tt else None
-        self.ascender = float(hhea.ascent if hhea else 0.8 * self.upem)
-        self.descender = float(hhea.descent if hhea else -0.2 * self.upem)
-        if os2 is not None and getattr(os2, 'fsSelection', 0) & (1 << 7):
-            self.ascender = float(os2.sTypoAscender)
-            self.descender = float(os2.sTypoDescender)
-        self.x_height = float(getattr(os2, 'sxHeight', 0) or 0.5 * self.upem) if os2 else 0.5 * self.upem
-        self.cap_height = float(getattr(os2, 'sCapHeight', 0) or 0.7 * self.upem) if os2 else 0.7 * self.upem
-        post = tt['post'] if 'post' in tt else None
-        self.underline_position = float(post.underlinePosition if post else -0.1 * self.upem)
-        self.underline_thickness = float(post.underlineThickness if post else 0.05 * self.upem) \
-            or 0.05 * self.upem
-        self.strikeout_position = float(os2.yStrikeoutPosition) if os2 else 0.3 * self.upem
-        self.strikeout_size = float(os2.yStrikeoutSize) if os2 else self.underline_thickness
-        self.subscript_y = float(os2.ySubscriptYOffset) if os2 else 0.15 * self.upem
-        self.superscript_y = float(os2.ySuperscriptYOffset) if os2 else 0.45 * self.upem
-        self._cmap = tt.getBestCmap() or {}
+        u = self.upem
+        hhea, os2, post = self._table('hhea'), self._table('OS/2'), self._table('post')
+
+        def field(data, fmt, off):
+            return struct.unpack_from(fmt, data, off)[0] if len(data) >= off + 2 else None
+
+        asc, desc = field(hhea, '>h', 4), field(hhea, '>h', 6)
+        self.ascender = float(asc if asc is not None else 0.8 * u)
+        self.descender = float(desc if desc is not None else -0.2 * u)
+        if len(os2) >= 72 and field(os2, '>H', 62) & (1 << 7):     # USE_TYPO_METRICS
+            self.ascender = float(field(os2, '>h', 68))
+            self.descender = float(field(os2, '>h', 70))
+        version = field(os2, '>H', 0) or 0
+        xh = field(os2, '>h', 86) if version >= 2 else None
+        ch = field(os2, '>h', 88) if version >= 2 else None
+        self.x_height = float(xh or 0.5 * u)
+        self.cap_height = float(ch or 0.7 * u)
+        pos, thick = field(post, '>h', 8), field(post, '>h', 10)
+        self.underline_position = float(pos if pos is not None else -0.1 * u)
+        self.underline_thickness = float(thick or 0.05 * u) if thick is not None \
+            else 0.05 * u
+        has_os2 = len(os2) >= 30
+        self.strikeout_position = float(field(os2, '>h', 28)) if has_os2 else 0.3 * u
+        self.strikeout_size = float(field(os2, '>h', 26)) if has_os2 else self.underline_thickness
+        self.subscript_y = float(field(os2, '>h', 16)) if has_os2 else 0.15 * u
+        self.superscript_y = float(field(os2, '>h', 24)) if has_os2 else 0.45 * u
 
     def _reset_caches(self):
         """Empty the per-font caches: shaped strings (see
         :meth:`shape_arrays`) and packed outlines (see :meth:`outlines`)."""
         self._shaped = {}
-        self._atlas = _GlyphAtlas(self._draw_glyph, len(self.glyph_order))
+        self._atlas = _GlyphAtlas(self._draw_glyph, self.num_glyphs)
+
+    @property
+    def tt(self):
+        """The fontTools ``TTFont`` of the face (lazy: opened on first use,
+        shared with the :meth:`variant` fonts; the colour tables use it)."""
+        base = self._base
+        if base._tt is None:
+            from fontTools.ttLib import TTFont
+            with quiet_fonttools():
+                try:
+                    data = _font_data(self.face.path)
+                    base._tt = TTFont(io.BytesIO(data), fontNumber=self.face.index, lazy=True)
+                except FontError as e:
+                    raise FontError('cannot load font %s: %s' % (self.face.path, e)) from None
+                except Exception as e:      # fontTools raises many kinds on bad fonts
+                    raise FontError('cannot load font %s: %s'
+                                    % (self.face.path,
+                                       ' '.join(str(e).split()) or type(e).__name__)) from None
+        return base._tt
+
+    @property
+    def glyph_order(self):
+        """Glyph names by glyph id (fontTools: loads :attr:`tt`)."""
+        return self.tt.getGlyphOrder()
 
     @property
     def color(self):
@@ -151,7 +250,7 @@ class Font:
         or None when it has no usable colour tables."""
         if self._color is None:
             cf = False
-            if any(t in self.tt for t in ('COLR', 'SVG ', 'sbix', 'CBDT')):
+            if self._color_tables:
                 from .color import ColorFont        # (only fonts with colour tables)
                 try:
                     cf = ColorFont(self)
@@ -167,9 +266,8 @@ class Font:
         """Variation axes: dict tag -> (min, default, max); empty for a
         static font."""
         if self._axes is None:
-            self._axes = {} if 'fvar' not in self.tt else {
-                a.axisTag: (float(a.minValue), float(a.defaultValue), float(a.maxValue))
-                for a in self.tt['fvar'].axes}
+            self._axes = {a.tag: (float(a.min_value), float(a.default_value), float(a.max_value))
+                          for a in self.hb_face.axis_infos}
         return self._axes
 
     def variant(self, coords):
@@ -185,7 +283,7 @@ class Font:
         -------
         Font
             ``self`` for a static font or the default location, else a
-            cached instance sharing the file data (shaping and outlines at
+            cached instance sharing the face (shaping and outlines at
             that location).
         """
         axes = self.axes
@@ -208,8 +306,6 @@ class Font:
             f._variants = {}
             f.hb_font = hb.Font(self.hb_face)
             f.hb_font.set_variations(loc)
-            f.glyph_set = None if self.glyph_set is None else \
-                self.tt.getGlyphSet(location=loc)
             f.location = loc
             f._reset_caches()
             if len(cache) > 64:
@@ -237,7 +333,7 @@ class Font:
         cp = ord(ch)
         if self.face.unicode_range and not in_ranges(self.face.unicode_range, [cp])[0]:
             return False
-        return cp in self._cmap
+        return self.hb_font.get_nominal_glyph(cp) is not None
 
     def shape(self, text, features=None):
         """Shape ``text`` (direction/script/language guessed).
@@ -306,7 +402,7 @@ class Font:
     def _unmapped(self):
         """A code point the font's cmap does not map (a noncharacter)."""
         for cp in (0x10FFFF, 0x10FFFE, 0xFFFF, 0xFFFE, 0xFDD0):
-            if cp not in self._cmap:
+            if self.hb_font.get_nominal_glyph(cp) is None:
                 return cp
         return 0x10FFFF         # (its glyphs are set to 0 after shaping anyway)
 
@@ -336,21 +432,93 @@ class Font:
         return self._atlas.gather(np.asarray(gids, np.int64).reshape(-1))
 
     def _draw_glyph(self, gid):
-        """(verbs, points) of one glyph drawn through fontTools (empty
-        arrays for a glyph that cannot be drawn)."""
-        from fontTools.pens.recordingPen import DecomposingRecordingPen
-        if self.glyph_set is None:
+        """(verbs, points) of one glyph drawn by HarfBuzz (empty arrays for
+        a glyph that cannot be drawn), in font units at the font's
+        variation location; see :class:`_OutlineRecorder`."""
+        if not self._has_outlines or not 0 <= gid < self.num_glyphs:
             return Path.empty().verbs, Path.empty().points
-        try:
-            name = self.glyph_order[gid]
-            rec = DecomposingRecordingPen(self.glyph_set)     # components drawn in place
-            self.glyph_set[name].draw(rec)
-            b = PathBuilder()           # implied on-curve points: raster.geometry.pens
-            rec.replay(b)
-            p = b.path()
-        except (KeyError, IndexError, RasterError):
-            p = Path.empty()
-        return p.verbs, p.points
+        rec = _OutlineRecorder()
+        self.hb_font.draw_glyph(gid, _draw_funcs(), rec)
+        return rec.arrays()
+
+
+_DRAW_FUNCS = []
+
+
+def _draw_funcs():
+    """The process's HarfBuzz draw callbacks into an :class:`_OutlineRecorder`."""
+    if not _DRAW_FUNCS:
+        import uharfbuzz as hb
+        funcs = hb.DrawFuncs()
+        funcs.set_move_to_func(_OutlineRecorder.move_to)
+        funcs.set_line_to_func(_OutlineRecorder.line_to)
+        funcs.set_quadratic_to_func(_OutlineRecorder.quadratic_to)
+        funcs.set_cubic_to_func(_OutlineRecorder.cubic_to)
+        funcs.set_close_path_func(_OutlineRecorder.close_path)
+        _DRAW_FUNCS.append(funcs)
+    return _DRAW_FUNCS[0]
+
+
+class _OutlineRecorder:
+    """Records what HarfBuzz draws of one glyph as path verbs and points.
+
+    HarfBuzz ends a closed contour with an explicit line back to its first
+    point; that line is dropped (the close draws it), so the verbs are
+    those fontTools' pens give.  HarfBuzz starts a TrueType contour whose
+    first two points are off-curve at their midpoint (fontTools: at the
+    first on-curve point): the same closed contour, from another point.
+    A contour without segments (a lone point) is left out.
+    """
+
+    __slots__ = ('verbs', 'points', 'start')
+
+    def __init__(self):
+        self.verbs = []
+        self.points = []
+        self.start = None
+
+    @staticmethod
+    def move_to(x, y, rec):
+        rec.start = len(rec.points)
+        rec.verbs.append(_MOVE)
+        rec.points.append((x, y))
+
+    @staticmethod
+    def line_to(x, y, rec):
+        rec.verbs.append(_LINE)
+        rec.points.append((x, y))
+
+    @staticmethod
+    def quadratic_to(x1, y1, x, y, rec):
+        rec.verbs.append(_QUAD)
+        rec.points += ((x1, y1), (x, y))
+
+    @staticmethod
+    def cubic_to(x1, y1, x2, y2, x, y, rec):
+        rec.verbs.append(_CUBIC)
+        rec.points += ((x1, y1), (x2, y2), (x, y))
+
+    @staticmethod
+    def close_path(rec):
+        verbs, points = rec.verbs, rec.points
+        if rec.start is None:
+            return
+        if verbs[-1] == _LINE and points[-1] == points[rec.start]:
+            verbs.pop()
+            points.pop()
+        if verbs[-1] == _MOVE:          # nothing drawn: no contour
+            verbs.pop()
+            points.pop()
+        else:
+            verbs.append(_CLOSE)
+        rec.start = None
+
+    def arrays(self):
+        """(verbs (V,) uint8, points (P, 2) float64) of what was drawn."""
+        points = np.array(self.points, np.float64).reshape(-1, 2)
+        if not np.isfinite(points).all():
+            return Path.empty().verbs, Path.empty().points
+        return np.array(self.verbs, np.uint8), points
 
 
 class Shaped(NamedTuple):
@@ -429,7 +597,7 @@ class _GlyphAtlas:
         gids = np.where((gids >= 0) & (gids < self.nglyphs), gids, self.nglyphs)
         missing = gids[self.vstart[gids] < 0]
         if len(missing):
-            for g in np.unique(missing).tolist():
+            for g in sorted(set(missing.tolist())):     # (np.unique imports numpy.ma)
                 self._add(g)
         vs, vn = self.vstart[gids], self.vcount[gids]
         ps, pn = self.pstart[gids], self.pcount[gids]

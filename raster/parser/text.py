@@ -20,7 +20,7 @@ What is laid out:
   angle per character about its glyph origin, the last angle repeating);
 * fonts from :mod:`raster.fonts` (``font-family``/``-weight``/``-style``/
   ``-stretch``; characters the chosen face lacks are taken from the first
-  other face that has them), shaping with HarfBuzz, outlines with fontTools;
+  other face that has them), shaping, metrics and outlines with HarfBuzz;
 * ``text-anchor`` per chunk, ``letter-spacing``, ``word-spacing``,
   ``baseline-shift`` (``sub``, ``super``, percentages, lengths, nested sums),
   basic ``dominant-baseline``/``alignment-baseline`` values,

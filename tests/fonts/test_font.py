@@ -193,8 +193,8 @@ def test_shape_cache_is_bounded(db, monkeypatch):
 
 
 def _outline_by_pen(font, gid):
-    """One glyph drawn on its own (fontTools pen into a PathBuilder), not
-    through the packed outline arrays: (verbs, points)."""
+    """One glyph drawn on its own (by HarfBuzz), not through the packed
+    outline arrays: (verbs, points)."""
     return font._draw_glyph(gid)
 
 
@@ -202,7 +202,7 @@ def _outline_by_pen(font, gid):
 def test_outlines_gather_equals_per_glyph_outlines(db, family):
     font = Font.load(db.match([family]))
     rng = np.random.default_rng(5)
-    n = len(font.glyph_order)
+    n = font.num_glyphs
     for size in (1, 3, 40):         # short runs are cached, long ones are not
         gids = rng.integers(0, n, size)
         verbs, points, npts = font.outlines(gids)
@@ -226,7 +226,7 @@ def test_outline_atlas_and_run_cache_are_bounded(db, monkeypatch):
     rng = np.random.default_rng(11)
     atlas = font._atlas
     for _ in range(60):
-        gids = rng.integers(0, len(font.glyph_order), 3)
+        gids = rng.integers(0, font.num_glyphs, 3)
         verbs, points, npts = font.outlines(gids)
         ref = [_outline_by_pen(font, int(g)) for g in gids]
         np.testing.assert_array_equal(points, np.concatenate([p for _, p in ref]).reshape(-1, 2))
@@ -245,3 +245,70 @@ def test_match_cache_is_bounded_and_agrees(db, monkeypatch):
             assert face == fresh._match(('Noto Sans',), w, style, 5)
             assert fresh.match(['Noto Sans'], w, style) == face
             assert len(fresh._matches) <= 6
+
+
+# -- loading: mapped files, collections, bad files --------------------------------
+
+def test_font_file_is_mapped_not_copied():
+    """HarfBuzz maps the file: its blob is the file's bytes, and a
+    second Font of the same file shares the page cache's pages (the blob
+    of a memory font is a copy of the registered bytes)."""
+    from raster.fonts import FontFace
+    from raster.fonts.font import _font_blob
+    path = os.path.join(FONTS, 'NotoSans-Regular.ttf')
+    blob = _font_blob(path)
+    with open(path, 'rb') as fh:
+        assert blob.data == fh.read()
+    maps = open('/proc/self/maps').read() if os.path.exists('/proc/self/maps') else None
+    if maps is not None:
+        assert path in maps
+    font = Font(FontFace(path, 0, ('Noto Sans',)))
+    assert font.shape('Hi') == Font.load(FontFace(path, 0, ('Noto Sans',))).shape('Hi')
+
+
+def test_collection_faces_load_by_index(tmp_path):
+    from fontTools.ttLib import TTCollection, TTFont
+    from raster.fonts import FontFace
+    names = ['NotoSans-Regular.ttf', 'NotoSerif-Regular.ttf']
+    ttc = TTCollection()
+    ttc.fonts = [TTFont(os.path.join(FONTS, n)) for n in names]
+    ttc.save(str(tmp_path / 'two.ttc'))
+    for index, name in enumerate(names):
+        alone = Font(FontFace(os.path.join(FONTS, name), 0, ('x',)))
+        inside = Font(FontFace(str(tmp_path / 'two.ttc'), index, ('x',)))
+        assert inside.shape('Wave') == alone.shape('Wave')
+        assert (inside.num_glyphs, inside.ascender, inside.x_height) == \
+            (alone.num_glyphs, alone.ascender, alone.x_height)
+        gid = alone.shape('g')[0][0]
+        np.testing.assert_array_equal(inside.outline(gid).points, alone.outline(gid).points)
+    with pytest.raises(FontError, match='no face 5'):
+        Font(FontFace(str(tmp_path / 'two.ttc'), 5, ('x',)))
+
+
+@pytest.mark.parametrize('data, message', [
+    (b'', 'too short'),
+    (b'not a font at all', 'not a font'),
+    (b'\x00\x01\x00\x00\x00\x05' + bytes(20), 'table directory'),
+])
+def test_bad_font_files_raise_font_error(tmp_path, data, message):
+    from raster.fonts import FontFace
+    (tmp_path / 'bad.ttf').write_bytes(data)
+    with pytest.raises(FontError, match=message):
+        Font(FontFace(str(tmp_path / 'bad.ttf'), 0, ('x',)))
+
+
+@pytest.mark.parametrize('tag, message', [(b'head', "no 'head' table"), (b'maxp', 'no glyphs')])
+def test_font_without_head_or_maxp_raises_font_error(tmp_path, tag, message):
+    """The table renamed in the directory (the file stays a valid sfnt)."""
+    import struct
+    from raster.fonts import BUNDLED_FONT, FontFace
+    with open(BUNDLED_FONT, 'rb') as fh:
+        data = bytearray(fh.read())
+    (num,) = struct.unpack_from('>H', data, 4)
+    tags = [bytes(data[12 + 16 * k:16 + 16 * k]) for k in range(num)]
+    k = tags.index(tag)
+    data[12 + 16 * k:16 + 16 * k] = b'zz' + tag[2:]
+    path = tmp_path / 'renamed.ttf'
+    path.write_bytes(bytes(data))
+    with pytest.raises(FontError, match=message):
+        Font(FontFace(str(path), 0, ('x',)))

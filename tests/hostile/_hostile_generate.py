@@ -91,8 +91,10 @@ def big_image(d):
 
 def broken_font(d):
     """A font directory with a copy of the bundled Noto Sans whose ``hhea``
-    claims fewer horizontal metrics than ``hmtx`` holds (fontTools logs
-    "too much 'hmtx' table data") and whose ``head`` magic is zeroed."""
+    claims fewer horizontal metrics than ``hmtx`` holds (fontTools would log
+    "too much 'hmtx' table data") and whose ``head`` magic is zeroed: the
+    text is shaped and drawn (by HarfBuzz, which reads it as is) without a
+    message."""
     src = os.path.join(ROOT, 'raster', 'fonts', 'NotoSans-Regular-ASCII.ttf')
     with open(src, 'rb') as f:
         buf = bytearray(f.read())
