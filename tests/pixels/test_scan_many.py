@@ -133,6 +133,11 @@ def test_small_batches_and_large_shapes(monkeypatch):
     shapes = random_shapes(rng, 40, 80)
     ref = [coverage(e, 80, 80) for e in shapes]
     monkeypatch.setattr(scan, '_CHUNK_PIECES', 120)
+    monkeypatch.setattr(scan, '_BATCH_PIECES', 120)
+    got = coverage_many(shapes, 80, 80)
+    assert all(same(g, r) for g, r in zip(got, ref))
+    # sub-batches smaller than the size above which a shape goes alone
+    monkeypatch.setattr(scan, '_BATCH_PIECES', 50)
     got = coverage_many(shapes, 80, 80)
     assert all(same(g, r) for g, r in zip(got, ref))
 
