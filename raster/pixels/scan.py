@@ -1884,6 +1884,7 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out, depth=0):
         xa, ya, xb, yb, sid = xa[keep], ya[keep], xb[keep], yb[keep], sid[keep]
     if len(xa) == 0:
         return
+    del ym, keep        # (the batch's per-piece arrays are freed once used)
     xa, ya, xb, yb, sid = _split(xa, ya, xb, yb, sw[sid].astype(np.float64), tag=sid)
     xm = 0.5 * (xa + xb)
     swp = sw[sid]                               # each piece's box width
@@ -1894,6 +1895,7 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out, depth=0):
     if len(xa) == 0:
         return
     col = np.floor(xm).astype(np.int64)
+    del xm, keep
     col = np.minimum(np.maximum(col, -1), swp - 1)
     left = col < 0
     if left.any():
@@ -1901,6 +1903,7 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out, depth=0):
         xb = np.where(left, -0.5, xb)
     row = np.floor(0.5 * (ya + yb)).astype(np.int64)
     row = np.minimum(np.maximum(row, 0), sh[sid] - 1)
+    del left
     # -- accumulate over the touched cells of the stacked boxes ---------------
     real = col >= 0
     grow = row + roff[sid]
@@ -1908,10 +1911,12 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out, depth=0):
     dy = yb - ya
     fx = np.where(real, 0.5 * (xa + xb) - col, 0.0)
     cells, inv = _distinct_cells(cell, sid, row, np.maximum(col, 0), swp, sw, sh)
+    del swp
     cv = np.bincount(inv, weights=dy, minlength=len(cells))
     pv = np.bincount(inv, weights=dy * fx, minlength=len(cells))
     nz = (cv != 0) | (pv != 0)
     T, cv, pv = cells[nz], cv[nz], pv[nz]
+    del fx, inv, cells, nz
     # -- resolve (as _resolve_cells, running sums restarted per shape) --------
     if len(T) == 0 and not sex.any():
         return
@@ -1948,6 +1953,7 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out, depth=0):
             flagged, fp, fc = _flag(xa[ep], ya[ep], xb[ep], yb[ep], col[ep], row[ep],
                                     np.where(real[ep], cell[ep], -1), brk, left_of, seo[es])
             fp = ep[fp]
+    del real, cell, dy, grow
     if len(T) == 0 and len(flagged) == 0:
         return
     cellv = run - pv
