@@ -219,8 +219,13 @@ def test_batch_count_errors():
         coverage_batch(sq, [3], 10, 10, exact=[True, False])
 
 
+@pytest.mark.parametrize('cells', [None, 1, 500])
 @pytest.mark.parametrize('seed', range(3))
-def test_aliased_shapes_in_one_batch_equal_one_by_one(seed):
+def test_aliased_shapes_in_one_batch_equal_one_by_one(monkeypatch, seed, cells):
+    # (cells: batches of at most that many cells, one shape at least)
+    import raster.pixels.scan as scan
+    if cells is not None:
+        monkeypatch.setattr(scan, '_ALIASED_CELLS', cells)
     rng = np.random.default_rng(300 + seed)
     shapes = random_shapes(rng, 40, 70)
     rules = [('evenodd' if b else 'nonzero') for b in rng.random(len(shapes)) < 0.5]
