@@ -133,8 +133,11 @@ def build_tree(root, options: Optional[Options] = None, image_cache: Optional[di
     # checked where they are used (State.check, finite paths), not warned about
     with np.errstate(over='ignore', invalid='ignore', divide='ignore'):
         cache = _document_cache(root, options, {} if image_cache is None else image_cache, lim)
-        tree = convert_root(root, cache)
-    deep = cache.memo.get('too-deep')
+        try:
+            tree = convert_root(root, cache)
+        finally:
+            deep = cache.memo.get('too-deep')
+            cache.release()
     if deep:
         cache.warn('nesting', 'element <%s> nested too deeply: not rendered' % deep['tag'])
     return tree

@@ -274,6 +274,18 @@ class Cache:
     prepaid: int = 0
     open_document: object = None
 
+    def release(self):
+        """Drop the memo tables, those of the other documents referenced
+        (``use`` of another file) included: called when the tree is built.
+        Memo entries may refer back to the cache (text's leaf styles keep
+        a fallback function that uses it), and under the commands' paused
+        collector such a cycle would keep the lxml document, its styles
+        and the memos alive to the end of the process."""
+        subs = self.memo.get('document_caches')
+        self.memo = {}
+        for sub in (subs or {}).values():
+            sub.release()
+
     def table(self, name):
         """The memo table ``name`` (created empty on first use)."""
         t = self.memo.get(name)

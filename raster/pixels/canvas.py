@@ -41,6 +41,11 @@ _SMALL = 1024
 # Pixels per block of rows in fill / composite (bounds temporaries).
 _BLOCK = 1 << 14
 
+# Masks of more pixels are filled in windows of rows of about this many
+# pixels: the tests of the coverage (covered, full, their indices) stay
+# small beside a canvas-sized mask.
+_FILL_ROWS = 1 << 18
+
 # Pixel storage types of a canvas.
 _DTYPES = (np.dtype(np.float32), np.dtype(np.uint8))
 _U8 = np.dtype(np.uint8)
@@ -305,6 +310,20 @@ class Canvas:
             return
         dst_sl, src_sl = win
         k = cov[src_sl]
+        step = max(1, _FILL_ROWS // k.shape[1])
+        if k.shape[0] <= step:
+            self._fill_window(k, dst_sl, alpha, vec, eight)
+            return
+        ys, xs = dst_sl
+        for r0 in range(0, k.shape[0], step):
+            r1 = min(r0 + step, k.shape[0])
+            self._fill_window(k[r0:r1], (slice(ys.start + r0, ys.start + r1), xs), alpha, vec,
+                              eight)
+
+    def _fill_window(self, k, dst_sl, alpha, vec, eight):
+        """:meth:`fill` through the mask window ``k`` ((h, w) float32) onto
+        ``self.data[dst_sl]``: paint ``vec`` ((4,) float32, in levels on an
+        8-bit canvas) of opacity ``alpha``."""
         if k.size <= _SMALL or not self.data.flags.c_contiguous:
             # small masks: a few whole-window operations cost less than
             # finding the covered pixels; rows of interleaved RGBA with the

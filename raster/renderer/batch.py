@@ -11,7 +11,9 @@ queued node computes the masks of a whole batch of queued nodes at once:
   (:func:`raster.geometry.flattening.flatten_joined`), the hairlines outlined in one
   pass (:func:`raster.pixels.hairline.hairline_outline`) and every mask
   scan converted in one :func:`raster.pixels.scan.coverage_batch` call
-  (hairlines with ``exact=False``);
+  (hairlines with ``exact=False``); the hairline of a filled path whose
+  box is above :data:`BATCH_AREA` is drawn on its own after its fill, so
+  that two box-sized masks are never held together;
 * other strokes are outlined with one :func:`raster.geometry.stroking.stroke_many`
   call per stroke style, flattened together and scan converted in one
   batch.
@@ -168,6 +170,11 @@ class Masks:
                 if not (wf or wh or style is not None):
                     continue
                 area = device_area(n.path, m, size[:2], off=size[2:])
+                if wf and wh and area > BATCH_AREA:
+                    # a filled hairline over a large box: its masks would
+                    # be held together (two box-sized arrays); the hairline
+                    # is drawn on its own once the fill is drawn
+                    wh = False
                 key = (id(n), m)
                 if wf and key not in geo and covers_canvas(n.path, m, *size):
                     self._cover_fill[key] = size

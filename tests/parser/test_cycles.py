@@ -46,3 +46,24 @@ def test_text_and_use_leave_no_cycles():
     # calls itself for nested imports, with the options it reads)
     assert not [o for o in left if type(o).__name__ in ('_Span', '_Element')], names
     assert len(left) < 40, names
+
+
+LEAVES = b'''<svg xmlns="http://www.w3.org/2000/svg" width="60" height="40">
+  <text x="2" y="12" font-family="Noto Sans" font-size="9">first</text>
+  <text x="2" y="24" font-family="Noto Sans" font-size="9">leaf</text>
+  <text x="2" y="36" font-family="Noto Sans" font-size="9" fill="red">texts</text>
+</svg>'''
+
+
+def test_leaf_texts_leave_no_cycles():
+    # text elements with character data only take the leaf path, whose
+    # styles are remembered in the document's cache with a fallback
+    # function using that cache: the memo tables are released with the
+    # build, so neither the cache nor the lxml elements outlive it
+    from raster.parser.context import Cache
+    raster.load_svg(LEAVES, fonts=FONTS)
+    left = _garbage(lambda: raster.load_svg(LEAVES, fonts=FONTS))
+    names = sorted({type(o).__name__ for o in left})
+    assert not [o for o in left if isinstance(o, Cache)], names
+    assert not [o for o in left if type(o).__name__ in ('_LeafStyle', '_Element')], names
+    assert len(left) < 40, names

@@ -369,3 +369,26 @@ def test_fill_on_a_non_contiguous_canvas_matches_the_formula():
             ref = _ref_fill(base, k, 3, 2, rgba)
             c.fill(Mask(k, 3, 2), rgba)
             assert np.abs(c.data - ref).max() <= 1e-6
+
+
+@pytest.mark.parametrize('dtype', [np.float32, np.uint8])
+@pytest.mark.parametrize('rgba', [(0.2, 0.4, 0.8, 1.0), (0.9, 0.1, 0.3, 0.6)])
+def test_fill_in_windows_of_rows_equals_one_window(monkeypatch, dtype, rgba):
+    # a mask above _FILL_ROWS pixels is filled in windows of rows, each
+    # window taking its own way (gathered pixels, opaque copy, blocks): the
+    # pixels are those of one window, bit for bit, also where the mask
+    # reaches off the canvas
+    import raster.pixels.canvas as canvas_mod
+    rng = np.random.default_rng(3)
+    k = rng.choice([0.0, 1.0, 1.0, 0.3, 0.85], (90, 70)).astype(np.float32)
+    k[10:40] = 0                                 # sparse rows: gathered
+    k[40:50, 5:] = 0
+    k[60:70] = 1.0                               # full rows: copied
+    out = []
+    for rows in (1 << 30, 700, 64):
+        monkeypatch.setattr(canvas_mod, '_FILL_ROWS', rows)
+        c = Canvas(60, 80, background=(0.5, 0.25, 0.0, 0.5), dtype=dtype)
+        c.fill(Mask(k, -5, -7), rgba)
+        c.fill(Mask(k[::-1].copy(), 3, 2), rgba, opacity=0.5)
+        out.append(c.data.copy())
+    assert np.array_equal(out[0], out[1]) and np.array_equal(out[0], out[2])

@@ -133,6 +133,11 @@ def test_small_batches_and_large_shapes(monkeypatch):
     shapes = random_shapes(rng, 40, 80)
     ref = [coverage(e, 80, 80) for e in shapes]
     monkeypatch.setattr(scan, '_CHUNK_PIECES', 120)
+    monkeypatch.setattr(scan, '_BATCH_PIECES', 120)
+    got = coverage_many(shapes, 80, 80)
+    assert all(same(g, r) for g, r in zip(got, ref))
+    # sub-batches smaller than the size above which a shape goes alone
+    monkeypatch.setattr(scan, '_BATCH_PIECES', 50)
     got = coverage_many(shapes, 80, 80)
     assert all(same(g, r) for g, r in zip(got, ref))
 
@@ -214,8 +219,13 @@ def test_batch_count_errors():
         coverage_batch(sq, [3], 10, 10, exact=[True, False])
 
 
+@pytest.mark.parametrize('cells', [None, 1, 500])
 @pytest.mark.parametrize('seed', range(3))
-def test_aliased_shapes_in_one_batch_equal_one_by_one(seed):
+def test_aliased_shapes_in_one_batch_equal_one_by_one(monkeypatch, seed, cells):
+    # (cells: batches of at most that many cells, one shape at least)
+    import raster.pixels.scan as scan
+    if cells is not None:
+        monkeypatch.setattr(scan, '_ALIASED_CELLS', cells)
     rng = np.random.default_rng(300 + seed)
     shapes = random_shapes(rng, 40, 70)
     rules = [('evenodd' if b else 'nonzero') for b in rng.random(len(shapes)) < 0.5]

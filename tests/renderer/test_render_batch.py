@@ -54,6 +54,30 @@ def test_small_batches_change_nothing(monkeypatch):
     assert np.array_equal(render_tree(scene(9)).data, ref)
 
 
+def test_filled_hairline_over_a_large_box_is_drawn_apart(monkeypatch):
+    # a filled path with a hairline stroke whose box is above BATCH_AREA
+    # keeps only its fill in the batch (two box-sized masks are never held
+    # together); its hairline is drawn on its own, and the pixels are those
+    # of the batched hairline
+    big = PathNode(path=Path.polygon([[2.3, 1.7], [97.6, 2.2], [96.8, 98.1], [1.9, 97.4]]),
+                   fill=Fill(SolidPaint((0.9, 0.8, 0.1, 1.0))),
+                   stroke=Stroke.of(SolidPaint((0.1, 0.1, 0.6, 1.0)), width=0.4))
+    small = scene(3).root
+    tree = Tree(100, 100, Group(children=[big, small]))
+    ref = render_tree(tree).data.copy()
+    seen = []
+    orig = batch_mod.Masks.plan
+
+    def plan(self, *a, **k):
+        orig(self, *a, **k)
+        seen.extend(v[5] for v in self._geo_pending.values() if v[0] is big)
+    monkeypatch.setattr(batch_mod.Masks, 'plan', plan)
+    monkeypatch.setattr(batch_mod, 'BATCH_AREA', 5000)
+    got = render_tree(tree).data
+    assert seen == [False]                 # the fill queued, not the hairline
+    assert np.array_equal(got, ref)
+
+
 def stroke_scene(seed):
     """Stroked discs, some dashed, under transforms of different scales (so
     stroke_many's shared user-space outlines round differently)."""
