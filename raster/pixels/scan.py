@@ -2063,12 +2063,24 @@ def _segmented_cumsum(v, seg, k):
     order = np.argsort(ce, kind='stable')          # elements by class, in order
     ccount = np.bincount(ce)
     cstart = np.cumsum(ccount) - ccount
+    # the segments with elements by class (increasing within a class) and
+    # each one's row in its class's array
+    live = np.flatnonzero(cnt)
+    lcls = cls[live]
+    so = live[np.argsort(lcls, kind='stable')]
+    scount = np.bincount(lcls, minlength=len(ccount))
+    sstart = np.cumsum(scount) - scount
+    row_of = np.zeros(k, np.int64)
+    row_of[so] = np.arange(len(so)) - np.repeat(sstart, scount)
     out = np.empty(len(v))
     for c in np.flatnonzero(ccount).tolist():
         el = order[cstart[c]:cstart[c] + ccount[c]]
+        if c == 0:                      # segments of one element
+            out[el] = v[el]
+            continue
         sg = seg[el]
-        members = np.flatnonzero((cls == c) & (cnt > 0))
-        slot = np.searchsorted(members, sg)
+        members = so[sstart[c]:sstart[c] + scount[c]]
+        slot = row_of[sg]
         pos = el - start[sg]
         M = np.zeros((len(members), int(cnt[members].max())))
         M[slot, pos] = v[el]
