@@ -1751,10 +1751,14 @@ def _batch(e, counts, width, height, eo, aa, ex, win, depth):
         return out
     idx, X0, Y0, sw, sh, est = idx[sel], X0[sel], Y0[sel], (X1 - X0)[sel], (Y1 - Y0)[sel], est[sel]
     ne = counts[idx]
-    take = np.zeros(n, bool)
-    take[idx] = True
-    loc = e[np.repeat(take, counts)]
-    loc = loc - np.stack([np.repeat(X0, ne), np.repeat(Y0, ne)], 1)[:, None, :].astype(np.float64)
+    if int(ne.sum()) == len(e):          # every edge is in a live shape
+        loc = e.copy()
+    else:
+        take = np.zeros(n, bool)
+        take[idx] = True
+        loc = e[np.repeat(take, counts)]
+    loc[:, :, 0] -= np.repeat(X0.astype(np.float64), ne)[:, None]
+    loc[:, :, 1] -= np.repeat(Y0.astype(np.float64), ne)[:, None]
     # sub-batches bounded in pieces and in cells
     cest = np.cumsum(est)
     carea = np.cumsum(sw * sh)
