@@ -47,8 +47,12 @@ from ..errors import PathError
 from .transform import AffineLike, as_affine
 
 MOVE, LINE, QUAD, CUBIC, CLOSE = 0, 1, 2, 3, 4
+
 VERB_NAMES = ('M', 'L', 'Q', 'C', 'Z')
 _NPTS = np.array([1, 1, 2, 3, 0], dtype=np.int64)
+
+# Most points whose control box is taken with Python's min and max.
+_SMALL_BOX = 32
 
 
 class Segments(NamedTuple):
@@ -172,9 +176,16 @@ class Path:
         if self._cbox is None:
             if len(self.points) == 0:
                 raise PathError('empty path has no bounds')
-            lo, hi = self.points.min(0), self.points.max(0)
-            object.__setattr__(self, '_cbox', (float(lo[0]), float(lo[1]),
-                                               float(hi[0]), float(hi[1])))
+            if len(self.points) <= _SMALL_BOX:
+                # (a few points: Python's min and max on lists cost less
+                # than numpy's reductions, which documents of many small
+                # shapes pay once a shape)
+                xs, ys = self.points.T.tolist()
+                box = (min(xs), min(ys), max(xs), max(ys))
+            else:
+                lo, hi = self.points.min(0), self.points.max(0)
+                box = (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+            object.__setattr__(self, '_cbox', box)
         return self._cbox
 
     # -- transformations -----------------------------------------------------

@@ -178,13 +178,13 @@ def hairline_outline(pl, capped, mitered, miterlimit):
     # edges: each vertex to the next one of its loop
     pk = closed & (counts > 0)
     loop_end = np.where(pk, vs + L, vs + tot)   # end of each polyline's first loop
-    nx = np.arange(1, nvert + 1)
+    # (the next vertex is the following one but at the end of a loop,
+    # where it is the loop's first)
     has = counts > 0
-    ends1 = loop_end[has]
-    nx[ends1 - 1] = vs[has]
-    ends2 = (vs + tot)[pk]
-    nx[ends2 - 1] = (vs + L)[pk]
     out = np.empty((nvert, 2, 2))
     out[:, 0] = V
-    out[:, 1] = V[nx]
+    out[:-1, 1] = V[1:]
+    out[-1:, 1] = V[:1]
+    out[loop_end[has] - 1, 1] = V[vs[has]]
+    out[(vs + tot)[pk] - 1, 1] = V[(vs + L)[pk]]
     return out, np.repeat(np.arange(K), tot), dots

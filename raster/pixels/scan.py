@@ -1761,10 +1761,14 @@ def _batch(e, counts, width, height, eo, aa, ex, win, depth):
         return out
     idx, X0, Y0, sw, sh, est = idx[sel], X0[sel], Y0[sel], (X1 - X0)[sel], (Y1 - Y0)[sel], est[sel]
     ne = counts[idx]
-    take = np.zeros(n, bool)
-    take[idx] = True
-    loc = e[np.repeat(take, counts)]
-    loc = loc - np.stack([np.repeat(X0, ne), np.repeat(Y0, ne)], 1)[:, None, :].astype(np.float64)
+    if int(ne.sum()) == len(e):          # every edge is in a live shape
+        loc = e.copy()
+    else:
+        take = np.zeros(n, bool)
+        take[idx] = True
+        loc = e[np.repeat(take, counts)]
+    loc[:, :, 0] -= np.repeat(X0.astype(np.float64), ne)[:, None]
+    loc[:, :, 1] -= np.repeat(Y0.astype(np.float64), ne)[:, None]
     # sub-batches bounded in pieces and in cells
     cest = np.cumsum(est)
     carea = np.cumsum(sw * sh)
@@ -2079,12 +2083,24 @@ def _segmented_cumsum(v, seg, k):
     order = np.argsort(ce, kind='stable')          # elements by class, in order
     ccount = np.bincount(ce)
     cstart = np.cumsum(ccount) - ccount
+    # the segments with elements by class (increasing within a class) and
+    # each one's row in its class's array
+    live = np.flatnonzero(cnt)
+    lcls = cls[live]
+    so = live[np.argsort(lcls, kind='stable')]
+    scount = np.bincount(lcls, minlength=len(ccount))
+    sstart = np.cumsum(scount) - scount
+    row_of = np.zeros(k, np.int64)
+    row_of[so] = np.arange(len(so)) - np.repeat(sstart, scount)
     out = np.empty(len(v))
     for c in np.flatnonzero(ccount).tolist():
         el = order[cstart[c]:cstart[c] + ccount[c]]
+        if c == 0:                      # segments of one element
+            out[el] = v[el]
+            continue
         sg = seg[el]
-        members = np.flatnonzero((cls == c) & (cnt > 0))
-        slot = np.searchsorted(members, sg)
+        members = so[sstart[c]:sstart[c] + scount[c]]
+        slot = row_of[sg]
         pos = el - start[sg]
         M = np.zeros((len(members), int(cnt[members].max())))
         M[slot, pos] = v[el]

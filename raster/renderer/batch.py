@@ -566,23 +566,29 @@ def covers_canvas(path, t, width, height, ox=0, oy=0):
     its frame), within ``max_coord``: its exact-area coverage is 1 at every pixel
     under both fill rules (winding +-1 everywhere inside), aliased or not,
     so it needs no scan conversion (a chart's background)."""
-    v = path.verbs
-    if len(v) != 5 or v[0] != 0 or v[4] != 4 or not (v[1:4] == 1).all():
+    # (plain Python on the four corners: a chart of many small rectangles
+    # calls this once a rectangle; the arithmetic is numpy's apply's)
+    if path.verbs.tobytes() != _RECT_VERBS:
         return False
-    p = t.apply(path.points[:4])
+    a, b, c, d, e, f = t.a, t.b, t.c, t.d, t.e, t.f
+    p = [(a * x + c * y + e, b * x + d * y + f) for x, y in path.points[:4].tolist()]
     # consecutive corners (cyclically) differ in x or in y, alternately:
     # the four sides are horizontal, vertical, horizontal, vertical (or the
     # other way round), each of non-zero length
-    q = np.roll(p, -1, axis=0)
-    dx, dy = p[:, 0] != q[:, 0], p[:, 1] != q[:, 1]
-    if (dx == dy).any() or not ((dx == [True, False, True, False]).all()
-                                or (dx == [False, True, False, True]).all()):
+    dx = [p[i][0] != p[i - 3][0] for i in range(4)]
+    dy = [p[i][1] != p[i - 3][1] for i in range(4)]
+    if dx != [not v for v in dy] or dx not in ([True, False, True, False],
+                                               [False, True, False, True]):
         return False
-    with np.errstate(invalid='ignore'):
-        lo, hi = p.min(axis=0), p.max(axis=0)
-        inside = bool(np.abs(p).max() <= limits.current().max_coord)
-    return (inside and lo[0] <= ox and lo[1] <= oy and hi[0] >= ox + width
-            and hi[1] >= oy + height)
+    mc = limits.current().max_coord
+    if not all(abs(x) <= mc and abs(y) <= mc for x, y in p):     # (NaN: not inside)
+        return False
+    xs, ys = [x for x, _ in p], [y for _, y in p]
+    return min(xs) <= ox and min(ys) <= oy and max(xs) >= ox + width and max(ys) >= oy + height
+
+
+#: The verbs of one closed polygon of four corners (M L L L Z).
+_RECT_VERBS = bytes([0, 1, 1, 1, 4])
 
 
 def full_mask(width, height):

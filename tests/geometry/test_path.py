@@ -86,3 +86,15 @@ def test_draw_replays_every_verb():
                          ('moveTo', [(7, 7)])]
     verbs = [MOVE, LINE, QUAD, CUBIC, CLOSE, MOVE]
     assert p.verbs.tolist() == verbs
+
+
+@pytest.mark.parametrize('n', [1, 2, 5, 32, 33, 200])
+def test_control_box_is_the_points_min_and_max(n):
+    # small paths take the box with Python's min and max, larger ones with
+    # numpy's: either way exactly the extreme coordinates, as floats
+    rng = np.random.default_rng(n)
+    pts = rng.normal(0, 50, (n, 2)) * rng.choice([1e-300, 1.0, 1e200], (n, 1))
+    p = Path(np.array([MOVE] + [LINE] * (n - 1), np.uint8), pts)
+    box = p.control_box()
+    assert box == (pts[:, 0].min(), pts[:, 1].min(), pts[:, 0].max(), pts[:, 1].max())
+    assert all(type(v) is float for v in box)

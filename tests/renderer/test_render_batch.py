@@ -175,3 +175,28 @@ def test_a_background_renders_as_scan_converted():
     finally:
         batch_mod.covers_canvas = old
     np.testing.assert_array_equal(a, b)
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.lists(st.sampled_from([-3.0, -0.5, 0.0, 7.0, 8.0, 8.25, 12.0]), min_size=8, max_size=8),
+       st.sampled_from([(1, 0, 0, 1), (0, 1, 1, 0), (-1, 0, 0, 2), (0.5, 0, 0, -1)]),
+       st.sampled_from([0.0, 0.5, 4.0]))
+def test_property_the_shortcut_claims_only_full_coverage(xy, abcd, shift):
+    # four corners from a few values (many axis-aligned, some crossed or
+    # degenerate) under axis-preserving maps: where the batch's shortcut
+    # claims the canvas covered, the exact coverage is 1 everywhere, and an
+    # axis-aligned rectangle whose coverage is 1 everywhere is claimed
+    pts = np.array(xy, float).reshape(4, 2)
+    p = Path(np.array([0, 1, 1, 1, 4], np.uint8), pts)
+    m = Affine(*abcd, shift, -shift)
+    w, h = 6, 5
+    claimed = batch_mod.covers_canvas(p, m, w, h)
+    mask = path_coverage(p, w, h, 'nonzero', True, transform=m)
+    full = mask is not None and mask.box == (0, 0, w, h) and bool((mask.data == 1).all())
+    if claimed:
+        assert full
+    q = m.apply(pts)
+    rect = all((q[i, 0] == q[i - 3, 0]) != (q[i, 1] == q[i - 3, 1]) for i in range(4)) and \
+        len(set(q[:, 0])) == 2 and len(set(q[:, 1])) == 2
+    if rect and full:
+        assert claimed
