@@ -35,8 +35,12 @@ DEFAULT_COMPRESS_LEVEL = DEFAULT_LEVEL
 _SPARSE_MAX = 1 << 24
 _SPARSE_SHARE = 8
 
-# Masks of at most this many pixels are filled in one pass over the window.
-_SMALL = 1024
+# Masks of at most this many pixels are filled in one pass over the window
+# (about 8 array operations, where finding the covered and full pixels
+# takes about 25: below 4096 pixels the calls cost more than the pixels;
+# maps and charts at 2000 px rendered 3-9 % faster than with 1024, pixels
+# the same).
+_SMALL = 4096
 
 # Pixels per block of rows in fill / composite (bounds temporaries).
 _BLOCK = 1 << 14

@@ -299,6 +299,7 @@ def test_large_dense_fill_matches_the_formula(monkeypatch, block, rgba):
     # colour exactly
     import raster.pixels.canvas as canvas_mod
     monkeypatch.setattr(canvas_mod, '_BLOCK', block)
+    monkeypatch.setattr(canvas_mod, '_SMALL', 1024)
     rng = np.random.default_rng(11)
     k = rng.choice([0.0, 1.0, 1.0, 1.0, 0.3, 0.85], (60, 45)).astype(np.float32)
     k[:3] = 0
@@ -315,6 +316,29 @@ def test_large_dense_fill_matches_the_formula(monkeypatch, block, rgba):
         full = np.zeros((70, 50), bool)
         full[6:66, 0:41] = k[:, 4:] == 1
         assert np.all(c.data[full] == np.float32([0.2, 0.4, 0.8, 1.0]))
+
+
+@pytest.mark.parametrize('rgba', [(0.2, 0.4, 0.8, 1.0), (0.9, 0.1, 0.3, 0.6)])
+@pytest.mark.parametrize('share', [0.05, 0.5, 1.0])
+def test_eight_bit_fill_same_in_one_pass_and_by_covered_pixels(monkeypatch, rgba, share):
+    # an 8-bit canvas gets the same levels whether a mask is filled in one
+    # pass over its window (small masks) or through its covered and full
+    # pixels (sparse gather, opaque copy, blocks): the size threshold
+    # between them is a matter of speed only
+    import raster.pixels.canvas as canvas_mod
+    rng = np.random.default_rng(int(share * 100))
+    k = rng.choice([0.0, 1.0, 0.3, 0.85, 0.02], (48, 71)).astype(np.float32)
+    k[rng.uniform(size=k.shape) > share] = 0
+    back = rng.integers(0, 256, (60, 80, 4), dtype=np.uint8)
+    out = []
+    for small in (0, 1 << 20):
+        monkeypatch.setattr(canvas_mod, '_SMALL', small)
+        c = Canvas(80, 60, dtype=np.uint8)
+        c.data[...] = back
+        c.fill(Mask(k, 3, -2), rgba)
+        out.append(c.data.copy())
+    assert np.array_equal(out[0], out[1])
+    assert not np.array_equal(out[0], back)
 
 
 def test_fill_paints_repeat_and_still_validate():
