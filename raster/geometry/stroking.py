@@ -958,7 +958,8 @@ def _arcs(center, u, sweep, tol, full=False):
 class _Items:
     """Runs of outline points ("items"), each destined for one polygon at one
     sort key.  Item points live in a pool; an item may read its run in
-    reverse.  :meth:`polygons` sorts the items and gathers the points."""
+    reverse.  :meth:`polygons` sorts the items and gathers the points (once:
+    it empties the pool)."""
 
     def __init__(self):
         self.pool, self.npool = [], 0
@@ -973,7 +974,16 @@ class _Items:
         return start
 
     def add(self, poly, key, start, count, reverse=False):
-        col = np.empty((5, len(poly)), np.int64)
+        # empty items (most joins inside curves add no point) are dropped
+        # here rather than in polygons: five int64 per item otherwise
+        n = len(poly)
+        keep = np.asarray(count) > 0
+        if keep.ndim and not keep.all():
+            sel = np.flatnonzero(keep)
+            n = len(sel)
+            poly, key, start, count, reverse = (
+                np.broadcast_to(a, keep.shape)[sel] for a in (poly, key, start, count, reverse))
+        col = np.empty((5, n), np.int64)
         col[0], col[1], col[2], col[3], col[4] = poly, key, start, count, reverse
         self.cols.append(col)
 
@@ -1002,6 +1012,9 @@ class _Items:
         # per point pair, same result as comparing x and y (-0.0 == 0.0)
         pts = np.ascontiguousarray(pool[src], np.float64).view(np.complex128).reshape(-1)
         pid = poly[iid]
+        # (the pool is read once: its arrays go now, the gathered points stay)
+        self.pool, self.npool = [], 0
+        del pool, iid, k, src
         # drop repeated points (collinear vertices, coincident join ends)
         keep = np.ones(total, bool)
         if total > 1:
@@ -1051,12 +1064,23 @@ def _outline(lines, style, tol):
     winding by one only where it is at least two.  So these polygons have
     exactly the winding numbers of the pieces, and nonzero fills the union.
     """
+    items, npoly = _outline_items(lines, style, tol)
+    # (the arrays of the build are gone: only the items' pool is live)
+    pts, pcounts, ids = items.polygons()
+    if npoly is None:
+        return pts, pcounts, ids
+    return pts, pcounts, np.repeat(np.arange(len(npoly)), npoly)[ids]
+
+
+def _outline_items(lines, style, tol):
+    """The items of :func:`_outline` (an :class:`_Items`) and the number of
+    polygons per contour (None without points)."""
     P, starts, counts, closed = lines.points, lines.starts, lines.counts, lines.closed
     r = 0.5 * style.width
     N, C = len(P), len(counts)
     items = _Items()
     if N == 0:
-        return items.polygons()
+        return items, None
     if np.ndim(tol):
         def tol_of(c):
             return tol[c]
@@ -1210,8 +1234,7 @@ def _outline(lines, style, tol):
         else:
             pts, cnt = _arcs(ctr, h, np.full(len(cd), -2 * np.pi), tol_of(cd), full=True)
             items.add(pbase[cd], 0, items.put(pts) + _starts(cnt), cnt)
-    pts, pcounts, ids = items.polygons()
-    return pts, pcounts, np.repeat(np.arange(C), npoly)[ids]
+    return items, npoly
 
 
 def _emit(points, counts):

@@ -78,6 +78,9 @@ _WALK_RUNS = 32
 _WALK_PIECES = 64
 # Most work items (sample crossings) per batch of recomputed cells.
 _CHUNK_WORK = 1 << 20
+# Most work (four per run plus one per pair of runs of a cell) per call of
+# the boundary walk (see _flag).
+_WALK_WORK = 1 << 16
 # Cells with more pieces than this are refined on a _REFINE x _REFINE grid
 # instead of being sampled at all critical heights (at most _MAX_DEPTH
 # levels deep).
@@ -659,8 +662,15 @@ def _flag(xa, ya, xb, yb, col, row, cell, brk, left_of, evenodd, everything=None
     if len(wi):
         runs = (ridx, rlen, merged, hstart, hlen)
         eo = evenodd if np.ndim(evenodd) == 0 else evenodd[ridx[gstart[wi]]]
-        ok[wi] = _walk(xa, ya, xb, yb, col, row, dx, dy, runs, gstart[wi], gcnt[wi],
-                       left_of(cells[wi]), eo)
+        eo = np.broadcast_to(np.asarray(eo, bool), (len(wi),))
+        lw = left_of(cells[wi])
+        # in slices of cells of bounded work: the walk's arrays (per run,
+        # per pair of runs of a cell) stay within a few MB
+        g = gcnt[wi]
+        for sl in _slices(4 * g + g * (g - 1) // 2, _WALK_WORK):
+            w = wi[sl]
+            ok[w] = _walk(xa, ya, xb, yb, col, row, dx, dy, runs, gstart[w], gcnt[w], lw[sl],
+                          eo[sl])
     fg = np.flatnonzero(~ok)
     rr = _ranges(gstart[fg], gcnt[fg])
     pieces, _ = _run_pieces(ridx[rr], rlen[rr], merged[rr], hstart[rr], hlen[rr])

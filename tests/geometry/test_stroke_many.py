@@ -313,3 +313,19 @@ def test_max_scales_are_the_methods_values():
     for group in (ts, ts[:1] * 5, []):
         m = np.array([tuple(t) for t in group]).reshape(-1, 6)
         assert _max_scales(m).tolist() == [t.max_scale() for t in group]
+
+
+def test_outline_items_drop_empty_runs_and_pool_is_read_once():
+    # joins that add no point (most joins inside a flattened curve) are not
+    # kept as items; the polygons are the same as with them
+    from raster.geometry import stroking
+    items = stroking._Items()
+    start = items.put(np.array([[0.0, 0.0], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]]))
+    items.add(np.array([0, 0, 0]), np.array([0, 1, 2]), np.array([start, start, start + 2]),
+              np.array([2, 0, 2]))
+    assert items.cols[0].shape == (5, 2)
+    pts, counts, ids = items.polygons()
+    assert counts.tolist() == [4] and ids.tolist() == [0]
+    # reversed (positive area, y down): the same four points
+    assert sorted(map(tuple, pts.tolist())) == [(0.0, 0.0), (0.0, 3.0), (4.0, 0.0), (4.0, 3.0)]
+    assert items.pool == [] and items.npool == 0
