@@ -298,7 +298,7 @@ def filter_layer(filters, layer, t, draw=None):
 
 
 #: Pixels of a filter result written into a layer at a time (filter_layer).
-_STRIP_PIXELS = 1 << 18
+_STRIP_PIXELS = 1 << 16
 #: Largest difference (levels) between an 8-bit layer's colour channels and
 #: its brightest pixel's straight colour times its alpha for the layer to
 #: count as painted in that one colour (the rounding of two levels).
