@@ -556,12 +556,25 @@ class FilterImage:
             self._data = solid_image(self.alpha, self.colour)
         return self._data
 
-    def clip(self, rect):
+    def clip(self, rect, in_place=False):
         """The image with everything outside ``rect`` (x0, y0, x1, y1)
-        transparent."""
+        transparent; with ``in_place`` the pixels outside are zeroed in
+        this image's arrays (which must not be read elsewhere) and the
+        image is returned."""
         x0, y0, x1, y1 = rect
-        src = self.alpha if self.solid else self._data
+        src = self.alpha if self.solid else self.data
         if (x0, y0, x1, y1) == (0, 0, src.shape[1], src.shape[0]):
+            return self
+        if in_place:
+            h, w = src.shape[:2]
+            y0, y1 = min(max(y0, 0), h), min(max(y1, y0), h)
+            x0, x1 = min(max(x0, 0), w), min(max(x1, x0), w)
+            src[:y0] = 0.0
+            src[y1:] = 0.0
+            src[y0:y1, :x0] = 0.0
+            src[y0:y1, x1:] = 0.0
+            if self.solid:
+                self._data = None        # (made again from the alpha channel)
             return self
         out = np.zeros(src.shape, np.float32)
         out[y0:y1, x0:x1] = src[y0:y1, x0:x1]
@@ -587,19 +600,26 @@ def _by_rows(fn, img, out=None):
     return out
 
 
-def _convert_pixels(img, fn):
+def _convert_pixels(img, fn, in_place=False):
     """Apply the transfer ``fn`` to the straight colour of the
     premultiplied ``img`` (H, W, 4); only the bounding box of the visible
-    pixels is worked on (transparent pixels stay transparent)."""
+    pixels is worked on (transparent pixels stay transparent).  With
+    ``in_place`` the result overwrites ``img`` (a block of rows at a time,
+    each block converted before it is written: the same values) and is
+    ``img``."""
     box = nonzero_box(img)
     if box is None:
-        return np.zeros_like(img)
+        return img if in_place else np.zeros_like(img)
     y0, y1, x0, x1 = box
 
     def block(b):
         c, a = unpremultiply(b)
         return premultiply(fn(c), a)
 
+    if in_place:
+        # outside the box the pixels are 0 already
+        _by_rows(block, img[y0:y1, x0:x1], img[y0:y1, x0:x1])
+        return img
     if (y1 - y0, x1 - x0) == img.shape[:2]:
         return _by_rows(block, img)
     # written in place into the zero image: no box-sized intermediate
@@ -608,15 +628,18 @@ def _convert_pixels(img, fn):
     return out
 
 
-def convert_space(img, linear_from, linear_to):
+def convert_space(img, linear_from, linear_to, in_place=False):
     """An :class:`FilterImage` converted from linearRGB (``linear_from`` True)
-    or sRGB to the other space (``img`` itself when they agree)."""
+    or sRGB to the other space (``img`` itself when they agree).  With
+    ``in_place`` the pixels of ``img`` (when it is not solid) are
+    overwritten by the result instead of copied: for an input nothing
+    reads again."""
     if linear_from == linear_to:
         return img
     fn = srgb_to_linear if linear_to else linear_to_srgb
     if img.solid:
         return FilterImage(alpha=img.alpha, colour=fn(img.colour))
-    return FilterImage(_convert_pixels(img.data, fn))
+    return FilterImage(_convert_pixels(img.data, fn, in_place))
 
 
 # ---------------------------------------------------------------------------
@@ -636,7 +659,7 @@ def check_finite(*vals):
             raise FilterError('filter parameter must be finite, got %r' % (v,))
 
 
-def _box_passes(x, boxes):
+def _box_passes(x, boxes, out=None):
     """Successive box sums along axis 0.
 
     Pass ``(d, left)`` maps ``x`` to ``y[i] = sum(x[i - left : i - left +
@@ -654,19 +677,25 @@ def _box_passes(x, boxes):
         Any strides.
     boxes : sequence of (int d >= 1, int left)
 
+    out : (N, ...) float32 ndarray or None
+        Where to write the result (any strides; it may be ``x`` itself:
+        each block of columns is read before it is written).
+
     Returns
     -------
-    (N, ...) float32 ndarray, C-contiguous
+    (N, ...) float32 ndarray, C-contiguous (or ``out``)
         The sums divided by the product of the ``d``.
     """
     if x.ndim == 1:
-        return _box_passes(x[:, None], boxes)[:, 0]
+        return _box_passes(x[:, None], boxes, None if out is None else out[:, None])[:, 0]
     n, m, inner = x.shape[0], x.shape[1], int(np.prod(x.shape[2:], dtype=np.int64))
     # window of output i: x[i + s : i + e], clipped so that |s|, |e| <= n
     spans = [(max(-left, -n), min(d - left, n)) for d, left in boxes]
     width = max(e - s for s, e in spans)
-    out = np.zeros(x.shape, np.float32)
+    if out is None:
+        out = np.zeros(x.shape, np.float32)
     if width <= 0 or x.size == 0 or any(e <= s for s, e in spans):
+        out[...] = 0.0
         return out
     length = n + width - 1
     cm = max(1, min(m, _BLOCK_BYTES // (4 * length * inner)))
@@ -762,9 +791,11 @@ def box_sigma(sigma):
     return math.sqrt((2 * (d * d - 1) + (d + 1) ** 2 - 1) / 12.0)
 
 
-def _gauss_axis(a, s, axis):
+def _gauss_axis(a, s, axis, out=None):
     """Blur along ``axis`` with a Gaussian kernel of deviation ``s`` px
-    truncated at ``ceil(4 s)`` and renormalised (zeros outside).
+    truncated at ``ceil(4 s)`` and renormalised (zeros outside); the
+    result goes to ``out`` (the shape of ``a``, any strides, possibly
+    ``a`` itself) if given, else to a new float32 array.
 
     The other axes are processed in blocks of columns (axis 1 after the
     blurred one) of about :data:`_BLOCK_BYTES` of padded input, so the
@@ -772,7 +803,7 @@ def _gauss_axis(a, s, axis):
     output value is the same sum in the same order whatever the blocks.
     """
     if a.ndim == 1:
-        return _gauss_axis(a[:, None], s, 0)[:, 0]
+        return _gauss_axis(a[:, None], s, 0, None if out is None else out[:, None])[:, 0]
     r = max(1, int(math.ceil(4.0 * s)))
     x = np.arange(-r, r + 1, dtype=np.float64)
     k = np.exp(-0.5 * (x / s) ** 2)
@@ -780,7 +811,11 @@ def _gauss_axis(a, s, axis):
     taps = [np.float32(w) for w in k]
     a = np.moveaxis(a, axis, 0)
     n = a.shape[0]
-    out = np.zeros(a.shape, np.float32)
+    if out is None:
+        out = np.zeros(a.shape, np.float32)
+        fresh = True
+    else:
+        out, fresh = np.moveaxis(out, axis, 0), False
     inner = int(np.prod(a.shape[2:], dtype=np.int64))
     cm = max(1, min(a.shape[1], _BLOCK_BYTES // max(1, 4 * (n + 2 * r) * inner)))
     for sl in [slice(c0, c0 + cm) for c0 in range(0, a.shape[1], cm)]:                    # loop over blocks of columns
@@ -788,6 +823,8 @@ def _gauss_axis(a, s, axis):
         ob = out[:, sl]
         pad = np.zeros((n + 2 * r,) + ab.shape[1:], np.float32)
         pad[r:r + n] = ab
+        if not fresh:
+            ob[...] = 0.0                # (after ab is copied: ob may be ab)
         tmp = np.empty(ob.shape, np.float32)
         for j, w in enumerate(taps):     # loop over kernel taps, not pixels
             np.multiply(pad[j:j + n], w, out=tmp)
@@ -808,40 +845,47 @@ def _reach(plan):
     return sum(d - 1 - left for d, left in arg), sum(left for d, left in arg)
 
 
-def blur_array(x, plan_x, plan_y):
+def _blur_axis(work, plan, axis, out=None):
+    """One axis of :func:`blur_array` on ``work``, into ``out`` if given."""
+    if plan[0] == 'gauss':
+        return _gauss_axis(work, plan[1], axis, out)
+    o = None if out is None else np.moveaxis(out, axis, 0)
+    return np.moveaxis(_box_passes(np.moveaxis(work, axis, 0), plan[1], o), 0, axis)
+
+
+def blur_array(x, plan_x, plan_y, in_place=False):
     """Separable blur of ``x`` (H, W) or (H, W, C) float32, zero outside,
     one plan per axis.
 
     A plan is None (axis untouched), ``('box', boxes)`` (successive box
     means, see :func:`_box_passes`) or ``('gauss', sigma)``.  The work is
     restricted to the bounding box of the non-zero pixels grown by the
-    blur's reach: outside it the result is exactly 0.
+    blur's reach: outside it the result is exactly 0.  The last axis is
+    written straight into the result, so at most ``x``, the first axis's
+    result (of the work box's size) and the result are alive at once;
+    with ``in_place`` the result is ``x`` itself (overwritten) and the
+    output costs nothing.
 
     Returns
     -------
-    float32 ndarray, the shape of ``x``
+    float32 ndarray, the shape of ``x`` (``x`` with ``in_place``)
     """
     if plan_x is None and plan_y is None:
         return x
     h, w = x.shape[:2]
     box = nonzero_box(x)
     if box is None:
-        return np.zeros(x.shape, np.float32)
+        return x if in_place else np.zeros(x.shape, np.float32)
     (bx, ax), (by, ay) = _reach(plan_x), _reach(plan_y)
     y0, y1 = max(box[0] - by, 0), min(box[1] + ay, h)
     x0, x1 = max(box[2] - bx, 0), min(box[3] + ax, w)
     work = x[y0:y1, x0:x1]
-    for axis, plan in ((1, plan_x), (0, plan_y)):
-        if plan is None:
-            continue
-        if plan[0] == 'gauss':
-            work = _gauss_axis(work, plan[1], axis)
-        else:
-            work = np.moveaxis(_box_passes(np.moveaxis(work, axis, 0), plan[1]), 0, axis)
-    if (y0, y1, x0, x1) == (0, h, 0, w):
-        return np.ascontiguousarray(work)
-    out = np.zeros(x.shape, np.float32)
-    out[y0:y1, x0:x1] = work
+    plans = [(axis, plan) for axis, plan in ((1, plan_x), (0, plan_y)) if plan is not None]
+    for axis, plan in plans[:-1]:
+        work = _blur_axis(work, plan, axis)
+    # outside the work box x is 0, and so is the result
+    out = x if in_place else np.zeros(x.shape, np.float32)
+    _blur_axis(work, plans[-1][1], plans[-1][0], out[y0:y1, x0:x1])
     return out
 
 
@@ -868,12 +912,15 @@ def blur_cost(plan_x, plan_y):
     return float(cost)
 
 
-def blur_image(img, plan_x, plan_y):
+def blur_image(img, plan_x, plan_y, in_place=False):
     """:func:`blur_array` of an :class:`FilterImage` (a solid-colour image
-    blurs its alpha channel only: blurs are linear)."""
+    blurs its alpha channel only: blurs are linear); with ``in_place`` the
+    pixels of ``img`` are overwritten by the result (for an input nothing
+    reads again)."""
     if img.solid:
-        return FilterImage(alpha=blur_array(img.alpha, plan_x, plan_y), colour=img.colour)
-    return FilterImage(blur_array(img.data, plan_x, plan_y))
+        return FilterImage(alpha=blur_array(img.alpha, plan_x, plan_y, in_place),
+                           colour=img.colour)
+    return FilterImage(blur_array(img.data, plan_x, plan_y, in_place))
 
 
 def blur_plans(sigma_x, sigma_y, tolerance):

@@ -234,11 +234,12 @@ class _Run:
     transform ``t`` (user space to region pixels), the scales ``sx``,
     ``sy`` of lengths, the blur tolerance, the region's pixel ``shape``
     and the ``draw`` callback."""
-    __slots__ = ('t', 'sx', 'sy', 'tol', 'shape', 'draw', 'urect')
+    __slots__ = ('t', 'sx', 'sy', 'tol', 'shape', 'draw', 'urect', 'spare')
 
     def __init__(self, t, sx, sy, tol, shape, draw):
         self.t, self.sx, self.sy, self.tol, self.shape, self.draw = t, sx, sy, tol, shape, draw
         self.urect = None           # the current primitive's subregion, user space
+        self.spare = ()             # per input: whether its pixels may be overwritten
 
 
 def _apply_one(f, data, t, tol, draw=None):
@@ -277,8 +278,11 @@ def filter_layer(filters, layer, t, draw=None):
         data = fx.check_image(layer.read(0, h, 0, w), 'layer')
     for f in filters[:-1]:
         data = _apply_one(f, data, t, None, draw)
-    r = _filter_image(filters[-1], data, t, None, draw)
+    # handed over: the layer's copy is freed once the region is cut from it
+    # and may be overwritten
+    hand = [data]
     del data
+    r = _filter_image(filters[-1], hand, t, None, draw)
     layer.data[...] = 0
     if r is None:
         return
@@ -294,7 +298,7 @@ def filter_layer(filters, layer, t, draw=None):
 
 
 #: Pixels of a filter result written into a layer at a time (filter_layer).
-_STRIP_PIXELS = 1 << 18
+_STRIP_PIXELS = 1 << 16
 #: Largest difference (levels) between an 8-bit layer's colour channels and
 #: its brightest pixel's straight colour times its alpha for the layer to
 #: count as painted in that one colour (the rounding of two levels).
@@ -323,11 +327,58 @@ def _layer_source(layer):
                        colour=np.clip(c, 0.0, 1.0).astype(np.float32))
 
 
+def _last_reads(prims):
+    """For the primitives ``prims`` of a filter: ``(keys, last)``, the
+    record each input reads (``'S'`` for the filter's sources, which share
+    one buffer, or the index of the primitive that made it) per primitive,
+    and the index of the last primitive reading each record (``len(prims)``
+    for the final result)."""
+    keys, last, names, prev = [], {}, {}, 'S'
+    for i, p in enumerate(prims):
+        ks = []
+        for inp in p.inputs:
+            if inp is F.Source.PREVIOUS:
+                k = prev
+            elif isinstance(inp, F.Result):
+                k = names.get(inp.name)
+            else:
+                k = 'S'
+            ks.append(k)
+            last[k] = i
+        keys.append(ks)
+        prev = i
+        if p.result:
+            names[p.result] = i
+    last[prev] = len(prims)
+    return keys, last
+
+
+def _buffers(img):
+    """The arrays holding a FilterImage's pixels (a solid image's other
+    channels, if made, are around its alpha channel)."""
+    return [img.alpha] if img.solid else [img.data]
+
+
+def _shares(img, arrays):
+    """Whether ``img`` (a FilterImage) may share memory with any of ``arrays``."""
+    return any(np.may_share_memory(a, b) for a in _buffers(img) for b in arrays)
+
+
 def _filter_image(f, data, t, tol, draw=None):
     """One filter on ``data`` ((H, W, 4) float32, or a one-colour
     FilterImage of that size): ``(FilterImage in sRGB, (x0, y0, x1, y1)
     pixel region)`` (transparent outside the region), or None when the
-    region is empty."""
+    region is empty.
+
+    ``data`` may be handed over as a one-item list: it is then taken out
+    of the list, dropped once the region is cut from it, and its pixels
+    may be overwritten; otherwise they are left unchanged.  Buffers that
+    no later primitive reads (SourceGraphic and named results are followed
+    to their last reader) are converted between colour spaces, blurred and
+    clipped in place."""
+    owned = isinstance(data, list)
+    if owned:
+        data = data.pop()
     solid = isinstance(data, FilterImage)
     h, w = (data.alpha if solid else data).shape[:2]
     rx0, ry0, rx1, ry1 = _pixel_rect(_device_box(f.region, t), w, h)
@@ -343,9 +394,15 @@ def _filter_image(f, data, t, tol, draw=None):
     limits.spend_work(filter_work(f, rw, rh, run.sx, run.sy, run.tol), 'a filter')
     if solid:
         src_alpha = np.ascontiguousarray(data.alpha[ry0:ry1, rx0:rx1])
+        src_colour = data.colour
+        src = src_alpha
     else:
         src = np.ascontiguousarray(data[ry0:ry1, rx0:rx1])
         src_alpha = src[..., 3]
+        src_colour = None
+    # the caller's pixels, unless handed over
+    kept = [] if owned else _buffers(data) if solid else [data]
+    del data
     full = (0, 0, rw, rh)
     sources = {}                      # SourceGraphic / SourceAlpha, made on first use
 
@@ -354,15 +411,17 @@ def _filter_image(f, data, t, tol, draw=None):
             if name is not F.Source.GRAPHIC:
                 img = FilterImage(alpha=src_alpha, colour=np.zeros(3, np.float32))
             elif solid:
-                img = FilterImage(alpha=src_alpha, colour=data.colour)
+                img = FilterImage(alpha=src_alpha, colour=src_colour)
             else:
                 img = FilterImage.of(src)
             sources[name] = (img, False, full)
         return sources[name]
 
+    keys, last = _last_reads(f.primitives)
+    records = {}                      # primitive index -> its record, while read later
     named = {}
     prev = None                       # (FilterImage, linear, rect)
-    for p in f.primitives:
+    for n, p in enumerate(f.primitives):
         def get(i):
             if i is F.Source.PREVIOUS:
                 return prev if prev is not None else source(F.Source.GRAPHIC)
@@ -371,6 +430,16 @@ def _filter_image(f, data, t, tol, draw=None):
             return source(i)
 
         ins = [get(i) for i in p.inputs]
+        # buffers read after this primitive: not to be overwritten
+        later = list(kept)
+        if last.get('S', -1) > n:
+            later.append(src)
+        for k, rec in records.items():
+            if last.get(k, -1) > n:
+                later.extend(_buffers(rec[0]))
+        spare = [not _shares(r[0], later) and not any(
+            _shares(r[0], _buffers(o[0])) for j, o in enumerate(ins) if j != m)
+            for m, r in enumerate(ins)]
         if f.region is None:
             sub = full
             run.urect = None
@@ -379,8 +448,11 @@ def _filter_image(f, data, t, tol, draw=None):
             sub = _pixel_rect(_device_box(urect, rt), rw, rh)
             run.urect = urect
         lin = p.linear
-        imgs = [fx.convert_space(i[0], i[1], lin) for i in ins]
+        imgs = [fx.convert_space(i[0], i[1], lin, ok) for i, ok in zip(ins, spare)]
+        # a converted copy is the primitive's own
+        run.spare = [ok or not _shares(im, _buffers(i[0])) for im, i, ok in zip(imgs, ins, spare)]
         img = _PRIMITIVES[type(p)](p, imgs, ins, sub, lin, run)
+        del imgs
         out_lin = lin
         if img is None:
             img = FilterImage(alpha=np.zeros((rh, rw), np.float32),
@@ -392,10 +464,23 @@ def _filter_image(f, data, t, tol, draw=None):
         # an feOffset result keeps its input's area for feTile (resvg)
         area = ins[0][2] if isinstance(p, F.Offset) and ins and all(
             ins[0][0] is not v[0] for v in sources.values()) else sub
-        prev = (img.clip(sub), out_lin, area)
+        prev = (img.clip(sub, not _shares(img, later)), out_lin, area)
+        del img, ins, later
+        # forget what nothing reads any more (its memory can go)
+        for k in [k for k in records if last.get(k, -1) <= n]:
+            del records[k]
+        if last.get('S', -1) <= n:
+            sources.clear()
+            src = src_alpha = None
+        records[n] = prev
         if p.result:
             named[p.result] = prev
-    return fx.convert_space(prev[0], prev[1], False), (rx0, ry0, rx1, ry1)
+        for name in [name for name, rec in named.items() if
+                     not any(rec is r for r in records.values())]:
+            del named[name]
+    img, img_lin = prev[0], prev[1]
+    del prev, records, named
+    return fx.convert_space(img, img_lin, False, not _shares(img, kept)), (rx0, ry0, rx1, ry1)
 
 
 # -- the cost model ------------------------------------------------------------------
@@ -461,7 +546,7 @@ def _gaussian_blur(p, imgs, ins, sub, lin, run):
     s_x, s_y = p.std_dev[0] * run.sx, p.std_dev[1] * run.sy
     if s_x < 0 or s_y < 0 or (s_x == 0 and s_y == 0):
         return imgs[0]                      # disabled: the input (resvg)
-    return fx.blur_image(imgs[0], *fx.blur_plans(s_x, s_y, run.tol))
+    return fx.blur_image(imgs[0], *fx.blur_plans(s_x, s_y, run.tol), in_place=run.spare[0])
 
 
 def _offset(p, imgs, ins, sub, lin, run):

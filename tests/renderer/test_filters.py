@@ -897,3 +897,59 @@ def test_spot_light_specular_exponent(given, used):
                                   % doc).encode()))
     (f,) = t.ids['e'].filters
     assert f.primitives[0].light.specular_exponent == used
+
+
+def _reuse_filter():
+    """A chain whose buffers are read again after a primitive could have
+    overwritten them: SourceGraphic and a named result read twice, a
+    disabled blur passing its input on, sRGB and linearRGB steps."""
+    src, res = T.Source, T.Result
+    return T.Filter(region=(1.0, 2.0, 60.0, 44.0), primitives=[
+        T.GaussianBlur(inputs=(src.GRAPHIC,), result='z', std_dev=(0.0, 0.0)),
+        T.GaussianBlur(inputs=(res('z'),), result='b', std_dev=(2.5, 1.5)),
+        T.GaussianBlur(inputs=(res('b'),), linear=False, std_dev=(1.0, 3.0),
+                       subregion=(5.0, 6.0, 40.0, 30.0)),
+        T.GaussianBlur(inputs=(T.PREVIOUS,), std_dev=(0.5, 0.5)),
+        T.Composite(inputs=(res('b'), src.GRAPHIC), result='c'),
+        T.GaussianBlur(inputs=(src.ALPHA,), std_dev=(2.0, 0.0)),
+        T.Merge(inputs=(res('c'), T.PREVIOUS, res('z'))),
+        T.GaussianBlur(inputs=(T.PREVIOUS,), std_dev=(3.0, 3.0)),
+    ])
+
+
+@pytest.mark.parametrize('solid', [True, False])
+def test_reused_buffers_give_the_pixels_of_fresh_copies(monkeypatch, solid):
+    import raster.renderer.filters as R
+    from raster.pixels.canvas import Canvas
+    a = np.zeros((48, 64), np.float32)
+    a[10:30, 8:50] = np.random.default_rng(3).random((20, 42), dtype=np.float32)
+    data = F.solid_image(a, np.array([0.2, 0.7, 0.4], np.float32)) if solid \
+        else _img(48, 64, seed=9)
+    keep = data.copy()
+    t = Affine.scale(1.1)
+    got = apply_filters([_reuse_filter()], data, t)
+    assert np.array_equal(data, keep)                    # the caller's pixels are left alone
+    layer = Canvas(64, 48, dtype=np.float32)
+    layer.data[...] = data
+    R.filter_layer([_reuse_filter()], layer, t)
+    # nothing may be overwritten: every step copies
+    monkeypatch.setattr(R, '_shares', lambda img, arrays: True)
+    want = apply_filters([_reuse_filter()], data, t)
+    assert np.array_equal(got, want)
+    ref = Canvas(64, 48, dtype=np.float32)
+    ref.data[...] = data
+    R.filter_layer([_reuse_filter()], ref, t)
+    assert np.array_equal(layer.data, ref.data)
+
+
+@pytest.mark.parametrize('plans', [(('gauss', 1.3), ('box', ((5, 2),) * 3)),
+                                   (None, ('gauss', 2.0)), (('box', ((4, 2), (4, 1), (5, 2))), None)])
+def test_blur_array_in_place_equals_a_new_result(plans):
+    x = np.zeros((30, 40, 4), np.float32)
+    x[5:20, 10:30] = _img(15, 20, seed=2)
+    want = F.blur_array(x, *plans)
+    y = x.copy()
+    out = F.blur_array(y, *plans, in_place=True)
+    assert out is y and np.array_equal(out, want)
+    c = F._convert_pixels(x, F.srgb_to_linear)
+    assert F._convert_pixels(x, F.srgb_to_linear, in_place=True) is x and np.array_equal(x, c)
