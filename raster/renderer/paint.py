@@ -510,14 +510,14 @@ def draw_pixels(n, t, canvas, tol):
     flt = 'bilinear' if n.smooth else 'nearest'
     step = max(1, STRIP_PIXELS // w)
     for r0 in range(0, h, step):        # strips of rows: bounded temporaries
-        if cov is not None:
-            k = cov[r0:r0 + step]
-        else:
-            k = _strip_coverage(axes, r0, min(step, h - r0))
-        col = resample_window(pix, inv, x0, y0 + r0, w, len(k), flt)
+        rows = min(step, h - r0)
+        col = resample_window(pix, inv, x0, y0 + r0, w, rows, flt)
         if col is None:
             continue
-        _apply_coverage(col, k)
+        if cov is not None:
+            _apply_coverage(col, cov[r0:r0 + rows])
+        else:
+            _apply_rect_coverage(col, axes, r0)
         canvas.composite(col, x0, y0 + r0, n.opacity)
 
 
@@ -564,21 +564,48 @@ def _overlaps(lo, hi, k0, n):
     return np.clip(out, 0.0, 1.0, out=out)
 
 
-def _strip_coverage(axes, r0, rows):
-    """(rows, w) float32 coverage of rows r0 .. r0 + rows of the window:
-    the exact area of each pixel inside each axis-aligned rectangle (the
-    product of its x and y overlaps, ``axes`` one (cx, cy) pair per
-    rectangle), rounded to float32 per rectangle and multiplied, as the
-    masks of :func:`path_coverage` would be."""
+def _strip_coverage(axes, rows, cols=slice(None)):
+    """(len(rows), len(cols)) float32 coverage of some pixels of the window
+    (``rows`` an index array, ``cols`` a slice or index array): the exact
+    area of each pixel inside each axis-aligned rectangle (the product of
+    its x and y overlaps, ``axes`` one (cx, cy) float64 pair per rectangle),
+    rounded to float32 per rectangle and multiplied, as the masks of
+    :func:`path_coverage` would be."""
     out = None
     for cx, cy in axes:
-        k = np.empty((rows, len(cx)), _F32)
-        np.multiply(cy[r0:r0 + rows, None], cx[None, :], out=k, casting='same_kind')
+        x = cx[cols]
+        k = np.empty((len(rows), len(x)), _F32)
+        np.multiply(cy[rows, None], x[None, :], out=k, casting='same_kind')
         if out is None:
             out = k
         else:
             out *= k
     return out
+
+
+def _apply_rect_coverage(col, axes, r0):
+    """Multiply premultiplied colours (h, w, 4) float32 in place by the
+    coverage of rows r0 .. r0 + h of the window, given separably (``axes``,
+    see :func:`_strip_coverage`), as :func:`_apply_coverage` would with the
+    whole (h, w) mask: only partly covered pixels are touched, the rows and
+    columns where some rectangle's overlap is below 1 (its edges)."""
+    h = col.shape[0]
+    part_rows = np.zeros(h, bool)
+    part_cols = np.zeros(col.shape[1], bool)
+    for cx, cy in axes:
+        part_rows |= cy[r0:r0 + h] < 1
+        part_cols |= cx < 1
+    rows = np.flatnonzero(part_rows)
+    cols = np.flatnonzero(part_cols)
+    if len(rows):
+        col[rows] *= _strip_coverage(axes, rows + r0)[..., None]
+    if len(cols):
+        full = np.flatnonzero(~part_rows)
+        if len(full) == h:
+            col[:, cols] *= _strip_coverage(axes, [r0], cols)[..., None]
+        elif len(full):
+            sub = np.ix_(full, cols)
+            col[sub] *= _strip_coverage(axes, [r0 + full[0]], cols)[..., None]
 
 
 def _path_window(img_rect, clip_rect, t, canvas, tol):
