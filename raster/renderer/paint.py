@@ -462,7 +462,13 @@ def draw_pixels(n, t, canvas, tol):
     The image rectangle (and the node's clip rectangle) is covered with
     exact-area anti-aliasing; inside, the image is resampled (bilinear when
     ``n.smooth``, else nearest) with its edge pixels extended outwards, over
-    the covered window only (see :func:`resample_window`).
+    the covered window only (see :func:`resample_window`), in strips of
+    rows of about :data:`STRIP_PIXELS` pixels.  When both rectangles map to
+    axis-aligned device rectangles (no rotation or skew), their coverage is
+    separable (a pixel's area inside is the product of its x and y
+    overlaps) and only the partly covered edge rows and columns of each
+    strip are multiplied, so no window-sized mask is held; other transforms
+    use :func:`raster.pixels.scan.path_coverage` masks.
 
     Parameters
     ----------
