@@ -462,7 +462,13 @@ def draw_pixels(n, t, canvas, tol):
     The image rectangle (and the node's clip rectangle) is covered with
     exact-area anti-aliasing; inside, the image is resampled (bilinear when
     ``n.smooth``, else nearest) with its edge pixels extended outwards, over
-    the covered window only (see :func:`resample_window`).
+    the covered window only (see :func:`resample_window`), in strips of
+    rows of about :data:`STRIP_PIXELS` pixels.  When both rectangles map to
+    axis-aligned device rectangles (no rotation or skew), their coverage is
+    separable (a pixel's area inside is the product of its x and y
+    overlaps) and only the partly covered edge rows and columns of each
+    strip are multiplied, so no window-sized mask is held; other transforms
+    use :func:`raster.pixels.scan.path_coverage` masks.
 
     Parameters
     ----------
@@ -486,39 +492,152 @@ def draw_pixels(n, t, canvas, tol):
         return
     # the drawn region: the image rectangle, clipped to the viewport
     img_rect = n.transform.apply(np.array([[0, 0], [iw, 0], [iw, ih], [0, ih]], float))
-    region = Path.polygon(img_rect)
-    m = path_coverage(region, canvas.width, canvas.height, 'nonzero', True, tolerance=tol,
-                      transform=t)
-    if m is None:
-        return
-    cov, x0, y0 = m.data, m.x0, m.y0
+    clip_rect = None
     if n.clip is not None:
         x, y, w, h = n.clip
-        rect = Path.polygon([(x, y), (x + w, y), (x + w, y + h), (x, y + h)])
-        cm = path_coverage(rect, canvas.width, canvas.height, 'nonzero', True, tolerance=tol,
-                           transform=t)
-        if cm is None:
+        clip_rect = np.array([(x, y), (x + w, y), (x + w, y + h), (x, y + h)], float)
+    rects = [_device_rect(img_rect, t)]
+    if clip_rect is not None:
+        rects.append(_device_rect(clip_rect, t))
+    if all(r is not None for r in rects):
+        # axis-aligned in device space: coverage separably, strip by strip
+        win = _rects_window(rects, canvas.width, canvas.height)
+        if win is None:
             return
-        # the two windows' intersection only (no canvas-sized arrays)
-        ax0, ay0 = max(m.x0, cm.x0), max(m.y0, cm.y0)
-        ax1 = min(m.x0 + cov.shape[1], cm.x0 + cm.data.shape[1])
-        ay1 = min(m.y0 + cov.shape[0], cm.y0 + cm.data.shape[0])
-        if ax1 <= ax0 or ay1 <= ay0:
+        x0, y0, w, h = win
+        axes = [(_overlaps(r[0], r[2], x0, w), _overlaps(r[1], r[3], y0, h)) for r in rects]
+        cov = None
+    else:
+        cov, x0, y0 = _path_window(img_rect, clip_rect, t, canvas, tol)
+        if cov is None:
             return
-        cov = (cov[ay0 - m.y0:ay1 - m.y0, ax0 - m.x0:ax1 - m.x0]
-               * cm.data[ay0 - cm.y0:ay1 - cm.y0, ax0 - cm.x0:ax1 - cm.x0])
-        x0, y0 = ax0, ay0
-    h, w = cov.shape
+        h, w = cov.shape
     limits.spend_work(_IMAGE_PASSES * w * h, 'an image')
     flt = 'bilinear' if n.smooth else 'nearest'
     step = max(1, STRIP_PIXELS // w)
     for r0 in range(0, h, step):        # strips of rows: bounded temporaries
-        k = cov[r0:r0 + step]
-        col = resample_window(pix, inv, x0, y0 + r0, w, len(k), flt)
+        rows = min(step, h - r0)
+        col = resample_window(pix, inv, x0, y0 + r0, w, rows, flt)
         if col is None:
             continue
-        _apply_coverage(col, k)
+        if cov is not None:
+            _apply_coverage(col, cov[r0:r0 + rows])
+        else:
+            _apply_rect_coverage(col, axes, r0)
         canvas.composite(col, x0, y0 + r0, n.opacity)
+
+
+def _device_rect(pts, t):
+    """The device rectangle (x0, y0, x1, y1), floats, of a user-space
+    rectangle given by its four corners ``pts`` ((4, 2) float64, in path
+    order) when ``t`` maps it to one with axis-aligned edges; else None.
+    The corners are mapped with the arithmetic of
+    :func:`raster.geometry.flattening.flatten`; non-finite ones are left
+    to :func:`path_coverage` (which raises), too large ones raise as there."""
+    d = pts if t.is_identity else t.apply(pts)
+    if not np.all(np.isfinite(d)):
+        return None
+    x, y = d[:, 0], d[:, 1]
+    if (y[0] == y[1] and y[2] == y[3] and x[0] == x[3] and x[1] == x[2]) or \
+            (x[0] == x[1] and x[2] == x[3] and y[0] == y[3] and y[1] == y[2]):
+        limits.check_coord(float(np.abs(d).max()), 'edge')
+        return float(x.min()), float(y.min()), float(x.max()), float(y.max())
+    return None
+
+
+def _rects_window(rects, width, height):
+    """The pixel window (x0, y0, w, h) that :func:`path_coverage` gives each
+    device rectangle (x0, y0, x1, y1), intersected (its pixel bounding box
+    clipped to the canvas); None when it is empty or a rectangle has no
+    area."""
+    X0, Y0, X1, Y1 = 0, 0, width, height
+    for rx0, ry0, rx1, ry1 in rects:
+        if not (rx1 > rx0 and ry1 > ry0):
+            return None
+        X0, Y0 = max(X0, math.floor(rx0)), max(Y0, math.floor(ry0))
+        X1, Y1 = min(X1, math.ceil(rx1)), min(Y1, math.ceil(ry1))
+    if X1 <= X0 or Y1 <= Y0:
+        return None
+    return X0, Y0, X1 - X0, Y1 - Y0
+
+
+def _overlaps(lo, hi, k0, n):
+    """(n,) float64: the length of [lo, hi] inside each pixel interval
+    [k, k + 1], k = k0 .. k0 + n - 1."""
+    k = np.arange(k0, k0 + n, dtype=np.float64)
+    out = np.minimum(k + 1.0, hi)
+    out -= np.maximum(k, lo)
+    return np.clip(out, 0.0, 1.0, out=out)
+
+
+def _strip_coverage(axes, rows, cols=slice(None)):
+    """(len(rows), len(cols)) float32 coverage of some pixels of the window
+    (``rows`` an index array, ``cols`` a slice or index array): the exact
+    area of each pixel inside each axis-aligned rectangle (the product of
+    its x and y overlaps, ``axes`` one (cx, cy) float64 pair per rectangle),
+    rounded to float32 per rectangle and multiplied, as the masks of
+    :func:`path_coverage` would be."""
+    out = None
+    for cx, cy in axes:
+        x = cx[cols]
+        k = np.empty((len(rows), len(x)), _F32)
+        np.multiply(cy[rows, None], x[None, :], out=k, casting='same_kind')
+        if out is None:
+            out = k
+        else:
+            out *= k
+    return out
+
+
+def _apply_rect_coverage(col, axes, r0):
+    """Multiply premultiplied colours (h, w, 4) float32 in place by the
+    coverage of rows r0 .. r0 + h of the window, given separably (``axes``,
+    see :func:`_strip_coverage`), as :func:`_apply_coverage` would with the
+    whole (h, w) mask: only partly covered pixels are touched, the rows and
+    columns where some rectangle's overlap is below 1 (its edges)."""
+    h = col.shape[0]
+    part_rows = np.zeros(h, bool)
+    part_cols = np.zeros(col.shape[1], bool)
+    for cx, cy in axes:
+        part_rows |= cy[r0:r0 + h] < 1
+        part_cols |= cx < 1
+    rows = np.flatnonzero(part_rows)
+    cols = np.flatnonzero(part_cols)
+    if len(rows):
+        col[rows] *= _strip_coverage(axes, rows + r0)[..., None]
+    if len(cols):
+        full = np.flatnonzero(~part_rows)
+        if len(full) == h:
+            col[:, cols] *= _strip_coverage(axes, [r0], cols)[..., None]
+        elif len(full):
+            sub = np.ix_(full, cols)
+            col[sub] *= _strip_coverage(axes, [r0 + full[0]], cols)[..., None]
+
+
+def _path_window(img_rect, clip_rect, t, canvas, tol):
+    """Coverage (h, w) float32 of the image rectangle (user-space corners
+    ``img_rect``) times that of the clip rectangle (corners or None), by
+    :func:`path_coverage`, over the intersection of their windows only (no
+    canvas-sized arrays); returns (cov, x0, y0), cov None when empty."""
+    m = path_coverage(Path.polygon(img_rect), canvas.width, canvas.height, 'nonzero', True,
+                      tolerance=tol, transform=t)
+    if m is None:
+        return None, 0, 0
+    cov, x0, y0 = m.data, m.x0, m.y0
+    if clip_rect is not None:
+        cm = path_coverage(Path.polygon(clip_rect), canvas.width, canvas.height, 'nonzero',
+                           True, tolerance=tol, transform=t)
+        if cm is None:
+            return None, 0, 0
+        ax0, ay0 = max(m.x0, cm.x0), max(m.y0, cm.y0)
+        ax1 = min(m.x0 + cov.shape[1], cm.x0 + cm.data.shape[1])
+        ay1 = min(m.y0 + cov.shape[0], cm.y0 + cm.data.shape[0])
+        if ax1 <= ax0 or ay1 <= ay0:
+            return None, 0, 0
+        cov = (cov[ay0 - m.y0:ay1 - m.y0, ax0 - m.x0:ax1 - m.x0]
+               * cm.data[ay0 - cm.y0:ay1 - cm.y0, ax0 - cm.x0:ax1 - cm.x0])
+        x0, y0 = ax0, ay0
+    return cov, x0, y0
 
 
 def _apply_coverage(col, cov):

@@ -530,6 +530,82 @@ def test_clip_rectangle_is_anti_aliased_and_intersected():
     assert a[0, 1] == pytest.approx(0.75) and a[3, 0] == pytest.approx(0.5)
 
 
+def _overlap_ref(lo, hi, n):
+    """(n,) float64 length of [lo, hi] inside each unit pixel interval."""
+    k = np.arange(n, dtype=np.float64)
+    return np.clip(np.minimum(k + 1, hi) - np.maximum(k, lo), 0, 1)
+
+
+def _draw_alpha(node, t, size, general=False):
+    c = Canvas(*size)
+    if general:     # force the box-sized path_coverage mask
+        with pytest.MonkeyPatch.context() as mp:
+            mp.setattr(paint, '_device_rect', lambda pts, t: None)
+            draw_pixels(node, t, c, 0.05)
+    else:
+        draw_pixels(node, t, c, 0.05)
+    return c.data[..., 3].astype(np.float64)
+
+
+AXIS_ALIGNED = [
+    Affine(2.37, 0, 0, 1.61, 3.29, 4.71),       # fractional position and scale
+    Affine(-2.37, 0, 0, 1.61, 40.29, 4.71),     # flipped in x
+    Affine(1.3, 0, 0, -2.9, 5.5, 37.13),        # flipped in y
+    Affine(0, 1.7, 2.3, 0, 0.61, 1.37),         # axes swapped (quarter turn + flip)
+    Affine(0, -1.7, 2.3, 0, 1.61, 30.37),       # a quarter turn
+    Affine(0.31, 0, 0, 0.27, 10.6, 9.9),        # smaller than a pixel per image pixel
+    Affine(3.0, 0, 0, 2.0, -6.5, -3.25),        # partly off the canvas
+]
+
+
+@pytest.mark.parametrize('t', AXIS_ALIGNED)
+@pytest.mark.parametrize('clip', [None, (1.3, 0.6, 7.45, 6.2), (-3, -3, 40, 40)])
+def test_axis_aligned_coverage_equals_path_coverage(t, clip):
+    """The separable coverage of an axis-aligned image (and clip) rectangle
+    is the exact-area coverage path_coverage gives it, up to float32
+    rounding, over the same window."""
+    rng = np.random.default_rng(11)
+    pix = rng.integers(0, 256, (9, 13, 4), dtype=np.uint8)
+    pix[..., 3] = 255
+    node = ImageNode(pixels=pix, transform=Affine(), clip=clip, smooth=False)
+    fast = _draw_alpha(node, t, (48, 44))
+    slow = _draw_alpha(node, t, (48, 44), general=True)
+    assert fast.any()
+    np.testing.assert_allclose(fast, slow, rtol=4e-7, atol=1e-7)
+
+
+@pytest.mark.parametrize('flip', [(1, 1), (-1, 1), (1, -1), (-1, -1)])
+def test_clipped_image_alpha_is_the_area_of_the_intersection(flip):
+    """An opaque image under a user-space transform with flips, clipped by
+    a rectangle: each pixel's alpha is the area of the pixel inside both
+    rectangles, the product of the x and y overlaps of their intersection."""
+    sx, sy = 1.75 * flip[0], 1.4 * flip[1]
+    ex, ey = (3.3 if sx > 0 else 3.3 + 1.75 * 12), (2.6 if sy > 0 else 2.6 + 1.4 * 10)
+    t = Affine(sx, 0, 0, sy, ex, ey)
+    pix = np.full((10, 12, 4), 255, np.uint8)
+    clip = (2.2, 1.7, 7.3, 5.9)         # image pixels, before t
+    node = ImageNode(pixels=pix, transform=Affine(), clip=clip)
+    a = _draw_alpha(node, t, (30, 24))
+    # the device rectangles: image [0, 12] x [0, 10] and the clip, mapped by t
+    xs = sorted([ex, ex + sx * 12]), sorted([ex + sx * 2.2, ex + sx * 9.5])
+    ys = sorted([ey, ey + sy * 10]), sorted([ey + sy * 1.7, ey + sy * 7.6])
+    x0, x1 = max(xs[0][0], xs[1][0]), min(xs[0][1], xs[1][1])
+    y0, y1 = max(ys[0][0], ys[1][0]), min(ys[0][1], ys[1][1])
+    ref = _overlap_ref(y0, y1, 24)[:, None] * _overlap_ref(x0, x1, 30)[None, :]
+    np.testing.assert_allclose(a, ref, atol=2e-6)
+    assert abs(a.sum() - 7.3 * 5.9 * 1.75 * 1.4) < 1e-4
+
+
+def test_image_rectangle_without_area_draws_nothing():
+    pix = np.full((4, 4, 4), 255, np.uint8)
+    c = Canvas(20, 20)
+    draw_pixels(ImageNode(pixels=pix, transform=Affine(), clip=(1, 1, 0, 2)),
+                Affine.scale(2), c, 0.05)
+    draw_pixels(ImageNode(pixels=pix, transform=Affine(), clip=(12, 1, 3, 3)),
+                Affine.scale(2), c, 0.05)     # the clip lies off the canvas
+    assert not c.data.any()
+
+
 # ---------------------------------------------------------------------------
 # sample (the pattern path)
 # ---------------------------------------------------------------------------
