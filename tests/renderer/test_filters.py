@@ -212,6 +212,17 @@ def test_solid_blur_equals_four_channel_blur(c):
     assert np.abs(fast - general).max() <= 1e-6
 
 
+def _input_image(solid, shape, box, seed, colour, img_seed):
+    """A filter input: a solid colour through random alpha over ``box``
+    (y0, y1, x0, x1) of ``shape``, or (not ``solid``) a general image."""
+    if not solid:
+        return _img(*shape, seed=img_seed)
+    y0, y1, x0, x1 = box
+    a = np.zeros(shape, np.float32)
+    a[y0:y1, x0:x1] = np.random.default_rng(seed).random((y1 - y0, x1 - x0), dtype=np.float32)
+    return F.solid_image(a, np.array(colour, np.float32))
+
+
 def _chain_filter():
     src, res = T.Source, T.Result
     return T.Filter(region=(2.0, 3.0, 56.0, 40.0), primitives=[
@@ -225,10 +236,7 @@ def _chain_filter():
 
 @pytest.mark.parametrize('solid', [True, False])
 def test_apply_filters_solid_fast_path_matches_the_general_path(monkeypatch, solid):
-    a = np.zeros((50, 64), np.float32)
-    a[12:35, 10:40] = np.random.default_rng(4).random((23, 30), dtype=np.float32)
-    data = F.solid_image(a, np.array([0.9, 0.3, 0.1], np.float32)) if solid \
-        else _img(50, 64, seed=8)
+    data = _input_image(solid, (50, 64), (12, 35, 10, 40), 4, (0.9, 0.3, 0.1), 8)
     t = Affine.identity()
     fast = apply_filters([_chain_filter()], data, t)
     monkeypatch.setattr(F, 'solid_colour', lambda img, tol=None: None)
@@ -921,10 +929,7 @@ def _reuse_filter():
 def test_reused_buffers_give_the_pixels_of_fresh_copies(monkeypatch, solid):
     import raster.renderer.filters as R
     from raster.pixels.canvas import Canvas
-    a = np.zeros((48, 64), np.float32)
-    a[10:30, 8:50] = np.random.default_rng(3).random((20, 42), dtype=np.float32)
-    data = F.solid_image(a, np.array([0.2, 0.7, 0.4], np.float32)) if solid \
-        else _img(48, 64, seed=9)
+    data = _input_image(solid, (48, 64), (10, 30, 8, 50), 3, (0.2, 0.7, 0.4), 9)
     keep = data.copy()
     t = Affine.scale(1.1)
     got = apply_filters([_reuse_filter()], data, t)
