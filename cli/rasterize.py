@@ -38,8 +38,7 @@ within ``--memory-budget`` (MB of strip pixels per process, default 256)
 whatever the size, up to 4 000 million pixels; ``--jobs`` spreads the
 strips of one large image over worker processes (a few strips a worker,
 of about equal work, taken as workers finish; the same pixels whatever
-the number of workers), from 4 million pixels on when the estimated work
-is enough for the workers to pay.  Other formats are encoded by Pillow
+the number of workers).  Other formats are encoded by Pillow
 from the whole image (at most 100 million pixels).
 
 Many files: every input (folders are walked for ``.svg``/``.svgz``,
@@ -78,15 +77,8 @@ PROG = 'rasterize'
 FORMAT_CHOICES = ('png', 'jpeg', 'jpg', 'webp', 'tiff', 'tif', 'bmp')
 _EXT = {'png': 'png', 'jpeg': 'jpg', 'webp': 'webp', 'tiff': 'tif', 'bmp': 'bmp'}
 
-#: One image spreads its strips over workers from this many pixels on,
-#: when its estimated work (the sum of raster.renderer.tiles.row_work, in
-#: units of about 60 us of one process's render) is at least PARALLEL_WORK:
-#: below that the pool's fixed cost (forking, each worker flattening the
-#: outlines crossing its strips) takes more than the workers save.  At
-#: 2000 px batik_anne (7 400 units) is faster in one process, the tiger
-#: (16 300) and batik_mapWaadt (45 500) in two.
+#: One image spreads its strips over workers from this many pixels on.
 PARALLEL_PIXELS = 4_000_000
-PARALLEL_WORK = 12_000
 
 
 def build_parser():
@@ -278,11 +270,6 @@ def convert(args, dpi, fmt, bg, inp, out, jobs=1):
     budget = _budget(args)
     pixels = g.width * g.height
     big = pixels * BYTES_PER_PIXEL > budget
-    work = None
-    if fmt == 'png' and not big and jobs > 1 and pixels >= PARALLEL_PIXELS:
-        work = row_work(g.node, g.transform, g.width, g.height)
-        if float(work.sum()) < PARALLEL_WORK:
-            jobs = 1                    # one process: the pool would not pay
     if fmt == 'png' and (big or (jobs > 1 and pixels >= PARALLEL_PIXELS)):
         from raster.pixels.png import DEFAULT_LEVEL, PNGWriter
         level = DEFAULT_LEVEL if args.compress_level is None else args.compress_level
@@ -298,9 +285,7 @@ def convert(args, dpi, fmt, bg, inp, out, jobs=1):
         rows = strip_rows(g.width, budget)
         count = max(len(strip_spans(g.height, rows)),
                     MIN_STRIPS if big else STRIPS_PER_WORKER * workers)
-        if work is None:
-            work = row_work(g.node, g.transform, g.width, g.height)
-        spans = balanced_spans(work, count, rows)
+        spans = balanced_spans(row_work(g.node, g.transform, g.width, g.height), count, rows)
         job = (tree, kw, level)
         with open_output(out) as f:
             png = PNGWriter(f, g.width, g.height, level, dpi=res)

@@ -140,27 +140,6 @@ def test_png_in_strips_equals_the_one_piece_render(tmp_path, capsys, jobs):
     assert np.array_equal(png(out), whole)
 
 
-@pytest.mark.parametrize('work', [0, 10 ** 9])
-def test_workers_only_when_the_estimated_work_pays(tmp_path, monkeypatch, work):
-    # an image within the budget and above PARALLEL_PIXELS goes to the
-    # workers only when its estimated work reaches PARALLEL_WORK; the
-    # pixels are the same either way
-    src = write(tmp_path, 'big.svg', doc(300, 200, 60, 'orange'))
-    pools = []
-    real = rasterize.process_pool
-
-    def pool(n):
-        pools.append(n)
-        return real(n)
-    monkeypatch.setattr(rasterize, 'process_pool', pool)
-    monkeypatch.setattr(rasterize, 'PARALLEL_PIXELS', 10_000)
-    monkeypatch.setattr(rasterize, 'PARALLEL_WORK', work)
-    out = tmp_path / 'out.png'
-    assert rasterize.main([src, str(out), '--width', '400', '--jobs', '2']) == 0
-    assert pools == ([2] if work == 0 else [])
-    assert np.array_equal(png(out), raster.render(src, 400))
-
-
 def test_strips_reach_outputs_beyond_max_pixels(tmp_path):
     # with the max_pixels budget lowered, an output above it still renders
     # as PNG in strips (and is refused for a format encoded in one piece)
