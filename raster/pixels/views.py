@@ -8,10 +8,25 @@ import numpy as np
 
 from .scan import Mask
 
-__all__ = ['ClipRect', 'STRIP_PIXELS']
+__all__ = ['ClipRect', 'STRIP_PIXELS', 'pixel_overlaps']
 
 #: Pixels of a window multiplied by the rectangle's coverage at a time.
 STRIP_PIXELS = 1 << 18
+
+
+def pixel_overlaps(lo, hi, k0, n):
+    """The length of the interval [lo, hi] inside each pixel interval
+    [k, k + 1], k = k0 .. k0 + n - 1: (n,) float64 in [0, 1].  The exact
+    area of a pixel inside an axis-aligned rectangle is the product of its
+    x and y overlaps.
+
+    >>> pixel_overlaps(0.25, 2.5, 0, 4).tolist()
+    [0.75, 1.0, 0.5, 0.0]
+    """
+    k = np.arange(k0, k0 + n, dtype=np.float64)
+    out = np.minimum(k + 1.0, hi)
+    out -= np.maximum(k, lo)
+    return np.clip(out, 0.0, 1.0, out=out)
 
 
 class ClipRect:
@@ -32,10 +47,8 @@ class ClipRect:
         self.Y1 = min(self.height, int(math.ceil(y1)))
         self.empty = self.X1 <= self.X0 or self.Y1 <= self.Y0 or x1 <= x0 or y1 <= y0
         if not self.empty:
-            j = np.arange(self.X0, self.X1, dtype=np.float64)
-            i = np.arange(self.Y0, self.Y1, dtype=np.float64)
-            self.cx = np.clip(np.minimum(x1, j + 1) - np.maximum(x0, j), 0, 1).astype(np.float32)
-            self.cy = np.clip(np.minimum(y1, i + 1) - np.maximum(y0, i), 0, 1).astype(np.float32)
+            self.cx = pixel_overlaps(x0, x1, self.X0, self.X1 - self.X0).astype(np.float32)
+            self.cy = pixel_overlaps(y0, y1, self.Y0, self.Y1 - self.Y0).astype(np.float32)
 
     @property
     def data(self):

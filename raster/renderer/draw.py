@@ -30,7 +30,7 @@ from ..pixels.canvas import Canvas
 from ..pixels.compositing import blend_layer
 from ..geometry.flattening import flatten
 from ..pixels.scan import Mask, coverage
-from ..pixels.views import ClipRect
+from ..pixels.views import ClipRect, pixel_overlaps
 from ..geometry.transform import Affine
 from ..tree import (Group, ImageNode, LinearGradient, MaskType, MeshGradient, PaintItem, PathNode,
                     Pattern, RadialGradient, SolidPaint, SweepGradient)
@@ -530,7 +530,7 @@ def _times_rect(m, x0, y0, x1, y1):
     place ((h, w) float32): the exact area of the rectangle in each pixel,
     the product of its x and y overlaps."""
     h, w = m.shape
-    cx = np.clip(np.minimum(x1, np.arange(1, w + 1)) - np.maximum(x0, np.arange(w)), 0, 1)
-    cy = np.clip(np.minimum(y1, np.arange(1, h + 1)) - np.maximum(y0, np.arange(h)), 0, 1)
+    cx = pixel_overlaps(x0, x1, 0, w)
+    cy = pixel_overlaps(y0, y1, 0, h)
     m *= cy.astype(np.float32)[:, None]
     m *= cx.astype(np.float32)[None, :]

@@ -22,6 +22,7 @@ from .. import limits
 from ..errors import RasterError
 from ..geometry.path import Path
 from ..pixels.scan import path_coverage
+from ..pixels.views import pixel_overlaps
 from ..geometry.transform import Affine
 from ..tree import LinearGradient, SweepGradient
 
@@ -505,7 +506,8 @@ def draw_pixels(n, t, canvas, tol):
         if win is None:
             return
         x0, y0, w, h = win
-        axes = [(_overlaps(r[0], r[2], x0, w), _overlaps(r[1], r[3], y0, h)) for r in rects]
+        axes = [(pixel_overlaps(r[0], r[2], x0, w), pixel_overlaps(r[1], r[3], y0, h))
+                for r in rects]
         cov = None
     else:
         cov, x0, y0 = _path_window(img_rect, clip_rect, t, canvas, tol)
@@ -559,15 +561,6 @@ def _rects_window(rects, width, height):
     if X1 <= X0 or Y1 <= Y0:
         return None
     return X0, Y0, X1 - X0, Y1 - Y0
-
-
-def _overlaps(lo, hi, k0, n):
-    """(n,) float64: the length of [lo, hi] inside each pixel interval
-    [k, k + 1], k = k0 .. k0 + n - 1."""
-    k = np.arange(k0, k0 + n, dtype=np.float64)
-    out = np.minimum(k + 1.0, hi)
-    out -= np.maximum(k, lo)
-    return np.clip(out, 0.0, 1.0, out=out)
 
 
 def _strip_coverage(axes, rows, cols=slice(None)):
