@@ -271,10 +271,16 @@ def _blossom_loops(P, a, b):
     """:func:`blossom_pieces` for many pieces, term by term (the tables of
     :func:`_blossom_table` grow like n**5 and their matrix product like the
     piece count)."""
+    if P.shape[0] == 4:
+        return _blossom_cubic(P, a, b)
+    return _blossom_terms(P, a, b)
+
+
+def _blossom_terms(P, a, b):
+    """:func:`_blossom_loops` of any degree, term by term (the reference
+    of :func:`_blossom_cubic`)."""
     n1, D, m = P.shape
     n = n1 - 1
-    if n == 3:
-        return _blossom_cubic(P, a, b)
     one = np.ones(m)
     pa, qa, pb, qb = [one], [one], [one], [one]      # powers of a, 1-a, b, 1-b
     for _ in range(n):

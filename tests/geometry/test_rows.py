@@ -37,42 +37,13 @@ def test_rows_fall_back_for_other_layouts():
     assert out.tolist() == [[5.0, 6.0], [0.0, 0.0], [5.0, 6.0]]
 
 
-def _generic_blossom(P, a, b):
-    """The term-by-term blossom of any degree (bezier._blossom_loops
-    before its cubic case), kept here as the reference."""
-    n1, D, m = P.shape
-    n = n1 - 1
-    one = np.ones(m)
-    pa, qa, pb, qb = [one], [one], [one], [one]
-    for _ in range(n):
-        pa.append(pa[-1] * a)
-        qa.append(qa[-1] * (1.0 - a))
-        pb.append(pb[-1] * b)
-        qb.append(qb[-1] * (1.0 - b))
-    W = np.zeros((n1, n1, m))
-    for i in range(n1):
-        ci = bezier._binomials(i)
-        wb = [ci[k] * pb[k] * qb[i - k] for k in range(i + 1)]
-        cr = bezier._binomials(n - i)
-        for r in range(n - i + 1):
-            wa = cr[r] * pa[r] * qa[n - i - r]
-            for k in range(i + 1):
-                W[i, r + k] += wa * wb[k]
-    Q = np.empty((n1, D, m))
-    for i in range(n1):
-        Q[i] = W[i, 0] * P[0]
-        for j in range(1, n1):
-            Q[i] += W[i, j] * P[j]
-    return Q
-
-
 def test_cubic_blossom_is_the_generic_one_bit_for_bit():
     rng = np.random.default_rng(4)
     m = 2000
     P = rng.normal(size=(4, 2, m)) * 10.0 ** rng.integers(-3, 4, size=(1, 1, m))
     a, b = rng.uniform(0, 1, m), rng.uniform(0, 1, m)
     a[:10], b[10:20], a[20:30], b[30:40] = 0.0, 1.0, 1.0, 0.0
-    want = _generic_blossom(P, a, b)
+    want = bezier._blossom_terms(P, a, b)
     got = bezier._blossom_loops(P, a, b)
     assert got.tobytes() == want.tobytes()
 
