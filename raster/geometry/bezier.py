@@ -271,6 +271,14 @@ def _blossom_loops(P, a, b):
     """:func:`blossom_pieces` for many pieces, term by term (the tables of
     :func:`_blossom_table` grow like n**5 and their matrix product like the
     piece count)."""
+    if P.shape[0] == 4:
+        return _blossom_cubic(P, a, b)
+    return _blossom_terms(P, a, b)
+
+
+def _blossom_terms(P, a, b):
+    """:func:`_blossom_loops` of any degree, term by term (the reference
+    of :func:`_blossom_cubic`)."""
     n1, D, m = P.shape
     n = n1 - 1
     one = np.ones(m)
@@ -294,6 +302,48 @@ def _blossom_loops(P, a, b):
         Q[i] = W[i, 0] * P[0]
         for j in range(1, n1):
             Q[i] += W[i, j] * P[j]
+    return Q
+
+
+def _blossom_cubic(P, a, b):
+    """:func:`_blossom_loops` for cubics, with the same floating-point
+    operations in the same order (hence the same result bit for bit) but
+    without those that cannot change a value: products with the constant
+    1, additions to the zeros the weights start from (every weight is a
+    sum of products of numbers in [0, 1], so non-negative), and the powers
+    of ``1 - a`` and ``1 - b`` computed once."""
+    sa, sb = 1.0 - a, 1.0 - b
+    pa = (None, a, a * a, a * a * a)                  # powers of a, 1-a, b, 1-b
+    qa = (None, sa, sa * sa, sa * sa * sa)
+    pb = (None, b, b * b, b * b * b)
+    qb = (None, sb, sb * sb, sb * sb * sb)
+
+    def term(c, p, q, i, k):
+        # (c p[k]) q[i - k] as _blossom_loops computes it (c a binomial;
+        # None: the constant 1)
+        if k == 0:
+            if i == 0:
+                return None
+            return q[i] if c == 1 else c * q[i]       # (c * 1) * q = c * q
+        x = p[k] if c == 1 else c * p[k]
+        return x if i == k else x * q[i - k]
+
+    Q = np.empty(P.shape)
+    for i in range(4):
+        ci = _binomials(i)
+        wb = [term(ci[k], pb, qb, i, k) for k in range(i + 1)]
+        cr = _binomials(3 - i)
+        W = [None] * 4
+        for r in range(4 - i):
+            wa = term(cr[r], pa, qa, 3 - i, r)
+            for k in range(i + 1):
+                # (never both the constant 1 for a cubic)
+                t = wa if wb[k] is None else wb[k] if wa is None else wa * wb[k]
+                W[r + k] = t if W[r + k] is None else W[r + k] + t
+        q = Q[i]
+        np.multiply(W[0], P[0], out=q)
+        for j in range(1, 4):
+            q += W[j] * P[j]
     return Q
 
 

@@ -106,6 +106,7 @@ from ..errors import PathError, LimitError
 from .. import limits
 from .bezier import bernstein, bernstein_range, blossom_pieces, derivative
 from .path import CLOSE, LINE, MOVE, Path, segment_arrays
+from .rows import pairs, put_rows, take_rows
 from .transform import AffineLike, apply_each, as_affine
 
 __all__ = ['flatten', 'flatten_many', 'flatten_joined', 'flatten_beziers', 'Polylines',
@@ -208,8 +209,8 @@ def _deviation_planar(Q, shift=False):
     """:func:`_deviation` for planar pieces (D = 2), written with
     coordinate arrays and few numpy calls (the pieces are often few, so the
     cost per call matters).  Same bound, same formulas.  With ``shift``
-    (quadratics and cubics only) also the rows of :func:`_straddle_shift`,
-    from the same offset range: ``(e, rows)``."""
+    (quadratics and cubics only) also the (3, m) columns of
+    :func:`_straddle_shift`, from the same offset range: ``(e, rows)``."""
     n1, _, m = Q.shape
     n = n1 - 1
     ax, ay = Q[0, 0], Q[0, 1]
@@ -226,18 +227,23 @@ def _deviation_planar(Q, shift=False):
     if n <= 3:
         # signed offsets from the chord line; offset and chord parameter
         # are Bernstein polynomials (0, .., 0) and (0, .., 1): exact extrema
-        c = np.zeros((n1, 2 * m))
-        c[1:n, :m] = (dx * ry - dy * rx) / L
-        c[1:n, m:] = u
-        c[n, m:] = 1.0
-        lo, hi = bernstein_range(c, normalize=False)     # |c| < 1e150: exact as is
-        perp = np.maximum(-lo[:m], hi[:m])
-        ulo, uhi = lo[m:], hi[m:]
+        off = (dx * ry - dy * rx) / L
+        if n == 3:
+            olo, ohi = _cubic_range0(off[0], off[1], 0.0)
+            ulo, uhi = _cubic_range0(u[0], u[1], 1.0)
+        else:
+            c = np.zeros((n1, 2 * m))
+            c[1:n, :m] = off
+            c[1:n, m:] = u
+            c[n, m:] = 1.0
+            lo, hi = bernstein_range(c, normalize=False)     # |c| < 1e150: exact as is
+            olo, ohi, ulo, uhi = lo[:m], hi[:m], lo[m:], hi[m:]
+        perp = np.maximum(-olo, ohi)
         if shift:
-            rows = np.empty((m, 3))
-            rows[:, 0] = np.where(nz, 0.5 * (lo[:m] + hi[:m]), 0.0)
-            rows[:, 1] = -dy / L
-            rows[:, 2] = dx / L
+            rows = np.empty((3, m))
+            rows[0] = np.where(nz, 0.5 * (olo + ohi), 0.0)
+            rows[1] = -dy / L
+            rows[2] = dx / L
     else:
         px, py = rx - u * dx, ry - u * dy
         perp = (1.0 - 2.0 ** (1 - n)) * np.sqrt((px * px + py * py).max(axis=0))
@@ -246,6 +252,35 @@ def _deviation_planar(Q, shift=False):
     e = np.minimum(np.sqrt(perp * perp + over * over), hull)
     e[~nz] = hull[~nz]
     return (e, rows) if shift else e
+
+
+def _cubic_range0(c1, c2, end):
+    """Minimum and maximum over [0, 1] of the cubic Bernstein polynomials
+    with coefficients ``(0, c1, c2, end)`` (``c1``, ``c2``: (m,) float64
+    arrays of magnitude below 1e150; ``end``: 0.0 or 1.0), as
+    :func:`raster.geometry.bezier.bernstein_range` computes them with
+    ``normalize=False``: the same floating-point operations on every
+    value that can matter (the terms of the constant coefficients 0 and 1
+    are left out, which can only turn a -0.0 into 0.0), the candidate
+    parameters being the derivative's roots inside (0, 1) (the order of
+    the two roots does not matter to a minimum and maximum)."""
+    a = 3.0 * (c1 - c2)
+    if end:
+        a = end + a
+    b = 2.0 * (c2 - 2.0 * c1)
+    with np.errstate(all='ignore'):
+        disc = b * b - 4.0 * a * c1
+        sq = np.sqrt(disc)                            # NaN: no root
+        q = -0.5 * (b + np.where(b >= 0, sq, -sq))
+        t = np.stack([q / a, c1 / q])
+    t = np.where((t > 0.0) & (t < 1.0), t, 0.0)      # (NaN, inf: an end)
+    s = 1.0 - t
+    v = 3.0 * s * t * (s * c1 + t * c2)
+    if end:
+        v += t * t * t * end
+    lo = np.minimum(np.minimum(v[0], v[1]), min(0.0, end))
+    hi = np.maximum(np.maximum(v[0], v[1]), max(0.0, end))
+    return lo, hi
 
 
 # Local parameters where the deviation density is sampled (midpoint rule)
@@ -311,7 +346,9 @@ def _plan_split(Q, e, tol):
         dens = np.sqrt(kappa / (8.0 * tol))
     dens = np.where(np.isfinite(dens), dens, 0.0)    # (_G, m)
     F = np.zeros((m, _G + 1))
-    np.cumsum(dens.T / _G, axis=1, out=F[:, 1:])
+    # (the running sums along the samples, taken on the contiguous (_G, m)
+    # layout: the same additions in the same order)
+    F[:, 1:] = np.cumsum(dens / _G, axis=0).T
     total = F[:, -1]
     k_den = np.ceil(total * _SAFETY)
     use = np.isfinite(total) & (total > 0) & (k_den >= 2)
@@ -389,7 +426,7 @@ def _straddle_shift(Q):
 
     Returns
     -------
-    (m, 3) float64 ndarray
+    (3, m) float64 ndarray
         ``d, nx, ny``: moving the chord by ``d`` along ``(nx, ny)`` puts it
         in the middle of the curve's offsets (0 for a chord of zero
         length).  Quadratics and cubics: the exact offset range; higher
@@ -411,22 +448,22 @@ def _straddle_shift(Q):
     else:
         lo, hi = c.min(axis=0), c.max(axis=0)
     d = np.where(nz, 0.5 * (lo + hi), 0.0)
-    return np.stack([d, nx, ny], axis=1)
+    return np.stack([d, nx, ny])
 
 
 def _vertex_shift(a, b, tol):
     """Displacement (k, 2) of the vertices between pieces ``a`` and ``b``
-    ((k, 3) rows of :func:`_straddle_shift`): the intersection of the two
+    ((3, k) columns of :func:`_straddle_shift`): the intersection of the two
     moved chord lines, ``(d_a n_a + d_b n_b) / (1 + n_a . n_b)`` (exact
     when both move alike, a blend otherwise), at most ``tol / 2`` long.
     Where the chords turn by more than 90 degrees (the tip of a cusp or
     of a tight loop) the vertex stays on the curve: the moved chords
     meet far from it there, and any blend of the two shifts can pull the
     vertex off the tip by more than the tolerance allows."""
-    c = a[:, 1] * b[:, 1] + a[:, 2] * b[:, 2]
+    c = a[1] * b[1] + a[2] * b[2]
     den = np.maximum(1.0 + c, 1.0)
-    v = np.stack([a[:, 0] * a[:, 1] + b[:, 0] * b[:, 1],
-                  a[:, 0] * a[:, 2] + b[:, 0] * b[:, 2]], axis=1) / den[:, None]
+    v = np.stack([a[0] * a[1] + b[0] * b[1],
+                  a[0] * a[2] + b[0] * b[2]], axis=1) / den[:, None]
     v[c < 0.0] = 0.0
     ln = np.hypot(v[:, 0], v[:, 1])
     cap = 0.5 * tol
@@ -565,9 +602,9 @@ def _flatten(ctrl, tolerance, straddle=False, smooth=None):
             if np.any(ok):
                 acc_cur.append(c[ok])
                 acc_t.append(cb[ok])
-                acc_pt.append(Q[n][:, ok].T)
+                acc_pt.append(Q[n][:, ok])
                 if straddle:
-                    acc_sh.append(_straddle_shift(Q[:, :, ok]) if sh is None else sh[ok])
+                    acc_sh.append(_straddle_shift(Q[:, :, ok]) if sh is None else sh[:, ok])
                 n_acc += int(ok.sum())
             bad = ~ok
             if not np.any(bad):
@@ -610,26 +647,38 @@ def _flatten(ctrl, tolerance, straddle=False, smooth=None):
         return out.reshape(2 * S, D), np.full(S, 2, np.int64), None
     ac = np.concatenate(acc_cur)
     at = np.concatenate(acc_t)
-    ap = np.concatenate(acc_pt)
     # every round appends runs already in (curve, t) order; a stable sort of
     # the complex key curve + i t (lexicographic) merges them quickly
     order = np.argsort(ac.astype(np.float64) + 1j * at, kind='stable')
-    ac, ap = ac[order], ap[order]
+    ac = ac[order]
+    # (piece ends and shifts are kept as coordinate rows, (D, pieces) and
+    # (3, pieces): gathered a row at a time, which is much faster than
+    # fancy indexing of (pieces, D) arrays; planar points move as complex128)
+    apT = np.concatenate(acc_pt, axis=1)[:, order]    # (D, pieces)
     per = np.bincount(ac, minlength=S).astype(np.int64)
     counts = per + 1
     off = np.cumsum(counts) - counts                  # start of each curve
     out = np.empty((int(counts.sum()), D))
     out[off] = P[:, 0]
     rank = np.arange(len(ac)) - (np.cumsum(per) - per)[ac]
+    dest = off[ac] + 1 + rank
+    if D != 2:
+        out[dest] = apT.T
+        return out, counts, None
+    ap = np.empty((len(ac), 2))
+    ap[:, 0] = apT[0]
+    ap[:, 1] = apT[1]
+    apc = pairs(ap)
     ends = None
     if straddle:
-        ap = ap.copy()
-        sh = np.concatenate(acc_sh)[order]            # (pieces, 3): shift, normal
+        sh = np.concatenate(acc_sh, axis=1)[:, order]     # (3, pieces): shift, normal
         inner = np.flatnonzero(rank < per[ac] - 1)    # piece ends inside the curve
-        ap[inner] += _vertex_shift(sh[inner], sh[inner + 1], tol)
+        apc[inner] += pairs(_vertex_shift(sh[:, inner], sh[:, inner + 1], tol))
         pfirst = np.cumsum(per) - per
-        ends = np.stack([sh[pfirst], sh[pfirst + per - 1]], axis=1)
-    out[off[ac] + 1 + rank] = ap
+        ends = np.empty((S, 2, 3))
+        ends[:, 0] = sh[:, pfirst].T
+        ends[:, 1] = sh[:, pfirst + per - 1].T
+    pairs(out)[dest] = apc
     return out, counts, ends
 
 
@@ -704,7 +753,7 @@ class Polylines:
         sizes = self.sizes[idx]
         starts = np.cumsum(sizes) - sizes
         src = np.repeat(self.starts[idx] - starts, sizes) + np.arange(int(sizes.sum()))
-        return Polylines(self.points[src], starts, self.closed[idx])
+        return Polylines(take_rows(self.points, src), starts, self.closed[idx])
 
     def to_path(self) -> Path:
         """The polylines as a :class:`~raster.geometry.path.Path` of line segments
@@ -754,17 +803,23 @@ class Polylines:
         want &= np.any(P[starts] != P[ends - 1], axis=1)   # zero length: left out
         ne = sizes - 1 + want                              # edges per polyline
         off = np.cumsum(ne) - ne
-        out = np.empty((int(ne.sum()), 2, 2))
+        nedge = int(ne.sum())
+        # (points move as complex128: one element per point)
+        Pc = pairs(np.ascontiguousarray(P))
+        oc = np.empty((nedge, 2), np.complex128)
         # inner edges i -> i+1: polyline k's vertex i goes to off[k] + i - starts[k]
         k_of = np.repeat(np.arange(len(starts)), sizes)
         src = np.arange(len(P))
         inner = src != (ends - 1)[k_of]
-        dst = (off - starts)[k_of] + src
-        out[dst[inner], 0] = P[src[inner]]
-        out[dst[inner], 1] = P[src[inner] + 1]
+        si = src[inner]
+        di = (off - starts)[k_of][inner] + si
+        oc[di, 0] = Pc[si]
+        oc[di, 1] = Pc[si + 1]
         w = np.flatnonzero(want)
-        out[off[w] + sizes[w] - 1, 0] = P[ends[w] - 1]
-        out[off[w] + sizes[w] - 1, 1] = P[starts[w]]
+        cw = off[w] + sizes[w] - 1
+        oc[cw, 0] = Pc[ends[w] - 1]
+        oc[cw, 1] = Pc[starts[w]]
+        out = oc.view(np.float64).reshape(nedge, 2, 2)
         if owners:
             return out, np.repeat(np.arange(len(starts)), ne)
         return out
@@ -865,7 +920,7 @@ def _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol, 
             keep = np.ones(len(pts), bool)
             keep[np.cumsum(counts) - counts] = False
             seg_n[idx] = counts - 1
-            seg_pts[d] = (idx, pts[keep], counts - 1)
+            seg_pts[d] = (idx, take_rows(pts, keep), counts - 1)
             if straddle:
                 rows[idx] = ends
     keep_c = (contour_nseg > 0) | contour_closed
@@ -880,17 +935,20 @@ def _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol, 
     item_off = np.cumsum(item_n) - item_n
     total = int(item_n.sum())
     limits.check_points(total, 'flattening')
+    # (rows of points move as complex128: see raster.geometry.rows)
     out = np.empty((total, 2))
     starts = item_off[start_item][keep_c]
-    out[starts] = cstart[keep_c]
+    put_rows(out, starts, take_rows(np.ascontiguousarray(cstart), keep_c))
     lines = np.flatnonzero(deg == 1)
-    out[item_off[seg_item[lines]]] = ctrl[lines, 1]
+    cc = pairs(ctrl)
+    put_rows(out, item_off[seg_item[lines]],
+             ctrl[lines, 1] if cc is None else cc[lines, 1].view(np.float64).reshape(-1, 2))
     for d in (2, 3):
         if seg_pts[d] is not None:
             idx, pts, cnt = seg_pts[d]
             base = np.repeat(item_off[seg_item[idx]], cnt)
             within = np.arange(len(pts)) - np.repeat(np.cumsum(cnt) - cnt, cnt)
-            out[base + within] = pts
+            put_rows(out, base + within, pts)
     if joint is not None and joint.any():
         # lines: no offset, their own normal
         dl = ctrl[lines, 1] - ctrl[lines, 0]
@@ -899,7 +957,7 @@ def _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol, 
         rows[lines, :, 1] = (-dl[:, 1] / ll)[:, None]
         rows[lines, :, 2] = (dl[:, 0] / ll)[:, None]
         js = np.flatnonzero(joint)
-        v = _vertex_shift(rows[js, 1], rows[nxt[js], 0], tol)
+        v = _vertex_shift(rows[js, 1].T, rows[nxt[js], 0].T, tol)
         endv = item_off[seg_item[js]] + seg_n[js] - 1         # vertex ending segment js
         out[endv] += v
         # a joint at a contour's start: the contour's first vertex too

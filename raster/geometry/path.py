@@ -183,8 +183,11 @@ class Path:
                 xs, ys = self.points.T.tolist()
                 box = (min(xs), min(ys), max(xs), max(ys))
             else:
-                lo, hi = self.points.min(0), self.points.max(0)
-                box = (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+                # (one reduction per coordinate column: numpy reduces an
+                # (N, 2) array along axis 0 two elements at a time, several
+                # times slower)
+                xs, ys = self.points[:, 0], self.points[:, 1]
+                box = (float(xs.min()), float(ys.min()), float(xs.max()), float(ys.max()))
             object.__setattr__(self, '_cbox', box)
         return self._cbox
 
