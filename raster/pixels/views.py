@@ -81,6 +81,15 @@ class ClipRect:
             yield r0, r1, self.cy[r0 - self.Y0:r1 - self.Y0, None] * cx
 
     def fill(self, mask, color, opacity=1.0):
+        """The canvas's :meth:`~raster.pixels.canvas.Canvas.fill` through
+        each of :meth:`masks`."""
+        for m in self.masks(mask):
+            self.canvas.fill(m, color, opacity)
+
+    def masks(self, mask):
+        """The Masks (in the canvas's pixels) of ``mask`` (a Mask or None)
+        multiplied by the rectangle's coverage, a strip of rows at a time
+        (none when nothing of it is inside the rectangle)."""
         if mask is None:
             return
         h, w = mask.data.shape
@@ -90,7 +99,7 @@ class ClipRect:
         a0, _, a1, _ = win
         for r0, r1, cov in self._strips(win):
             k = mask.data[r0 - mask.y0:r1 - mask.y0, a0 - mask.x0:a1 - mask.x0] * cov
-            self.canvas.fill(Mask(k, a0, r0), color, opacity)
+            yield Mask(k, a0, r0)
 
     def composite(self, src, x0=0, y0=0, opacity=1.0):
         """The canvas's :meth:`~raster.pixels.canvas.Canvas.composite` of

@@ -26,7 +26,7 @@ import numpy as np
 from .. import limits
 from ..errors import LimitError, RasterError, RasterWarning
 from ..geometry.path import Path
-from ..pixels.canvas import Canvas
+from ..pixels.canvas import MANY_GROUP_PIXELS, MANY_MASK_PIXELS, Canvas
 from ..pixels.compositing import blend_layer
 from ..geometry.flattening import flatten
 from ..pixels.scan import Mask, coverage
@@ -48,6 +48,11 @@ __all__ = ['Renderer']
 _LAYER_PASSES = 4
 _LAYER_FIXED = 1 << 21
 
+# Mask pixels of solid fills held by the renderer before they are
+# composited together (:meth:`Renderer.settle`): one group of fill_many
+# (holding more gains nothing and costs memory).
+_RUN_PIXELS = MANY_GROUP_PIXELS
+
 
 class Renderer:
     """Draws tree nodes onto canvases with flattening ``tolerance`` (device
@@ -65,6 +70,11 @@ class Renderer:
         # windowed rendering: id(canvas) -> (ox, oy, fw, fh), see draw()
         self._places = {}
         self._too_deep = False
+        # solid fills held for one canvas, composited together by settle():
+        # [(mask, colour, opacity)], their canvas and their mask pixels
+        self._run = []
+        self._run_canvas = None
+        self._run_pixels = 0
 
     def draw(self, node, t, canvas, origin=(0, 0), size=None):
         """Draw ``node`` (and what is below it) with CTM ``t`` on ``canvas``,
@@ -92,11 +102,34 @@ class Renderer:
             self.masks.plan([node], t, canvas, (ox, oy), output=True)
             self.node(node, t, canvas)
         finally:
-            if windowed:
-                self._places.pop(id(canvas), None)
+            try:
+                self.settle()
+            finally:
+                if windowed:
+                    self._places.pop(id(canvas), None)
         if self._too_deep:
             self._too_deep = False
             self._left_out(LimitError('nested too deeply'))
+
+    def settle(self):
+        """Composite the solid fills held (see :meth:`paint`) onto their
+        canvas, in order (:meth:`raster.pixels.canvas.Canvas.fill_many`:
+        the pixels of filling them one by one).  Called before anything
+        else reads or writes a canvas: another paint, a layer's effects or
+        compositing, an image, the end of :meth:`draw`."""
+        if not self._run:
+            return
+        run, canvas = self._run, self._run_canvas
+        self._run, self._run_canvas, self._run_pixels = [], None, 0
+        canvas.fill_many(run)
+
+    def _hold(self, canvas, mask, color, opacity):
+        """Hold a solid fill of ``canvas`` (a Canvas) for :meth:`settle`."""
+        if canvas is not self._run_canvas or self._run_pixels + mask.data.size > _RUN_PIXELS:
+            self.settle()
+            self._run_canvas = canvas
+        self._run.append((mask, color, opacity))
+        self._run_pixels += mask.data.size
 
     def place(self, canvas):
         """``(ox, oy, fw, fh)``: where ``canvas`` (or the canvas of a
@@ -217,6 +250,7 @@ class Renderer:
             self.masks.plan(g.children, lt, layer, place[:2])
             for c in g.children:
                 self.node(c, lt, layer)
+            self.settle()
             if g.filters:
                 from .filters import filter_layer
                 filter_layer(g.filters, layer, self.local(lt, layer), draw=self._draw_new)
@@ -228,6 +262,7 @@ class Renderer:
         finally:
             if pushed:
                 self._places.pop(id(layer), None)
+        self.settle()
         ox, oy = self.place(canvas)[:2]
         blend_layer(canvas, layer.data, x0 - ox, y0 - oy, float(g.opacity), g.blend_mode)
 
@@ -236,6 +271,7 @@ class Renderer:
         array (feImage content)."""
         img = Canvas(w, h)
         self.node(node, m, img)
+        self.settle()
         return img.data
 
     # -- clip paths and masks ------------------------------------------------
@@ -291,6 +327,7 @@ class Renderer:
         pushed = self._push(layer, place)
         try:
             self.node(mask.root, t, layer)
+            self.settle()
         finally:
             if pushed:
                 self._places.pop(id(layer), None)
@@ -362,11 +399,25 @@ class Renderer:
         """Composite ``paint`` (in the user space that ``t`` maps to the
         canvas's frame) through coverage ``mask`` with ``opacity``.  Gradient and
         pattern colours are made and composited a strip of rows at a time
-        (:data:`raster.renderer.paint.STRIP_PIXELS`)."""
+        (:data:`raster.renderer.paint.STRIP_PIXELS`).  A solid paint through
+        a small mask on a canvas (or on a canvas seen through a
+        :class:`~raster.pixels.views.ClipRect`) is held and composited with
+        the solid fills that follow it (:meth:`settle`); anything else
+        composites the fills held first."""
         limits.spend_work(mask.data.size, 'a path')
         if isinstance(paint, SolidPaint):
+            if mask.data.size <= MANY_MASK_PIXELS:
+                if type(canvas) is Canvas:
+                    self._hold(canvas, mask, paint.color, opacity)
+                    return
+                if type(canvas) is ClipRect and type(canvas.canvas) is Canvas:
+                    for m in canvas.masks(mask):
+                        self._hold(canvas.canvas, m, paint.color, opacity)
+                    return
+            self.settle()
             canvas.fill(mask, paint.color, opacity)
             return
+        self.settle()
         # colours are computed at the pixel centres of the canvas's frame
         # with the frame's CTM: a window gets the whole render's colours
         ox, oy = self.place(canvas)[:2]
@@ -427,6 +478,7 @@ class Renderer:
         # (up to a pixel longer than the tile): references tile this way.
         tile = Canvas(tw, th)
         self.node(p.root, Affine.scale(sx, sy) @ p.content_transform, tile)
+        self.settle()
         try:
             inv = (tile_to_dev @ Affine.scale(1.0 / sx, 1.0 / sy)).inverse()
         except RasterError:
@@ -437,6 +489,7 @@ class Renderer:
     def image(self, n, t, canvas):
         if n.opacity <= 0:
             return
+        self.settle()
         if n.tree is not None:
             self.svg_image(n, t, canvas)
         elif n.pixels is not None:
@@ -470,6 +523,7 @@ class Renderer:
         try:
             self.masks.plan([g], lt @ it, layer, place[:2])
             self.node(g, lt @ it, layer)
+            self.settle()
         finally:
             if pushed:
                 self._places.pop(id(layer), None)
@@ -478,6 +532,7 @@ class Renderer:
         if rc is None:
             return
         layer.scale(rc.full(layer.width, layer.height))
+        self.settle()
         canvas.composite(layer.data, x0 - ox, y0 - oy, n.opacity)
 
 

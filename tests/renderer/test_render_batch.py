@@ -200,3 +200,45 @@ def test_property_the_shortcut_claims_only_full_coverage(xy, abcd, shift):
         len(set(q[:, 0])) == 2 and len(set(q[:, 1])) == 2
     if rect and full:
         assert claimed
+
+
+# -- solid fills composited together (Renderer.settle, Canvas.fill_many) --------
+from raster.renderer import draw as draw_mod  # noqa: E402
+from raster.svg import load_svg  # noqa: E402
+
+
+def fills_svg(seed, n=160):
+    """Overlapping translucent and opaque polygons (both fill rules, some
+    self-intersecting), some stroked, some in groups clipped by a
+    rectangle (ClipRect views) or by a circle (a layer), and a gradient
+    between them."""
+    rng = np.random.default_rng(seed)
+    parts = ['<svg xmlns="http://www.w3.org/2000/svg" width="160" height="120">',
+             '<defs><clipPath id="r"><rect x="20.3" y="15.7" width="90.5" height="70.2"/></clipPath>',
+             '<clipPath id="c"><circle cx="80" cy="60" r="45"/></clipPath>',
+             '<linearGradient id="g"><stop offset="0" stop-color="red"/>'
+             '<stop offset="1" stop-color="blue"/></linearGradient></defs>']
+    for i in range(n):
+        if i % 40 == 0:
+            parts.append('<g clip-path="url(#%s)">' % ('r' if i % 80 == 0 else 'c'))
+        pts = rng.random((int(rng.integers(3, 7)), 2)) * (40, 30) + rng.random(2) * (150, 110) - 10
+        d = 'M' + 'L'.join('%.2f,%.2f' % tuple(p) for p in pts) + 'Z'
+        fill = 'url(#g)' if i % 37 == 5 else 'rgb(%d,%d,%d)' % tuple(rng.integers(0, 256, 3))
+        extra = ' stroke="black" stroke-width="%.2f"' % (0.3 + 2 * rng.random()) if i % 3 == 0 else ''
+        parts.append('<path d="%s" fill="%s" fill-opacity="%.2f" fill-rule="%s"%s/>'
+                     % (d, fill, rng.choice([1.0, 0.5, 0.8]),
+                        'evenodd' if i % 2 else 'nonzero', extra))
+        if i % 40 == 39:
+            parts.append('</g>')
+    parts.append('</svg>')
+    return ''.join(parts).encode()
+
+
+@pytest.mark.parametrize('seed', range(3))
+@pytest.mark.parametrize('dtype', ['float32', 'uint8'])
+def test_fills_composited_together_equal_one_by_one(seed, dtype, monkeypatch):
+    tree = load_svg(fills_svg(seed))
+    together = render_tree(tree, width=320, dtype=dtype).data
+    monkeypatch.setattr(draw_mod, 'MANY_MASK_PIXELS', -1)     # nothing held
+    alone = render_tree(tree, width=320, dtype=dtype).data
+    assert np.array_equal(together, alone)
