@@ -938,15 +938,18 @@ def _piece_crossings(i, j, g, gid, gcnt, rstart, r_idx, r_len, r_m, r_hs, r_hl, 
     # the runs of the cells involved, and their pieces
     cells = _distinct(g)
     runs = _ranges(rstart[cells], gcnt[cells])
-    local = np.full(len(r_idx), -1, np.int64)
-    local[runs] = np.arange(len(runs))
+    # position of a run among ``runs`` (ascending: the cells are sorted and
+    # their runs consecutive), by search, so that a slice's memory follows
+    # its own runs rather than all the runs of the band
+    def local(r):
+        return np.searchsorted(runs, r)
     pidx, poff = _run_pieces(r_idx[runs], r_len[runs], r_m[runs], r_hs[runs], r_hl[runs])
     li, lj = r_len[i], r_len[j]
     cnt = li * lj
     q = np.arange(int(cnt.sum())) - np.repeat(np.cumsum(cnt) - cnt, cnt)
     lj_r = np.repeat(lj, cnt)
-    pi = pidx[np.repeat(poff[local[i]], cnt) + q // lj_r]
-    pj = pidx[np.repeat(poff[local[j]], cnt) + q % lj_r]
+    pi = pidx[np.repeat(poff[local(i)], cnt) + q // lj_r]
+    pj = pidx[np.repeat(poff[local(j)], cnt) + q % lj_r]
     ri = np.repeat(i, cnt)
     ox, oy = cx[ri], cy[ri]
     ax, ay = xa[pi] - ox, ya[pi] - oy
@@ -973,7 +976,7 @@ def _piece_crossings(i, j, g, gid, gcnt, rstart, r_idx, r_len, r_m, r_hs, r_hl, 
     x_ri, x_rj = ri[xi], np.repeat(j, cnt)[xi]
     xg = gid[x_ri]
     # every piece of the cell's other runs against the segment corner -> X
-    lr0 = local[rstart[xg]]                         # the cell's first run
+    lr0 = local(rstart[xg])                         # the cell's first run
     gp0 = poff[lr0]
     n_t = np.bincount(gid[runs], weights=r_len[runs], minlength=len(gcnt)).astype(np.int64)[xg]
     xo = np.repeat(np.arange(len(xi)), n_t)
