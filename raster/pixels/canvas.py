@@ -59,7 +59,7 @@ MANY_MASK_PIXELS = 1 << 12
 
 #: Mask pixels per group of :meth:`Canvas.fill_many` (bounds the gathered
 #: pixels: about 40 bytes each).
-MANY_GROUP_PIXELS = 1 << 18
+MANY_GROUP_PIXELS = 1 << 16
 
 # Pixel storage types of a canvas.
 _DTYPES = (np.dtype(np.float32), np.dtype(np.uint8))
@@ -211,9 +211,9 @@ def _demultiply(flat):
 
 
 def _depth_order(pix):
-    """Where each pixel of ``pix`` ((n,) int64 canvas pixels, listed in drawing order) is composited: None when every
-    pixel occurs once, else ``(perm, ends)``: ``perm`` ((n,) int64) lists
-    the entries by *depth* (the k-th occurrence of a pixel has depth k),
+    """Where each pixel of ``pix`` ((n,) int64 canvas pixels, listed in
+    drawing order) is composited: None when every pixel occurs once, else
+    ``(perm, ends)``: ``perm`` ((n,) int64) lists the entries by *depth* (the k-th occurrence of a pixel has depth k),
     in drawing order within a depth, and ``ends`` (list of int) where the
     entries of each depth end in it.  The entries of one depth are
     distinct pixels; compositing depth after depth keeps every pixel's

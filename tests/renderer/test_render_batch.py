@@ -214,7 +214,8 @@ def fills_svg(seed, n=160):
     between them."""
     rng = np.random.default_rng(seed)
     parts = ['<svg xmlns="http://www.w3.org/2000/svg" width="160" height="120">',
-             '<defs><clipPath id="r"><rect x="20.3" y="15.7" width="90.5" height="70.2"/></clipPath>',
+             '<defs><clipPath id="r">'
+             '<rect x="20.3" y="15.7" width="90.5" height="70.2"/></clipPath>',
              '<clipPath id="c"><circle cx="80" cy="60" r="45"/></clipPath>',
              '<linearGradient id="g"><stop offset="0" stop-color="red"/>'
              '<stop offset="1" stop-color="blue"/></linearGradient></defs>']
@@ -224,7 +225,8 @@ def fills_svg(seed, n=160):
         pts = rng.random((int(rng.integers(3, 7)), 2)) * (40, 30) + rng.random(2) * (150, 110) - 10
         d = 'M' + 'L'.join('%.2f,%.2f' % tuple(p) for p in pts) + 'Z'
         fill = 'url(#g)' if i % 37 == 5 else 'rgb(%d,%d,%d)' % tuple(rng.integers(0, 256, 3))
-        extra = ' stroke="black" stroke-width="%.2f"' % (0.3 + 2 * rng.random()) if i % 3 == 0 else ''
+        extra = (' stroke="black" stroke-width="%.2f"' % (0.3 + 2 * rng.random())
+                 if i % 3 == 0 else '')
         parts.append('<path d="%s" fill="%s" fill-opacity="%.2f" fill-rule="%s"%s/>'
                      % (d, fill, rng.choice([1.0, 0.5, 0.8]),
                         'evenodd' if i % 2 else 'nonzero', extra))
