@@ -975,19 +975,39 @@ def _piece_crossings(i, j, g, gid, gcnt, rstart, r_idx, r_len, r_m, r_hs, r_hl, 
     Xy = ay[xi] + t * (by[xi] - ay[xi])
     x_ri, x_rj = ri[xi], np.repeat(j, cnt)[xi]
     xg = gid[x_ri]
-    # every piece of the cell's other runs against the segment corner -> X
-    lr0 = local(rstart[xg])                         # the cell's first run
-    gp0 = poff[lr0]
+    del o1, o2, o3, o4, ax, ay, bx, by, px, py, qx, qy, pi, pj, ri, q, lj_r, mi, a1, a2, a3, a4
+    # every piece of the cell's other runs against the segment corner -> X,
+    # for slices of crossing points of bounded work (a crossing point's
+    # sides depend on its own tests only; a cell flagged bad by a later
+    # slice is left to the exact recompute whatever its ranges say)
+    gp0 = poff[local(rstart[xg])]                   # the cell's first run
     n_t = np.bincount(gid[runs], weights=r_len[runs], minlength=len(gcnt)).astype(np.int64)[xg]
-    xo = np.repeat(np.arange(len(xi)), n_t)
-    slot = np.repeat(gp0, n_t) + (np.arange(int(n_t.sum())) - np.repeat(np.cumsum(n_t) - n_t, n_t))
     prun = runs[np.repeat(np.arange(len(runs)), r_len[runs])]
+    for sl in _slices(n_t):
+        _crossing_sides(Xx[sl], Xy[sl], x_ri[sl], x_rj[sl], xg[sl], gp0[sl], n_t[sl], prun, pidx,
+                        cx, cy, xa, ya, xb, yb, sig, w0r, bad, c_lo, c_hi)
+
+
+def _crossing_sides(Xx, Xy, x_ri, x_rj, xg, gp0, n_t, prun, pidx, cx, cy, xa, ya, xb, yb, sig,
+                    w0r, bad, c_lo, c_hi):
+    """The winding ranges of crossing points ``(Xx, Xy)`` (relative to the
+    top-left corner of their cells ``xg``) of runs ``x_ri`` and ``x_rj``
+    into ``c_lo``, ``c_hi``: the parity of each other run's crossings with
+    the segment from the corner to the point (``n_t`` pieces of the cell
+    listed from ``gp0`` in ``pidx``, their runs in ``prun``); degenerate
+    tests flag the cell in ``bad``."""
+    e = _MEET_EPS
+    xo = np.repeat(np.arange(len(Xx)), n_t)
+    slot = np.repeat(gp0, n_t) + (np.arange(int(n_t.sum())) - np.repeat(np.cumsum(n_t) - n_t, n_t))
     pr = prun[slot]
     other = (pr != x_ri[xo]) & (pr != x_rj[xo])
     xo, slot, pr = xo[other], slot[other], pr[other]
+    del other
     pp = pidx[slot]
+    del slot
     sx0, sy0 = xa[pp] - cx[pr], ya[pp] - cy[pr]
     sx1, sy1 = xb[pp] - cx[pr], yb[pp] - cy[pr]
+    del pp
     tx, ty = Xx[xo], Xy[xo]
     o1 = tx * sy0 - ty * sx0
     o2 = tx * sy1 - ty * sx1
@@ -1004,7 +1024,7 @@ def _piece_crossings(i, j, g, gid, gcnt, rstart, r_idx, r_len, r_m, r_hs, r_hl, 
     base = w0r[xg].copy()
     if len(st):
         par = np.add.reduceat(hit.astype(np.int64), st) & 1
-        base += np.bincount(xo[st], weights=par * sig[pr[st]], minlength=len(xi))
+        base += np.bincount(xo[st], weights=par * sig[pr[st]], minlength=len(Xx))
     s1, s2 = sig[x_ri], sig[x_rj]
     np.minimum.at(c_lo, xg, base + np.minimum(np.minimum(0.0, s1), np.minimum(s2, s1 + s2)))
     np.maximum.at(c_hi, xg, base + np.maximum(np.maximum(0.0, s1), np.maximum(s2, s1 + s2)))

@@ -144,3 +144,33 @@ def test_walk_in_slices_is_the_same(monkeypatch, rule):
     assert np.array_equal(sliced, whole)
     ref = span_coverage(polygon_spans(polys, rule), 24, 24, lines=1024)
     assert 255 * np.abs(sliced - ref).max() <= 1.0
+
+
+@pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
+def test_crossing_sides_work_is_sliced_and_slicing_changes_nothing(monkeypatch, rule):
+    """The side tests of crossing points in cells holding runs of several
+    pieces (scan._crossing_sides) run in slices whose summed work stays
+    within the slice budget (or one crossing point), and the coverage does
+    not depend on where the slices fall: tiny budgets give the same bits."""
+    from raster.pixels import scan
+    rng = np.random.default_rng(11)
+    polys = [walk(rng, 400, 24, 0.3) for _ in range(3)]
+    e = edges_of(polys)
+    ref = coverage(e, 24, 24, fill_rule=rule).full(24, 24)
+
+    calls = []
+    sides = scan._crossing_sides
+
+    def recording(*args):
+        calls.append(args[6])                     # n_t: work per crossing point
+        return sides(*args)
+
+    slices = scan._slices
+    monkeypatch.setattr(scan, '_crossing_sides', recording)
+    monkeypatch.setattr(scan, '_slices', lambda work, limit=40: slices(work, limit))
+    got = coverage(e, 24, 24, fill_rule=rule).full(24, 24)
+    assert np.array_equal(got, ref)
+    assert len(calls) > 1
+    assert all(n.sum() <= 40 or len(n) == 1 for n in calls)
+    # and the same drawing is right against the exact-area reference
+    check(polys, 24, rule)
