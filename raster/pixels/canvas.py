@@ -213,9 +213,10 @@ def _demultiply(flat):
 def _depth_order(pix):
     """Where each pixel of ``pix`` ((n,) int64 canvas pixels, listed in
     drawing order) is composited: None when every pixel occurs once, else
-    ``(perm, ends)``: ``perm`` ((n,) int64) lists the entries by *depth* (the k-th occurrence of a pixel has depth k),
-    in drawing order within a depth, and ``ends`` (list of int) where the
-    entries of each depth end in it.  The entries of one depth are
+    ``(perm, ends)``: ``perm`` ((n,) int64) lists the entries by *depth*
+    (the k-th occurrence of a pixel has depth k), in drawing order within
+    a depth, and ``ends`` (list of int) where the entries of each depth
+    end in it.  The entries of one depth are
     distinct pixels; compositing depth after depth keeps every pixel's
     order."""
     n = len(pix)
