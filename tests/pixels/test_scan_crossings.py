@@ -122,24 +122,34 @@ def test_stroked_random_cubics_small():
     assert (err > 8.0).sum() <= 0.003 * (err > 0.5).sum() + 2 and err.max() <= 16.0
 
 
+def recorded_coverage(monkeypatch, e, rule, name, arg, patches):
+    """Coverage of edges ``e`` on a 24x24 canvas with the module values
+    ``patches`` (name -> value) of raster.pixels.scan set and every call
+    of ``scan.<name>`` recorded by its argument number ``arg``: (coverage,
+    the recorded arguments)."""
+    from raster.pixels import scan
+    calls = []
+    real = getattr(scan, name)
+
+    def recording(*a):
+        calls.append(a[arg])
+        return real(*a)
+    monkeypatch.setattr(scan, name, recording)
+    for k, v in patches.items():
+        monkeypatch.setattr(scan, k, v)
+    return coverage(e, 24, 24, fill_rule=rule).full(24, 24), calls
+
+
 @pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
 def test_walk_in_slices_is_the_same(monkeypatch, rule):
     # the boundary walk runs over slices of cells of bounded work: tiny
     # slices (one cell each, nearly) give the same coverage bit for bit
-    from raster.pixels import scan
     rng = np.random.default_rng(11)
     polys = [walk(rng, 30, 24, 2.5) for _ in range(6)]
     e = edges_of(polys)
     whole = coverage(e, 24, 24, fill_rule=rule).full(24, 24)
-    calls = []
-    real = scan._walk
-
-    def counted(*a):
-        calls.append(len(a[9]))
-        return real(*a)
-    monkeypatch.setattr(scan, '_walk', counted)
-    monkeypatch.setattr(scan, '_WALK_WORK', 8)
-    sliced = coverage(e, 24, 24, fill_rule=rule).full(24, 24)
+    sliced, cells = recorded_coverage(monkeypatch, e, rule, '_walk', 9, {'_WALK_WORK': 8})
+    calls = [len(c) for c in cells]
     assert len(calls) > 10 and max(calls) < sum(calls)
     assert np.array_equal(sliced, whole)
     ref = span_coverage(polygon_spans(polys, rule), 24, 24, lines=1024)
@@ -157,18 +167,10 @@ def test_crossing_sides_work_is_sliced_and_slicing_changes_nothing(monkeypatch, 
     polys = [walk(rng, 400, 24, 0.3) for _ in range(3)]
     e = edges_of(polys)
     ref = coverage(e, 24, 24, fill_rule=rule).full(24, 24)
-
-    calls = []
-    sides = scan._crossing_sides
-
-    def recording(*args):
-        calls.append(args[6])                     # n_t: work per crossing point
-        return sides(*args)
-
     slices = scan._slices
-    monkeypatch.setattr(scan, '_crossing_sides', recording)
-    monkeypatch.setattr(scan, '_slices', lambda work, limit=40: slices(work, limit))
-    got = coverage(e, 24, 24, fill_rule=rule).full(24, 24)
+    # (argument 6 of _crossing_sides: the work of each crossing point)
+    got, calls = recorded_coverage(monkeypatch, e, rule, '_crossing_sides', 6,
+                                   {'_slices': lambda work, limit=40: slices(work, limit)})
     assert np.array_equal(got, ref)
     assert len(calls) > 1
     assert all(n.sum() <= 40 or len(n) == 1 for n in calls)
