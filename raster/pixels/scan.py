@@ -998,7 +998,7 @@ def _crossing_sides(Xx, Xy, x_ri, x_rj, xg, gp0, n_t, prun, pidx, cx, cy, xa, ya
     tests flag the cell in ``bad``."""
     e = _MEET_EPS
     xo = np.repeat(np.arange(len(Xx)), n_t)
-    slot = np.repeat(gp0, n_t) + (np.arange(int(n_t.sum())) - np.repeat(np.cumsum(n_t) - n_t, n_t))
+    slot = _ranges(gp0, n_t)
     pr = prun[slot]
     other = (pr != x_ri[xo]) & (pr != x_rj[xo])
     xo, slot, pr = xo[other], slot[other], pr[other]
