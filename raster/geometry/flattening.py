@@ -286,6 +286,8 @@ def _cubic_range0(c1, c2, end):
 # Local parameters where the deviation density is sampled (midpoint rule)
 # when planning how to split a rejected piece.
 _G = 16
+# Pieces planned at once by _plan_split (bounds its temporaries to ~2 MB).
+_PLAN_BLOCK = 1 << 12
 _SG = (np.arange(_G) + 0.5) / _G
 
 
@@ -302,6 +304,10 @@ def _sample_basis(n):
 
 def _plan_split(Q, e, tol):
     """How to cut rejected pieces: piece counts and a deviation CDF.
+
+    Taken in blocks of ``_PLAN_BLOCK`` pieces (the pieces are independent):
+    about twenty ``(_G, m)`` temporaries live at once, which for a whole
+    ``_CHUNK`` of pieces was tens of megabytes.
 
     The deviation of a chord over a short parameter step ``h`` at ``s`` is
     about ``kappa(s) h**2 / 8`` with ``kappa = |B' x B''| / |B'|`` (the
@@ -327,6 +333,19 @@ def _plan_split(Q, e, tol):
         Normalised cumulative density at ``s = 0, 1/_G, .., 1``; rows that
         are all NaN ask for a uniform split.
     """
+    m = Q.shape[2]
+    if m <= _PLAN_BLOCK:
+        return _plan_block(Q, e, tol)
+    parts = [_plan_block(Q[:, :, i:i + _PLAN_BLOCK], e[i:i + _PLAN_BLOCK], tol)
+             for i in range(0, m, _PLAN_BLOCK)]
+    k = np.concatenate([p[0] for p in parts])
+    if parts[0][1] is None:
+        return k, None
+    return k, np.concatenate([p[1] for p in parts])
+
+
+def _plan_block(Q, e, tol):
+    """:func:`_plan_split` of one block of pieces (same parameters)."""
     n1, D, m = Q.shape
     n = n1 - 1
     # uniform estimate: deviation falls like 1/k**2

@@ -435,6 +435,36 @@ def _lex_fast(d):
     b = d.encode('ascii')
     if b'e' in b or b'E' in b:
         return None
+    if len(b) <= _LEX_BLOCK:
+        return _lex_block(b)
+    # Long data in blocks (the temporaries are several arrays per character
+    # and per digit: tens of MB for a 1 MB string).  A block ends just after
+    # a space or other text (a letter, a comma): no number spans such a cut
+    # and the rules above read the next character exactly as at the start
+    # of data, so the tokens are the same.
+    cls = np.take(_CLASS, np.frombuffer(b, np.uint8))
+    kinds, vals = [], []
+    lo = 0
+    while lo < len(b):
+        hi = lo + _LEX_BLOCK
+        if hi < len(b):
+            cut = np.flatnonzero(cls[hi:] >= _CL_OTHER)
+            hi = len(b) if len(cut) == 0 else hi + int(cut[0]) + 1
+        r = _lex_block(b[lo:hi])
+        if r is None:
+            return None
+        kinds.append(r[0])
+        vals.append(r[1])
+        lo = hi
+    return b''.join(kinds), np.concatenate(vals)
+
+
+#: Bytes of path data lexed at once by :func:`_lex_fast`.
+_LEX_BLOCK = 1 << 18
+
+
+def _lex_block(b):
+    """:func:`_lex_fast` of ASCII bytes ``b`` (one block, no exponent)."""
     # (np.take and index arrays: several times faster than fancy or
     # boolean indexing on megabytes of data)
     a = np.frombuffer(b, np.uint8)

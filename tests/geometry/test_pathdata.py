@@ -912,6 +912,34 @@ def test_fast_lexer_equals_regex_lexer(d):
     assert fast[1].dtype == np.float64 and fast[1].tobytes() == want.tobytes()
 
 
+@SETTINGS
+@given(number_runs(), st.integers(1, 40))
+def test_fast_lexer_in_blocks_equals_one_block(d, block):
+    # long data is lexed in blocks cut after a space or other text: the
+    # tokens and values are those of one block, or both give up
+    d = svgpath._mark(d)
+    whole = svgpath._lex_fast(d)
+    saved = svgpath._LEX_BLOCK
+    svgpath._LEX_BLOCK = block
+    try:
+        cut = svgpath._lex_fast(d)
+    finally:
+        svgpath._LEX_BLOCK = saved
+    assert (whole is None) == (cut is None)
+    if whole is not None:
+        assert cut[0] == whole[0] and cut[1].tobytes() == whole[1].tobytes()
+
+
+def test_fast_lexer_blocks_of_a_long_path():
+    rng = np.random.default_rng(5)
+    d = 'M0 0' + ''.join('L%.3f,%.3f %.2f-%.1f' % (x, y, z, abs(w))
+                         for x, y, z, w in rng.normal(0, 50, (40000, 4)))
+    assert len(d) > 3 * svgpath._LEX_BLOCK
+    k, v = svgpath._lex_fast(d)
+    nums, kinds = svgpath._split(d)
+    assert k == kinds and v.tobytes() == np.array(nums, np.float64).tobytes()
+
+
 def test_fast_lexer_reads_long_and_tiny_numbers_exactly():
     nums = ['123456789012345678', '0.' + '0' * 25 + '7', '-9007199254740993',
             '0.1', '-0', '.1.2.3', '4503599627370497.5']
