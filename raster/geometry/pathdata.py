@@ -205,8 +205,11 @@ def parse_path(d: str, tolerance: float = 0.01, strict: bool = True) -> Path:
     if not isinstance(d, str):
         raise PathError('path data must be a string, got %s' % type(d).__name__)
     d2 = _mark(d)
-    fast = _lex_fast(d2) if len(d2) >= FAST_LEX_CHARS else None
-    if fast is not None:
+    fast = _lex_fast(d2) if FAST_LEX_CHARS <= len(d2) <= _LEX_CHUNK else None
+    if len(d2) > _LEX_CHUNK:
+        kb, vals = _lex_marked(d2)
+        vals = vals.tolist()
+    elif fast is not None:
         kb, vals = fast[0], fast[1].tolist()
     else:
         nums, kb = _split(d2)
@@ -346,32 +349,54 @@ def _split(d):
 
 def _lex_values(d):
     """``(kinds, values)``: :func:`_lex`'s kinds and its numbers as a
-    float64 array (by :func:`_lex_fast` when it applies).
+    float64 array (by :func:`_lex_fast` when it applies)."""
+    return _lex_marked(_mark(d))
 
-    Long data is lexed in chunks of about :data:`_LEX_CHUNK` characters cut
-    at ``'|'`` (a one-character junk token, so no token spans a cut): the
-    memory stays bounded and the result is the same."""
-    d = _mark(d)
+
+def _lex_marked(d):
+    """:func:`_lex_values` of data already passed through :func:`_mark`.
+
+    Long data is lexed in chunks of about :data:`_LEX_CHUNK` characters
+    (the lexers' temporaries are several arrays per character: tens of MB
+    for a megabyte at once).  A chunk ends at a ``'|'`` (a one-character
+    junk token: it is dropped, and the chunks' kinds are joined by it) or
+    just after a space or comma; no token spans such a cut and either lexer
+    reads the next character as at the start of data, so the result is the
+    same as in one piece."""
     kinds, vals = [], []
     pos, n = 0, len(d)
     while pos <= n:
-        end = d.find('|', pos + _LEX_CHUNK) if n - pos > _LEX_CHUNK else -1
-        end = n if end < 0 else end
+        m = _CUT.search(d, pos + _LEX_CHUNK) if n - pos > _LEX_CHUNK else None
+        if m is None:
+            end = nxt = n
+            sep = b''
+        else:
+            end = m.start()
+            bar = d[end] == '|'
+            sep = b'|' if bar else b''
+            end, nxt = (end, end + 1) if bar else (end + 1, end + 1)
         part = d[pos:end] if pos or end < n else d
         r = _lex_fast(part) if len(part) >= FAST_LEX_CHARS else None
         if r is None:
             nums, k = _split(part)
             r = k, (np.array(nums, dtype=np.float64) if nums else np.zeros(0))
         kinds.append(r[0])
+        kinds.append(sep)
         vals.append(r[1])
-        pos = end + 1
-    if len(kinds) == 1:
+        if nxt >= n and m is None:
+            break
+        pos = nxt
+    if len(vals) == 1:
         return kinds[0], vals[0]
-    return b'|'.join(kinds), np.concatenate(vals)
+    return b''.join(kinds), np.concatenate(vals)
 
 
-#: Characters per chunk of :func:`_lex_values` (a chunk ends at the next
-#: ``'|'`` after that many).
+#: Where :func:`_lex_marked` may end a chunk.
+_CUT = re.compile('[|,%s]' % _WS)
+
+
+#: Characters per chunk of :func:`_lex_marked` (a chunk ends at the next
+#: ``'|'``, space or comma after that many).
 _LEX_CHUNK = 1 << 18
 
 
@@ -435,36 +460,6 @@ def _lex_fast(d):
     b = d.encode('ascii')
     if b'e' in b or b'E' in b:
         return None
-    if len(b) <= _LEX_BLOCK:
-        return _lex_block(b)
-    # Long data in blocks (the temporaries are several arrays per character
-    # and per digit: tens of MB for a 1 MB string).  A block ends just after
-    # a space or other text (a letter, a comma): no number spans such a cut
-    # and the rules above read the next character exactly as at the start
-    # of data, so the tokens are the same.
-    cls = np.take(_CLASS, np.frombuffer(b, np.uint8))
-    kinds, vals = [], []
-    lo = 0
-    while lo < len(b):
-        hi = lo + _LEX_BLOCK
-        if hi < len(b):
-            cut = np.flatnonzero(cls[hi:] >= _CL_OTHER)
-            hi = len(b) if len(cut) == 0 else hi + int(cut[0]) + 1
-        r = _lex_block(b[lo:hi])
-        if r is None:
-            return None
-        kinds.append(r[0])
-        vals.append(r[1])
-        lo = hi
-    return b''.join(kinds), np.concatenate(vals)
-
-
-#: Bytes of path data lexed at once by :func:`_lex_fast`.
-_LEX_BLOCK = 1 << 18
-
-
-def _lex_block(b):
-    """:func:`_lex_fast` of ASCII bytes ``b`` (one block, no exponent)."""
     # (np.take and index arrays: several times faster than fancy or
     # boolean indexing on megabytes of data)
     a = np.frombuffer(b, np.uint8)

@@ -912,32 +912,54 @@ def test_fast_lexer_equals_regex_lexer(d):
     assert fast[1].dtype == np.float64 and fast[1].tobytes() == want.tobytes()
 
 
-@SETTINGS
-@given(number_runs(), st.integers(1, 40))
-def test_fast_lexer_in_blocks_equals_one_block(d, block):
-    # long data is lexed in blocks cut after a space or other text: the
-    # tokens and values are those of one block, or both give up
-    d = svgpath._mark(d)
-    whole = svgpath._lex_fast(d)
-    saved = svgpath._LEX_BLOCK
-    svgpath._LEX_BLOCK = block
+def _parse_outcome(d):
     try:
-        cut = svgpath._lex_fast(d)
+        p = parse_path(d)
+    except PathError as e:
+        return 'error', str(e)
+    return p.verbs.tobytes(), p.points.tobytes()
+
+
+@SETTINGS
+@given(st.lists(st.sampled_from(['M', 'L1', '2', ' ', ',', '-3.5', '.5', 'c', 'z', 'x',
+                                 'A1 1 0 1 0 4 4', '1e2', '7.', '+', '0']), max_size=40),
+       st.integers(1, 30))
+def test_long_data_lexed_in_chunks_parses_the_same(tokens, chunk):
+    # parse_path lexes data longer than _LEX_CHUNK in chunks cut after a
+    # space or comma: the same path, or the same error at the same place
+    d = ''.join(tokens)
+    whole = _parse_outcome(d)
+    saved = svgpath._LEX_CHUNK
+    svgpath._LEX_CHUNK = chunk
+    try:
+        cut = _parse_outcome(d)
     finally:
-        svgpath._LEX_BLOCK = saved
-    assert (whole is None) == (cut is None)
-    if whole is not None:
-        assert cut[0] == whole[0] and cut[1].tobytes() == whole[1].tobytes()
+        svgpath._LEX_CHUNK = saved
+    assert cut == whole
 
 
-def test_fast_lexer_blocks_of_a_long_path():
+def test_a_megabyte_of_path_data_is_lexed_in_chunks():
     rng = np.random.default_rng(5)
     d = 'M0 0' + ''.join('L%.3f,%.3f %.2f-%.1f' % (x, y, z, abs(w))
                          for x, y, z, w in rng.normal(0, 50, (40000, 4)))
-    assert len(d) > 3 * svgpath._LEX_BLOCK
-    k, v = svgpath._lex_fast(d)
-    nums, kinds = svgpath._split(d)
+    assert len(d) > 3 * svgpath._LEX_CHUNK
+    nums, kinds = svgpath._split(svgpath._mark(d))
+    calls = []
+    fast = svgpath._lex_fast
+
+    def counted(part):
+        calls.append(len(part))
+        return fast(part)
+    svgpath._lex_fast = counted
+    try:
+        k, v = svgpath._lex_values(d)
+        p = parse_path(d)
+    finally:
+        svgpath._lex_fast = fast
     assert k == kinds and v.tobytes() == np.array(nums, np.float64).tobytes()
+    assert max(calls) < svgpath._LEX_CHUNK + 64 and len(calls) >= 8
+    assert np.array_equal(p.points[1:3], [[float(nums[2]), float(nums[3])],
+                                          [float(nums[4]), float(nums[5])]])
 
 
 def test_fast_lexer_reads_long_and_tiny_numbers_exactly():
