@@ -1064,7 +1064,27 @@ def _outline(lines, style, tol):
     winding by one only where it is at least two.  So these polygons have
     exactly the winding numbers of the pieces, and nonzero fills the union.
     """
-    items, npoly = _outline_items(lines, style, tol)
+    N = len(lines.points)
+    if N <= _OUTLINE_POINTS:
+        return _outline_part(lines, style, tol, None)
+    # a long outline in parts of about _OUTLINE_POINTS points: the build's
+    # arrays (tens of float64 per point) stay a few MB
+    parts = []
+    for sub, src, bare in _outline_parts(lines):
+        pts, pcounts, ids = _outline_part(sub, style, tol[src] if np.ndim(tol) else tol, bare)
+        parts.append((pts, pcounts, src[ids]))
+    return (np.concatenate([q[0] for q in parts]), np.concatenate([q[1] for q in parts]),
+            np.concatenate([q[2] for q in parts]))
+
+
+#: Points of polylines outlined at once by :func:`_outline`.
+_OUTLINE_POINTS = 1 << 14
+
+
+def _outline_part(lines, style, tol, bare):
+    """:func:`_outline` of polylines of at most about ``_OUTLINE_POINTS``
+    points (``bare``: see :func:`_outline_items`)."""
+    items, npoly = _outline_items(lines, style, tol, bare)
     # (the arrays of the build are gone: only the items' pool is live)
     pts, pcounts, ids = items.polygons()
     if npoly is None:
@@ -1072,9 +1092,60 @@ def _outline(lines, style, tol):
     return pts, pcounts, np.repeat(np.arange(len(npoly)), npoly)[ids]
 
 
-def _outline_items(lines, style, tol):
+def _outline_parts(lines):
+    """The polylines of ``lines`` in parts of about ``_OUTLINE_POINTS``
+    points, in order: ``(part, src, bare)`` with ``src`` ((c,) int64) the
+    contour of ``lines`` each contour of the part comes from and ``bare``
+    as for :func:`_outline_items` (or None).
+
+    Short contours go whole, several to a part.  A longer one is cut into
+    open windows of ``B + 2`` vertices, each starting ``B`` vertices after
+    the last, so that consecutive windows share one segment: every join
+    lies inside one window, and the shared segment's rectangle is covered
+    twice (the same sign: the nonzero union is the stroke).  The cut ends
+    are bare (no cap).  A closed contour is first unrolled into an open one
+    through its first vertex and on to the second (its closing join inside,
+    its first segment twice), bare at both ends."""
+    B = _OUTLINE_POINTS
+    P, starts, counts = lines.points, lines.starts, lines.counts
+    C = len(counts)
+    long_ = np.flatnonzero(counts > B).tolist()
+    c0 = 0
+    for c in long_ + [C]:
+        if c0 < c:                                   # short contours c0 .. c-1
+            end = np.cumsum(counts[c0:c])
+            grp = (end - 1) // B
+            cuts = np.flatnonzero(np.diff(grp)) + 1
+            for g0, g1 in zip([0] + cuts.tolist(), cuts.tolist() + [c - c0]):
+                a, b = c0 + g0, c0 + g1
+                lo, hi = int(starts[a]), int(starts[b - 1] + counts[b - 1])
+                sub = _Lines(P[lo:hi], starts[a:b] - lo, counts[a:b], lines.closed[a:b],
+                             lines.smooth[lo:hi], lines.tangent[a:b])
+                yield sub, np.arange(a, b), None
+        if c == C:
+            break
+        s0, m = int(starts[c]), int(counts[c])
+        ring = bool(lines.closed[c])
+        seq = np.arange(s0, s0 + m)
+        if ring:
+            seq = np.concatenate([seq, seq[:2]])
+        L = len(seq)
+        for k0 in range(0, L - 1, B):
+            w = seq[k0:k0 + B + 2]
+            last = k0 + B + 2 >= L
+            sub = _Lines(P[w], np.zeros(1, np.int64), np.array([len(w)], np.int64),
+                         np.zeros(1, bool), lines.smooth[w], lines.tangent[c:c + 1])
+            bare = np.array([[ring or k0 > 0, ring or not last]])
+            yield sub, np.array([c], np.int64), bare
+            if last:
+                break
+        c0 = c + 1
+
+
+def _outline_items(lines, style, tol, bare=None):
     """The items of :func:`_outline` (an :class:`_Items`) and the number of
-    polygons per contour (None without points)."""
+    polygons per contour (None without points).  ``bare`` ((C, 2) bool or
+    None) marks the start and end of open contours that get no cap."""
     P, starts, counts, closed = lines.points, lines.starts, lines.counts, lines.closed
     r = 0.5 * style.width
     N, C = len(P), len(counts)
@@ -1204,23 +1275,26 @@ def _outline_items(lines, style, tol):
                       np.where(left_outer, pcnt, ocnt), ~left_outer)
 
     # caps of open subpaths: end cap from b+n to b-n, start cap from a-n to a+n
+    # (not at the ends ``bare`` marks: cuts of a long contour, see _outline)
     co = np.flatnonzero(is_open)
     if len(co) and style.cap != 'butt':
-        S = nseg[co]
-        fa, lb = starts[co], starts[co] + counts[co] - 1
-        ds, de = d[fa], d[lb - 1]
-        ns, ne = nrm[fa], nrm[lb - 1]
+        ce = co if bare is None else co[~bare[co, 1]]
+        cs = co if bare is None else co[~bare[co, 0]]
+        lb, fa = starts[ce] + counts[ce] - 1, starts[cs]
+        de, ne = d[lb - 1], nrm[lb - 1]
+        ds, ns = d[fa], nrm[fa]
         if style.cap == 'square':
             end = np.stack([P[lb] + ne + r * de, P[lb] - ne + r * de], axis=1)
             beg = np.stack([P[fa] - ns - r * ds, P[fa] + ns - r * ds], axis=1)
-            items.add(pbase[co], 4 * S, items.put(end.reshape(-1, 2)) + 2 * np.arange(len(co)), 2)
-            items.add(pbase[co], 8 * S + 2, items.put(beg.reshape(-1, 2)) + 2 * np.arange(len(co)), 2)
+            items.add(pbase[ce], 4 * nseg[ce], items.put(end.reshape(-1, 2))
+                      + 2 * np.arange(len(ce)), 2)
+            items.add(pbase[cs], 8 * nseg[cs] + 2, items.put(beg.reshape(-1, 2))
+                      + 2 * np.arange(len(cs)), 2)
         else:
-            half = np.full(len(co), -np.pi)
-            pts, cnt = _arcs(P[lb], ne, half, tol_of(co))
-            items.add(pbase[co], 4 * S, items.put(pts) + _starts(cnt), cnt)
-            pts, cnt = _arcs(P[fa], -ns, half, tol_of(co))
-            items.add(pbase[co], 8 * S + 2, items.put(pts) + _starts(cnt), cnt)
+            pts, cnt = _arcs(P[lb], ne, np.full(len(ce), -np.pi), tol_of(ce))
+            items.add(pbase[ce], 4 * nseg[ce], items.put(pts) + _starts(cnt), cnt)
+            pts, cnt = _arcs(P[fa], -ns, np.full(len(cs), -np.pi), tol_of(cs))
+            items.add(pbase[cs], 8 * nseg[cs] + 2, items.put(pts) + _starts(cnt), cnt)
 
     # subpaths of zero length: a disc or a square oriented by the tangent
     cd = np.flatnonzero(is_dot)

@@ -484,6 +484,9 @@ class Masks:
                                                               ends.tolist())], size, 'stroke')
             else:
                 e, counts = np.zeros((0, 2, 2)), np.zeros(0, np.int64)
+            # (the outlines and their polylines are in the edges now: freed
+            # before the coverage, which is the peak of a long stroke)
+            outlines = pl = None
             if kept:
                 items = items + [it for it, _ in kept]
                 e = np.concatenate([e] + [k for _, k in kept])

@@ -1019,3 +1019,68 @@ def test_open_ring_stays_open_when_the_seam_shows(d, cap):
     o_closed = stroke(parse(d + ' Z'), st_, tolerance=0.05)
     assert len(polygons(o_open)) == 1
     assert len(polygons(o_closed)) == 2
+
+
+# -- long outlines are built in parts ------------------------------------------
+
+def _random_polylines(rng, n_contours, n_points, closed):
+    b = PathBuilder()
+    for _ in range(n_contours):
+        pts = rng.uniform(4, 60, (n_points, 2))
+        b.moveTo(pts[0])
+        for i, p in enumerate(pts[1:]):
+            if i % 3 == 2:
+                b.qCurveTo(rng.uniform(4, 60, 2), p)
+            else:
+                b.lineTo(p)
+        if closed:
+            b.closePath()
+        else:
+            b.endPath()
+    return b.path()
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 2 ** 32 - 1), st.integers(2, 9), st.booleans(),
+       st.sampled_from(['butt', 'round', 'square']),
+       st.sampled_from(['miter', 'round', 'bevel', 'miter-clip', 'arcs']))
+def test_outline_in_parts_covers_the_same_pixels(seed, block, closed, cap, join):
+    # an outline longer than _OUTLINE_POINTS is built in parts (windows of
+    # a long contour share a segment, rings are unrolled): the filled
+    # stroke is the same, pixel for pixel within 1/255 of coverage
+    from raster.geometry import stroking
+    from raster.pixels.scan import path_coverage
+    rng = np.random.default_rng(seed)
+    path = _random_polylines(rng, int(rng.integers(1, 4)), int(rng.integers(2, 30)), closed)
+    style = StrokeStyle(width=float(rng.uniform(0.5, 6.0)), cap=cap, join=join)
+    whole = stroke(path, style)
+    saved = stroking._OUTLINE_POINTS
+    stroking._OUTLINE_POINTS = block
+    try:
+        parts = stroke(path, style)
+    finally:
+        stroking._OUTLINE_POINTS = saved
+    a = path_coverage(whole, 64, 64).full(64, 64)
+    b = path_coverage(parts, 64, 64).full(64, 64)
+    assert np.abs(a - b).max() <= 1 / 255
+
+
+def test_a_long_stroke_is_outlined_in_parts(monkeypatch):
+    from raster.geometry import stroking
+    from raster.pixels.scan import path_coverage
+    rng = np.random.default_rng(3)
+    path = _random_polylines(rng, 2, 400, True)
+    style = StrokeStyle(width=2.0, cap='round', join='miter')
+    whole = stroke(path, style)
+    seen = []
+    part = stroking._outline_part
+
+    def counted(lines, *a):
+        seen.append(len(lines.points))
+        return part(lines, *a)
+    monkeypatch.setattr(stroking, '_outline_part', counted)
+    monkeypatch.setattr(stroking, '_OUTLINE_POINTS', 64)
+    cut = stroke(path, style)
+    assert len(seen) > 10 and max(seen) <= 66
+    a, b = (path_coverage(p, 64, 64).full(64, 64) for p in (whole, cut))
+    assert np.abs(a - b).max() <= 1 / 255
