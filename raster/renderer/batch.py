@@ -117,15 +117,15 @@ class Masks:
         self._store_size = None
         self._flat_key = self._flat_path = self._flat = None
         # fills and undashed hairlines: key -> (node, t, size, area, fill?,
-        # hair?) waiting in document order, and key -> Mask or None of
-        # those already scan converted (a hairline is absent when the
-        # general stroker is needed)
-        self._geo_pending = {}
+        # hair?) waiting in document order (per canvas), and key -> Mask or
+        # None of those already scan converted (a hairline is absent when
+        # the general stroker is needed)
+        self._geo_pending = _Queue()
         self._fill_ready = {}
         self._hair_ready = {}
         # other strokes: key -> (node, t, size, area, style) waiting, and
         # key -> Mask or None already scan converted
-        self._stroke_pending = {}
+        self._stroke_pending = _Queue()
         self._stroke_ready = {}
         # keys of fills / strokes whose device box misses their canvas:
         # they cover nothing (a closed outline wholly outside a canvas adds
@@ -181,7 +181,7 @@ class Masks:
                     wf = False
                 if wf or wh:
                     if area > 0:
-                        geo.setdefault(key, (n, m, size, area, wf, wh))
+                        geo.put(key, (n, m, size, area, wf, wh))
                     elif key not in geo:
                         self._outside_fill[key] = size
                         if wh:
@@ -190,7 +190,7 @@ class Masks:
                     reach = stroke_reach(style) * m.max_scale() + 1.0
                     sarea = device_area(n.path, m, size[:2], reach, off=size[2:])
                     if sarea > 0:
-                        strokes.setdefault(key, (n, m, size, sarea, style))
+                        strokes.put(key, (n, m, size, sarea, style))
                     elif key not in strokes:
                         self._outside_stroke[key] = size
 
@@ -277,27 +277,24 @@ class Masks:
 
     # -- batches -----------------------------------------------------------------
     def _take(self, pending, key, size, verbs_max):
-        """Pop queued entries of ``pending`` in document order, up to and
+        """Pop entries of ``pending`` (a :class:`_Queue`) queued for a
+        canvas of ``size`` (w, h, ox, oy), in document order, up to and
         including ``key`` and then while the batch holds fewer than
-        ``verbs_max`` verbs and :data:`BATCH_AREA` pixels of masks; return
-        those drawn on a canvas of ``size`` (w, h, ox, oy) (others are
-        drawn one by one)."""
+        ``verbs_max`` verbs and :data:`BATCH_AREA` pixels of masks.
+        Entries of other canvases stay queued: a layer drawn between two
+        paths of the output does not send the output's later paths to be
+        drawn one by one."""
+        queue = pending.of(size)
         keys, verbs, area, seen = [], 0, 0.0, False
-        for k in pending:
-            v = pending[k]
+        for k in queue:
+            v = queue[k]
             if seen and (verbs >= verbs_max or area + v[3] > BATCH_AREA):
                 break
             keys.append(k)
             seen = seen or k == key
-            if v[2] == size:
-                verbs += len(v[0].path.verbs)
-                area += v[3]
-        out = []
-        for k in keys:
-            v = pending.pop(k)
-            if v[2] == size:
-                out.append((k,) + v)
-        return out
+            verbs += len(v[0].path.verbs)
+            area += v[3]
+        return [(k,) + pending.pop(k) for k in keys]
 
     def _kept(self, items, size, tag):
         """``(todo, kept)``: the items to outline, and for the others the
@@ -497,6 +494,43 @@ class Masks:
         except RasterError:
             return          # stroked one by one (errors where they were)
         self._stroke_ready.update(zip([it[0] for it in items], masks))
+
+
+class _Queue:
+    """Queued entries ``key -> (node, t, size, ...)`` of :class:`Masks`,
+    one document-ordered dict per canvas ``size`` (an entry's third
+    item), a key in one of them at most."""
+    __slots__ = ('_by_size', '_size_of')
+
+    def __init__(self):
+        self._by_size = {}
+        self._size_of = {}
+
+    def __contains__(self, key):
+        return key in self._size_of
+
+    def put(self, key, entry):
+        """Queue ``entry`` under ``key`` unless the key is queued."""
+        if key not in self._size_of:
+            self._size_of[key] = entry[2]
+            self._by_size.setdefault(entry[2], {})[key] = entry
+
+    def values(self):
+        """Every queued entry (canvas after canvas)."""
+        for q in self._by_size.values():
+            yield from q.values()
+
+    def of(self, size):
+        """The entries queued for ``size`` (a dict, in order; read only)."""
+        return self._by_size.get(size, {})
+
+    def pop(self, key):
+        size = self._size_of.pop(key)
+        q = self._by_size[size]
+        entry = q.pop(key)
+        if not q:
+            del self._by_size[size]
+        return entry
 
 
 class _Pair:

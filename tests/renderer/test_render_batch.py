@@ -244,3 +244,37 @@ def test_fills_composited_together_equal_one_by_one(seed, dtype, monkeypatch):
     monkeypatch.setattr(draw_mod, 'MANY_MASK_PIXELS', -1)     # nothing held
     alone = render_tree(tree, width=320, dtype=dtype).data
     assert np.array_equal(together, alone)
+
+
+@pytest.mark.parametrize('window', [None, (0, 0, 100, 60)])
+def test_a_layer_between_paths_keeps_the_later_paths_batched(monkeypatch, window):
+    # a layered group drawn between paths of the output has its own queue:
+    # flushing it leaves the output's later paths queued, so they are
+    # scan converted in a batch, not one by one (same pixels either way)
+    def square(x, y, s, colour):
+        return PathNode(path=Path.polygon([[x, y], [x + s, y + 0.3], [x + s, y + s],
+                                           [x, y + s]]),
+                        fill=Fill(SolidPaint(colour)),
+                        stroke=Stroke.of(SolidPaint((0.2, 0.2, 0.2, 1.0)), width=2.5))
+    before = [square(5 + 9 * i, 5, 7.5, (0.9, 0.2, 0.1, 1.0)) for i in range(3)]
+    layer = Group(children=[square(40.5, 30.5, 20, (0.1, 0.5, 0.9, 1.0))], opacity=0.5)
+    after = [square(5 + 9 * i, 50.2, 7.5, (0.1, 0.8, 0.3, 1.0)) for i in range(8)]
+    tree = Tree(100, 100, Group(children=before + [layer] + after))
+    ref = render_tree(tree, window=window).data.copy()
+    single = []
+    one = batch_mod.coverage
+
+    def counted(*a, **k):
+        single.append(1)
+        return one(*a, **k)
+    monkeypatch.setattr(batch_mod, 'coverage', counted)
+    # (batches of a few paths: the output's later paths are still queued
+    # when the layer is drawn)
+    monkeypatch.setattr(batch_mod, 'BATCH_VERBS', 12)
+    got = render_tree(tree, window=window).data
+    assert single == []
+    assert np.array_equal(got, ref)
+    # and each path drawn on its own gives the same pixels
+    monkeypatch.setattr(batch_mod, 'BATCH_VERBS', 1)
+    monkeypatch.setattr(batch_mod, 'BATCH_AREA', 1)
+    assert np.abs(render_tree(tree, window=window).data - ref).max() <= 1e-6
