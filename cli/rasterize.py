@@ -37,9 +37,14 @@ render, equal to it) and written as the strips finish, so memory stays
 within ``--memory-budget`` (MB of strip pixels per process, default 256)
 whatever the size, up to 4 000 million pixels; ``--jobs`` spreads the
 strips of one large image over worker processes (a few strips a worker,
-of about equal work, taken as workers finish; the same pixels whatever
-the number of workers).  Other formats are encoded by Pillow
-from the whole image (at most 100 million pixels).
+of about equal work, taken as workers finish).  A PNG of 1 million pixels
+or more within the budget is drawn as one strip per job (default: the
+number of CPUs) at the same time: this process draws the first while
+forked copies of it draw the others.  The pixels are the same whatever
+the number of jobs, except that a resampled raster image may differ by
+one level on the rows where two strips meet (Pillow's resampling
+coefficients depend on where the window starts).  Other formats are
+encoded by Pillow from the whole image (at most 100 million pixels).
 
 Many files: every input (folders are walked for ``.svg``/``.svgz``,
 their subfolders too with ``--recursive``, kept below ``--out-dir``) is
@@ -78,7 +83,7 @@ FORMAT_CHOICES = ('png', 'jpeg', 'jpg', 'webp', 'tiff', 'tif', 'bmp')
 _EXT = {'png': 'png', 'jpeg': 'jpg', 'webp': 'webp', 'tiff': 'tif', 'bmp': 'bmp'}
 
 #: One image spreads its strips over workers from this many pixels on.
-PARALLEL_PIXELS = 4_000_000
+PARALLEL_PIXELS = 1_000_000
 
 
 def build_parser():
@@ -289,7 +294,12 @@ def convert(args, dpi, fmt, bg, inp, out, jobs=1):
         job = (tree, kw, level)
         with open_output(out) as f:
             png = PNGWriter(f, g.width, g.height, level, dpi=res)
-            if workers > 1 and len(spans) > 1:
+            if not big and 1 < len(spans) <= workers and hasattr(os, 'fork'):
+                # one strip each: this process draws the first while forked
+                # copies draw the others (no pool to start or feed)
+                for piece in _forked_strips(job, spans):
+                    png.write_compressed(piece)
+            elif workers > 1 and len(spans) > 1:
                 global _JOB
                 _JOB = job
                 try:
@@ -323,7 +333,7 @@ _JOB = None
 #: Fewest strips of an image beyond the memory budget, and strips per
 #: worker of one within it spread over workers.
 MIN_STRIPS = 4
-STRIPS_PER_WORKER = 2
+STRIPS_PER_WORKER = 1
 
 #: The EdgeStore of this process's windows (the strips or tiles of one
 #: output at a time; see raster.renderer.EdgeStore).
@@ -359,6 +369,60 @@ def _compress_strip(job, span):
 
 def _strip_piece(span):
     return _compress_strip(_JOB, span)
+
+
+def _forked_strips(job, spans):
+    """The compressed strips of ``spans`` in order (an iterator): the first
+    drawn by this process, each other at the same time by a forked copy of
+    it, which sends its strip back through a pipe (or its exception, raised
+    here).  Copies still running when the iterator is left are killed."""
+    import pickle
+    import signal
+    kids = []
+    try:
+        for span in spans[1:]:
+            r, w = os.pipe()
+            pid = os.fork()
+            if pid == 0:                                    # the copy
+                code = 1
+                try:
+                    os.close(r)
+                    try:
+                        data = b'+' + pickle.dumps(_compress_strip(job, span), -1)
+                        code = 0
+                    except BaseException as e:              # noqa: B036 (sent back)
+                        try:
+                            data = b'!' + pickle.dumps(e)
+                        except Exception:
+                            data = b'!' + pickle.dumps(RuntimeError(str(e)))
+                    with os.fdopen(w, 'wb') as f:
+                        f.write(data)
+                finally:
+                    os._exit(code)
+            os.close(w)
+            kids.append([pid, r])
+        yield _compress_strip(job, spans[0])
+        for kid in kids:
+            with os.fdopen(kid[1], 'rb') as f:
+                kid[1] = None
+                data = f.read()
+            os.waitpid(kid[0], 0)
+            kid[0] = None
+            if data[:1] != b'+':
+                if data[:1] == b'!':
+                    raise pickle.loads(data[1:])
+                raise RuntimeError('a strip worker ended without its strip')
+            yield pickle.loads(data[1:])
+    finally:
+        for pid, r in kids:
+            if r is not None:
+                os.close(r)
+            if pid is not None:
+                try:
+                    os.kill(pid, signal.SIGKILL)
+                    os.waitpid(pid, 0)
+                except OSError:
+                    pass
 
 
 # -- many documents ---------------------------------------------------------------------

@@ -170,6 +170,56 @@ def test_a_failed_strip_render_leaves_no_file(tmp_path, capsys, monkeypatch):
     assert os.listdir(tmp_path) == ['big.svg']
 
 
+needs_fork = pytest.mark.skipif(not hasattr(os, 'fork'), reason='strips in forked copies need fork')
+
+
+@needs_fork
+def test_an_image_over_parallel_pixels_is_drawn_in_forked_strips(tmp_path, monkeypatch):
+    # within the memory budget and from PARALLEL_PIXELS on, one strip per
+    # worker: this process draws the first, forked copies the others; the
+    # pixels are the one-piece render's
+    src = write(tmp_path, 'big.svg', doc(300, 200, 60, 'orange'))
+    whole = raster.render(src, 600)
+    monkeypatch.setattr(rasterize, 'PARALLEL_PIXELS', 10_000)
+    spans, pids = [], set()
+    real = rasterize._compress_strip
+
+    def seen(job, span):
+        spans.append(span)
+        pids.add(os.getpid())
+        return real(job, span)
+    monkeypatch.setattr(rasterize, '_compress_strip', seen)
+    out = tmp_path / 'par.png'
+    assert rasterize.main([src, str(out), '--width', '600', '--jobs', '3']) == 0
+    assert np.array_equal(png(out), whole)
+    # (a copy's calls are not seen here: only the first strip is)
+    assert len(spans) == 1 and spans[0][0] == 0 and pids == {os.getpid()}
+    with pytest.raises(ChildProcessError):
+        os.waitpid(-1, os.WNOHANG)                 # every copy was reaped
+
+
+@needs_fork
+def test_an_error_in_a_forked_strip_is_one_line_and_leaves_no_file(tmp_path, capsys,
+                                                                      monkeypatch):
+    src = write(tmp_path, 'big.svg', doc(300, 200, 60, 'orange'))
+    monkeypatch.setattr(rasterize, 'PARALLEL_PIXELS', 10_000)
+    parent = os.getpid()
+    real = rasterize._compress_strip
+
+    def broken(job, span):
+        if os.getpid() != parent:
+            raise raster.LimitError('strip budget spent')
+        return real(job, span)
+    monkeypatch.setattr(rasterize, '_compress_strip', broken)
+    out = tmp_path / 'par.png'
+    assert rasterize.main([src, str(out), '--width', '600', '--jobs', '2']) == 1
+    err = capsys.readouterr().err
+    assert one_error_line(err, 'rasterize') and 'strip budget spent' in err
+    assert os.listdir(tmp_path) == ['big.svg']
+    with pytest.raises(ChildProcessError):
+        os.waitpid(-1, os.WNOHANG)
+
+
 # -- map tiles ------------------------------------------------------------------------------
 
 def test_xyz_tiles(tmp_path, capsys):
