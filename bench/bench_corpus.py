@@ -36,8 +36,12 @@ PNG.  Each (file, width) runs ``--repeat`` rounds, each renderer once per
 round in a rotated order, so load from elsewhere falls on all alike.
 Reported: the medians of the wall-clock time seen by this driver, of the
 process's user + system time (``wait4``) and of its peak RSS (``/usr/bin/time
--f %M``; ``ru_maxrss`` from ``wait4``, the same number, without it); raster
-over the faster peer, raster's RSS over resvg's, and per width the
+-f %M``; ``ru_maxrss`` from ``wait4``, the same number, without it: the
+largest single process's), and from one more, untimed run per renderer
+the peak of the summed proportional set sizes of the process and every
+process it forks (``rasterize`` draws images from 1 million pixels in
+strips over forked copies of itself); raster over the faster peer,
+raster's RSS and all-process memory over resvg's, and per width the
 geometric mean and the files beyond the targets of issue 17 (1.5x the
 faster peer's time, 2x resvg's peak RSS).  ``--python`` names the
 interpreter of the peers and of the in-process workers, and ``rasterize``
@@ -334,13 +338,46 @@ def process_command(renderer, svg, width, out, args, utf8=None):
     raise ValueError('unknown renderer %r' % renderer)
 
 
-def run_process(cmd, timeout, tmpdir):
+def _descendants(pid):
+    """``pid`` and every process below it (from /proc; [] where it cannot
+    be read)."""
+    out, i = [pid], 0
+    while i < len(out):
+        try:
+            for t in os.listdir('/proc/%d/task' % out[i]):
+                with open('/proc/%d/task/%s/children' % (out[i], t)) as f:
+                    out += [int(x) for x in f.read().split()]
+        except OSError:
+            pass
+        i += 1
+    return out
+
+
+def _pss_kb(pid):
+    """Proportional set size of process ``pid`` in kB (shared pages split
+    among the processes sharing them), 0 where it cannot be read."""
+    try:
+        with open('/proc/%d/smaps_rollup' % pid) as f:
+            for line in f:
+                if line.startswith('Pss:'):
+                    return int(line.split()[1])
+    except (OSError, ValueError):
+        pass
+    return 0
+
+
+def run_process(cmd, timeout, tmpdir, tree=False):
     """Run ``cmd`` once as a fresh process under ``/usr/bin/time -f %M``.
 
     Returns ``{'wall': s, 'cpu': s, 'rss_mb': MB}`` (wall-clock time seen by
     this process, the child's user + system time from ``wait4`` and its
     peak RSS as ``/usr/bin/time`` reports it; without ``/usr/bin/time``,
-    ``ru_maxrss`` from ``wait4``, the same number), or ``{'error': ...}``."""
+    ``ru_maxrss`` from ``wait4``, the same number), or ``{'error': ...}``.
+    That peak is the largest single process's: a renderer that forks
+    workers uses more.  With ``tree`` the process and all its descendants
+    are sampled every few milliseconds (which costs CPU: not a timed run)
+    and ``'tree_mb'``, the largest sum of their proportional set sizes,
+    is added."""
     timef = os.path.join(tmpdir, 'time.txt')
     if os.path.exists(timef):
         os.unlink(timef)
@@ -352,10 +389,14 @@ def run_process(cmd, timeout, tmpdir):
         p = subprocess.Popen(full, stdout=subprocess.DEVNULL, stderr=err, stdin=subprocess.DEVNULL,
                              start_new_session=True, cwd=ROOT)
         deadline = t0 + timeout
+        tree_kb = 0
         while True:
             pid, status, ru = os.wait4(p.pid, os.WNOHANG)
             if pid:
                 break
+            if tree:
+                # (the time command itself excluded: it is not the renderer)
+                tree_kb = max(tree_kb, sum(_pss_kb(q) for q in _descendants(p.pid)[1:]))
             if time.perf_counter() > deadline:
                 try:
                     os.killpg(p.pid, signal.SIGKILL)
@@ -378,7 +419,10 @@ def run_process(cmd, timeout, tmpdir):
             rss_kb = int(f.read().split()[-1])
     except (OSError, ValueError, IndexError):
         pass
-    return {'wall': wall, 'cpu': ru.ru_utime + ru.ru_stime, 'rss_mb': rss_kb / 1024.0}
+    res = {'wall': wall, 'cpu': ru.ru_utime + ru.ru_stime, 'rss_mb': rss_kb / 1024.0}
+    if tree:
+        res['tree_mb'] = tree_kb / 1024.0
+    return res
 
 
 def run_processes(svg, width, renderers, args, tmpdir):
@@ -419,6 +463,17 @@ def run_processes(svg, width, renderers, args, tmpdir):
                 import shutil
                 shutil.copyfile(out, os.path.join(args.save, '%s_%s_%s.png' % (
                     os.path.splitext(os.path.basename(svg))[0], width or 'natural', r)))
+    # one more, untimed run each: the memory of the whole process tree
+    if os.path.isdir('/proc/self/task'):
+        for r in renderers:
+            c = cells[r]
+            if 'error' in c:
+                continue
+            out = os.path.join(tmpdir, 'out_%s.png' % r)
+            res = run_process(process_command(r, svg, width, out, args, utf8), args.timeout,
+                              tmpdir, tree=True)
+            if 'error' not in res:
+                c['tree_mb'] = res['tree_mb']
     return cells
 
 
@@ -446,10 +501,14 @@ def build_process_tables(results, files, widths, renderers, repeat, inproc=None,
         head.append('peak RSS MB (%s)' % ' / '.join(renderers))
         if 'raster' in renderers and 'resvg' in renderers:
             head.append('RSS raster / resvg')
+        head.append('all processes MB (%s)' % ' / '.join(renderers))
+        if 'raster' in renderers and 'resvg' in renderers:
+            head.append('all raster / resvg')
         if inproc is not None:
             head.append('in-process ms (%s)' % ' / '.join(renderers))
         lines += ['| ' + ' | '.join(head) + ' |', '|' + '|'.join(['---'] * len(head)) + '|']
         ratios, rss_ratios, over_t, over_m, errors, notes = [], [], [], [], [], []
+        tree_ratios, over_tree = [], []
         for svg in files:
             name = os.path.basename(svg)
             cells = {r: results.get((name, wkey, r), {'error': 'not run'}) for r in renderers}
@@ -490,6 +549,17 @@ def build_process_tables(results, files, widths, renderers, repeat, inproc=None,
                     row.append('%.2f' % q)
                 else:
                     row.append('-')
+            tm = {r: cells[r]['tree_mb'] for r in renderers if cells[r].get('tree_mb')}
+            row.append(' / '.join('%.0f' % tm[r] if r in tm else '-' for r in renderers))
+            if 'raster' in renderers and 'resvg' in renderers:
+                if 'raster' in tm and 'resvg' in tm:
+                    q = tm['raster'] / tm['resvg']
+                    tree_ratios.append(q)
+                    if q > 2.0:
+                        over_tree.append('%s (%.1fx)' % (name, q))
+                    row.append('%.2f' % q)
+                else:
+                    row.append('-')
             if inproc is not None:
                 vals = []
                 for r in renderers:
@@ -510,6 +580,13 @@ def build_process_tables(results, files, widths, renderers, repeat, inproc=None,
             lines.append('Peak RSS raster / resvg at %s: geometric mean %.2f, largest %.2f '
                          '(target at most 2); above 2x: %s.'
                          % (wkey, g, max(rss_ratios), ', '.join(over_m) or 'none'))
+        g = geomean(tree_ratios)
+        if g is not None:
+            summary[(wkey, 'tree_resvg')] = (g, len(tree_ratios), max(tree_ratios))
+            lines.append('All processes (peak of the summed proportional set sizes of a '
+                         'renderer and the processes it forks, one untimed run) raster / '
+                         'resvg at %s: geometric mean %.2f, largest %.2f; above 2x: %s.'
+                         % (wkey, g, max(tree_ratios), ', '.join(over_tree) or 'none'))
         for title, items in (('Errors', errors), ('Notes (*)', notes)):
             if items:
                 lines += ['', title + ':', ''] + ['- ' + e.replace('|', '/') for e in items]
@@ -882,7 +959,9 @@ def _report(args, argv, info, proc, inproc, files, widths, renderers, repeat):
                         'out.png [--width W]`; the peers through `python -c` importing them, '
                         'rendering and writing the PNG), the renderers interleaved, %d rounds; '
                         'medians of wall-clock and CPU time, peak RSS of each process '
-                        '(`/usr/bin/time -f %%M`).\n' % repeat)
+                        '(`/usr/bin/time -f %%M`: the largest single process); from one more, '
+                        'untimed run each, the peak of the summed proportional set sizes of a '
+                        'renderer and the processes it forks (all processes).\n' % repeat)
             if inproc:
                 f.write('\nIn process: medians of %d renders to PNG bytes (PNG encode '
                         'included), wall-clock and CPU time of the worker process; peak MB = '

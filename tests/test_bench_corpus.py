@@ -118,15 +118,18 @@ def test_end_to_end_peers(bc, tmp_path):
     assert '| ok.svg |' in md.read_text()
 
 
-def _pcell(times, rss, size=(10, 10)):
-    return dict(wall=list(times), cpu=[t / 2 for t in times], rss_mb=list(rss), size=list(size))
+def _pcell(times, rss, size=(10, 10), tree=None):
+    c = dict(wall=list(times), cpu=[t / 2 for t in times], rss_mb=list(rss), size=list(size))
+    if tree is not None:
+        c['tree_mb'] = tree
+    return c
 
 
 def test_process_tables_against_the_targets(bc):
     files = ['/c/a.svg', '/c/b.svg']
     res = {
-        ('a.svg', 2000, 'raster'): _pcell([3.0, 1.0, 2.0], [90, 100, 110]),
-        ('a.svg', 2000, 'resvg'): _pcell([1.0, 1.0, 1.0], [40, 40, 40]),
+        ('a.svg', 2000, 'raster'): _pcell([3.0, 1.0, 2.0], [90, 100, 110], tree=150),
+        ('a.svg', 2000, 'resvg'): _pcell([1.0, 1.0, 1.0], [40, 40, 40], tree=30),
         ('a.svg', 2000, 'cairosvg'): _pcell([4.0, 4.0, 4.0], [60, 60, 60]),
         ('b.svg', 2000, 'raster'): _pcell([1.0, 1.0, 1.0], [50, 50, 50]),
         ('b.svg', 2000, 'resvg'): {'error': 'exit status 1: boom'},
@@ -137,7 +140,9 @@ def test_process_tables_against_the_targets(bc):
     text = '\n'.join(lines)
     row_a = next(line for line in lines if line.startswith('| a.svg'))
     # medians 2000 / 1000 / 4000 ms; 2.0x the faster peer; RSS 100 / 40 = 2.5
-    assert '| 2000 | 1000 | 4000 | 2.00 | 100 / 40 / 60 | 2.50 | 500 / - / - |' in row_a
+    # all processes: 150 / 30 MB (5.0x), cairosvg's not sampled
+    assert ('| 2000 | 1000 | 4000 | 2.00 | 100 / 40 / 60 | 2.50 | 150 / 30 / - | 5.00 '
+            '| 500 / - / - |') in row_a
     row_b = next(line for line in lines if line.startswith('| b.svg'))
     assert '| error |' in row_b and '| 0.50 |' in row_b          # cairosvg is the faster peer
     assert 'b.svg / 2000 / resvg: exit status 1: boom' in text
@@ -146,6 +151,8 @@ def test_process_tables_against_the_targets(bc):
     assert 'a.svg (2.00x)' in text and 'b.svg (0.50x)' not in text
     g, n, worst = summary[(2000, 'rss_resvg')]
     assert n == 1 and math.isclose(worst, 2.5) and 'a.svg (2.5x)' in text
+    g, n, worst = summary[(2000, 'tree_resvg')]
+    assert n == 1 and math.isclose(worst, 5.0) and 'a.svg (5.0x)' in text
 
 
 def test_end_to_end_whole_processes(bc, tmp_path):
@@ -164,6 +171,8 @@ def test_end_to_end_whole_processes(bc, tmp_path):
         c = res[('ok.svg', 60, r)]
         assert tuple(c['size']) == (60, 30) and len(c['wall']) == 2
         assert all(m > 5 for m in c['rss_mb']) and all(t > 0 for t in c['cpu'])
+        # the untimed run of the process tree: about the process's own size
+        assert 2 < c['tree_mb'] < 3 * max(c['rss_mb'])
         assert tuple(res[('ok.svg', 'natural', r)]['size']) == (40, 20)
 
 
