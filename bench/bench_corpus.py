@@ -477,6 +477,20 @@ def run_processes(svg, width, renderers, args, tmpdir):
     return cells
 
 
+def _ratio_cell(row, num, den, limit, ratios, over, label, name):
+    """Append ``num / den`` to ``row`` ('-' when either is missing) and to
+    ``ratios``; a ratio above ``limit`` is named in ``over`` (``label`` %
+    (name, ratio))."""
+    if num is None or den is None:
+        row.append('-')
+        return
+    q = num / den
+    ratios.append(q)
+    if q > limit:
+        over.append(label % (name, q))
+    row.append('%.2f' % q)
+
+
 def build_process_tables(results, files, widths, renderers, repeat, inproc=None, metric='wall'):
     """Markdown lines of the whole-process tables (one per width) and a
     summary ``{(width, key): value}``.
@@ -531,35 +545,15 @@ def build_process_tables(results, files, widths, renderers, repeat, inproc=None,
                 row.append(_ms(t[r]) + mark)
             if 'raster' in renderers and peers:
                 pt = [t[p] for p in peers if p in t]
-                if 'raster' in t and pt:
-                    q = t['raster'] / min(pt)
-                    ratios.append(q)
-                    if q > 1.5:
-                        over_t.append('%s (%.2fx)' % (name, q))
-                    row.append('%.2f' % q)
-                else:
-                    row.append('-')
-            row.append(' / '.join('%.0f' % m[r] if r in m else '-' for r in renderers))
-            if 'raster' in renderers and 'resvg' in renderers:
-                if 'raster' in m and 'resvg' in m:
-                    q = m['raster'] / m['resvg']
-                    rss_ratios.append(q)
-                    if q > 2.0:
-                        over_m.append('%s (%.1fx)' % (name, q))
-                    row.append('%.2f' % q)
-                else:
-                    row.append('-')
+                _ratio_cell(row, t.get('raster'), min(pt) if pt else None, 1.5, ratios, over_t,
+                            '%s (%.2fx)', name)
             tm = {r: cells[r]['tree_mb'] for r in renderers if cells[r].get('tree_mb')}
-            row.append(' / '.join('%.0f' % tm[r] if r in tm else '-' for r in renderers))
-            if 'raster' in renderers and 'resvg' in renderers:
-                if 'raster' in tm and 'resvg' in tm:
-                    q = tm['raster'] / tm['resvg']
-                    tree_ratios.append(q)
-                    if q > 2.0:
-                        over_tree.append('%s (%.1fx)' % (name, q))
-                    row.append('%.2f' % q)
-                else:
-                    row.append('-')
+            for mem, qs, over in ((m, rss_ratios, over_m), (tm, tree_ratios, over_tree)):
+                # memory per renderer, raster / resvg (2x: the target)
+                row.append(' / '.join('%.0f' % mem[r] if r in mem else '-' for r in renderers))
+                if 'raster' in renderers and 'resvg' in renderers:
+                    _ratio_cell(row, mem.get('raster'), mem.get('resvg'), 2.0, qs, over,
+                                '%s (%.1fx)', name)
             if inproc is not None:
                 vals = []
                 for r in renderers:
