@@ -105,7 +105,7 @@ if TYPE_CHECKING:              # numpy.typing costs 1 ms of every start-up
 from ..errors import PathError, LimitError
 from .. import limits
 from .bezier import bernstein, bernstein_range, blossom_pieces, derivative
-from .path import CLOSE, LINE, MOVE, Path, segment_arrays
+from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path, segment_arrays
 from .rows import pairs, put_rows, take_rows
 from .transform import AffineLike, apply_each, as_affine
 
@@ -1065,11 +1065,13 @@ def flatten_joined(paths: Sequence[Path], transforms: Optional[Sequence[AffineLi
         return Polylines(np.zeros((0, 2)), [], []), np.zeros(n + 1, np.int64)
     verbs = np.concatenate([p.verbs for p in paths])
     points = np.concatenate([p.points for p in paths])
+    aff = [as_affine(t) for t in transforms]
+    ident = np.array([a.is_identity for a in aff], bool)
+    if _lines_only(verbs):
+        return _joined_lines(verbs, points, nverb, aff, ident)
     seg = segment_arrays(verbs, points)
     ctrl, cstart = seg.ctrl, seg.contour_start
     nc = np.bincount(np.repeat(np.arange(n), nverb)[verbs == MOVE], minlength=n)
-    aff = [as_affine(t) for t in transforms]
-    ident = np.array([a.is_identity for a in aff], bool)
     if not ident.all():
         # the arithmetic of Affine.apply, per path (identities untouched)
         M = np.array([tuple(a) for a in aff], np.float64)          # (n, 6)
@@ -1091,6 +1093,57 @@ def flatten_joined(paths: Sequence[Path], transforms: Optional[Sequence[AffineLi
                            minlength=n).astype(np.int64)
     first = np.concatenate([[0], np.cumsum(per_path)])
     return Polylines(out, starts, seg.contour_closed[keep_c]), first
+
+
+def _lines_only(verbs):
+    """True when ``verbs`` (concatenated paths) hold no curve and every
+    close is followed by a move (or ends them): each contour's polyline is
+    then its own points."""
+    if np.any((verbs == QUAD) | (verbs == CUBIC)):
+        return False
+    cl = np.flatnonzero(verbs[:-1] == CLOSE)
+    return bool(np.all(verbs[cl + 1] == MOVE))
+
+
+def _joined_lines(verbs, points, nverb, aff, ident):
+    """:func:`flatten_joined` of paths of lines only (see :func:`_lines_only`):
+    the points themselves, transformed with the arithmetic of the general
+    case, in contours that have a segment or are closed; the same
+    polylines as the general case without building segments.  Straddling
+    moves no vertex where two lines meet (their shift is zero; the
+    general case adds that zero, which can turn a coordinate of -0.0 into
+    0.0: the only difference)."""
+    n = len(nverb)
+    mv = verbs == MOVE
+    contour = np.cumsum(mv) - 1
+    C = int(contour[-1]) + 1
+    line = verbs == LINE
+    nline = np.bincount(contour[line], minlength=C)
+    closed = np.zeros(C, bool)
+    closed[contour[verbs == CLOSE]] = True
+    c_path = np.repeat(np.arange(n), nverb)[mv]                    # path of each contour
+    pts = points
+    if not ident.all():
+        M = np.array([tuple(a) for a in aff], np.float64)
+        owner = np.repeat(c_path, nline + 1)                       # path of each point
+        pts = points.copy()
+        move = np.flatnonzero(~ident[owner])
+        with np.errstate(over='ignore', invalid='ignore'):       # checked below
+            pts[move] = apply_each(M[owner[move]], points[move])
+        if not np.all(np.isfinite(pts)):
+            raise PathError('transformed path has non-finite coordinates')
+    if len(pts):
+        limits.check_coord(float(np.abs(pts).max()))
+    keep_c = (nline > 0) | closed
+    counts = nline + 1
+    if not keep_c.all():
+        pts = take_rows(np.ascontiguousarray(pts), np.repeat(keep_c, counts))
+        counts = counts[keep_c]
+    limits.check_points(int(counts.sum()), 'flattening')
+    # (pts is new: the concatenation, its transform or its kept rows)
+    per_path = np.bincount(c_path, weights=keep_c, minlength=n).astype(np.int64)
+    first = np.concatenate([[0], np.cumsum(per_path)])
+    return Polylines(pts, np.cumsum(counts) - counts, closed[keep_c]), first
 
 
 def flatten_many(paths: Sequence[Path], transforms: Optional[Sequence[AffineLike]] = None,

@@ -119,3 +119,55 @@ def test_joined_ranges_hold_each_paths_polylines(seed):
             assert np.allclose(pts, want.points, rtol=0, atol=1e-9)
             assert np.array_equal(pl.closed[k0:k1], want.closed)
             assert np.array_equal(pl.starts[k0:k1] - pl.starts[k0], want.starts)
+
+
+def _line_paths(rng, n):
+    out = []
+    for _ in range(n):
+        d = []
+        for _ in range(int(rng.integers(0, 4))):
+            k = int(rng.integers(0, 6))
+            pts = rng.normal(0, 30, (k + 1, 2)).round(int(rng.integers(0, 3)))
+            d.append('M%.17g %.17g' % tuple(pts[0])
+                     + ''.join(' L%.17g %.17g' % tuple(p) for p in pts[1:]))
+            if rng.random() < 0.5:
+                d.append('Z')
+        out.append(parse_path(' '.join(d)))
+    return out
+
+
+@pytest.mark.parametrize('straddle', [False, True])
+@pytest.mark.parametrize('seed', range(12))
+def test_joined_lines_equal_the_general_flattening(seed, straddle, monkeypatch):
+    # paths of lines only take a short way (their points are the polylines):
+    # the same polylines, bit for bit, as through the segment arrays
+    from raster.geometry import flattening
+    from raster.geometry.flattening import flatten_joined
+    rng = np.random.default_rng(seed)
+    paths = _line_paths(rng, int(rng.integers(1, 12)))
+    ts = [None if rng.random() < 0.3 else Affine(*rng.normal(0, 2, 6)) for _ in paths]
+    called = []
+    fast = flattening._joined_lines
+
+    def seen(*a):
+        called.append(1)
+        return fast(*a)
+    monkeypatch.setattr(flattening, '_joined_lines', seen)
+    got, first = flatten_joined(paths, ts, 0.1, straddle)
+    assert called or sum(len(p.verbs) for p in paths) == 0
+    monkeypatch.setattr(flattening, '_lines_only', lambda verbs: False)
+    want, wfirst = flatten_joined(paths, ts, 0.1, straddle)
+    if straddle:         # (straddling adds a zero shift: 0.0 for -0.0 at most)
+        assert np.array_equal(got.points, want.points)
+    else:
+        assert got.points.tobytes() == want.points.tobytes()
+    assert got.starts.tolist() == want.starts.tolist()
+    assert got.closed.tolist() == want.closed.tolist()
+    assert first.tolist() == wfirst.tolist()
+    for i, p in enumerate(paths):                      # and each path on its own
+        one = flatten(p, 0.1, transform=ts[i], straddle=straddle)
+        sl = got.points[got.starts[first[i]]:] if first[i] < len(got.starts) else got.points[:0]
+        assert len(one.points) == (0 if first[i] == first[i + 1] else
+                                   (got.starts[first[i + 1]] if first[i + 1] < len(got.starts)
+                                    else len(got.points)) - got.starts[first[i]])
+        assert np.array_equal(sl[:len(one.points)], one.points)
