@@ -375,9 +375,11 @@ def _forked_strips(job, spans):
     """The compressed strips of ``spans`` in order (an iterator): the first
     drawn by this process, each other at the same time by a forked copy of
     it, which sends its strip back through a pipe (or its exception, raised
-    here).  Copies still running when the iterator is left are killed."""
+    here; a copy that dies without either is a RasterError).  Copies still
+    running when the iterator is left are killed."""
     import pickle
     import signal
+    from raster.errors import RasterError
     kids = []
     try:
         for span in spans[1:]:
@@ -392,29 +394,39 @@ def _forked_strips(job, spans):
                         code = 0
                     except BaseException as e:              # noqa: B036 (sent back)
                         try:
-                            data = b'!' + pickle.dumps(e)
+                            data = b'!' + pickle.dumps((str(e), e), -1)
                         except Exception:
-                            data = b'!' + pickle.dumps(RuntimeError(str(e)))
+                            data = b'!' + pickle.dumps((str(e), None), -1)
                     with os.fdopen(w, 'wb') as f:
                         f.write(data)
                 finally:
                     os._exit(code)
             os.close(w)
-            kids.append([pid, r])
+            kids.append([pid, r, span])
         yield _compress_strip(job, spans[0])
         for kid in kids:
             with os.fdopen(kid[1], 'rb') as f:
                 kid[1] = None
                 data = f.read()
-            os.waitpid(kid[0], 0)
+            _, status = os.waitpid(kid[0], 0)
             kid[0] = None
-            if data[:1] != b'+':
-                if data[:1] == b'!':
-                    raise pickle.loads(data[1:])
-                raise RuntimeError('a strip worker ended without its strip')
-            yield pickle.loads(data[1:])
+            if data[:1] == b'+':
+                yield pickle.loads(data[1:])
+                continue
+            if data[:1] == b'!':
+                try:
+                    text, exc = pickle.loads(data[1:])
+                except Exception:
+                    text, exc = 'an error the process could not send back', None
+                if isinstance(exc, BaseException):
+                    raise exc
+                raise RasterError('rows %d-%d: %s' % (kid[2][0], kid[2][1], text))
+            how = ('killed by signal %d' % os.WTERMSIG(status) if os.WIFSIGNALED(status)
+                   else 'exit status %d' % os.waitstatus_to_exitcode(status))
+            raise RasterError('the process drawing rows %d-%d ended without them (%s)'
+                              % (kid[2][0], kid[2][1], how))
     finally:
-        for pid, r in kids:
+        for pid, r, _ in kids:
             if r is not None:
                 os.close(r)
             if pid is not None:

@@ -220,6 +220,29 @@ def test_an_error_in_a_forked_strip_is_one_line_and_leaves_no_file(tmp_path, cap
         os.waitpid(-1, os.WNOHANG)
 
 
+@needs_fork
+def test_a_forked_strip_that_dies_is_one_line_and_leaves_no_file(tmp_path, capsys,
+                                                                  monkeypatch):
+    import signal
+    src = write(tmp_path, 'big.svg', doc(300, 200, 60, 'orange'))
+    monkeypatch.setattr(rasterize, 'PARALLEL_PIXELS', 10_000)
+    parent = os.getpid()
+    real = rasterize._compress_strip
+
+    def dies(job, span):
+        if os.getpid() != parent:
+            os.kill(os.getpid(), signal.SIGKILL)
+        return real(job, span)
+    monkeypatch.setattr(rasterize, '_compress_strip', dies)
+    out = tmp_path / 'par.png'
+    assert rasterize.main([src, str(out), '--width', '600', '--jobs', '2']) == 1
+    err = capsys.readouterr().err
+    assert one_error_line(err, 'rasterize') and 'killed by signal %d' % signal.SIGKILL in err
+    assert os.listdir(tmp_path) == ['big.svg']
+    with pytest.raises(ChildProcessError):
+        os.waitpid(-1, os.WNOHANG)
+
+
 # -- map tiles ------------------------------------------------------------------------------
 
 def test_xyz_tiles(tmp_path, capsys):
