@@ -1073,18 +1073,10 @@ def flatten_joined(paths: Sequence[Path], transforms: Optional[Sequence[AffineLi
     ctrl, cstart = seg.ctrl, seg.contour_start
     nc = np.bincount(np.repeat(np.arange(n), nverb)[verbs == MOVE], minlength=n)
     if not ident.all():
-        # the arithmetic of Affine.apply, per path (identities untouched)
         M = np.array([tuple(a) for a in aff], np.float64)          # (n, 6)
         c_path = np.repeat(np.arange(n), nc)                       # path of each contour
-
-        def apply(pts, owner):
-            out = pts.copy()
-            move = np.flatnonzero(~ident[owner])
-            with np.errstate(over='ignore', invalid='ignore'):   # checked below
-                out[move] = apply_each(M[owner[move]], pts[move])
-            return out
-        ctrl = apply(ctrl, c_path[seg.contour])
-        cstart = apply(cstart, c_path)
+        ctrl = _transform_owned(ctrl, c_path[seg.contour], M, ident)
+        cstart = _transform_owned(cstart, c_path, M, ident)
         if not (np.all(np.isfinite(ctrl)) and np.all(np.isfinite(cstart))):
             raise PathError('transformed path has non-finite coordinates')
     out, starts, keep_c, _ = _assemble(ctrl, cstart, seg.degree, seg.contour,
@@ -1093,6 +1085,18 @@ def flatten_joined(paths: Sequence[Path], transforms: Optional[Sequence[AffineLi
                            minlength=n).astype(np.int64)
     first = np.concatenate([[0], np.cumsum(per_path)])
     return Polylines(out, starts, seg.contour_closed[keep_c]), first
+
+
+def _transform_owned(pts, owner, M, ident):
+    """``pts`` (any shape ``(k, ..., 2)``) with row ``i`` mapped by the
+    transform ``M[owner[i]]`` (rows ``a b c d e f``) with the arithmetic of
+    :meth:`Affine.apply`; rows of identity transforms are copied as they
+    are.  Overflow is left for the caller to check (non-finite values)."""
+    out = pts.copy()
+    move = np.flatnonzero(~ident[owner])
+    with np.errstate(over='ignore', invalid='ignore'):
+        out[move] = apply_each(M[owner[move]], pts[move])
+    return out
 
 
 def _lines_only(verbs):
@@ -1125,11 +1129,8 @@ def _joined_lines(verbs, points, nverb, aff, ident):
     pts = points
     if not ident.all():
         M = np.array([tuple(a) for a in aff], np.float64)
-        owner = np.repeat(c_path, nline + 1)                       # path of each point
-        pts = points.copy()
-        move = np.flatnonzero(~ident[owner])
-        with np.errstate(over='ignore', invalid='ignore'):       # checked below
-            pts[move] = apply_each(M[owner[move]], points[move])
+        # (each point owned by its contour's path)
+        pts = _transform_owned(points, np.repeat(c_path, nline + 1), M, ident)
         if not np.all(np.isfinite(pts)):
             raise PathError('transformed path has non-finite coordinates')
     if len(pts):

@@ -205,11 +205,13 @@ def parse_path(d: str, tolerance: float = 0.01, strict: bool = True) -> Path:
     if not isinstance(d, str):
         raise PathError('path data must be a string, got %s' % type(d).__name__)
     d2 = _mark(d)
-    fast = _lex_fast(d2) if FAST_LEX_CHARS <= len(d2) <= _LEX_CHUNK else None
+    # (long data in chunks; short data by either lexer, as floats)
+    fast = None
     if len(d2) > _LEX_CHUNK:
-        kb, vals = _lex_marked(d2)
-        vals = vals.tolist()
-    elif fast is not None:
+        fast = _lex_marked(d2)
+    elif len(d2) >= FAST_LEX_CHARS:
+        fast = _lex_fast(d2)
+    if fast is not None:
         kb, vals = fast[0], fast[1].tolist()
     else:
         nums, kb = _split(d2)
@@ -367,14 +369,13 @@ def _lex_marked(d):
     pos, n = 0, len(d)
     while pos <= n:
         m = _CUT.search(d, pos + _LEX_CHUNK) if n - pos > _LEX_CHUNK else None
+        sep = b''
         if m is None:
-            end = nxt = n
-            sep = b''
-        else:
-            end = m.start()
-            bar = d[end] == '|'
-            sep = b'|' if bar else b''
-            end, nxt = (end, end + 1) if bar else (end + 1, end + 1)
+            end = n
+        elif d[m.start()] == '|':                   # dropped: the kinds join by it
+            end, sep = m.start(), b'|'
+        else:                                       # a space or comma: kept
+            end = m.start() + 1
         part = d[pos:end] if pos or end < n else d
         r = _lex_fast(part) if len(part) >= FAST_LEX_CHARS else None
         if r is None:
@@ -383,9 +384,9 @@ def _lex_marked(d):
         kinds.append(r[0])
         kinds.append(sep)
         vals.append(r[1])
-        if nxt >= n and m is None:
+        if m is None:
             break
-        pos = nxt
+        pos = m.start() + 1
     if len(vals) == 1:
         return kinds[0], vals[0]
     return b''.join(kinds), np.concatenate(vals)
