@@ -353,7 +353,10 @@ def _forget_store():
     _STORE = None
 
 
-def _compress_strip(job, span):
+def _compress_strip(job, span, keep=True):
+    """The compressed PNG strip of rows ``span`` of ``job``'s image;
+    ``keep``: the process draws more strips after it, top to bottom, and
+    keeps the outlines reaching into them (the EdgeStore)."""
     from raster.pixels.png import compress_strip
     from raster.renderer import render_tree
     tree, kw, level = job
@@ -361,7 +364,8 @@ def _compress_strip(job, span):
     from raster.renderer import MAX_WINDOWED_PIXELS, output_geometry
     g = output_geometry(tree, kw['width'], kw['height'], kw['zoom'], kw['node_id'], kw['crop'],
                         max_pixels=MAX_WINDOWED_PIXELS)
-    canvas = render_tree(tree, dtype='uint8', window=(0, y0, g.width, y1), store=_store(), **kw)
+    canvas = render_tree(tree, dtype='uint8', window=(0, y0, g.width, y1),
+                         store=_store() if keep else None, **kw)
     rgba = canvas.to_rgba8()
     del canvas
     return compress_strip(rgba, level, first=y0 == 0)
@@ -390,7 +394,7 @@ def _forked_strips(job, spans):
                 try:
                     os.close(r)
                     try:
-                        data = b'+' + pickle.dumps(_compress_strip(job, span), -1)
+                        data = b'+' + pickle.dumps(_compress_strip(job, span, False), -1)
                         code = 0
                     except BaseException as e:              # noqa: B036 (sent back)
                         try:
@@ -403,7 +407,7 @@ def _forked_strips(job, spans):
                     os._exit(code)
             os.close(w)
             kids.append([pid, r, span])
-        yield _compress_strip(job, spans[0])
+        yield _compress_strip(job, spans[0], False)
         for kid in kids:
             with os.fdopen(kid[1], 'rb') as f:
                 kid[1] = None

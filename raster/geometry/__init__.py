@@ -22,6 +22,8 @@ module                 contents
 ``stroking``           stroke outlines (joins, caps, dashes),
                        :class:`StrokeStyle`, :class:`LineJoin`,
                        :class:`LineCap`
+``culling``            paths cut down to the segments that reach a box
+                       (windows, strips, tiles): same fill, same stroke
 ``hull``               convex hull (monotone chain)
 ``patches``            tensor-product Bezier and Coons patches: evaluation,
                        partial derivatives, subdivision, error bounds

@@ -34,7 +34,8 @@ from ..pixels.hairline import hairline_edges, hairline_outline
 from ..pixels.scan import Mask, coverage, coverage_batch
 from ..geometry.stroking import StrokeStyle, hairline_scale, stroke as stroke_outline, stroke_many
 from ..tree import Group, PathNode
-from .bounds import clip_rect, device_area, stroke_reach
+from ..geometry.culling import cull_fill, cull_stroke
+from .bounds import clip_rect, device_area, device_box, stroke_reach
 
 __all__ = ['Masks', 'EdgeStore', 'BATCH_VERBS', 'BATCH_AREA', 'STORE_EDGES']
 
@@ -212,7 +213,7 @@ class Masks:
             self._flush_geometry(key, size)
         if key in self._fill_ready:
             return self._fill_ready.pop(key)
-        edges = _onto(self.flat(n.path, t).edges(close_all=True), size)[0]
+        edges = _onto(self.flat(n, t, size).edges(close_all=True), size)[0]
         if len(edges) == 0:
             return None
         return coverage(edges, canvas.width, canvas.height, n.fill.rule, n.antialias)
@@ -246,7 +247,7 @@ class Masks:
                                 miterlimit=s.miterlimit, dash=s.dash, dash_offset=s.dash_offset)
             factor = hair
             if s.dash is None:
-                edges = hairline_edges(self.flat(n.path, t), s.cap, s.join, s.miterlimit)
+                edges = hairline_edges(self.flat(n, t, size), s.cap, s.join, s.miterlimit)
                 if edges is not None:
                     if not len(edges):
                         return None, factor
@@ -257,23 +258,60 @@ class Masks:
                 self._flush_strokes(key, size)
             if key in self._stroke_ready:
                 return self._stroke_ready.pop(key), factor
-        outline = stroke_outline(n.path, style, transform=t, tolerance=self.tol,
-                                 straddle=True)
+        outline = stroke_outline(self.cut_stroke(n, style, t, size), style, transform=t,
+                                 tolerance=self.tol, straddle=True)
         if len(outline.verbs) == 0:
             return None, factor
         edges = _onto(flatten(outline, self.tol).edges(close_all=True), size)[0]
         return coverage(edges, canvas.width, canvas.height, 'nonzero', n.antialias), factor
 
-    def flat(self, path, t):
-        """Polylines of ``path`` flattened under ``t`` (device pixels).  The
-        last result is kept: a filled and stroked hairline path drawn one
-        by one is flattened once."""
-        key = (id(path), t)
-        if self._flat_key == key and self._flat_path is path:
+    def flat(self, n, t, size):
+        """Polylines of PathNode ``n``'s path flattened under ``t`` (device
+        pixels), cut down to what reaches the canvas of ``size`` (see
+        :meth:`cut_fill`).  The last result is kept: a filled and stroked
+        hairline path drawn one by one is flattened once."""
+        key = (id(n.path), t, size)
+        if self._flat_key == key and self._flat_path is n.path:
             return self._flat
-        pl = flatten(path, self.tol, transform=t, straddle=True)
-        self._flat_key, self._flat_path, self._flat = key, path, pl
+        pl = flatten(self.cut_fill(n, t, size), self.tol, transform=t, straddle=True)
+        self._flat_key, self._flat_path, self._flat = key, n.path, pl
         return pl
+
+    # -- cutting paths to their canvas -------------------------------------------
+    def _box(self, size):
+        """The frame rectangle a canvas of ``size`` (w, h, ox, oy) draws;
+        for the output window whose outlines the store keeps, every row
+        from its top down (the windows after it lie right of it or below)."""
+        w, h, ox, oy = size
+        if self.store is not None and size == self._store_size:
+            return (-np.inf, float(oy), np.inf, np.inf)
+        return (float(ox), float(oy), float(ox + w), float(oy + h))
+
+    def cut_fill(self, n, t, size):
+        """PathNode ``n``'s path with the segments far from the canvas of
+        ``size`` replaced by lines (:func:`raster.geometry.culling.cull_fill`):
+        the same fill, and the same hairline, on the canvas."""
+        margin = 2.0 + self.tol
+        if n.stroke is not None:
+            margin += 0.5 * max(float(n.stroke.style.miterlimit), 1.5)
+        return self._cut(cull_fill, n.path, t, size, margin)
+
+    def cut_stroke(self, n, style, t, size):
+        """PathNode ``n``'s path without the segments its stroke of
+        ``style`` (undashed) cannot bring onto the canvas of ``size``
+        (:func:`raster.geometry.culling.cull_stroke`)."""
+        if style.dash is not None:
+            return n.path
+        reach = stroke_reach(style) * t.max_scale() + 2.0 + self.tol
+        return self._cut(cull_stroke, n.path, t, size, reach)
+
+    def _cut(self, cull, path, t, size, margin):
+        box = self._box(size)
+        x0, y0, x1, y1 = device_box(path, t)
+        if (x0 >= box[0] - margin and y0 >= box[1] - margin and x1 <= box[2] + margin
+                and y1 <= box[3] + margin):
+            return path
+        return cull(path, t, box, margin)
 
     # -- batches -----------------------------------------------------------------
     def _take(self, pending, key, size, verbs_max):
@@ -346,8 +384,8 @@ class Masks:
             self._scan_geometry([], [], [], [], [], [], kept, size)
             return
         try:
-            pl, first = flatten_joined([it[1].path for it in items], [it[2] for it in items],
-                                       self.tol, straddle=True)
+            pl, first = flatten_joined([self.cut_fill(it[1], it[2], size) for it in items],
+                                       [it[2] for it in items], self.tol, straddle=True)
         except RasterError:
             return          # drawn one by one (errors where they were)
         k = len(items)
@@ -465,7 +503,8 @@ class Masks:
         outlines = [None] * len(items)
         try:
             for style, js in by_style.items():
-                outs = stroke_many([items[j][1].path for j in js], style,
+                outs = stroke_many([self.cut_stroke(items[j][1], style, items[j][2], size)
+                                    for j in js], style,
                                    transforms=[items[j][2] for j in js], tolerance=self.tol,
                                    straddle=True)
                 for j, o in zip(js, outs):

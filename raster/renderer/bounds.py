@@ -13,7 +13,8 @@ import numpy as np
 from ..geometry.path import CLOSE, LINE, MOVE
 from ..tree import Group, ImageNode, PathNode
 
-__all__ = ['pixel_box', 'node_box', 'group_box', 'stroke_reach', 'device_area', 'clip_rect']
+__all__ = ['pixel_box', 'node_box', 'group_box', 'stroke_reach', 'device_box', 'device_area',
+           'clip_rect']
 
 
 def pixel_box(box, w, h, margin=1):
@@ -107,17 +108,24 @@ def group_box(g, ct):
     return box
 
 
+def device_box(path, t):
+    """(x0, y0, x1, y1): the box of ``path``'s control box under ``t`` (a
+    bound of what the path covers, before any stroke)."""
+    x0, y0, x1, y1 = path.control_box()
+    a, b, c, d = t.a, t.b, t.c, t.d
+    xs = (a * x0 + c * y0, a * x1 + c * y0, a * x0 + c * y1, a * x1 + c * y1)
+    ys = (b * x0 + d * y0, b * x1 + d * y0, b * x0 + d * y1, b * x1 + d * y1)
+    return min(xs) + t.e, min(ys) + t.f, max(xs) + t.e, max(ys) + t.f
+
+
 def device_area(path, t, size, reach=1.0, off=(0, 0)):
     """Pixels of the device box of ``path``'s control points under ``t``,
     grown by ``reach`` and clipped to the canvas ``size`` (w, h) lying at
     ``off`` (ox, oy) in the pixels ``t`` maps to: a bound of the mask
     area, for batch budgets."""
-    x0, y0, x1, y1 = path.control_box()
-    a, b, c, d, e, f = t.a, t.b, t.c, t.d, t.e - off[0], t.f - off[1]
-    xs = (a * x0 + c * y0, a * x1 + c * y0, a * x0 + c * y1, a * x1 + c * y1)
-    ys = (b * x0 + d * y0, b * x1 + d * y0, b * x0 + d * y1, b * x1 + d * y1)
-    w = min(max(xs) + e + reach, size[0]) - max(min(xs) + e - reach, 0.0)
-    h = min(max(ys) + f + reach, size[1]) - max(min(ys) + f - reach, 0.0)
+    x0, y0, x1, y1 = device_box(path, t)
+    w = min(x1 - off[0] + reach, size[0]) - max(x0 - off[0] - reach, 0.0)
+    h = min(y1 - off[1] + reach, size[1]) - max(y0 - off[1] - reach, 0.0)
     return max(w, 0.0) * max(h, 0.0)
 
 

@@ -184,25 +184,27 @@ def test_an_image_over_parallel_pixels_is_drawn_in_forked_strips(tmp_path, monke
     spans, pids = [], set()
     real = rasterize._compress_strip
 
-    def seen(job, span):
-        spans.append(span)
+    def seen(job, span, keep=True):
+        spans.append((span, keep))
         pids.add(os.getpid())
-        return real(job, span)
+        return real(job, span, keep)
     monkeypatch.setattr(rasterize, '_compress_strip', seen)
     out = tmp_path / 'par.png'
     assert rasterize.main([src, str(out), '--width', '600', '--jobs', '3']) == 0
     assert np.array_equal(png(out), whole)
-    # (a copy's calls are not seen here: only the first strip is)
-    assert len(spans) == 1 and spans[0][0] == 0 and pids == {os.getpid()}
+    # (a copy's calls are not seen here: only the first strip is; a
+    # process drawing one strip keeps no outlines for others)
+    assert len(spans) == 1 and spans[0][0][0] == 0 and pids == {os.getpid()}
+    assert spans[0][1] is False
     with pytest.raises(ChildProcessError):
         os.waitpid(-1, os.WNOHANG)                 # every copy was reaped
 
 
-def _raise_in_copy(job, span):
+def _raise_in_copy(job, span, keep):
     raise raster.LimitError('strip budget spent')
 
 
-def _die_in_copy(job, span):
+def _die_in_copy(job, span, keep):
     import signal
     os.kill(os.getpid(), signal.SIGKILL)
 
@@ -219,10 +221,10 @@ def test_a_failed_forked_strip_is_one_line_and_leaves_no_file(tmp_path, capsys, 
     parent = os.getpid()
     real = rasterize._compress_strip
 
-    def broken(job, span):
+    def broken(job, span, keep=True):
         if os.getpid() != parent:
-            failure(job, span)
-        return real(job, span)
+            failure(job, span, keep)
+        return real(job, span, keep)
     monkeypatch.setattr(rasterize, '_compress_strip', broken)
     out = tmp_path / 'par.png'
     assert rasterize.main([src, str(out), '--width', '600', '--jobs', '2']) == 1

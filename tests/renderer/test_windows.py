@@ -319,3 +319,67 @@ def test_an_edge_store_holds_at_most_its_edges():
             part = render_tree(tree, dtype='uint8', width=300, window=win, store=st).to_rgba8()
             assert np.array_equal(part, full[win[1]:win[3]])
     assert len(small) == 0 and small.hits == 0 and big.hits > 0
+
+
+def _long_paths_document(seed=0):
+    """A stroke of 600 quadratics wandering all over the image, a filled 500-gon with a
+    hairline and a dashed curve, each crossing the whole 240 x 200 image."""
+    rng = np.random.default_rng(seed)
+    # a random walk of small steps, folded back into the image
+    p = np.cumsum(rng.normal(0, 4, (1201, 2)), axis=0) + (120, 100)
+    p = 10 + np.abs((p - 10) % 440 - 220) * (1, 180 / 220)
+    d = 'M %.2f %.2f ' % tuple(p[0]) + ' '.join(
+        'Q %.2f %.2f %.2f %.2f' % (tuple(p[i]) + tuple(p[i + 1])) for i in range(1, 1201, 2))
+    a = np.linspace(0, 2 * np.pi, 500, endpoint=False)
+    r = 90 + 8 * np.sin(7 * a)
+    poly = ' '.join('%.2f,%.2f' % (120 + r[i] * np.cos(a[i]), 100 + r[i] * 0.9 * np.sin(a[i]))
+                    for i in range(500))
+    body = ('<polygon points="%s" fill="#8ac" stroke="#024" stroke-width="0.4"/>' % poly
+            + '<path d="%s" fill="none" stroke="#a40" stroke-width="3" stroke-linejoin="round"/>'
+            % d + '<path d="M 5 100 C 80 -60 160 260 235 100" fill="none" stroke="black" '
+            'stroke-width="4" stroke-dasharray="9 5" stroke-linecap="square"/>')
+    return ('<svg xmlns="http://www.w3.org/2000/svg" width="240" height="200">%s</svg>'
+            % body).encode()
+
+
+def test_a_window_outlines_only_the_segments_near_it(monkeypatch):
+    # a strip flattens and strokes the segments that can reach it (the
+    # others cut away: raster.geometry.culling), and draws the pixels of
+    # the whole render
+    from raster.renderer import batch
+    verbs = []
+    real_join, real_many = batch.flatten_joined, batch.stroke_many
+
+    def join(paths, transforms, *a, **k):
+        if transforms is not None:          # (not the stroke outlines)
+            verbs.append(sum(len(p.verbs) for p in paths))
+        return real_join(paths, transforms, *a, **k)
+
+    def many(paths, *a, **k):
+        verbs.append(sum(len(p.verbs) for p in paths))
+        return real_many(paths, *a, **k)
+    monkeypatch.setattr(batch, 'flatten_joined', join)
+    monkeypatch.setattr(batch, 'stroke_many', many)
+    tree = load_svg(_long_paths_document())
+    full = render_tree(tree, dtype='uint8').to_rgba8()
+    whole = sum(verbs)
+    for win in [(0, y, 240, y + 25) for y in range(0, 200, 25)] + [(60, 50, 120, 90)]:
+        del verbs[:]
+        part = render_tree(tree, dtype='uint8', window=win).to_rgba8()
+        assert np.array_equal(part, full[win[1]:win[3], win[0]:win[2]]), win
+        assert sum(verbs) < 0.6 * whole, (win, sum(verbs), whole)
+
+
+def test_strips_with_an_edge_store_cut_only_above_them():
+    # with a store, outlines are kept for the windows below: a strip's cut
+    # leaves everything from its top down, and the strips still equal the
+    # whole render
+    from raster.renderer import EdgeStore
+    tree = load_svg(_long_paths_document(1))
+    full = render_tree(tree, dtype='uint8').to_rgba8()
+    store = EdgeStore()
+    for y in range(0, 200, 40):
+        part = render_tree(tree, dtype='uint8', window=(0, y, 240, y + 40),
+                           store=store).to_rgba8()
+        assert np.array_equal(part, full[y:y + 40]), y
+    assert store.hits > 0
