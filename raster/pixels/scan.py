@@ -1718,7 +1718,7 @@ def coverage_many(edge_arrays, width, height, fill_rules='nonzero', antialias=Tr
 
 
 def coverage_batch(edges, counts, width, height, fill_rules='nonzero', antialias=True,
-                   clip=None, exact=True):
+                   clip=None, exact=True, overwrite=False):
     """:func:`coverage_many` with the shapes' edges in one array.
 
     Parameters
@@ -1729,6 +1729,10 @@ def coverage_batch(edges, counts, width, height, fill_rules='nonzero', antialias
         Number of edges of each shape (``sum(counts) == E``; 0 allowed).
     width, height, fill_rules, antialias, clip, exact
         As for :func:`coverage_many`.
+    overwrite : bool
+        The caller gives ``edges`` up: a float64 array is moved into the
+        shapes' boxes in place (its values are then undefined) instead of
+        being copied, which saves one copy of the edges at the peak.
 
     Returns
     -------
@@ -1757,13 +1761,16 @@ def coverage_batch(edges, counts, width, height, fill_rules='nonzero', antialias
     eo = _rules_evenodd(_per_shape(fill_rules, n, 'fill rule', str))
     aa = np.array(_per_shape(antialias, n, 'antialias flag', (bool, np.bool_, int)), bool)
     ex = np.array(_per_shape(exact, n, 'exact flag', (bool, np.bool_, int)), bool)
-    return _batch(e, counts, width, height, eo, aa, ex, _window(width, height, clip), 0)
+    return _batch(e, counts, width, height, eo, aa, ex, _window(width, height, clip), 0,
+                  overwrite and e is edges)
 
 
-def _batch(e, counts, width, height, eo, aa, ex, win, depth):
+def _batch(e, counts, width, height, eo, aa, ex, win, depth, overwrite=False):
     """:func:`coverage_batch` on checked arguments: edges ``e`` (E, 2, 2),
     ``counts`` (n,), evenodd / antialias / exact flags (n,) bool, the work
-    window ``win`` and the refinement level ``depth`` (see :func:`_exact`)."""
+    window ``win`` and the refinement level ``depth`` (see :func:`_exact`);
+    ``overwrite``: ``e`` may be moved in place (each shape's edges are read
+    once)."""
     n = len(counts)
     out = [None] * n
     if n == 0 or len(e) == 0:
@@ -1785,8 +1792,13 @@ def _batch(e, counts, width, height, eo, aa, ex, win, depth):
     for j in np.flatnonzero(alone).tolist():
         i = int(idx[j])
         x0, y0, w, h = int(X0[j]), int(Y0[j]), int(X1[j] - X0[j]), int(Y1[j] - Y0[j])
-        loc = e[first[i]:first[i] + counts[i]] - np.array([x0, y0], np.float64)
+        loc = e[first[i]:first[i] + counts[i]]
+        if overwrite:
+            loc -= np.array([x0, y0], np.float64)
+        else:
+            loc = loc - np.array([x0, y0], np.float64)
         data = _area_coverage(loc, w, h, bool(eo[i]), bool(ex[i]), depth)
+        del loc
         if data is not None and data.any():
             out[i] = Mask(data, x0, y0)
     sel = np.flatnonzero(live & ~alone)
@@ -1795,7 +1807,7 @@ def _batch(e, counts, width, height, eo, aa, ex, win, depth):
     idx, X0, Y0, sw, sh, est = idx[sel], X0[sel], Y0[sel], (X1 - X0)[sel], (Y1 - Y0)[sel], est[sel]
     ne = counts[idx]
     if int(ne.sum()) == len(e):          # every edge is in a live shape
-        loc = e.copy()
+        loc = e if overwrite else e.copy()
     else:
         take = np.zeros(n, bool)
         take[idx] = True

@@ -480,7 +480,9 @@ class Masks:
             return
         try:
             e, cnt = _onto(e, size, cnt)
-            masks = coverage_batch(e, cnt, size[0], size[1], rules, aas, exact=exact)
+            # (e is this batch's own: moved into the boxes in place)
+            masks = coverage_batch(e, cnt, size[0], size[1], rules, aas, exact=exact,
+                                   overwrite=True)
         except RasterError:
             return          # drawn one by one (errors where they were)
         for where, m in zip(keys, masks):
@@ -522,14 +524,14 @@ class Masks:
                 e, counts = np.zeros((0, 2, 2)), np.zeros(0, np.int64)
             # (the outlines and their polylines are in the edges now: freed
             # before the coverage, which is the peak of a long stroke)
-            outlines = pl = None
+            outlines = outs = o = pl = None
             if kept:
                 items = items + [it for it, _ in kept]
                 e = np.concatenate([e] + [k for _, k in kept])
                 counts = np.concatenate([counts, [len(k) for _, k in kept]]).astype(np.int64)
             e, counts = _onto(e, size, counts)
             masks = coverage_batch(e, counts, size[0], size[1], 'nonzero',
-                                   [bool(it[1].antialias) for it in items])
+                                   [bool(it[1].antialias) for it in items], overwrite=True)
         except RasterError:
             return          # stroked one by one (errors where they were)
         self._stroke_ready.update(zip([it[0] for it in items], masks))

@@ -349,3 +349,23 @@ def test_segmented_cumsum_is_bitwise_per_segment():
     want = np.concatenate([np.cumsum(v[s:s + c]) for s, c in zip(start, cnt)])
     assert got.tobytes() == want.tobytes()
     assert len(scan._segmented_cumsum(np.zeros(0), np.zeros(0, np.int64), 3)) == 0
+
+
+@pytest.mark.parametrize('chunk', [1 << 17, 40])
+def test_batch_overwriting_its_edges_gives_the_same_masks(monkeypatch, chunk):
+    # overwrite=True moves the caller's edges in place instead of copying
+    # them (shapes drawn alone, above _CHUNK_PIECES, and in sub-batches)
+    from raster.pixels import scan
+    from raster.pixels.scan import coverage_batch
+    monkeypatch.setattr(scan, '_CHUNK_PIECES', chunk)
+    rng = np.random.default_rng(11)
+    shapes = [s for s in random_shapes(rng, 60)                 # (all on the canvas)
+              if (s.min(axis=(0, 1)) < 99).all() and (s.max(axis=(0, 1)) > 1).all()]
+    e = np.concatenate(shapes)
+    counts = [len(s) for s in shapes]
+    want = coverage_batch(e, counts, 100, 100)
+    mine = e.copy()
+    got = coverage_batch(mine, counts, 100, 100, overwrite=True)
+    assert not np.array_equal(mine, e)          # moved, not copied
+    for a, b in zip(got, want):
+        assert same(a, b)
