@@ -25,7 +25,8 @@ flattened and stroked exactly as from the whole path:
   across its start stays one piece).  The stroker flattens each segment
   on its own, and the caps at the cuts lie at ends of dropped segments,
   beyond the margin: a stroke that reaches at most the margin from its
-  path draws the same inside the window.  Dashes follow the arc length
+  path draws the same inside the window.  An open contour that ends
+  where it started is kept whole (the stroker may seal it into a ring).  Dashes follow the arc length
   from a contour's start, so a dashed stroke must be culled after
   dashing, not before.
 
@@ -274,6 +275,11 @@ def cull_stroke(path: Path, transform: AffineLike, box: Box, reach: float = 0.0)
                    np.maximum(a[:, 0], b[:, 0]), np.maximum(a[:, 1], b[:, 1]))
     boxes = tuple(np.concatenate([a, b]) for a, b in zip(seg_boxes, close_boxes))
     drop = _zones(boxes, box, reach) > 0
+    # an open contour ending where it started may be stroked as a ring
+    # (undashed butt caps: the stroker seals it): it stays whole
+    sealed = ~closed & (nseg > 0)
+    sealed[sealed] = np.all(path.points[last_pt[sealed]] == path.points[move_pt[sealed]], axis=1)
+    drop &= ~sealed[e_c]
     if not drop.any():
         return path
     size = np.bincount(e_c, minlength=nc)

@@ -179,3 +179,17 @@ def test_a_segment_is_kept_by_its_control_points(verb):
     kept = verb != LINE
     assert (cull_stroke(p, None, box, reach=1) is p) == kept
     assert (len(cull_stroke(p, None, box, reach=1).verbs) == 0) == (not kept)
+
+
+def test_an_open_contour_ending_at_its_start_stays_whole():
+    # the stroker seals such a contour into a ring (no butt caps meeting at
+    # the seam, whose end chords meet at an angle): cut into two open
+    # pieces its stroke at the seam would differ, so it is never cut
+    p = parse_path('M 0 0 C 0 -12 14 -12 20 -4 L 100 -4 L 100 100 L -20 100 L -20 10 '
+                   'C -12 18 0 12 0 0')
+    box = (-10, -10, 10, 10)
+    assert cull_stroke(p, None, box, reach=1) is p
+    style = StrokeStyle(width=6.0, cap='butt')
+    two = parse_path('M 0 0 C 0 -12 14 -12 20 -4 M -20 10 C -12 18 0 12 0 0')
+    assert np.abs(stroke_window(two, style, None, box)
+                  - stroke_window(p, style, None, box)).max() > 0.005
