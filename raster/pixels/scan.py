@@ -72,14 +72,15 @@ _BATCH_PIECES = 1 << 16
 _SPARSE_RATIO = 8
 # Longest run checked for monotonicity along some direction.
 _STRETCH_MAX = 256
-# Cells holding at most this many runs and pieces get the boundary walk
-# (see _walk); busier cells are recomputed.
+# Cells of several simple runs holding at most this many runs and pieces
+# get their coverage from their faces (see _faces); busier cells are
+# recomputed.
 _WALK_RUNS = 32
 _WALK_PIECES = 64
 # Most work items (sample crossings) per batch of recomputed cells.
 _CHUNK_WORK = 1 << 20
-# Most work (four per run plus one per pair of runs of a cell) per call of
-# the boundary walk (see _flag).
+# Most work (four per run plus one per pair of pieces of a cell) per call
+# of _faces (see _flag).
 _WALK_WORK = 1 << 16
 # Cells with more pieces than this are refined on a _REFINE x _REFINE grid
 # instead of being sampled at all critical heights (at most _MAX_DEPTH
@@ -301,16 +302,18 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
     cross itself cuts the pixel into two sides whose windings differ by
     one; a chain of at most two pieces, or monotone in x or in y, cannot
     cross itself (the two pieces at a closed contour's start vertex count
-    as one chain).  So every pixel holding two or more chains, or one chain
-    of three or more pieces monotone in neither axis, is recomputed by an
-    exact method (see :func:`_exact_cells`): the covered width of a
-    horizontal line through the pixel is linear in its height between the
-    piece end points and pairwise intersections, so the midpoint rule over
-    those heights is exact.  Only pixels holding more than ``_PAIR_LIMIT``
-    (32) pieces skip the pairwise intersections, and if they have many
-    distinct end point heights are sampled at :data:`SUBSCANLINES` evenly
-    spaced heights instead (close, not exact; it bounds the work per
-    pixel).
+    as one chain).  A pixel holding several such chains, each from its
+    side to its side, is cut into faces of constant winding: its coverage
+    is the sum of the faces' areas times the fill rule of their windings,
+    each area a shoelace sum over the pixel's boundary and the chains'
+    pieces between their crossing points (see :func:`_faces`).  The other
+    pixels (a chain crossing itself or ending inside, touching chains,
+    more than 32 chains or 64 pieces) are recomputed by the midpoint rule:
+    the covered width of a horizontal line through the pixel is linear in
+    its height between the piece end points and pairwise intersections
+    (see :func:`_exact`); pixels of more than 12 distinct pieces are
+    refined on a 4 x 4 grid, at most 5 levels deep (beyond that the
+    running sum stands: a bound on the work per pixel).
 
     >>> tri = np.array([[[0, 0], [4, 0]], [[4, 0], [0, 4]], [[0, 4], [0, 0]]], float)
     >>> float(coverage(tri, 8, 8).data.sum())
@@ -551,14 +554,15 @@ def _ranges(starts, lengths):
 # previous one ends.  A *simple* run does not cross itself: at most two
 # pieces, or its directions fit in an open half-plane (it is monotone along
 # some direction).  One simple run cuts the cell into two sides whose
-# windings differ by one.  Several simple runs that do not meet cut the
-# cell into faces that all reach the cell's boundary, so the windings met
-# walking once around the boundary are all the windings in the cell: the
-# *boundary walk* decides those cells (see _walk).  Every other cell is
-# flagged.
+# windings differ by one, so a cell of one simple run needs nothing more.
+# Simple runs from side to side cut a cell into faces of constant winding
+# whose areas are sums over their boundaries: _faces gets the coverage of
+# those cells directly (in closed form when the windings' bound already
+# makes the fill rule linear).  Every other cell is flagged.
 
 def _flag(xa, ya, xb, yb, col, row, cell, brk, left_of, evenodd, everything=None):
-    """Cells whose coverage needs the exact recompute.
+    """Cells whose coverage needs the exact recompute, and the coverage of
+    the cells of several runs that :func:`_faces` gives directly.
 
     Parameters
     ----------
@@ -590,11 +594,15 @@ def _flag(xa, ya, xb, yb, col, row, cell, brk, left_of, evenodd, everything=None
         The pieces of the flagged cells, cell after cell.
     counts : (F,) int64 ndarray
         Pieces per flagged cell.
+    direct : ((D,) int64 ndarray, (D,) float64 ndarray)
+        Cell keys and their coverage (fill rule applied), for cells
+        neither flagged nor left to the running sum.
     """
     n = len(cell)
     empty = (np.zeros(0, np.int64),) * 3
+    nothing = empty + ((empty[0], np.zeros(0)),)
     if n == 0:
-        return empty
+        return nothing
     conn = np.zeros(n, bool)
     conn[1:] = (xa[1:] == xb[:-1]) & (ya[1:] == yb[:-1])
     if brk is not None:
@@ -640,7 +648,7 @@ def _flag(xa, ya, xb, yb, col, row, cell, brk, left_of, evenodd, everything=None
             ridx[inside], rlen[inside], rbits[inside], merged[inside], rcell[inside],
             hstart[inside], hlen[inside])
     if len(ridx) == 0:
-        return empty
+        return nothing
     simple = (rlen <= 2) | ((rbits & 3) != 3) | ((rbits & 12) != 12)
     hp = np.flatnonzero(~simple & (rlen <= _STRETCH_MAX))
     if len(hp):
@@ -656,26 +664,33 @@ def _flag(xa, ya, xb, yb, col, row, cell, brk, left_of, evenodd, everything=None
     gsimple = np.logical_and.reduceat(simple, gstart)
     every = _FLAG_EVERYTHING if everything is None else everything
     ok = (gcnt == 1) & gsimple & (not every)
-    walk = ((not every) & (gcnt >= 2) & gsimple & (gcnt <= _WALK_RUNS)
-            & (np.add.reduceat(rlen, gstart) <= _WALK_PIECES))
-    wi = np.flatnonzero(walk)
+    npc = np.add.reduceat(rlen, gstart)
+    faces = ((not every) & (gcnt >= 2) & gsimple & (gcnt <= _WALK_RUNS)
+             & (npc <= _WALK_PIECES))
+    wi = np.flatnonzero(faces)
+    d_cells, d_vals = [], []
     if len(wi):
         runs = (ridx, rlen, merged, hstart, hlen)
         eo = evenodd if np.ndim(evenodd) == 0 else evenodd[ridx[gstart[wi]]]
         eo = np.broadcast_to(np.asarray(eo, bool), (len(wi),))
         lw = left_of(cells[wi])
-        # in slices of cells of bounded work: the walk's arrays (per run,
-        # per pair of runs of a cell) stay within a few MB
-        g = gcnt[wi]
-        for sl in _slices(4 * g + g * (g - 1) // 2, _WALK_WORK):
+        # in slices of cells of bounded work: the arrays (per run, per pair
+        # of pieces of a cell) stay within a few MB
+        p = npc[wi]
+        for sl in _slices(4 * gcnt[wi] + p * (p - 1) // 2, _WALK_WORK):
             w = wi[sl]
-            ok[w] = _walk(xa, ya, xb, yb, col, row, dx, dy, runs, gstart[w], gcnt[w], lw[sl],
-                          eo[sl])
+            lin, good, val = _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart[w], gcnt[w],
+                                    lw[sl], eo[sl])
+            ok[w] = good
+            dv = np.flatnonzero(good & ~lin)
+            d_cells.append(cells[w[dv]])
+            d_vals.append(val[dv])
+    direct = (np.concatenate(d_cells), np.concatenate(d_vals)) if d_cells else (empty[0], np.zeros(0))
     fg = np.flatnonzero(~ok)
     rr = _ranges(gstart[fg], gcnt[fg])
     pieces, _ = _run_pieces(ridx[rr], rlen[rr], merged[rr], hstart[rr], hlen[rr])
     counts = np.add.reduceat(rlen[rr], np.cumsum(gcnt[fg]) - gcnt[fg]) if len(fg) else gcnt[:0]
-    return cells[fg], pieces, counts
+    return cells[fg], pieces, counts, direct
 
 
 def _run_pieces(ridx, rlen, merged, hstart, hlen):
@@ -742,36 +757,63 @@ def _perimeter(u, v, dx, dy):
     return t, d, ok
 
 
-def _walk(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd):
-    """Whether the running sum is exact in cells holding several simple
-    runs, each starting and ending on the cell's boundary.
+def _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd):
+    """Coverage of cells holding several simple runs, each from the cell's
+    boundary to its boundary, exactly and directly.
 
-    Each such run cuts the cell in two, so the winding at a point p is
-    ``w(p) = w0 + sum(sigma_r)`` over the runs r that p lies beyond (seen
-    from the top-left corner), with ``w0`` the winding at that corner and
-    ``sigma_r`` the change where a clockwise walk around the boundary from
-    the corner first meets r.  ``w0 = left + sum(change * (1 - v))`` over
-    the run ends on the left side (``left``: the winding integrated along
-    the left side).  The windings of a cell are decided in three steps,
-    each conservative:
+    The runs cut the cell into faces of constant winding, so the coverage
+    is ``sum(f(w_F) area(F))`` over the faces F, and by the shoelace
+    formula each face's area is a sum over its boundary: stretches of the
+    cell's boundary and stretches of pieces.  Gathered by what they lie
+    on:
 
-    1. the bound ``w0 + sum(sigma < 0) <= w <= w0 + sum(sigma > 0)``;
-    2. the windings met on the walk: every face reaches the boundary or
-       has a crossing point of two runs on its border, so with the windings
-       of the four faces around every crossing point they are all of them;
-       for straight runs crossings and sides follow from the order of the
-       end points along the boundary (geometry only for a crossing point
-       whose side of a third run both its runs cross);
-    3. runs of several pieces: crossing points and sides from segment
-       tests (touching or degenerate configurations are flagged).
+    * a stretch of the cell's boundary between consecutive run ends (in
+      the boundary parameter t of :func:`_perimeter`) borders one face,
+      whose winding is ``w0`` plus the changes of the ends before it; it
+      adds ``f(w) (G(t1) - G(t0))`` (:func:`_boundary_integral`);
+    * a stretch of a piece ``P + tau E`` borders two faces, whose windings
+      differ by one: ``w`` on the side of ``(E_y, -E_x)`` and ``w - 1`` on
+      the side of ``(-E_y, E_x)``; it adds ``(f(w - 1) - f(w)) cross(P, E)
+      / 2`` per unit of tau.  Along a run, ``w`` starts at the winding after the run's first
+      end on the boundary and changes only where the run crosses another
+      run: by ``sign(cross(E, E'))`` crossing a piece of direction E'.
 
-    The cell passes when the fill rule is linear on the windings found.
+    The crossings come from segment tests over the pairs of pieces of
+    different runs of a cell; touching or overlapping pieces (and pieces
+    along a side, run ends meeting) leave the cell to the general method.
 
-    Returns (G,) bool: True where the running sum is exact.
+    The winding at the cell's top-left corner, ``w0``, is ``left`` (the
+    winding integrated along the left side) corrected by the run ends on
+    the left side; a run's winding change ``sigma`` where the boundary walk
+    first meets it bounds the windings to ``w0 + sum(sigma < 0)`` ..
+    ``w0 + sum(sigma > 0)``: where the fill rule is linear on that range,
+    the running sum is exact and the crossings are not looked for.
+
+    Parameters
+    ----------
+    xa, ya, xb, yb, col, row, dx, dy : (P,) ndarray
+        All pieces (as for :func:`_flag`), their cells and directions.
+    runs : tuple of (R,) ndarray
+        ``(ridx, rlen, merged, hstart, hlen)``: the runs grouped by cell
+        (see :func:`_flag` and :func:`_run_pieces`).
+    gstart, gcnt : (G,) int64 ndarray
+        First run and number of runs of each cell.
+    left : (G,) float64 ndarray
+        The winding integrated over each cell's left side.
+    evenodd : bool or (G,) bool ndarray
+
+    Returns
+    -------
+    linear : (G,) bool ndarray
+        The running sum is exact (no value computed).
+    good : (G,) bool ndarray
+        The cell is decided: linear, or ``value`` holds its coverage.
+    value : (G,) float64 ndarray
+        Coverage where ``good & ~linear``.
     """
     ridx, rlen, merged, hstart, hlen = runs
     G = len(gstart)
-    rr = _ranges(gstart, gcnt)                      # runs, group after group
+    rr = _ranges(gstart, gcnt)
     gid = np.repeat(np.arange(G), gcnt)
     r_idx, r_len, r_m, r_hs, r_hl = ridx[rr], rlen[rr], merged[rr], hstart[rr], hlen[rr]
     f = r_idx
@@ -782,21 +824,13 @@ def _walk(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd):
     u1, v1 = xb[last] - cx, yb[last] - cy
     t0, d0, ok0 = _perimeter(u0, v0, dx[f], dy[f])
     t1, d1, ok1 = _perimeter(u1, v1, dx[last], dy[last])
+    # (an end outside the cell by rounding, or at the top-left corner's
+    # t = 0 or 4, is not on the boundary as the walk reads it)
+    ends_in = ((np.minimum(np.minimum(u0, v0), np.minimum(u1, v1)) >= 0)
+               & (np.maximum(np.maximum(u0, v0), np.maximum(u1, v1)) <= 1)
+               & (t0 > 0) & (t0 < 4) & (t1 > 0) & (t1 < 4))
     bad = np.zeros(G, bool)
-    bad[gid[~(ok0 & ok1)]] = True
-    multi = r_len > 1
-    mg = np.zeros(G, bool)
-    mg[gid[multi]] = True
-    if multi.any():
-        # pieces of longer runs lying on the left side (the running sum
-        # counts them inside the cell); a single piece there has no change
-        # at its ends and is rejected above
-        mr = np.flatnonzero(multi)
-        pidx, _ = _run_pieces(r_idx[mr], r_len[mr], r_m[mr], r_hs[mr], r_hl[mr])
-        pc = np.repeat(cx[mr], r_len[mr])
-        onleft = (xa[pidx] == pc) & (xb[pidx] == pc)
-        if onleft.any():
-            bad[np.repeat(gid[mr], r_len[mr])[onleft]] = True
+    bad[gid[~(ok0 & ok1 & ends_in)]] = True
     onl0 = (u0 == 0) & (v0 > 0) & (v0 < 1)
     onl1 = (u1 == 0) & (v1 > 0) & (v1 < 1)
     w0 = left + np.bincount(gid, weights=np.where(onl0, d0 * (1.0 - v0), 0.0)
@@ -807,15 +841,18 @@ def _walk(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd):
     sig = np.where(t0 < t1, d0, d1)
     b_lo = w0r + np.bincount(gid, weights=np.minimum(sig, 0.0), minlength=G)
     b_hi = w0r + np.bincount(gid, weights=np.maximum(sig, 0.0), minlength=G)
-    ok = ~bad & _linear_on(b_lo, b_hi, eo)
-    und = ~bad & ~ok
-    if not und.any():
-        return ok
-    # -- the walk: end points of the undecided cells in boundary order --------
-    ur = np.flatnonzero(und[gid])
-    eg = np.concatenate([gid[ur], gid[ur]])
-    et = np.concatenate([t0[ur], t1[ur]])
-    ed = np.concatenate([d0[ur], d1[ur]])
+    linear = ~bad & _linear_on(b_lo, b_hi, eo)
+    value = np.zeros(G)
+    todo = ~bad & ~linear
+    if not todo.any():
+        return linear, ~bad, value
+    kr = np.flatnonzero(todo[gid])                  # runs of the cells to compute
+    rg = gid[kr]
+    # -- the boundary: run ends in order, the windings between them ---------
+    nk = len(kr)
+    eg = np.concatenate([rg, rg])
+    et = np.concatenate([t0[kr], t1[kr]])
+    ed = np.concatenate([d0[kr], d1[kr]])
     o = np.argsort(eg * 8.0 + et, kind='stable')
     eg, et, ed = eg[o], et[o], ed[o]
     same = (eg[1:] == eg[:-1]) & (et[1:] == et[:-1])
@@ -823,41 +860,93 @@ def _walk(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd):
     cs = np.cumsum(ed)
     efirst = _group_starts(eg)
     elen = _run_lengths(efirst, len(eg))
-    pre = cs - np.repeat((cs - ed)[efirst], elen)
+    w_after = w0r[eg] + cs - np.repeat((cs - ed)[efirst], elen)     # after each end
+    t_next = np.empty_like(et)
+    t_next[:-1] = et[1:]
+    t_next[efirst[1:] - 1] = 4.0
+    t_next[-1] = 4.0
+    rule = eo[eg]
+
+    def fill(w, ev):
+        return np.where(ev, w.astype(np.int64) & 1, w != 0).astype(np.float64)
+    Gb = _boundary_integral
+    value += np.bincount(eg, weights=fill(w_after, rule) * (Gb(t_next) - Gb(et)), minlength=G)
     ug = eg[efirst]
-    c_lo = np.zeros(G)
-    c_hi = np.zeros(G)
-    c_lo[ug] = np.minimum(np.minimum.reduceat(pre, efirst), 0.0)
-    c_hi[ug] = np.maximum(np.maximum.reduceat(pre, efirst), 0.0)
-    c_lo += w0r
-    c_hi += w0r
-    # -- crossings between runs of the undecided cells ------------------------
-    lo_t, hi_t = np.minimum(t0, t1), np.maximum(t0, t1)
-    rstart = np.cumsum(gcnt) - gcnt
-    pos = np.arange(len(rr)) - np.repeat(rstart, gcnt)
-    npair = np.where(und[gid] & ~bad[gid], np.repeat(gcnt, gcnt) - 1 - pos, 0)
-    tot = int(npair.sum())
-    if tot:
-        i = np.repeat(np.arange(len(rr)), npair)
-        j = i + 1 + (np.arange(tot) - np.repeat(np.cumsum(npair) - npair, npair))
-        inter = (((lo_t[i] < lo_t[j]) & (lo_t[j] < hi_t[i]))
-                 != ((lo_t[i] < hi_t[j]) & (hi_t[j] < hi_t[i])))
-        pg = gid[i]
-        straight = ~mg[pg]
-        # straight runs: a crossing exactly where the end points interleave
-        # (in slices of bounded work: memory stays bounded)
-        xs = np.flatnonzero(inter & straight)
-        for sl in _slices(np.maximum(gcnt[pg[xs]] - 2, 1)):
-            x = xs[sl]
-            _straight_crossings(i[x], j[x], pg[x], gcnt, rstart, u0, v0, u1, v1, lo_t, hi_t,
-                                sig, w0r, bad, c_lo, c_hi)
-        # runs of several pieces: segment tests
-        ms = np.flatnonzero(mg[pg])
-        for sl in _slices(r_len[i[ms]] * r_len[j[ms]] + r_len[i[ms]] + r_len[j[ms]]):
-            x = ms[sl]
-            _piece_crossings(i[x], j[x], pg[x], gid, gcnt, rstart, r_idx, r_len, r_m, r_hs,
-                             r_hl, cx, cy, xa, ya, xb, yb, sig, w0r, bad, c_lo, c_hi)
-    return ok | (~bad & und & _linear_on(c_lo, c_hi, eo))
+    value[ug] += fill(w0r[ug], eo[ug]) * Gb(et[efirst])
+    pos = np.empty(len(o), np.int64)
+    pos[o] = np.arange(len(o))
+    w_start = w_after[pos[:nk]]                     # the winding after each run's start
+    # -- the pieces of those runs ------------------------------------------
+    pidx, poff = _run_pieces(r_idx[kr], r_len[kr], r_m[kr], r_hs[kr], r_hl[kr])
+    prun = np.repeat(np.arange(nk), r_len[kr])      # run (of kr) of each piece
+    pg = rg[prun]
+    ox, oy = cx[kr][prun], cy[kr][prun]
+    ax, ay = xa[pidx] - ox, ya[pidx] - oy
+    bx, by = xb[pidx] - ox, yb[pidx] - oy
+    # pieces along a side, or with an end outside the cell (by rounding):
+    # the faces' boundaries would not be what the run ends say
+    along = (((ax == 0) & (bx == 0)) | ((ax == 1) & (bx == 1))
+             | ((ay == 0) & (by == 0)) | ((ay == 1) & (by == 1))
+             | (np.minimum(np.minimum(ax, ay), np.minimum(bx, by)) < 0)
+             | (np.maximum(np.maximum(ax, ay), np.maximum(bx, by)) > 1))
+    bad[pg[along]] = True
+    pex, pey = bx - ax, by - ay
+    K = 0.5 * (ax * pey - ay * pex)
+    # -- crossings of pieces of different runs of a cell --------------------
+    npc = len(pidx)
+    cstart = _group_starts(pg)                      # pieces of a cell are consecutive
+    cend = cstart + _run_lengths(cstart, npc)
+    pend = np.repeat(cend, cend - cstart)           # each piece's cell end
+    # each piece against the later pieces of its cell
+    nb = pend - np.arange(npc) - 1
+    ia = np.repeat(np.arange(npc), nb)
+    ib = ia + 1 + (np.arange(int(nb.sum())) - np.repeat(np.cumsum(nb) - nb, nb))
+    other = prun[ia] != prun[ib]
+    ia, ib = ia[other], ib[other]
+    o1, o2, o3, o4 = _orientations(ax[ia], ay[ia], bx[ia], by[ia], ax[ib], ay[ib], bx[ib], by[ib])
+    e = _MEET_EPS
+    mi = np.flatnonzero(~_apart(o1, o2, o3, o4))
+    a1, a2, a3, a4 = o1[mi], o2[mi], o3[mi], o4[mi]
+    proper = ((np.minimum(np.abs(a1), np.abs(a2)) > e) & (np.minimum(np.abs(a3), np.abs(a4)) > e)
+              & (a1 * a2 < 0) & (a3 * a4 < 0))
+    bad[pg[ia[mi[~proper]]]] = True
+    xi = mi[proper]
+    qa, qb = ia[xi], ib[xi]
+    ta = a1[proper] / (a1[proper] - a2[proper])      # along qa
+    tb = a3[proper] / (a3[proper] - a4[proper])      # along qb
+    turn = np.sign(pex[qa] * pey[qb] - pey[qa] * pex[qb])
+    # events along the pieces: (piece, tau, change of w on the right)
+    ev_p = np.concatenate([qa, qb])
+    ev_t = np.concatenate([ta, tb])
+    ev_d = np.concatenate([turn, -turn])
+    del o1, o2, o3, o4, ia, ib, mi, a1, a2, a3, a4
+    eo_p = eo[pg]
+    # the windings at each piece's start: the run's start plus the changes
+    # on its earlier pieces
+    dsum = np.bincount(ev_p, weights=ev_d, minlength=npc)
+    cd = np.cumsum(dsum)
+    rfirst = poff
+    w_p = w_start[prun] + (cd - dsum) - np.repeat((cd - dsum)[rfirst], r_len[kr])
+
+    def h(w, ev):
+        return fill(w - 1.0, ev) - fill(w, ev)
+    contrib = K * h(w_p, eo_p)
+    if len(ev_p):
+        # by piece, then along it (tau < 1: the key keeps them apart)
+        so = np.argsort(ev_p + 0.5 * ev_t)
+        ev_p, ev_t, ev_d = ev_p[so], ev_t[so], ev_d[so]
+        c = np.cumsum(ev_d)
+        gs = _group_starts(ev_p)
+        before = w_p[ev_p] + (c - ev_d) - np.repeat((c - ev_d)[gs], _run_lengths(gs, len(ev_p)))
+        after = before + ev_d
+        ev_eo = eo_p[ev_p]
+        contrib += np.bincount(ev_p, weights=K[ev_p] * (1.0 - ev_t)
+                               * (h(after, ev_eo) - h(before, ev_eo)), minlength=npc)
+    value += np.bincount(pg, weights=contrib, minlength=G)
+    good = ~bad
+    np.clip(value, 0.0, 1.0, out=value)
+    value[value < _RESIDUE] = 0.0
+    return linear & good, good, value
 
 
 def _slices(work, limit=_CHUNK_WORK // 8):
@@ -875,173 +964,11 @@ def _slices(work, limit=_CHUNK_WORK // 8):
     return out
 
 
-def _straight_crossings(i, j, g, gcnt, rstart, u0, v0, u1, v1, lo_t, hi_t, sig, w0r, bad,
-                        c_lo, c_hi):
-    """Windings around the crossing points of straight runs i and j (cells
-    g) into the ranges c_lo, c_hi: ``w0`` plus ``sigma_r`` of every other
-    run r the point lies beyond, plus any of 0, sigma_i, sigma_j and both.
-    The point lies beyond r when run i (or j) lies beyond r entirely (both
-    its ends on r's far arc of the boundary, (lo_t, hi_t)), not beyond when
-    it lies entirely on the near side, else (both cross r) by the side of
-    the crossing point of r's line."""
-    n_o = gcnt[g] - 2
-    xo = np.repeat(np.arange(len(i)), n_o)
-    k = np.arange(int(n_o.sum())) - np.repeat(np.cumsum(n_o) - n_o, n_o)
-    ii, jj = i[xo], j[xo]
-    # the other runs of the cell, skipping i and j
-    r = rstart[g[xo]] + k
-    r += (r >= np.minimum(ii, jj)).astype(np.int64)
-    r += (r >= np.maximum(ii, jj)).astype(np.int64)
-    lr, hr = lo_t[r], hi_t[r]
-
-    def side(a):
-        a_in = (lr < lo_t[a]) & (lo_t[a] < hr)
-        b_in = (lr < hi_t[a]) & (hi_t[a] < hr)
-        return a_in & b_in, ~a_in & ~b_in
-    i_far, i_near = side(ii)
-    j_far, j_near = side(jj)
-    beyond = i_far | j_far
-    known = beyond | i_near | j_near
-    geo = np.flatnonzero(~known)
-    if len(geo):
-        # crossing point of i and j, then its side of r's chord against the
-        # corner's (0, 0)
-        a, b, c = ii[geo], jj[geo], r[geo]
-        px, py = u0[a], v0[a]
-        ux, uy = u1[a] - px, v1[a] - py
-        qx, qy = u0[b], v0[b]
-        wx, wy = u1[b] - qx, v1[b] - qy
-        den = ux * wy - uy * wx
-        with np.errstate(all='ignore'):
-            tt = ((qx - px) * wy - (qy - py) * wx) / den
-        X, Y = px + tt * ux, py + tt * uy
-        sx, sy = u0[c], v0[c]
-        ex, ey = u1[c] - sx, v1[c] - sy
-        o_x = ex * (Y - sy) - ey * (X - sx)
-        o_c = ex * (0.0 - sy) - ey * (0.0 - sx)
-        degen = ~np.isfinite(o_x) | (np.abs(o_x) <= 1e-12) | (np.abs(o_c) <= 1e-12)
-        bad[g[xo[geo[degen]]]] = True
-        beyond[geo] = (o_x * o_c) < 0
-    base = w0r[g] + np.bincount(xo, weights=np.where(beyond, sig[r], 0.0), minlength=len(i))
-    s1, s2 = sig[i], sig[j]
-    np.minimum.at(c_lo, g, base + np.minimum(np.minimum(0.0, s1), np.minimum(s2, s1 + s2)))
-    np.maximum.at(c_hi, g, base + np.maximum(np.maximum(0.0, s1), np.maximum(s2, s1 + s2)))
-
-
-def _piece_crossings(i, j, g, gid, gcnt, rstart, r_idx, r_len, r_m, r_hs, r_hl, cx, cy, xa, ya,
-                     xb, yb, sig, w0r, bad, c_lo, c_hi):
-    """:func:`_straight_crossings` for run pairs of cells holding a run of
-    several pieces: the crossing points are found by segment tests over
-    all piece pairs (touching or overlapping pieces flag the cell), and
-    the side of a crossing point of a run is the parity of the run's
-    crossings with the segment from the top-left corner to the point."""
-    # the runs of the cells involved, and their pieces
-    cells = _distinct(g)
-    runs = _ranges(rstart[cells], gcnt[cells])
-    # position of a run among ``runs`` (ascending: the cells are sorted and
-    # their runs consecutive), by search, so that a slice's memory follows
-    # its own runs rather than all the runs of the band
-    def local(r):
-        return np.searchsorted(runs, r)
-    pidx, poff = _run_pieces(r_idx[runs], r_len[runs], r_m[runs], r_hs[runs], r_hl[runs])
-    li, lj = r_len[i], r_len[j]
-    cnt = li * lj
-    q = np.arange(int(cnt.sum())) - np.repeat(np.cumsum(cnt) - cnt, cnt)
-    lj_r = np.repeat(lj, cnt)
-    pi = pidx[np.repeat(poff[local(i)], cnt) + q // lj_r]
-    pj = pidx[np.repeat(poff[local(j)], cnt) + q % lj_r]
-    ri = np.repeat(i, cnt)
-    ox, oy = cx[ri], cy[ri]
-    ax, ay = xa[pi] - ox, ya[pi] - oy
-    bx, by = xb[pi] - ox, yb[pi] - oy
-    px, py = xa[pj] - ox, ya[pj] - oy
-    qx, qy = xb[pj] - ox, yb[pj] - oy
-    # orientations of each segment's ends against the other segment
-    o1, o2, o3, o4 = _orientations(ax, ay, bx, by, px, py, qx, qy)
-    e = _MEET_EPS
-    mi = np.flatnonzero(~_apart(o1, o2, o3, o4))
-    if len(mi) == 0:
-        return
-    a1, a2, a3, a4 = o1[mi], o2[mi], o3[mi], o4[mi]
-    proper = ((np.minimum(np.abs(a1), np.abs(a2)) > e) & (np.minimum(np.abs(a3), np.abs(a4)) > e)
-              & (a1 * a2 < 0) & (a3 * a4 < 0))
-    bad[gid[ri[mi[~proper]]]] = True                # touching, overlapping: flagged
-    keep = proper & ~bad[gid[ri[mi]]]
-    xi = mi[keep]
-    if len(xi) == 0:
-        return
-    t = a1[keep] / (a1[keep] - a2[keep])
-    Xx = ax[xi] + t * (bx[xi] - ax[xi])
-    Xy = ay[xi] + t * (by[xi] - ay[xi])
-    x_ri, x_rj = ri[xi], np.repeat(j, cnt)[xi]
-    xg = gid[x_ri]
-    del o1, o2, o3, o4, ax, ay, bx, by, px, py, qx, qy, pi, pj, ri, q, lj_r, mi, a1, a2, a3, a4
-    # every piece of the cell's other runs against the segment corner -> X,
-    # for slices of crossing points of bounded work (a crossing point's
-    # sides depend on its own tests only; a cell flagged bad by a later
-    # slice is left to the exact recompute whatever its ranges say)
-    gp0 = poff[local(rstart[xg])]                   # the cell's first run
-    n_t = np.bincount(gid[runs], weights=r_len[runs], minlength=len(gcnt)).astype(np.int64)[xg]
-    prun = runs[np.repeat(np.arange(len(runs)), r_len[runs])]
-    for sl in _slices(n_t):
-        _crossing_sides(Xx[sl], Xy[sl], x_ri[sl], x_rj[sl], xg[sl], gp0[sl], n_t[sl], prun, pidx,
-                        cx, cy, xa, ya, xb, yb, sig, w0r, bad, c_lo, c_hi)
-
-
-def _crossing_sides(Xx, Xy, x_ri, x_rj, xg, gp0, n_t, prun, pidx, cx, cy, xa, ya, xb, yb, sig,
-                    w0r, bad, c_lo, c_hi):
-    """The winding ranges of crossing points ``(Xx, Xy)`` (relative to the
-    top-left corner of their cells ``xg``) of runs ``x_ri`` and ``x_rj``
-    into ``c_lo``, ``c_hi``: the parity of each other run's crossings with
-    the segment from the corner to the point (``n_t`` pieces of the cell
-    listed from ``gp0`` in ``pidx``, their runs in ``prun``); degenerate
-    tests flag the cell in ``bad``."""
-    e = _MEET_EPS
-    xo = np.repeat(np.arange(len(Xx)), n_t)
-    slot = _ranges(gp0, n_t)
-    pr = prun[slot]
-    other = (pr != x_ri[xo]) & (pr != x_rj[xo])
-    xo, slot, pr = xo[other], slot[other], pr[other]
-    del other
-    pp = pidx[slot]
-    del slot
-    sx0, sy0 = xa[pp] - cx[pr], ya[pp] - cy[pr]
-    sx1, sy1 = xb[pp] - cx[pr], yb[pp] - cy[pr]
-    del pp
-    tx, ty = Xx[xo], Xy[xo]
-    o1 = tx * sy0 - ty * sx0
-    o2 = tx * sy1 - ty * sx1
-    ex_, ey_ = sx1 - sx0, sy1 - sy0
-    o3 = ex_ * (0.0 - sy0) - ey_ * (0.0 - sx0)
-    o4 = ex_ * (ty - sy0) - ey_ * (tx - sx0)
-    degen = ((np.abs(o1) <= e) | (np.abs(o2) <= e) | (np.abs(o3) <= e) | (np.abs(o4) <= e))
-    hit = (o1 * o2 < 0) & (o3 * o4 < 0) & ~degen
-    bad[xg[xo[degen]]] = True
-    # parity per (crossing point, run): the listed pieces come run by run
-    new = np.ones(len(xo), bool)
-    new[1:] = (xo[1:] != xo[:-1]) | (pr[1:] != pr[:-1])
-    st = np.flatnonzero(new)
-    base = w0r[xg].copy()
-    if len(st):
-        par = np.add.reduceat(hit.astype(np.int64), st) & 1
-        base += np.bincount(xo[st], weights=par * sig[pr[st]], minlength=len(Xx))
-    s1, s2 = sig[x_ri], sig[x_rj]
-    np.minimum.at(c_lo, xg, base + np.minimum(np.minimum(0.0, s1), np.minimum(s2, s1 + s2)))
-    np.maximum.at(c_hi, xg, base + np.maximum(np.maximum(0.0, s1), np.maximum(s2, s1 + s2)))
-
-
 def _linear_on(mn, mx, eo):
     """Whether the fill rule is linear on the integers mn..mx (evenodd:
     two adjacent values; nonzero: within [0, 1], [-1, 0], >= 1 or <= -1)."""
     return np.where(eo, mx - mn <= 1,
                     ((mn >= 0) & (mx <= 1)) | (mn >= 1) | ((mx <= 0) & (mn >= -1)) | (mx <= -1))
-
-
-def _segments_meet(ax, ay, bx, by, cx, cy, dx, dy):
-    """Whether segments ab and cd may intersect or touch (conservative:
-    True unless one segment lies strictly on one side of the other's line
-    by more than a rounding margin)."""
-    return ~_apart(*_orientations(ax, ay, bx, by, cx, cy, dx, dy))
 
 
 #: Rounding margin of the orientation tests of :func:`_apart`.
@@ -1123,6 +1050,7 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
     done = np.ones(F, bool)
     first = np.cumsum(k) - k
     ones = np.ones(len(ua))
+    big = np.flatnonzero(k > _EXACT_PIECES)
     small = k <= _EXACT_PIECES
     # (pieces, cells, piece arrays, first piece and count of each cell)
     groups = []
@@ -1131,7 +1059,6 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
     for kk in _distinct(kb[small]).tolist():
         c = np.flatnonzero(small & (kb == kk))
         groups.append((kk, c, (ua, va, ub, vb, ones), first[c], k[c]))
-    big = np.flatnonzero(~small)
     crowded = big
     if len(big):
         # equal pieces merged (opposite ones cancel): stacked copies of one
@@ -1171,6 +1098,14 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
     np.clip(out, 0.0, 1.0, out=out)
     out[out < _RESIDUE] = 0.0
     return out, done
+
+
+def _boundary_integral(t):
+    """``G(t)``: the integral of ``(u dv - v du) / 2`` along the cell's
+    boundary, walked as in :func:`_perimeter` from the top-left corner to
+    ``t`` (0 along the top, rising by 1/2 along the right side and along the
+    bottom, 0 along the left side; ``G(4) = 1``, the cell's area)."""
+    return np.clip(t - 1.0, 0.0, 2.0) * 0.5
 
 
 def _merge_pieces(g, p, m):
@@ -1519,7 +1454,8 @@ def _band(loc, w, h, evenodd, exact, depth):
     vrow = np.bincount(row[virt], weights=dy[virt], minlength=h) if virt.any() else None
     left_of = _left_lookup(touched, run, w, vrow)
     fcell = np.where(real, cell, -1)
-    flagged, fp, fc = _flag(xa, ya, xb, yb, col, row, fcell, None, left_of, evenodd)
+    flagged, fp, fc, (dc, dv) = _flag(xa, ya, xb, yb, col, row, fcell, None, left_of, evenodd)
+    data.reshape(-1)[dc] = dv
     if len(flagged):
         vals, done = _exact(xa, ya, xb, yb, col, row, fp, fc, left_of(flagged), evenodd, depth)
         data.reshape(-1)[flagged[done]] = vals[done]
@@ -1986,7 +1922,8 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out, depth=0):
     base = (cs - cv)[first][np.cumsum(first) - 1]
     run = cs - base
     # cells to recompute exactly, among the pieces of exact shapes only
-    flagged = np.zeros(0, np.int64)
+    flagged = dc = np.zeros(0, np.int64)
+    dv = np.zeros(0)
     if sex.any():
         virt = ~real
         vrow = (np.bincount(grow[virt], weights=dy[virt], minlength=int(sh.sum()))
@@ -1995,8 +1932,8 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out, depth=0):
         if sex.all():
             brk = np.zeros(len(sid), bool)
             brk[1:] = sid[1:] != sid[:-1]
-            flagged, fp, fc = _flag(xa, ya, xb, yb, col, row, np.where(real, cell, -1), brk,
-                                    left_of, seo[sid])
+            flagged, fp, fc, (dc, dv) = _flag(xa, ya, xb, yb, col, row, np.where(real, cell, -1),
+                                              brk, left_of, seo[sid])
         else:
             # only the pieces of exact shapes are looked at (hairlines are
             # not: their runs need no test)
@@ -2004,11 +1941,12 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out, depth=0):
             es = sid[ep]
             brk = np.zeros(len(ep), bool)
             brk[1:] = es[1:] != es[:-1]
-            flagged, fp, fc = _flag(xa[ep], ya[ep], xb[ep], yb[ep], col[ep], row[ep],
-                                    np.where(real[ep], cell[ep], -1), brk, left_of, seo[es])
+            flagged, fp, fc, (dc, dv) = _flag(xa[ep], ya[ep], xb[ep], yb[ep], col[ep], row[ep],
+                                              np.where(real[ep], cell[ep], -1), brk, left_of,
+                                              seo[es])
             fp = ep[fp]
     del real, cell, dy, grow
-    if len(T) == 0 and len(flagged) == 0:
+    if len(T) == 0 and len(flagged) == 0 and len(dc) == 0:
         return
     cellv = run - pv
     tw = sw[tsid]
@@ -2039,14 +1977,16 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out, depth=0):
         vals = _rule(vals, False)
     has = np.zeros(k, bool)
     has[tsid] = True
-    fsid = np.searchsorted(roff, flagged // W, side='right') - 1
+    # (cells recomputed exactly, then cells whose coverage _flag gave)
+    xsid = np.searchsorted(roff, np.concatenate([flagged, dc]) // W, side='right') - 1
+    fsid = xsid[:len(flagged)]
     tail = 0
-    if len(fsid) and not has[fsid].all():
+    if len(xsid) and not has[xsid].all():
         # shapes with flagged cells but no cover terms get zero images (as
         # _resolve_cells gives them): their sizes are added to the leading
         # zeros of the next shape with cover terms (or appended)
         only = np.zeros(k, bool)
-        only[fsid] = True
+        only[xsid] = True
         only &= ~has
         osz = np.where(only, sw * sh, 0)
         cum = np.cumsum(osz)
@@ -2067,9 +2007,11 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out, depth=0):
     size = np.where(has, sw * sh, 0)
     ooff = np.cumsum(size) - size
     # -- exact recompute of the flagged cells ---------------------------------
-    if len(flagged):
+    if len(flagged) or len(dc):
         v, done = _exact(xa, ya, xb, yb, col, row, fp, fc, left_of(flagged), seo[fsid], depth)
-        fl, fs, v = flagged[done], fsid[done], v[done].astype(np.float32)
+        fl = np.concatenate([flagged[done], dc])
+        fs = np.concatenate([fsid[done], xsid[len(flagged):]])
+        v = np.concatenate([v[done], dv]).astype(np.float32)
         fr = fl // W - roff[fs]
         pos = ooff[fs] + fr * sw[fs] + fl % W
         nnz += np.bincount(fs, weights=(v != 0).astype(np.float64) - (flat[pos] != 0),

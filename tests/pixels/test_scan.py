@@ -222,7 +222,7 @@ def test_recompute_is_needed_for_overlaps(monkeypatch):
     # by far more than the tolerance: this checks the test above can fail
     edges = CIRCLES
     none = np.zeros(0, np.int64)
-    monkeypatch.setattr(scan, '_flag', lambda *a, **k: (none, none, none))
+    monkeypatch.setattr(scan, '_flag', lambda *a, **k: (none, none, none, (none, np.zeros(0))))
     bad = full(edges, 40, 40)
     assert np.abs(bad - reference(edges, 40, 40, 'nonzero')).max() > 0.1
 
@@ -372,6 +372,7 @@ def test_crowded_cells_are_refined_exactly(monkeypatch, rule):
     real = scan._refine
     monkeypatch.setattr(scan, '_refine', lambda *a: calls.append(len(a[4])) or real(*a))
     monkeypatch.setattr(scan, '_EXACT_PIECES', 1)
+    monkeypatch.setattr(scan, '_WALK_RUNS', 1)      # no cell left to _faces
     b = full(CIRCLES, 40, 40, fill_rule=rule)
     t = full(STAR, 40, 40, fill_rule=rule)
     assert calls
@@ -560,6 +561,26 @@ def test_property_transpose_exact_with_crossings(polys, rule):
     a = full(e, 30, 30, fill_rule=rule)
     b = full(e[:, :, ::-1], 30, 30, fill_rule=rule)
     assert np.abs(a - b.T).max() < 2e-5
+
+
+@pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
+def test_run_starting_a_hair_outside_its_cell_is_recomputed(rule):
+    # a vertex at y = -5e-324 (the smallest denormal): the run starting
+    # there lies a hair above its cell, so the cell's boundary walk would
+    # miss its start (and take the windings' bound for linear); the cell
+    # must be recomputed.  Found by the transpose property above.
+    p1 = np.array([(0.0, 0.0), (-5e-324, 1.5), (1.0, 0.0)])
+    p2 = np.array([(0.5, 2.0), (1.0, 0.0), (0.0, 0.0)])
+    e = poly_edges(p1, p2)
+    a = full(e, 4, 4, fill_rule=rule)
+    b = full(e[:, :, ::-1], 4, 4, fill_rule=rule)
+    assert np.abs(a - b.T).max() < 1e-6
+    # the union of the two triangles in pixel (row 1, column 0): 1/12 + 1/4
+    # less their overlap (nonzero) or less twice it (evenodd)
+    y0 = 12 / 11
+    lap = (y0 - 11 * y0 ** 2 / 24) - (1 - 11 / 24)
+    want = 1 / 12 + 1 / 4 - (lap if rule == 'nonzero' else 2 * lap)
+    assert abs(float(a[1, 0]) - want) < 1e-6
 
 
 @settings(max_examples=100, deadline=None)

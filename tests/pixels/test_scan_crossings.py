@@ -141,14 +141,15 @@ def recorded_coverage(monkeypatch, e, rule, name, arg, patches):
 
 
 @pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
-def test_walk_in_slices_is_the_same(monkeypatch, rule):
-    # the boundary walk runs over slices of cells of bounded work: tiny
-    # slices (one cell each, nearly) give the same coverage bit for bit
+def test_faces_in_slices_are_the_same(monkeypatch, rule):
+    # the cells of several runs are resolved (scan._faces) over slices of
+    # cells of bounded work: tiny slices (one cell each, nearly) give the
+    # same coverage bit for bit
     rng = np.random.default_rng(11)
     polys = [walk(rng, 30, 24, 2.5) for _ in range(6)]
     e = edges_of(polys)
     whole = coverage(e, 24, 24, fill_rule=rule).full(24, 24)
-    sliced, cells = recorded_coverage(monkeypatch, e, rule, '_walk', 9, {'_WALK_WORK': 8})
+    sliced, cells = recorded_coverage(monkeypatch, e, rule, '_faces', 9, {'_WALK_WORK': 8})
     calls = [len(c) for c in cells]
     assert len(calls) > 10 and max(calls) < sum(calls)
     assert np.array_equal(sliced, whole)
@@ -157,22 +158,53 @@ def test_walk_in_slices_is_the_same(monkeypatch, rule):
 
 
 @pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
-def test_crossing_sides_work_is_sliced_and_slicing_changes_nothing(monkeypatch, rule):
-    """The side tests of crossing points in cells holding runs of several
-    pieces (scan._crossing_sides) run in slices whose summed work stays
-    within the slice budget (or one crossing point), and the coverage does
-    not depend on where the slices fall: tiny budgets give the same bits."""
+@pytest.mark.parametrize('seed', range(4))
+def test_faces_agree_with_the_midpoint_rule(monkeypatch, rule, seed):
+    """The coverage of cells of several runs from their faces equals the
+    midpoint rule's over the critical heights (every such cell flagged
+    instead: _WALK_RUNS = 1), on self-crossing walks of long and of short
+    steps (runs of one piece and of many)."""
     from raster.pixels import scan
-    rng = np.random.default_rng(11)
-    polys = [walk(rng, 400, 24, 0.3) for _ in range(3)]
+    rng = np.random.default_rng(seed)
+    polys = [walk(rng, 60, 24, 3.0) for _ in range(3)] + [walk(rng, 300, 24, 0.4)]
     e = edges_of(polys)
-    ref = coverage(e, 24, 24, fill_rule=rule).full(24, 24)
-    slices = scan._slices
-    # (argument 6 of _crossing_sides: the work of each crossing point)
-    got, calls = recorded_coverage(monkeypatch, e, rule, '_crossing_sides', 6,
-                                   {'_slices': lambda work, limit=40: slices(work, limit)})
-    assert np.array_equal(got, ref)
-    assert len(calls) > 1
-    assert all(n.sum() <= 40 or len(n) == 1 for n in calls)
-    # and the same drawing is right against the exact-area reference
-    check(polys, 24, rule)
+    direct, cells = recorded_coverage(monkeypatch, e, rule, '_faces', 9, {})
+    assert sum(len(c) for c in cells) > 50
+    monkeypatch.setattr(scan, '_WALK_RUNS', 1)
+    midpoint = coverage(e, 24, 24, fill_rule=rule).full(24, 24)
+    assert np.abs(direct - midpoint).max() < 1e-6
+
+
+def test_faces_decide_the_crossings_of_a_stroke():
+    """In a self-overlapping stroke nearly every cell where the outline
+    crosses itself is resolved from its faces; few are left to the
+    general recompute (each a run ending inside the cell, touching
+    pieces, ...)."""
+    from raster.pixels import scan
+    rng = np.random.default_rng(4)
+    p = rng.uniform(2, 62, (3 * 30 + 1, 2))
+    d = 'M%.6f %.6f' % tuple(p[0]) + ''.join('C%.6f %.6f %.6f %.6f %.6f %.6f'
+                                             % tuple(p[1 + 3 * i:4 + 3 * i].ravel())
+                                             for i in range(30))
+    doc = ('<svg xmlns="%s" width="64" height="64"><path fill="none" stroke="#000" '
+           'stroke-width="1.5" d="%s"/></svg>' % (NS, d)).encode()
+    counts = {'faces': 0, 'exact': 0}
+    real_faces, real_exact = scan._faces, scan._exact
+
+    def faces(*a):
+        linear, good, value = real_faces(*a)
+        counts['faces'] += int((good & ~linear).sum())
+        return linear, good, value
+
+    def exact(*a):
+        counts['exact'] += len(a[7])
+        return real_exact(*a)
+    mp = pytest.MonkeyPatch()
+    try:
+        mp.setattr(scan, '_faces', faces)
+        mp.setattr(scan, '_exact', exact)
+        raster.render(doc)
+    finally:
+        mp.undo()
+    assert counts['faces'] > 200
+    assert counts['exact'] < 0.1 * counts['faces']

@@ -291,16 +291,18 @@ def test_exact_cells_of_batches_on_left_edge_crossings_and_holes(seed, evenodd, 
 
 def test_exact_cells_of_batches_are_used_at_column_zero(monkeypatch):
     """A bow tie crossing in column 0 with its left half off canvas: the
-    crossing cell is recomputed in the batch (its left side's winding from
-    the pieces left of the box) and the area is the analytic one."""
+    crossing cell's coverage comes from its faces in the batch (its left
+    side's winding from the pieces left of the box) and the area is the
+    analytic one."""
     import raster.pixels.scan as scan
     calls = []
-    real = scan._exact
+    real = scan._faces
 
-    def spy(xa, ya, xb, yb, col, row, pieces, counts, *a):
-        calls.append(col[pieces])
-        return real(xa, ya, xb, yb, col, row, pieces, counts, *a)
-    monkeypatch.setattr(scan, '_exact', spy)
+    def spy(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, *a):
+        linear, good, value = real(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, *a)
+        calls.append(col[runs[0][gstart]][good & ~linear])
+        return linear, good, value
+    monkeypatch.setattr(scan, '_faces', spy)
     # crossing at (0.5, 5.5); triangles of half-width 4, height 3 each side
     bow = polygon_edges([[-3.5, 2.5], [4.5, 8.5], [4.5, 2.5], [-3.5, 8.5]])
     got = coverage_many([bow, bow + [0, 10]], 8, 20)
