@@ -519,6 +519,19 @@ def _bands(loc, w, h):
     return list(zip(bounds[:-1], bounds[1:]))
 
 
+def _stable_order(key):
+    """``np.argsort(key, kind='stable')`` for a 1-D array of integers >= 0:
+    while ``key * len(key)`` stays exact in float64, the distinct float
+    keys ``key * len + position`` sort faster, in the same order."""
+    n = len(key)
+    if n == 0 or float(key.max()) * n >= 2.0 ** 52:
+        return np.argsort(key, kind='stable')
+    k = key.astype(np.float64)
+    k *= n
+    k += np.arange(n)
+    return np.argsort(k)
+
+
 def _group_starts(key):
     """Indices where a run of equal values of ``key`` (1-D, non-empty)
     starts."""
@@ -654,7 +667,7 @@ def _flag(xa, ya, xb, yb, col, row, cell, brk, left_of, evenodd, everything=None
     if len(hp):
         simple[hp] = _half_plane(dx, dy, ridx[hp], rlen[hp], merged[hp], hstart[hp], hlen[hp])
     # runs grouped by cell (in path order within a cell)
-    order = np.argsort(rcell, kind='stable')
+    order = _stable_order(rcell)
     ridx, rlen, merged, rcell, hstart, hlen, simple = (
         ridx[order], rlen[order], merged[order], rcell[order], hstart[order], hlen[order],
         simple[order])
@@ -701,7 +714,7 @@ def _run_pieces(ridx, rlen, merged, hstart, hlen):
     lens = np.concatenate([tail, hlen[merged]])
     # order: each run's tail part then, for merged runs, its head part
     slot = np.concatenate([2 * np.arange(len(ridx)), 2 * np.flatnonzero(merged) + 1])
-    o = np.argsort(slot, kind='stable')
+    o = np.argsort(slot)                 # (distinct keys)
     idx = _ranges(both[o], lens[o])
     return idx, np.cumsum(rlen) - rlen
 
@@ -853,7 +866,7 @@ def _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd):
     eg = np.concatenate([rg, rg])
     et = np.concatenate([t0[kr], t1[kr]])
     ed = np.concatenate([d0[kr], d1[kr]])
-    o = np.argsort(eg * 8.0 + et, kind='stable')
+    o = np.argsort(eg * 8.0 + et)       # (tied keys flag their cell below)
     eg, et, ed = eg[o], et[o], ed[o]
     same = (eg[1:] == eg[:-1]) & (et[1:] == et[:-1])
     bad[eg[1:][same]] = True
