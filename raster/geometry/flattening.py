@@ -666,14 +666,17 @@ def _flatten(ctrl, tolerance, straddle=False, smooth=None):
         return out.reshape(2 * S, D), np.full(S, 2, np.int64), None
     ac = np.concatenate(acc_cur)
     at = np.concatenate(acc_t)
+    del acc_cur, acc_t          # (each stage's arrays are freed once used)
     # every round appends runs already in (curve, t) order; a stable sort of
     # the complex key curve + i t (lexicographic) merges them quickly
     order = np.argsort(ac.astype(np.float64) + 1j * at, kind='stable')
+    del at
     ac = ac[order]
     # (piece ends and shifts are kept as coordinate rows, (D, pieces) and
     # (3, pieces): gathered a row at a time, which is much faster than
     # fancy indexing of (pieces, D) arrays; planar points move as complex128)
     apT = np.concatenate(acc_pt, axis=1)[:, order]    # (D, pieces)
+    del acc_pt
     per = np.bincount(ac, minlength=S).astype(np.int64)
     counts = per + 1
     off = np.cumsum(counts) - counts                  # start of each curve
@@ -687,12 +690,17 @@ def _flatten(ctrl, tolerance, straddle=False, smooth=None):
     ap = np.empty((len(ac), 2))
     ap[:, 0] = apT[0]
     ap[:, 1] = apT[1]
+    del apT
     apc = pairs(ap)
     ends = None
     if straddle:
         sh = np.concatenate(acc_sh, axis=1)[:, order]     # (3, pieces): shift, normal
+        del acc_sh, order
         inner = np.flatnonzero(rank < per[ac] - 1)    # piece ends inside the curve
-        apc[inner] += pairs(_vertex_shift(sh[:, inner], sh[:, inner + 1], tol))
+        for lo in range(0, len(inner), _CHUNK):      # (bounded temporaries)
+            i = inner[lo:lo + _CHUNK]
+            apc[i] += pairs(_vertex_shift(sh[:, i], sh[:, i + 1], tol))
+        del inner
         pfirst = np.cumsum(per) - per
         ends = np.empty((S, 2, 3))
         ends[:, 0] = sh[:, pfirst].T

@@ -45,6 +45,10 @@ _SMALL = 4096
 # Pixels per block of rows in fill / composite (bounds temporaries).
 _BLOCK = 1 << 14
 
+# Pixels per block when an 8-bit canvas is demultiplied for output (its
+# translucent pixels' float32 copies and indices: about 1.5 MB at most).
+_DEMULTIPLY_BLOCK = 1 << 16
+
 # Masks of more pixels are filled in windows of rows of about this many
 # pixels: the tests of the coverage (covered, full, their indices) stay
 # small beside a canvas-sized mask.
@@ -882,23 +886,28 @@ class Canvas:
 
     @staticmethod
     def _rows8(flat, premultiplied):
-        """:meth:`rgba8_rows` of an 8-bit canvas's (n, 4) uint8 pixels."""
+        """:meth:`rgba8_rows` of an 8-bit canvas's (n, 4) uint8 pixels,
+        demultiplied in blocks of :data:`_DEMULTIPLY_BLOCK` pixels (the
+        float32 copies of the translucent pixels, 16 bytes each, and their
+        indices stay small when most pixels are edges)."""
         out = flat.copy()
         if premultiplied:
             return out
-        a = out[:, 3]
-        idx = np.flatnonzero((a != 0) & (a != 255))
-        if len(idx):
-            sub = out[idx].astype(np.float32)
-            c = sub[:, :3]
-            c *= _S255
-            c /= sub[:, 3:]
-            c += _HALF
-            np.minimum(c, _S255, out=c)
-            out[idx] = sub.astype(np.uint8)     # (c is a view of sub; truncation: rounding)
-        # alpha 0: colour 0 (as little-endian uint32 the alpha byte is the top one)
-        px = out.view('<u4').reshape(-1)
-        np.multiply(px, px >= np.uint32(1 << 24), out=px)
+        for p0 in range(0, len(out), _DEMULTIPLY_BLOCK):
+            o = out[p0:p0 + _DEMULTIPLY_BLOCK]
+            a = o[:, 3]
+            idx = np.flatnonzero((a != 0) & (a != 255))
+            if len(idx):
+                sub = o[idx].astype(np.float32)
+                c = sub[:, :3]
+                c *= _S255
+                c /= sub[:, 3:]
+                c += _HALF
+                np.minimum(c, _S255, out=c)
+                o[idx] = sub.astype(np.uint8)   # (c is a view of sub; truncation: rounding)
+            # alpha 0: colour 0 (as little-endian uint32 the alpha byte is the top one)
+            px = o.view('<u4').reshape(-1)
+            np.multiply(px, px >= np.uint32(1 << 24), out=px)
         return out
 
     def to_image(self):

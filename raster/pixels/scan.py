@@ -24,9 +24,11 @@ How it works
    to the nearest even integer) is applied to that integral.  This equals the
    integral of ``f(w)`` -- the true coverage -- whenever ``w`` takes at most
    two adjacent integer values inside the cell, because ``f`` is linear
-   between adjacent integers.  The few cells where that might fail (where
-   separate chains of edges meet) are recomputed exactly, each on its own
-   set of horizontal sample lines (see :func:`coverage`).
+   between adjacent integers.  The cells where that might fail (where
+   separate chains of edges meet) get their exact coverage from the faces
+   the chains cut them into (:func:`_faces`), or, where the chains are not
+   simple enough for that, are recomputed on their own sets of horizontal
+   sample lines (see :func:`coverage`).
 4. The output is assembled from the cells holding pieces: along a row the
    coverage is constant between them, so the running sum runs over those
    cells only and the mask is written with one ``np.repeat``.
@@ -58,9 +60,13 @@ __all__ = ['Mask', 'coverage', 'coverage_many', 'coverage_batch', 'path_coverage
 _RESIDUE = 1e-9
 # Most pieces generated at once; larger boxes are processed in row bands.
 # About 30 float64 arrays of this length are live in a batch's band: 2^17
-# holds a 2000 px map (batik_mapWaadt) to 106 MB peak RSS against 124 MB
-# at 2^18, at no cost in time; 2^16 made the vega-lite splom 13 % slower.
-_CHUNK_PIECES = 1 << 17
+# held a 2000 px map (batik_mapWaadt) to 106 MB peak RSS against 124 MB at
+# 2^18.  2^16 (the faces of crossing cells made the bands' other work
+# cheaper): the stroked random cubics at 2000 px peak at 92 MB against 97
+# (whole process, largest process), the jittered polygon at 79 against 85,
+# while splom, the world map, batik_mapWaadt and the cubics take the same
+# time within noise (paired runs, CPU ratios 0.97-1.09).
+_CHUNK_PIECES = 1 << 16
 # Most pieces of a sub-batch of shapes scan converted together (shapes
 # above _CHUNK_PIECES go alone, in bands).  The batch's arrays per piece
 # are live together: 2^16 holds the icon sheet at 2000 px to 68 MB peak

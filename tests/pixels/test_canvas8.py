@@ -140,6 +140,28 @@ def test_to_rgba8_demultiplies_levels():
     assert c.to_rgba8()[0, 0, 0] == 255
 
 
+def test_demultiplied_in_blocks_is_the_same(monkeypatch):
+    # an 8-bit canvas is demultiplied in blocks of pixels: tiny blocks
+    # (not dividing the pixel count) give the same bytes, and every pixel
+    # is round(c * 255 / a) clamped to 255, 0 where alpha is 0
+    import raster.pixels.canvas as canvas
+    rng = np.random.default_rng(4)
+    c = Canvas(37, 29, dtype=np.uint8)
+    a = rng.integers(0, 256, (29, 37, 1))
+    a[rng.random((29, 37)) < 0.3] = 255
+    a[rng.random((29, 37)) < 0.1] = 0
+    c.data[:] = np.concatenate([rng.integers(0, 256, (29, 37, 3)) * a // 255, a], 2)
+    whole = c.to_rgba8()
+    monkeypatch.setattr(canvas, '_DEMULTIPLY_BLOCK', 100)
+    assert np.array_equal(c.to_rgba8(), whole)
+    d = c.data.astype(np.float64)
+    with np.errstate(all='ignore'):
+        want = np.minimum(np.floor(d[..., :3] * 255 / d[..., 3:] + 0.5), 255)
+    want = np.where(d[..., 3:] == 0, 0, np.where(d[..., 3:] == 255, d[..., :3], want))
+    assert np.array_equal(whole[..., :3], want)
+    assert np.array_equal(whole[..., 3], c.data[..., 3])
+
+
 @pytest.mark.parametrize('dtype', [np.float32, np.uint8])
 def test_rows_are_slices_of_the_image(dtype):
     rng = np.random.default_rng(9)
