@@ -704,7 +704,10 @@ def _flag(xa, ya, xb, yb, col, row, cell, brk, left_of, evenodd, everything=None
             dv = np.flatnonzero(good & ~lin)
             d_cells.append(cells[w[dv]])
             d_vals.append(val[dv])
-    direct = (np.concatenate(d_cells), np.concatenate(d_vals)) if d_cells else (empty[0], np.zeros(0))
+    if d_cells:
+        direct = (np.concatenate(d_cells), np.concatenate(d_vals))
+    else:
+        direct = (empty[0], np.zeros(0))
     fg = np.flatnonzero(~ok)
     rr = _ranges(gstart[fg], gcnt[fg])
     pieces, _ = _run_pieces(ridx[rr], rlen[rr], merged[rr], hstart[rr], hlen[rr])
@@ -793,9 +796,10 @@ def _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd):
     * a stretch of a piece ``P + tau E`` borders two faces, whose windings
       differ by one: ``w`` on the side of ``(E_y, -E_x)`` and ``w - 1`` on
       the side of ``(-E_y, E_x)``; it adds ``(f(w - 1) - f(w)) cross(P, E)
-      / 2`` per unit of tau.  Along a run, ``w`` starts at the winding after the run's first
-      end on the boundary and changes only where the run crosses another
-      run: by ``sign(cross(E, E'))`` crossing a piece of direction E'.
+      / 2`` per unit of tau.  Along a run, ``w`` starts at the winding
+      after the run's first end on the boundary and changes only where the
+      run crosses another run: by ``sign(cross(E, E'))`` crossing a piece
+      of direction E'.
 
     The crossings come from segment tests over the pairs of pieces of
     different runs of a cell; touching or overlapping pieces (and pieces

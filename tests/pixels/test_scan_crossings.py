@@ -183,9 +183,9 @@ def test_faces_decide_the_crossings_of_a_stroke():
     from raster.pixels import scan
     rng = np.random.default_rng(4)
     p = rng.uniform(2, 62, (3 * 30 + 1, 2))
-    d = 'M%.6f %.6f' % tuple(p[0]) + ''.join('C%.6f %.6f %.6f %.6f %.6f %.6f'
-                                             % tuple(p[1 + 3 * i:4 + 3 * i].ravel())
-                                             for i in range(30))
+    d = 'M%.6f %.6f' % tuple(p[0]) + ''.join(
+        'C%.6f %.6f %.6f %.6f %.6f %.6f' % tuple(p[1 + 3 * i:4 + 3 * i].ravel())
+        for i in range(30))
     doc = ('<svg xmlns="%s" width="64" height="64"><path fill="none" stroke="#000" '
            'stroke-width="1.5" d="%s"/></svg>' % (NS, d)).encode()
     counts = {'faces': 0, 'exact': 0}
