@@ -81,13 +81,13 @@ _STRETCH_MAX = 256
 # Cells of several simple runs holding at most this many runs and pieces
 # get their coverage from their faces (see _faces); busier cells are
 # recomputed.
-_WALK_RUNS = 32
-_WALK_PIECES = 64
+_FACES_RUNS = 32
+_FACES_PIECES = 64
 # Most work items (sample crossings) per batch of recomputed cells.
 _CHUNK_WORK = 1 << 20
 # Most work (four per run plus one per pair of pieces of a cell) per call
 # of _faces (see _flag).
-_WALK_WORK = 1 << 16
+_FACES_WORK = 1 << 16
 # Cells with more pieces than this are refined on a _REFINE x _REFINE grid
 # instead of being sampled at all critical heights (at most _MAX_DEPTH
 # levels deep).
@@ -684,8 +684,8 @@ def _flag(xa, ya, xb, yb, col, row, cell, brk, left_of, evenodd, everything=None
     every = _FLAG_EVERYTHING if everything is None else everything
     ok = (gcnt == 1) & gsimple & (not every)
     npc = np.add.reduceat(rlen, gstart)
-    faces = ((not every) & (gcnt >= 2) & gsimple & (gcnt <= _WALK_RUNS)
-             & (npc <= _WALK_PIECES))
+    faces = ((not every) & (gcnt >= 2) & gsimple & (gcnt <= _FACES_RUNS)
+             & (npc <= _FACES_PIECES))
     wi = np.flatnonzero(faces)
     d_cells, d_vals = [], []
     if len(wi):
@@ -696,7 +696,7 @@ def _flag(xa, ya, xb, yb, col, row, cell, brk, left_of, evenodd, everything=None
         # in slices of cells of bounded work: the arrays (per run, per pair
         # of pieces of a cell) stay within a few MB
         p = npc[wi]
-        for sl in _slices(4 * gcnt[wi] + p * (p - 1) // 2, _WALK_WORK):
+        for sl in _slices(4 * gcnt[wi] + p * (p - 1) // 2, _FACES_WORK):
             w = wi[sl]
             lin, good, val = _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart[w], gcnt[w],
                                     lw[sl], eo[sl])
@@ -836,7 +836,7 @@ def _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd):
     """
     ridx, rlen, merged, hstart, hlen = runs
     G = len(gstart)
-    rr = _ranges(gstart, gcnt)
+    rr = _ranges(gstart, gcnt)                      # runs, group after group
     gid = np.repeat(np.arange(G), gcnt)
     r_idx, r_len, r_m, r_hs, r_hl = ridx[rr], rlen[rr], merged[rr], hstart[rr], hlen[rr]
     f = r_idx
@@ -888,14 +888,11 @@ def _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd):
     t_next[:-1] = et[1:]
     t_next[efirst[1:] - 1] = 4.0
     t_next[-1] = 4.0
-    rule = eo[eg]
-
-    def fill(w, ev):
-        return np.where(ev, w.astype(np.int64) & 1, w != 0).astype(np.float64)
     Gb = _boundary_integral
-    value += np.bincount(eg, weights=fill(w_after, rule) * (Gb(t_next) - Gb(et)), minlength=G)
+    value += np.bincount(eg, weights=_fill_of(w_after, eo[eg]) * (Gb(t_next) - Gb(et)),
+                         minlength=G)
     ug = eg[efirst]
-    value[ug] += fill(w0r[ug], eo[ug]) * Gb(et[efirst])
+    value[ug] += _fill_of(w0r[ug], eo[ug]) * Gb(et[efirst])
     pos = np.empty(len(o), np.int64)
     pos[o] = np.arange(len(o))
     w_start = w_after[pos[:nk]]                     # the winding after each run's start
@@ -948,11 +945,10 @@ def _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd):
     # on its earlier pieces
     dsum = np.bincount(ev_p, weights=ev_d, minlength=npc)
     cd = np.cumsum(dsum)
-    rfirst = poff
-    w_p = w_start[prun] + (cd - dsum) - np.repeat((cd - dsum)[rfirst], r_len[kr])
+    w_p = w_start[prun] + (cd - dsum) - np.repeat((cd - dsum)[poff], r_len[kr])
 
     def h(w, ev):
-        return fill(w - 1.0, ev) - fill(w, ev)
+        return _fill_of(w - 1.0, ev) - _fill_of(w, ev)
     contrib = K * h(w_p, eo_p)
     if len(ev_p):
         # by piece, then along it (tau < 1: the key keeps them apart)
@@ -985,6 +981,15 @@ def _slices(work, limit=_CHUNK_WORK // 8):
         out.append(slice(lo, hi))
         lo = hi
     return out
+
+
+def _fill_of(w, evenodd):
+    """The fill rule of integer windings ``w`` (int64, or float64 holding
+    whole numbers): 1.0 where odd (``evenodd`` True) or nonzero, else 0.0;
+    ``evenodd`` broadcasts against ``w``."""
+    if w.dtype.kind == 'f':
+        w = w.astype(np.int64)
+    return np.where(evenodd, w & 1, w != 0).astype(np.float64)
 
 
 def _linear_on(mn, mx, eo):
@@ -1073,7 +1078,6 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
     done = np.ones(F, bool)
     first = np.cumsum(k) - k
     ones = np.ones(len(ua))
-    big = np.flatnonzero(k > _EXACT_PIECES)
     small = k <= _EXACT_PIECES
     # (pieces, cells, piece arrays, first piece and count of each cell)
     groups = []
@@ -1082,6 +1086,7 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
     for kk in _distinct(kb[small]).tolist():
         c = np.flatnonzero(small & (kb == kk))
         groups.append((kk, c, (ua, va, ub, vb, ones), first[c], k[c]))
+    big = np.flatnonzero(~small)
     crowded = big
     if len(big):
         # equal pieces merged (opposite ones cancel): stacked copies of one
@@ -1326,7 +1331,7 @@ def _sample_lines(H, ua, va, ub, vb, m, C, eo):
     A = C[:, None] + (np.where(y3 > va[:, None, :], ea, 0.0)
                       + np.where(y3 > vb[:, None, :], eb, 0.0)).sum(2)
     A = np.rint(A).astype(np.int64)
-    fA = np.where(eo[:, None], A & 1, A != 0).astype(np.float64)
+    fA = _fill_of(A, eo[:, None])
     dv = vb - va
     mi = (np.clip(np.sign(dv) * m, 1 - _MOFF, _MOFF - 1).astype(np.int64) + _MOFF)[:, None, :]
     with np.errstate(all='ignore'):                 # horizontal pieces never span
@@ -1340,7 +1345,7 @@ def _sample_lines(H, ua, va, ub, vb, m, C, eo):
     s = (key & ((1 << _MBITS) - 1)) - _MOFF
     x = (key >> _MBITS).astype(np.float64) * (1.0 / _XSCALE)
     w = A[:, :, None] + np.cumsum(s, axis=2)
-    f = np.where(eo[:, None, None], w & 1, w != 0).astype(np.float64)
+    f = _fill_of(w, eo[:, None, None])
     prev = np.concatenate([fA[:, :, None], f[:, :, :-1]], axis=2)
     g = fA + ((f - prev) * (1.0 - x)).sum(2)
     return (g * wt).sum(1)

@@ -372,7 +372,7 @@ def test_crowded_cells_are_refined_exactly(monkeypatch, rule):
     real = scan._refine
     monkeypatch.setattr(scan, '_refine', lambda *a: calls.append(len(a[4])) or real(*a))
     monkeypatch.setattr(scan, '_EXACT_PIECES', 1)
-    monkeypatch.setattr(scan, '_WALK_RUNS', 1)      # no cell left to _faces
+    monkeypatch.setattr(scan, '_FACES_RUNS', 1)      # no cell left to _faces
     b = full(CIRCLES, 40, 40, fill_rule=rule)
     t = full(STAR, 40, 40, fill_rule=rule)
     assert calls

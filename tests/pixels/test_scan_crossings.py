@@ -149,7 +149,7 @@ def test_faces_in_slices_are_the_same(monkeypatch, rule):
     polys = [walk(rng, 30, 24, 2.5) for _ in range(6)]
     e = edges_of(polys)
     whole = coverage(e, 24, 24, fill_rule=rule).full(24, 24)
-    sliced, cells = recorded_coverage(monkeypatch, e, rule, '_faces', 9, {'_WALK_WORK': 8})
+    sliced, cells = recorded_coverage(monkeypatch, e, rule, '_faces', 9, {'_FACES_WORK': 8})
     calls = [len(c) for c in cells]
     assert len(calls) > 10 and max(calls) < sum(calls)
     assert np.array_equal(sliced, whole)
@@ -162,7 +162,7 @@ def test_faces_in_slices_are_the_same(monkeypatch, rule):
 def test_faces_agree_with_the_midpoint_rule(monkeypatch, rule, seed):
     """The coverage of cells of several runs from their faces equals the
     midpoint rule's over the critical heights (every such cell flagged
-    instead: _WALK_RUNS = 1), on self-crossing walks of long and of short
+    instead: _FACES_RUNS = 1), on self-crossing walks of long and of short
     steps (runs of one piece and of many)."""
     from raster.pixels import scan
     rng = np.random.default_rng(seed)
@@ -170,9 +170,26 @@ def test_faces_agree_with_the_midpoint_rule(monkeypatch, rule, seed):
     e = edges_of(polys)
     direct, cells = recorded_coverage(monkeypatch, e, rule, '_faces', 9, {})
     assert sum(len(c) for c in cells) > 50
-    monkeypatch.setattr(scan, '_WALK_RUNS', 1)
+    monkeypatch.setattr(scan, '_FACES_RUNS', 1)
     midpoint = coverage(e, 24, 24, fill_rule=rule).full(24, 24)
     assert np.abs(direct - midpoint).max() < 1e-6
+
+
+@pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
+def test_run_along_the_left_side_of_its_cell(rule):
+    """A run that leaves its cell's interior, follows the cell's left side
+    for a stretch and comes back (a polygon with a vertical edge on a
+    pixel boundary), among other polygons crossing that cell: the stretch
+    bounds no face, so the faces' windings and the running sum stay right,
+    whether the cell is decided by the windings' bound or by its faces."""
+    rng = np.random.default_rng(1)
+    for _ in range(40):
+        a, b = rng.uniform(0.05, 0.45), rng.uniform(0.55, 0.95)
+        x = rng.uniform(1.2, 1.95)
+        p = np.array([(x, 2.0), (1.0, 2.0 + a), (1.0, 2.0 + b), (x, 3.0), (4, 5), (5, 1)])
+        polys = [p if rng.uniform() < 0.5 else p[::-1]]
+        polys += [rng.uniform(0.3, 5.7, (rng.integers(3, 7), 2)) for _ in range(rng.integers(1, 4))]
+        check(polys, 6, rule)
 
 
 def test_faces_decide_the_crossings_of_a_stroke():
