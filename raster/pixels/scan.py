@@ -89,11 +89,15 @@ _CHUNK_WORK = 1 << 20
 # of _faces (see _flag).
 _FACES_WORK = 1 << 16
 # Cells with more pieces than this are refined on a _REFINE x _REFINE grid
-# instead of being sampled at all critical heights (at most _MAX_DEPTH
-# levels deep).
+# instead of being sampled at all critical heights, while their distinct
+# pieces times _REFINE ** depth is at most _REFINE_WORK (the pieces met per
+# pixel side at that level: a bundle of lines that refinement cannot part
+# would otherwise cost 4x more at every level); busier cells are sampled
+# on _SAMPLE_LINES evenly spaced lines.
 _EXACT_PIECES = 12
 _REFINE = 4
-_MAX_DEPTH = 5
+_REFINE_WORK = 1024
+_SAMPLE_LINES = 16
 # Flag every cell holding pieces (see _flag; for checking the flags).
 _FLAG_EVERYTHING = False
 # Most cells (sum of the shapes' box areas) per batch of coverage_batch.
@@ -318,8 +322,11 @@ def coverage(edges, width, height, fill_rule='nonzero', antialias=True, clip=Non
     the covered width of a horizontal line through the pixel is linear in
     its height between the piece end points and pairwise intersections
     (see :func:`_exact`); pixels of more than 12 distinct pieces are
-    refined on a 4 x 4 grid, at most 5 levels deep (beyond that the
-    running sum stands: a bound on the work per pixel).
+    refined on a 4 x 4 grid, recursively while their distinct pieces
+    times 4 ** level stay within 4096; beyond that (many pieces that
+    refinement cannot part, such as nearly coincident lines) the midpoint
+    rule runs on 16 evenly spaced lines of the cell, each line exact: a
+    bound on the work per pixel.
 
     >>> tri = np.array([[[0, 0], [4, 0]], [[4, 0], [0, 4]], [[0, 4], [0, 0]]], float)
     >>> float(coverage(tri, 8, 8).data.sum())
@@ -1037,8 +1044,14 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
     more than ``_EXACT_PIECES`` distinct pieces (equal pieces merged with a
     multiplicity) are refined instead: their pieces, scaled to a
     ``_REFINE`` x ``_REFINE`` grid with ``A`` as edges left of it, are scan
-    converted by the same kernel (recursively, at most ``_MAX_DEPTH``
-    levels; beyond that the running sum stands).
+    converted by the same kernel (recursively), as long as their distinct
+    pieces times ``_REFINE ** depth`` stay within ``_REFINE_WORK``.  The
+    others, cells of many pieces that do not part (nearly coincident
+    lines, hundreds of crossings in one pixel), take the midpoint rule on
+    ``_SAMPLE_LINES`` evenly spaced lines, each line exact: ``O(k log k)``
+    per line for ``k`` pieces, wrong by at most a few crossings' share of
+    the cell's area (the cell is at most ``_REFINE_WORK / k`` of a pixel
+    across).
 
     Parameters
     ----------
@@ -1055,10 +1068,8 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
 
     Returns
     -------
-    values : (F,) float64 ndarray
+    (F,) float64 ndarray
         Coverage in [0, 1] (rounding residue set to 0).
-    done : (F,) bool ndarray
-        False where the running sum stands (refinement too deep).
     """
     F = len(counts)
     k = counts
@@ -1075,7 +1086,6 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
                                    - np.where(la, 1.0 - va, 0.0), minlength=F))
     eo = np.broadcast_to(np.asarray(evenodd, bool), (F,))
     out = np.zeros(F)
-    done = np.ones(F, bool)
     first = np.cumsum(k) - k
     ones = np.ones(len(ua))
     small = k <= _EXACT_PIECES
@@ -1088,6 +1098,7 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
         groups.append((kk, c, (ua, va, ub, vb, ones), first[c], k[c]))
     big = np.flatnonzero(~small)
     crowded = big
+    sampled = None
     if len(big):
         # equal pieces merged (opposite ones cancel): stacked copies of one
         # outline are few distinct pieces
@@ -1103,6 +1114,11 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
             sel = np.flatnonzero(fits & (kdb == kk))
             groups.append((kk, big[sel], tuple(d_p) + (d_m,), dfirst[sel], kd[sel]))
         crowded = big[~fits]
+        part = kd[~fits] * _REFINE ** depth <= _REFINE_WORK
+        if not part.all():
+            sel = np.flatnonzero(~fits)[~part]
+            sampled = (big[sel], tuple(d_p) + (d_m,), dfirst[sel], kd[sel])
+            crowded = crowded[part]
     for kk, cells_k, arrays, pf, pk in groups:
         S = 1 + 2 * kk + kk * (kk - 1) // 2
         step = max(1, _CHUNK_WORK // (S * max(kk, 1)))
@@ -1116,16 +1132,55 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
             ix = np.where(r < pk[lo:lo + step][:, None], pf[lo:lo + step][:, None] + r, dummy)
             pu, pv, qu, qv, pm = (a[ix] for a in pad)
             out[c] = _exact_small(pu, pv, qu, qv, pm, C[c], eo[c])
+    if sampled is not None:
+        c, arrays, pf, pk = sampled
+        out[c] = _sampled(arrays, pf, pk, C[c], eo[c])
     if len(crowded):
-        if depth >= _MAX_DEPTH:
-            done[crowded] = False
-        else:
-            ix = _ranges(first[crowded], k[crowded])
-            out[crowded] = _refine(ua[ix], va[ix], ub[ix], vb[ix], k[crowded], C[crowded],
-                                   eo[crowded], depth)
+        ix = _ranges(first[crowded], k[crowded])
+        out[crowded] = _refine(ua[ix], va[ix], ub[ix], vb[ix], k[crowded], C[crowded],
+                               eo[crowded], depth)
     np.clip(out, 0.0, 1.0, out=out)
     out[out < _RESIDUE] = 0.0
-    return out, done
+    return out
+
+
+def _sampled(arrays, pf, pk, C, eo, lines=_SAMPLE_LINES):
+    """Coverage of cells by the midpoint rule on ``lines`` evenly spaced
+    lines (see :func:`_exact`).
+
+    Parameters
+    ----------
+    arrays : tuple of five (P,) float64 ndarrays
+        Piece ends ``ua, va, ub, vb`` in cell units and multiplicities.
+    pf, pk : (F,) int64 ndarray
+        First piece and number of pieces of each cell.
+    C : (F,) float64 ndarray
+        Winding just left of each cell before its events.
+    eo : (F,) bool ndarray
+        Fill rules.
+
+    Returns
+    -------
+    (F,) float64 ndarray
+    """
+    F = len(pk)
+    out = np.zeros(F)
+    # cells padded to powers of two of pieces, batches of bounded work
+    kb = 1 << np.ceil(np.log2(np.maximum(pk, 1))).astype(np.int64)
+    pad = tuple(np.append(a, v) for a, v in zip(arrays, (2.0, 2.0, 2.0, 2.0, 0.0)))
+    dummy = len(pad[0]) - 1
+    H = np.linspace(0.0, 1.0, lines + 1)
+    for kk in _distinct(kb).tolist():
+        cells = np.flatnonzero(kb == kk)
+        step = max(1, _CHUNK_WORK // (lines * kk))
+        r = np.arange(kk)
+        for lo in range(0, len(cells), step):
+            c = cells[lo:lo + step]
+            ix = np.where(r < pk[c][:, None], pf[c][:, None] + r, dummy)
+            pu, pv, qu, qv, pm = (a[ix] for a in pad)
+            out[c] = _sample_lines(np.broadcast_to(H, (len(c), lines + 1)), pu, pv, qu, qv, pm,
+                                   C[c], eo[c])
+    return out
 
 
 def _boundary_integral(t):
@@ -1485,8 +1540,8 @@ def _band(loc, w, h, evenodd, exact, depth):
     flagged, fp, fc, (dc, dv) = _flag(xa, ya, xb, yb, col, row, fcell, None, left_of, evenodd)
     data.reshape(-1)[dc] = dv
     if len(flagged):
-        vals, done = _exact(xa, ya, xb, yb, col, row, fp, fc, left_of(flagged), evenodd, depth)
-        data.reshape(-1)[flagged[done]] = vals[done]
+        data.reshape(-1)[flagged] = _exact(xa, ya, xb, yb, col, row, fp, fc, left_of(flagged),
+                                           evenodd, depth)
     return data
 
 
@@ -2036,10 +2091,10 @@ def _many_batch(loc, ne, X0, Y0, sw, sh, seo, sex, ids, out, depth=0):
     ooff = np.cumsum(size) - size
     # -- exact recompute of the flagged cells ---------------------------------
     if len(flagged) or len(dc):
-        v, done = _exact(xa, ya, xb, yb, col, row, fp, fc, left_of(flagged), seo[fsid], depth)
-        fl = np.concatenate([flagged[done], dc])
-        fs = np.concatenate([fsid[done], xsid[len(flagged):]])
-        v = np.concatenate([v[done], dv]).astype(np.float32)
+        v = _exact(xa, ya, xb, yb, col, row, fp, fc, left_of(flagged), seo[fsid], depth)
+        fl = np.concatenate([flagged, dc])
+        fs = np.concatenate([fsid, xsid[len(flagged):]])
+        v = np.concatenate([v, dv]).astype(np.float32)
         fr = fl // W - roff[fs]
         pos = ooff[fs] + fr * sw[fs] + fl % W
         nnz += np.bincount(fs, weights=(v != 0).astype(np.float64) - (flat[pos] != 0),

@@ -379,24 +379,56 @@ def test_crowded_cells_are_refined_exactly(monkeypatch, rule):
     assert np.abs(a - b).max() < 1e-5 and np.abs(s - t).max() < 1e-5
 
 
-def test_refinement_depth_is_bounded(monkeypatch):
-    # 300 lines through one point: every refinement level keeps a crowded
-    # cell there; below _MAX_DEPTH the running sum stands, wrong by at most
-    # the area of those sub-cells
+def test_refinement_work_is_bounded(monkeypatch):
+    # 300 lines through one point: refinement never parts them there, so
+    # cells are refined only while their distinct pieces times 4 ** level
+    # stay within _REFINE_WORK (levels 0 to 3 here); the busier ones are
+    # sampled on evenly spaced lines, within 1/255 of refining 5 levels deep
     rng = np.random.default_rng(2)
     ang = rng.uniform(0, np.pi, 300)
     c = np.array([5.37, 5.61])
     polys = [np.array([c - 6 * u, c + 6 * u, c + 6 * u + 0.2 * np.r_[-u[1], u[0]]])
              for u in np.c_[np.cos(ang), np.sin(ang)]]
     e = poly_edges(*polys)
-    depth = []
-    real = scan._refine
-    monkeypatch.setattr(scan, '_refine', lambda *a: depth.append(a[-1]) or real(*a))
+    depth, sampled = [], []
+    real_refine, real_sampled = scan._refine, scan._sampled
+    monkeypatch.setattr(scan, '_refine', lambda *a: depth.append(a[-1]) or real_refine(*a))
+    monkeypatch.setattr(scan, '_sampled', lambda *a: sampled.append(len(a[1])) or real_sampled(*a))
     for rule in ('nonzero', 'evenodd'):
+        depth.clear()
+        sampled.clear()
         got = full(e, 11, 11, fill_rule=rule)
+        assert max(depth) <= 3 and sum(sampled) > 0
         ref = reference(e, 11, 11, rule, n=64)
         assert np.abs(got - ref).max() < 0.02
-    assert max(depth) == scan._MAX_DEPTH - 1
+        depth.clear()
+        with monkeypatch.context() as m:
+            m.setattr(scan, '_REFINE_WORK', 12 * 4 ** 5)
+            deep = full(e, 11, 11, fill_rule=rule)
+        assert max(depth) == 4
+        assert np.abs(got - deep).max() < 1 / 255
+
+
+@pytest.mark.parametrize('seed', range(4))
+def test_sampled_cells_converge_to_the_exact_coverage(seed):
+    # the midpoint rule on n evenly spaced lines against the exact rule on
+    # all critical heights, for cells of 12 random pieces in the cell, some
+    # starting or ending on its left side (both rules): the error shrinks
+    # like 1/n
+    rng = np.random.default_rng(seed)
+    F, k = 50, 12
+    ua, va, ub, vb = (rng.uniform(0.0, 1.0, (F, k)) for _ in range(4))
+    ua[rng.random((F, k)) < 0.3] = 0.0
+    ub[rng.random((F, k)) < 0.3] = 0.0
+    m = rng.choice([-1.0, 1.0, 2.0], (F, k))
+    C = rng.integers(-2, 3, F).astype(float)
+    eo = rng.random(F) < 0.5
+    exact = scan._exact_small(ua, va, ub, vb, m, C, eo)
+    pf, pk = np.arange(F) * k, np.full(F, k)
+    arrays = tuple(a.ravel() for a in (ua, va, ub, vb, m))
+    err = [np.abs(scan._sampled(arrays, pf, pk, C, eo, lines=n) - exact).max()
+           for n in (16, 256, 4096)]
+    assert err[0] < 0.1 and err[1] < err[0] / 8 and err[2] < err[1] / 8
 
 
 # -- errors -------------------------------------------------------------------
