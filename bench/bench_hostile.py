@@ -65,6 +65,7 @@ TABLE = [
     ('dashes of 0.001 on a 1e8 line', 'rasterize', 'dash_storm.svg', []),
     ('stroke-width 1e12', 'rasterize', 'stroke_huge_width.svg', []),
     ('text stroked 240in wide, dashed, as a mask', 'rasterize', 'fuzz_crowded_cells.svg', []),
+    ('457,300 dashes of a line to 1e9, 64x48', 'rasterize', 'fuzz_far_dashes.svg', []),
     ('254 nested svg', 'rasterize', 'deep_svg.svg', []),
     ('svgz bomb (300 MB of spaces)', 'rasterize', 'svgz_bomb.svgz', []),
     ('billion laughs', 'rasterize', 'billion_laughs.svg', []),

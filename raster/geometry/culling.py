@@ -28,7 +28,8 @@ flattened and stroked exactly as from the whole path:
   path draws the same inside the window.  An open contour that ends
   where it started is kept whole (the stroker may seal it into a ring).  Dashes follow the arc length
   from a contour's start, so a dashed stroke must be culled after
-  dashing, not before.
+  dashing, not before: the stroker does it (the ``window`` of
+  :func:`raster.geometry.stroking.stroke`).
 
 Both return the path itself when nothing is left out.
 

@@ -1336,7 +1336,8 @@ def _emit_verbs(counts):
 # ---------------------------------------------------------------------------
 
 def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: AffineLike = None,
-           tolerance: float = 0.25, straddle: bool = False, **style_kwargs: Any) -> Path:
+           tolerance: float = 0.25, straddle: bool = False, window: Optional[Sequence[float]] = None,
+           **style_kwargs: Any) -> Path:
     """Outline of the stroke of ``path``, to be filled with the nonzero rule.
 
     Parameters
@@ -1357,6 +1358,13 @@ def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: Affine
         (:func:`raster.geometry.flattening.flatten_beziers`): the outline's
         curved sides then lie on both sides of the exact ones, about half
         as far, instead of all inside or outside them.
+    window : (x0, y0, x1, y1) or None
+        A device box (bounds may be infinite): the dashes of a dashed
+        stroke whose outlines cannot reach it (farther from it than
+        :func:`stroke_reach` plus ``tolerance`` plus one pixel) are left out, so the
+        outline within the box is unchanged and a long dashed line drawn
+        through a small window costs its few visible dashes.  Solid
+        strokes are not cut (see :mod:`raster.geometry.culling`).
 
     Returns
     -------
@@ -1411,14 +1419,18 @@ def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: Affine
     with np.errstate(over='ignore', invalid='ignore'):         # checked in _check_early
         dev = path.points if t.is_identity else t.apply(path.points)
     _check_early(dev, style.width * scale)
-    pts, counts, _ = _geometry(path, style, tol / scale, straddle=straddle)
+    near = None
+    if window is not None:
+        m = np.array([[t.a, t.b, t.c, t.d, t.e, t.f]])
+        near = _near(window, m, np.array([stroke_reach(style) * scale + tol + 1.0]))
+    pts, counts, _ = _geometry(path, style, tol / scale, straddle=straddle, near=near)
     if not t.is_identity:
         pts = t.apply(pts)
     _check_device(pts)
     return _emit(pts, counts)
 
 
-def _geometry(path, style, tol_u, cpath=None, npaths=1, straddle=False):
+def _geometry(path, style, tol_u, cpath=None, npaths=1, straddle=False, near=None):
     """Outline polygons of the stroke of ``path`` in user space.
 
     ``tol_u`` is the tolerance in user units: a float, or with ``cpath`` a
@@ -1428,7 +1440,9 @@ def _geometry(path, style, tol_u, cpath=None, npaths=1, straddle=False):
     size below which points merge) is then computed per path, so each path
     gets the same outline as on its own.  Returns ``(points, counts,
     owner)``: the polygons and, per polygon, the entry of ``cpath`` (or 0).
-    ``straddle`` is passed on to the flattening.
+    ``straddle`` is passed on to the flattening.  ``near`` (see
+    :func:`_near`), for a dashed stroke: the dashes it does not keep are
+    dropped before they are outlined.
     """
     pattern = dash_pattern(style.dash)
     # dash positions follow the arc length of the flattening, which falls
@@ -1451,6 +1465,12 @@ def _geometry(path, style, tol_u, cpath=None, npaths=1, straddle=False):
         cp = cp[src]
         if cpath is not None:
             eps, tol_u = eps[src], tol_u[src]
+        if near is not None:
+            keep = near(lines, cp)
+            if not keep.all():
+                lines, cp = _select(lines, keep), cp[keep]
+                if cpath is not None:
+                    eps, tol_u = eps[keep], tol_u[keep]
         lines = _clean(lines, eps)
     pts, counts, owner = _outline(lines, style, tol_u)
     return pts, counts, cp[owner]
@@ -1465,6 +1485,50 @@ def _affine(t):
         raise
     except (TypeError, ValueError):
         raise StrokeError('cannot interpret %r as an affine transform' % (t,)) from None
+
+
+def stroke_reach(style):
+    """How far (in user units) a stroke of ``style`` can reach beyond the
+    path (half the width, times the miter limit or sqrt 2 for square caps)."""
+    r = style.width / 2.0
+    k = 1.0
+    if style.join in ('miter', 'miter-clip', 'arcs'):
+        k = max(k, style.miterlimit)
+    if style.cap == 'square':
+        k = max(k, math.sqrt(2.0))
+    return r * k
+
+
+def _near(window, m, reach):
+    """A ``near(lines, cp)`` test for :func:`_geometry`: True for the
+    contours (user space) whose device box, under the transform ``m[cp]``
+    ((P, 6) rows ``a b c d e f``), comes within ``reach[cp]`` (device
+    units) of the device box ``window``; always True for a path whose
+    ``m`` row is NaN (an outline several transforms share)."""
+    x0, y0, x1, y1 = (float(v) for v in window)
+
+    def near(lines, cp):
+        keep = np.ones(len(lines.counts), bool)
+        has = np.flatnonzero(lines.counts > 0)
+        if len(has) == 0:
+            return keep
+        # (each range runs to the next nonempty contour's start: empty
+        # contours hold no points)
+        st = lines.starts[has]
+        lo = np.minimum.reduceat(lines.points, st)
+        hi = np.maximum.reduceat(lines.points, st)
+        c, h = 0.5 * (lo + hi), 0.5 * (hi - lo)
+        a, b, cc, d, e, f = m[cp[has]].T
+        r = reach[cp[has]]
+        dx = a * c[:, 0] + cc * c[:, 1] + e
+        dy = b * c[:, 0] + d * c[:, 1] + f
+        hx = np.abs(a) * h[:, 0] + np.abs(cc) * h[:, 1] + r
+        hy = np.abs(b) * h[:, 0] + np.abs(d) * h[:, 1] + r
+        with np.errstate(invalid='ignore'):
+            far = (dx + hx < x0) | (dx - hx > x1) | (dy + hy < y0) | (dy - hy > y1)
+        keep[has] = ~far
+        return keep
+    return near
 
 
 def _eps_per_path(lines, cp, npaths):
@@ -1507,7 +1571,8 @@ def _check_early(pts, width):
 
 def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
                 transforms: Optional[Sequence[AffineLike]] = None,
-                tolerance: float = 0.25, straddle: bool = False) -> List[Path]:
+                tolerance: float = 0.25, straddle: bool = False,
+                window: Optional[Sequence[float]] = None) -> List[Path]:
     """Stroke many paths with one style in one vectorized pass.
 
     The paths are concatenated (contours numbered by the path they come
@@ -1536,6 +1601,9 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
         exact stroke.
     straddle : bool
         As for :func:`stroke`.
+    window : (x0, y0, x1, y1) or None
+        As for :func:`stroke`: dashes that cannot reach this device box are
+        left out (except those of an outline several paths share).
 
     Returns
     -------
@@ -1613,7 +1681,14 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
     with np.errstate(over='ignore', invalid='ignore'):         # checked in _check_early
         dev = apply_each(mu[vp], np.concatenate(upts))
     _check_early(dev, style.width * float(scales[use].max()))
-    pts, rcounts, owner = _geometry(big, style, tol_u, cpath, len(rep), straddle)
+    near = None
+    if window is not None:
+        # the transform of each representative drawn once (NaN: shared)
+        mr = np.full((len(rep), 6), np.nan)
+        alone = np.flatnonzero(np.bincount(inv, minlength=len(rep))[inv] == 1)
+        mr[inv[alone]] = mu[alone]
+        near = _near(window, mr, stroke_reach(style) * scales[rep] + tol + 1.0)
+    pts, rcounts, owner = _geometry(big, style, tol_u, cpath, len(rep), straddle, near)
     # polygons come out path by path
     ppath = np.repeat(owner, rcounts)
     npoly = np.bincount(owner, minlength=len(rep))

@@ -259,7 +259,7 @@ class Masks:
             if key in self._stroke_ready:
                 return self._stroke_ready.pop(key), factor
         outline = stroke_outline(self.cut_stroke(n, style, t, size), style, transform=t,
-                                 tolerance=self.tol, straddle=True)
+                                 tolerance=self.tol, straddle=True, window=self._box(size))
         if len(outline.verbs) == 0:
             return None, factor
         edges = _onto(flatten(outline, self.tol).edges(close_all=True), size)[0]
@@ -299,7 +299,8 @@ class Masks:
     def cut_stroke(self, n, style, t, size):
         """PathNode ``n``'s path without the segments its stroke of
         ``style`` (undashed) cannot bring onto the canvas of ``size``
-        (:func:`raster.geometry.culling.cull_stroke`)."""
+        (:func:`raster.geometry.culling.cull_stroke`).  A dashed stroke is
+        cut after dashing, by the stroker (its ``window``)."""
         if style.dash is not None:
             return n.path
         reach = stroke_reach(style) * t.max_scale() + 2.0 + self.tol
@@ -508,7 +509,7 @@ class Masks:
                 outs = stroke_many([self.cut_stroke(items[j][1], style, items[j][2], size)
                                     for j in js], style,
                                    transforms=[items[j][2] for j in js], tolerance=self.tol,
-                                   straddle=True)
+                                   straddle=True, window=self._box(size))
                 for j, o in zip(js, outs):
                     outlines[j] = o
             if items:

@@ -11,6 +11,7 @@ import math
 import numpy as np
 
 from ..geometry.path import CLOSE, LINE, MOVE
+from ..geometry.stroking import stroke_reach
 from ..tree import Group, ImageNode, PathNode
 
 __all__ = ['pixel_box', 'node_box', 'group_box', 'stroke_reach', 'device_box', 'device_area',
@@ -51,18 +52,6 @@ def _rect_box(rect, t):
     x, y, w, h = rect
     return _points_box(t.apply(np.array([[x, y], [x + w, y], [x + w, y + h], [x, y + h]],
                                         float)))
-
-
-def stroke_reach(style):
-    """How far (in user units) a stroke of ``style`` can reach beyond the
-    path (half the width, times the miter limit or sqrt 2 for square caps)."""
-    r = style.width / 2.0
-    k = 1.0
-    if style.join in ('miter', 'miter-clip', 'arcs'):
-        k = max(k, style.miterlimit)
-    if style.cap == 'square':
-        k = max(k, math.sqrt(2.0))
-    return r * k
 
 
 def node_box(n, t):

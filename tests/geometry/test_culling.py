@@ -193,3 +193,64 @@ def test_an_open_contour_ending_at_its_start_stays_whole():
     two = parse_path('M 0 0 C 0 -12 14 -12 20 -4 M -20 10 C -12 18 0 12 0 0')
     assert np.abs(stroke_window(two, style, None, box)
                   - stroke_window(p, style, None, box)).max() > 0.005
+
+
+# -- dashes cut by the stroker (stroke(..., window=)) --------------------------------
+
+def dashed_window(path, style, t, box, window=None):
+    out = stroke(path, style, transform=t, tolerance=0.1, straddle=True, window=window)
+    return out, window_of(out, box)
+
+
+def window_of(outline, box):
+    return window(flatten(outline, 0.1).edges(close_all=True), box, 'nonzero')
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.sampled_from(['butt', 'round', 'square']),
+       st.sampled_from(['miter', 'round', 'bevel']))
+def test_dashes_far_from_the_window_are_left_out_and_the_window_is_unchanged(seed, cap, join):
+    rng = np.random.default_rng(seed)
+    p, t, box = random_path(rng, spread=(-200, 300)), random_transform(rng), random_box(rng)
+    dash = rng.uniform(0.5, 12, int(rng.integers(1, 4)) * 2).tolist()
+    style = StrokeStyle(width=float(rng.uniform(0.5, 8)), cap=cap, join=join, miterlimit=4,
+                        dash=dash, dash_offset=float(rng.uniform(0, 10)))
+    whole, a = dashed_window(p, style, t, box)
+    cut, b = dashed_window(p, style, t, box, window=box)
+    np.testing.assert_allclose(b, a, rtol=0, atol=1e-6)
+    assert int((cut.verbs == MOVE).sum()) <= int((whole.verbs == MOVE).sum())
+
+
+def test_a_long_dashed_line_through_a_small_window_keeps_its_few_dashes():
+    # a line 10^6 px long with dashes of 10 + gaps of 10, seen through
+    # 64 x 48: about 50,000 dashes, of which the window's reach holds 5
+    p = Path.polygon([(-5e5, 20.0), (5e5, 20.0)], closed=False)
+    style = StrokeStyle(width=6.0, dash=[10.0, 10.0])
+    box = (0, 0, 64, 48)
+    whole, a = dashed_window(p, style, None, box)
+    cut, b = dashed_window(p, style, None, box, window=box)
+    assert int((whole.verbs == MOVE).sum()) == 50_000
+    assert int((cut.verbs == MOVE).sum()) <= 5
+    np.testing.assert_array_equal(a, b)
+    assert a.max() == 1.0
+    # infinite sides: everything below y = 40 (beyond the reach of a miter
+    # join, 4 x 3 px, from y = 20), then everything below y = 30
+    assert len(stroke(p, style, window=(-np.inf, 40.0, np.inf, np.inf)).verbs) == 0
+    assert len(stroke(p, style, window=(-np.inf, 30.0, np.inf, np.inf)).verbs) == 250_000
+
+
+def test_stroke_many_cuts_dashes_per_path_but_not_a_shared_outline():
+    from raster.geometry.stroking import stroke_many
+    line = Path.polygon([(0.0, 0.0), (1000.0, 0.0)], closed=False)
+    other = Path.polygon([(0.0, 5.0), (1000.0, 5.0)], closed=False)
+    style = StrokeStyle(width=2.0, dash=[4.0, 4.0])
+    box = (0, 0, 50, 50)
+    ts = [Affine.translate(0, 10), Affine.translate(0, 20), Affine.translate(0, 30)]
+    # line twice (one shared outline, two transforms) and other once
+    outs = stroke_many([line, line, other], style, transforms=ts, window=box)
+    moves = [int((o.verbs == MOVE).sum()) for o in outs]
+    assert moves[0] == moves[1] == 125           # shared: every dash
+    assert moves[2] <= 8                         # alone: those within reach of x < 50
+    for o, t, pth in zip(outs, ts, [line, line, other]):
+        np.testing.assert_array_equal(window_of(o, box),
+                                      window_of(stroke(pth, style, transform=t), box))
