@@ -113,7 +113,7 @@ from .rules import StrChoice
 from .transform import Affine, AffineLike, apply_each, as_affine
 
 __all__ = ['StrokeStyle', 'Stroke', 'StrokeError', 'LineJoin', 'LineCap', 'stroke', 'stroke_many',
-           'dash_polylines', 'dash_pattern', 'hairline_scale', 'DashedLines']
+           'dash_polylines', 'dash_pattern', 'hairline_scale', 'stroke_reach', 'DashedLines']
 
 
 class LineJoin(StrChoice):
@@ -1379,7 +1379,7 @@ def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: Affine
     Raises
     ------
     StrokeError
-        Invalid style values or tolerance, or ``path`` not a Path.
+        Invalid style values, tolerance or window, or ``path`` not a Path.
     LimitError
         When the outline would need more than
         ``max_flatten_points`` (:mod:`raster.limits`) points or dashes.
@@ -1410,6 +1410,8 @@ def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: Affine
     tol = _finite('tolerance', tolerance)
     if tol <= 0:
         raise StrokeError('tolerance must be > 0, got %r' % (tolerance,))
+    if window is not None:
+        window = _window(window)
     t = _affine(transform)
     scale = t.max_scale()
     if not math.isfinite(scale):
@@ -1499,13 +1501,26 @@ def stroke_reach(style):
     return r * k
 
 
+def _window(window):
+    """``window`` checked: four numbers (infinite allowed, not NaN) with
+    x0 <= x1 and y0 <= y1, else a StrokeError."""
+    try:
+        box = tuple(float(v) for v in window)
+    except (TypeError, ValueError):
+        box = ()
+    if len(box) != 4 or any(math.isnan(v) for v in box) or box[0] > box[2] or box[1] > box[3]:
+        raise StrokeError('window must be (x0, y0, x1, y1) with x0 <= x1 and y0 <= y1, got %r'
+                          % (window,))
+    return box
+
+
 def _near(window, m, reach):
     """A ``near(lines, cp)`` test for :func:`_geometry`: True for the
     contours (user space) whose device box, under the transform ``m[cp]``
     ((P, 6) rows ``a b c d e f``), comes within ``reach[cp]`` (device
     units) of the device box ``window``; always True for a path whose
     ``m`` row is NaN (an outline several transforms share)."""
-    x0, y0, x1, y1 = (float(v) for v in window)
+    x0, y0, x1, y1 = window
 
     def near(lines, cp):
         keep = np.ones(len(lines.counts), bool)
@@ -1614,8 +1629,8 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
     Raises
     ------
     StrokeError
-        Invalid style or tolerance, an item that is not a Path, or a number
-        of transforms different from the number of paths.
+        Invalid style, tolerance or window, an item that is not a Path, or a
+        number of transforms different from the number of paths.
     LimitError
         When the outlines together would need more than
         ``max_flatten_points`` (:mod:`raster.limits`) points or dashes, or an
@@ -1642,6 +1657,8 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
     tol = _finite('tolerance', tolerance)
     if tol <= 0:
         raise StrokeError('tolerance must be > 0, got %r' % (tolerance,))
+    if window is not None:
+        window = _window(window)
     n = len(paths)
     if transforms is None or isinstance(transforms, Affine):
         ts = [_affine(transforms)] * n

@@ -254,3 +254,16 @@ def test_stroke_many_cuts_dashes_per_path_but_not_a_shared_outline():
     for o, t, pth in zip(outs, ts, [line, line, other]):
         np.testing.assert_array_equal(window_of(o, box),
                                       window_of(stroke(pth, style, transform=t), box))
+
+
+@pytest.mark.parametrize('bad', [(0, 0, 10), (0, 0, 10, float('nan')), (10, 0, 0, 10),
+                                 (0, 10, 10, 0), 'abcd', 5, (0, 0, 'x', 1)])
+def test_a_bad_window_is_a_stroke_error(bad):
+    from raster.geometry.stroking import StrokeError, stroke_many
+    p = Path.polygon([(0.0, 0.0), (10.0, 0.0)], closed=False)
+    with pytest.raises(StrokeError, match='window'):
+        stroke(p, StrokeStyle(width=1.0, dash=[1.0, 1.0]), window=bad)
+    with pytest.raises(StrokeError, match='window'):
+        stroke(Path.empty(), StrokeStyle(width=1.0), window=bad)
+    with pytest.raises(StrokeError, match='window'):
+        stroke_many([p], StrokeStyle(width=1.0), window=bad)
