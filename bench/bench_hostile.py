@@ -63,6 +63,7 @@ TABLE = [
      ['--max-xml-text-bytes', '20000000']),
     ('20,000 markers of 50 circles', 'rasterize', 'markers_many.svg', []),
     ('dashes of 0.001 on a 1e8 line', 'rasterize', 'dash_storm.svg', []),
+    ('dashes of 1e-6 on a 1e8 line', 'rasterize', 'dash_storm_visible.svg', []),
     ('stroke-width 1e12', 'rasterize', 'stroke_huge_width.svg', []),
     ('text stroked 240in wide, dashed, as a mask', 'rasterize', 'fuzz_crowded_cells.svg', []),
     ('457,300 dashes of a line to 1e9, 64x48', 'rasterize', 'fuzz_far_dashes.svg', []),

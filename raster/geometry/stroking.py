@@ -757,14 +757,21 @@ def _as_lines(polylines):
                   np.asarray(tangent, dtype=np.float64).reshape(-1, 2))
 
 
-def _dash(lines, pattern, offset):
+def _dash(lines, pattern, offset, near=None, cp=None):
     """Dash cleaned lines; returns ``(_Lines, source)``: one polyline per
     dash (tangent set per dash) and the (K,) int64 contour each came from.
 
     A closed contour is unrolled twice around (two laps), so that the dash
     through its start point -- from the last dash start ``a`` to ``L`` and on
     from 0 -- is the single interval ``[a, L + b]``.  A closed contour that
-    one dash covers entirely stays closed."""
+    one dash covers entirely stays closed.
+
+    With ``near`` (a :class:`_Near`; ``cp`` (C,) numbers each contour's
+    path) only the periods of the pattern that overlap the arc-length
+    spans of the contours lying within reach of the window are made (a
+    superset of the dashes that can reach it, in order), and the budget
+    counts those: a long, finely dashed line seen through a small window
+    costs its few dashes there."""
     P, starts, counts, closed = lines.points, lines.starts, lines.counts, lines.closed
     C = len(counts)
     if C == 0:
@@ -794,9 +801,12 @@ def _dash(lines, pattern, offset):
         off = 0.0
     with np.errstate(over='ignore', invalid='ignore'):
         Kf = np.floor((L + off) / period) + 1
-    _check_size(float(Kf.sum()) * len(on0), 'dashes')      # before the int cast (huge)
-    K = Kf.astype(np.int64)
-    kc, kk = _ranges(K)
+    if near is None:
+        _check_size(float(Kf.sum()) * len(on0), 'dashes')      # before the int cast (huge)
+        K = Kf.astype(np.int64)
+        kc, kk = _ranges(K)
+    else:
+        kc, kk = _near_periods(near, cp[cid], U, S, ulast, base, Kf, period, off, on0, on1)
     a = (kk * period - off)[:, None] + on0[None, :]
     b = (kk * period - off)[:, None] + on1[None, :]
     dc = np.repeat(kc, len(on0))
@@ -853,6 +863,103 @@ def _dash(lines, pattern, offset):
     out[dstarts + dcounts - 1] = pb
     tangent = _unit(da)
     return _Lines(out, dstarts, dcounts, whole, sm, tangent), dc
+
+
+def _near_periods(near, pc, U, S, ulast, base, Kf, period, off, on0, on1):
+    """``(contour, period index)`` pairs, in order, of the periods of the
+    dash pattern that overlap the parts of the unrolled contours (points
+    ``U``, arc length ``S``, path ``pc`` of each point) within reach of
+    ``near``'s window (see :func:`_dash`)."""
+    seg = np.ones(len(U), bool)
+    seg[ulast] = False                           # segment i runs from U[i] to U[i + 1]
+    i = np.flatnonzero(seg)
+    cid = np.searchsorted(ulast, i)              # the unrolled contour of each segment
+    t0, t1 = near.clip(U[i], U[i + 1], pc[i])
+    hit = t0 <= t1
+    i, cid, t0, t1 = i[hit], cid[hit], t0[hit], t1[hit]
+    span = S[i + 1] - S[i]
+    u = S[i] + t0 * span - base[cid]
+    v = S[i] + t1 * span - base[cid]
+    # periods k with k * period - off + on0[q] <= v and ... + on1[q] >= u
+    # for some q, within 0 .. K - 1
+    with np.errstate(over='ignore', invalid='ignore'):
+        lo = np.maximum(np.ceil((u + off - on1[-1]) / period), 0.0)
+        hi = np.minimum(np.floor((v + off - on0[0]) / period), Kf[cid] - 1)
+    n = np.maximum(hi - lo + 1, 0.0)
+    _check_size(float(n.sum()) * len(on0), 'dashes')          # before the int cast (huge)
+    if len(hi) and not float(np.abs(hi).max()) < 2.0 ** 52:
+        _check_size(float('inf'), 'dashes')
+    n = n.astype(np.int64)
+    pair_c = np.repeat(cid, n)
+    pair_k = np.repeat(lo.astype(np.int64), n) + _ranges(n)[1]
+    # spans of one contour may share periods: each pair once, in order
+    o = np.lexsort((pair_k, pair_c))
+    pair_c, pair_k = pair_c[o], pair_k[o]
+    new = np.ones(len(pair_c), bool)
+    new[1:] = (pair_c[1:] != pair_c[:-1]) | (pair_k[1:] != pair_k[:-1])
+    return pair_c[new], pair_k[new]
+
+
+class _Near:
+    """A device window for :func:`_geometry`: which dashes (user space) of
+    which path (transform rows ``m`` ``a b c d e f``, (P, 6); NaN rows for
+    outlines several transforms share, never cut) can reach the box
+    ``window`` within ``reach`` (P,) device units."""
+
+    def __init__(self, window, m, reach):
+        self.box = window
+        self.m = m
+        self.reach = reach
+
+    def clip(self, p0, p1, c):
+        """The parameter range ``[t0, t1]`` of each user-space segment
+        ``p0 -> p1`` ((N, 2)) of path ``c`` that lies within reach of the
+        window (t0 > t1: none): the segment clipped to the grown window in
+        device space (an affine map keeps the parameter)."""
+        a, b, cc, d, e, f = self.m[c].T
+        r = self.reach[c]
+        x0, y0, x1, y1 = self.box
+        t0 = np.zeros(len(c))
+        t1 = np.ones(len(c))
+        with np.errstate(invalid='ignore', divide='ignore', over='ignore'):
+            for lo, hi, q0, dq in (
+                    (x0 - r, x1 + r, a * p0[:, 0] + cc * p0[:, 1] + e,
+                     a * (p1[:, 0] - p0[:, 0]) + cc * (p1[:, 1] - p0[:, 1])),
+                    (y0 - r, y1 + r, b * p0[:, 0] + d * p0[:, 1] + f,
+                     b * (p1[:, 0] - p0[:, 0]) + d * (p1[:, 1] - p0[:, 1]))):
+                ta, tb = (lo - q0) / dq, (hi - q0) / dq
+                flat = dq == 0
+                inside = (q0 >= lo) & (q0 <= hi)
+                t0 = np.where(flat, np.where(inside, t0, 2.0), np.maximum(t0, np.minimum(ta, tb)))
+                t1 = np.where(flat, np.where(inside, t1, -1.0), np.minimum(t1, np.maximum(ta, tb)))
+        shared = np.isnan(a)
+        t0[shared], t1[shared] = 0.0, 1.0
+        return t0, t1
+
+    def __call__(self, lines, cp):
+        """True for the contours of ``lines`` (user space; ``cp`` their
+        paths) whose device box comes within reach of the window."""
+        keep = np.ones(len(lines.counts), bool)
+        has = np.flatnonzero(lines.counts > 0)
+        if len(has) == 0:
+            return keep
+        # (each range runs to the next nonempty contour's start: empty
+        # contours hold no points)
+        st = lines.starts[has]
+        lo = np.minimum.reduceat(lines.points, st)
+        hi = np.maximum.reduceat(lines.points, st)
+        c, h = 0.5 * (lo + hi), 0.5 * (hi - lo)
+        a, b, cc, d, e, f = self.m[cp[has]].T
+        r = self.reach[cp[has]]
+        x0, y0, x1, y1 = self.box
+        dx = a * c[:, 0] + cc * c[:, 1] + e
+        dy = b * c[:, 0] + d * c[:, 1] + f
+        hx = np.abs(a) * h[:, 0] + np.abs(cc) * h[:, 1] + r
+        hy = np.abs(b) * h[:, 0] + np.abs(d) * h[:, 1] + r
+        with np.errstate(invalid='ignore'):
+            far = (dx + hx < x0) | (dx - hx > x1) | (dy + hy < y0) | (dy - hy > y1)
+        keep[has] = ~far
+        return keep
 
 
 def dash_polylines(polylines: Any, dash: Optional[Sequence[float]],
@@ -1424,7 +1531,7 @@ def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: Affine
     near = None
     if window is not None:
         m = np.array([[t.a, t.b, t.c, t.d, t.e, t.f]])
-        near = _near(window, m, np.array([stroke_reach(style) * scale + tol + 1.0]))
+        near = _Near(window, m, np.array([stroke_reach(style) * scale + tol + 1.0]))
     pts, counts, _ = _geometry(path, style, tol / scale, straddle=straddle, near=near)
     if not t.is_identity:
         pts = t.apply(pts)
@@ -1442,9 +1549,9 @@ def _geometry(path, style, tol_u, cpath=None, npaths=1, straddle=False, near=Non
     size below which points merge) is then computed per path, so each path
     gets the same outline as on its own.  Returns ``(points, counts,
     owner)``: the polygons and, per polygon, the entry of ``cpath`` (or 0).
-    ``straddle`` is passed on to the flattening.  ``near`` (see
-    :func:`_near`), for a dashed stroke: the dashes it does not keep are
-    dropped before they are outlined.
+    ``straddle`` is passed on to the flattening.  ``near`` (a
+    :class:`_Near`), for a dashed stroke: only the dashes that can reach
+    its window are made (:func:`_dash`) and outlined.
     """
     pattern = dash_pattern(style.dash)
     # dash positions follow the arc length of the flattening, which falls
@@ -1463,7 +1570,7 @@ def _geometry(path, style, tol_u, cpath=None, npaths=1, straddle=False, near=Non
     lines = _clean(lines, eps)
     if pattern is not None:
         eps = _eps(lines.points) if cpath is None else _eps_per_path(lines, cp, npaths)
-        lines, src = _dash(lines, pattern, style.dash_offset)
+        lines, src = _dash(lines, pattern, style.dash_offset, near, cp)
         cp = cp[src]
         if cpath is not None:
             eps, tol_u = eps[src], tol_u[src]
@@ -1512,38 +1619,6 @@ def _window(window):
         raise StrokeError('window must be (x0, y0, x1, y1) with x0 <= x1 and y0 <= y1, got %r'
                           % (window,))
     return box
-
-
-def _near(window, m, reach):
-    """A ``near(lines, cp)`` test for :func:`_geometry`: True for the
-    contours (user space) whose device box, under the transform ``m[cp]``
-    ((P, 6) rows ``a b c d e f``), comes within ``reach[cp]`` (device
-    units) of the device box ``window``; always True for a path whose
-    ``m`` row is NaN (an outline several transforms share)."""
-    x0, y0, x1, y1 = window
-
-    def near(lines, cp):
-        keep = np.ones(len(lines.counts), bool)
-        has = np.flatnonzero(lines.counts > 0)
-        if len(has) == 0:
-            return keep
-        # (each range runs to the next nonempty contour's start: empty
-        # contours hold no points)
-        st = lines.starts[has]
-        lo = np.minimum.reduceat(lines.points, st)
-        hi = np.maximum.reduceat(lines.points, st)
-        c, h = 0.5 * (lo + hi), 0.5 * (hi - lo)
-        a, b, cc, d, e, f = m[cp[has]].T
-        r = reach[cp[has]]
-        dx = a * c[:, 0] + cc * c[:, 1] + e
-        dy = b * c[:, 0] + d * c[:, 1] + f
-        hx = np.abs(a) * h[:, 0] + np.abs(cc) * h[:, 1] + r
-        hy = np.abs(b) * h[:, 0] + np.abs(d) * h[:, 1] + r
-        with np.errstate(invalid='ignore'):
-            far = (dx + hx < x0) | (dx - hx > x1) | (dy + hy < y0) | (dy - hy > y1)
-        keep[has] = ~far
-        return keep
-    return near
 
 
 def _eps_per_path(lines, cp, npaths):
@@ -1704,7 +1779,7 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
         mr = np.full((len(rep), 6), np.nan)
         alone = np.flatnonzero(np.bincount(inv, minlength=len(rep))[inv] == 1)
         mr[inv[alone]] = mu[alone]
-        near = _near(window, mr, stroke_reach(style) * scales[rep] + tol + 1.0)
+        near = _Near(window, mr, stroke_reach(style) * scales[rep] + tol + 1.0)
     pts, rcounts, owner = _geometry(big, style, tol_u, cpath, len(rep), straddle, near)
     # polygons come out path by path
     ppath = np.repeat(owner, rcounts)

@@ -267,3 +267,32 @@ def test_a_bad_window_is_a_stroke_error(bad):
         stroke(Path.empty(), StrokeStyle(width=1.0), window=bad)
     with pytest.raises(StrokeError, match='window'):
         stroke_many([p], StrokeStyle(width=1.0), window=bad)
+
+
+def test_dashes_beyond_the_budget_are_drawn_where_the_window_sees_them():
+    # 100,000 dashes on a line 2e5 long: over a budget of 50,000 points the
+    # whole stroke is refused, but a window makes only the periods near it
+    from raster import limits
+    from raster.errors import LimitError
+    p = Path.polygon([(-1e5, 20.0), (1e5, 20.0)], closed=False)
+    style = StrokeStyle(width=3.0, dash=[1.0, 1.0], dash_offset=0.25)
+    box = (0, 0, 64, 48)
+    with limits.applied(max_flatten_points=50_000):
+        with pytest.raises(LimitError, match='dashes'):
+            stroke(p, style)
+        cut = stroke(p, style, window=box)
+    assert 30 <= int((cut.verbs == MOVE).sum()) <= 40
+    _, ref = dashed_window(p, style, None, box)
+    np.testing.assert_array_equal(window_of(cut, box), ref)
+
+
+@pytest.mark.parametrize('box', [(0, 0, 30, 30), (80, 80, 120, 120), (-10, 40, 20, 60)])
+def test_a_closed_contour_keeps_its_dash_through_the_start(box):
+    # a square of side 100 from (10, 10) with dashes of 30 and gaps of 7:
+    # the last dash runs on through the start point into the first
+    p = Path.polygon([(10.0, 10.0), (110.0, 10.0), (110.0, 110.0), (10.0, 110.0)])
+    style = StrokeStyle(width=4.0, dash=[30.0, 7.0], dash_offset=11.0)
+    _, ref = dashed_window(p, style, None, box)
+    cut, got = dashed_window(p, style, None, box, window=box)
+    np.testing.assert_allclose(got, ref, rtol=0, atol=1e-6)
+    assert ref.max() > 0.5
