@@ -1468,10 +1468,11 @@ def stroke(path: Path, style: Optional[StrokeStyle] = None, *, transform: Affine
     window : (x0, y0, x1, y1) or None
         A device box (bounds may be infinite): the dashes of a dashed
         stroke whose outlines cannot reach it (farther from it than
-        :func:`stroke_reach` plus ``tolerance`` plus one pixel) are left out, so the
-        outline within the box is unchanged and a long dashed line drawn
-        through a small window costs its few visible dashes.  Solid
-        strokes are not cut (see :mod:`raster.geometry.culling`).
+        :func:`stroke_reach` plus ``tolerance`` plus one pixel) are not
+        made, so the outline within the box is unchanged and a long dashed
+        line drawn through a small window costs its few visible dashes
+        (the ``max_flatten_points`` budget counts those).  Solid strokes
+        are not cut (see :mod:`raster.geometry.culling`).
 
     Returns
     -------
