@@ -1093,15 +1093,16 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
     eo = np.broadcast_to(np.asarray(evenodd, bool), (F,))
     out = np.zeros(F)
     first = np.cumsum(k) - k
-    ones = np.ones(len(ua))
     small = k <= _EXACT_PIECES
-    # (pieces, cells, piece arrays, first piece and count of each cell)
+    # (pieces, cells, padded piece arrays, first piece and count of each cell)
     groups = []
     kb = _PIECE_BINS[np.minimum(np.searchsorted(_PIECE_BINS, k), len(_PIECE_BINS) - 1)]
     kb[small] = _coarsen(kb[small], _piece_work)
-    for kk in _distinct(kb[small]).tolist():
-        c = np.flatnonzero(small & (kb == kk))
-        groups.append((kk, c, (ua, va, ub, vb, ones), first[c], k[c]))
+    if small.any():
+        pad = _pad((ua, va, ub, vb, np.ones(len(ua))))
+        for kk in _distinct(kb[small]).tolist():
+            c = np.flatnonzero(small & (kb == kk))
+            groups.append((kk, c, pad, first[c], k[c]))
     big = np.flatnonzero(~small)
     crowded = big
     sampled = None
@@ -1110,7 +1111,8 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
         # outline are few distinct pieces
         ix = _ranges(first[big], k[big])
         d_f, d_p, d_m = _merge_pieces(np.repeat(np.arange(len(big)), k[big]),
-                                      [ua[ix], va[ix], ub[ix], vb[ix]], ones[ix])
+                                      [ua[ix], va[ix], ub[ix], vb[ix]], np.ones(len(ix)))
+        dpad = _pad(tuple(d_p) + (d_m,))
         kd = np.bincount(d_f, minlength=len(big))
         dfirst = np.cumsum(kd) - kd
         fits = kd <= _EXACT_PIECES
@@ -1118,29 +1120,23 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
         kdb[fits] = _coarsen(kdb[fits], _piece_work)
         for kk in _distinct(kdb[fits]).tolist():
             sel = np.flatnonzero(fits & (kdb == kk))
-            groups.append((kk, big[sel], tuple(d_p) + (d_m,), dfirst[sel], kd[sel]))
+            groups.append((kk, big[sel], dpad, dfirst[sel], kd[sel]))
         crowded = big[~fits]
         part = kd[~fits] * _REFINE ** depth <= _REFINE_WORK
         if not part.all():
             sel = np.flatnonzero(~fits)[~part]
-            sampled = (big[sel], tuple(d_p) + (d_m,), dfirst[sel], kd[sel])
+            sampled = (big[sel], dpad, dfirst[sel], kd[sel])
             crowded = crowded[part]
-    for kk, cells_k, arrays, pf, pk in groups:
+    for kk, cells_k, pad, pf, pk in groups:
         S = 1 + 2 * kk + kk * (kk - 1) // 2
         step = max(1, _CHUNK_WORK // (S * max(kk, 1)))
-        # a cell of fewer pieces is padded with points below the cell
-        # (no crossing, no event, no intersection)
-        pad = tuple(np.append(a, v) for a, v in zip(arrays, (2.0, 2.0, 2.0, 2.0, 0.0)))
-        dummy = len(pad[0]) - 1
         for lo in range(0, len(cells_k), step):
             c = cells_k[lo:lo + step]
-            r = np.arange(kk)
-            ix = np.where(r < pk[lo:lo + step][:, None], pf[lo:lo + step][:, None] + r, dummy)
-            pu, pv, qu, qv, pm = (a[ix] for a in pad)
+            pu, pv, qu, qv, pm = _padded(pad, pf[lo:lo + step], pk[lo:lo + step], kk)
             out[c] = _exact_small(pu, pv, qu, qv, pm, C[c], eo[c])
     if sampled is not None:
-        c, arrays, pf, pk = sampled
-        out[c] = _sampled(arrays, pf, pk, C[c], eo[c])
+        c, pad, pf, pk = sampled
+        out[c] = _sampled(pad, pf, pk, C[c], eo[c])
     if len(crowded):
         ix = _ranges(first[crowded], k[crowded])
         out[crowded] = _refine(ua[ix], va[ix], ub[ix], vb[ix], k[crowded], C[crowded],
@@ -1150,14 +1146,31 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
     return out
 
 
-def _sampled(arrays, pf, pk, C, eo, lines=_SAMPLE_LINES):
+def _pad(arrays):
+    """Piece arrays ``(ua, va, ub, vb, m)`` with one padding piece
+    appended: a point below the cell (no crossing, no event, no
+    intersection) of multiplicity 0, for :func:`_padded`."""
+    return tuple(np.append(a, v) for a, v in zip(arrays, (2.0, 2.0, 2.0, 2.0, 0.0)))
+
+
+def _padded(pad, pf, pk, kk):
+    """The pieces of cells as five (n, kk) arrays: cell i's ``pk[i]``
+    pieces from ``pf[i]`` on (in the arrays of :func:`_pad`), then the
+    padding piece."""
+    r = np.arange(kk)
+    ix = np.where(r < pk[:, None], pf[:, None] + r, len(pad[0]) - 1)
+    return tuple(a[ix] for a in pad)
+
+
+def _sampled(pad, pf, pk, C, eo, lines=_SAMPLE_LINES):
     """Coverage of cells by the midpoint rule on ``lines`` evenly spaced
     lines (see :func:`_exact`).
 
     Parameters
     ----------
-    arrays : tuple of five (P,) float64 ndarrays
-        Piece ends ``ua, va, ub, vb`` in cell units and multiplicities.
+    pad : tuple of five (P + 1,) float64 ndarrays
+        Piece ends ``ua, va, ub, vb`` in cell units and multiplicities,
+        padded (:func:`_pad`).
     pf, pk : (F,) int64 ndarray
         First piece and number of pieces of each cell.
     C : (F,) float64 ndarray
@@ -1173,17 +1186,13 @@ def _sampled(arrays, pf, pk, C, eo, lines=_SAMPLE_LINES):
     out = np.zeros(F)
     # cells padded to powers of two of pieces, batches of bounded work
     kb = 1 << np.ceil(np.log2(np.maximum(pk, 1))).astype(np.int64)
-    pad = tuple(np.append(a, v) for a, v in zip(arrays, (2.0, 2.0, 2.0, 2.0, 0.0)))
-    dummy = len(pad[0]) - 1
     H = np.linspace(0.0, 1.0, lines + 1)
     for kk in _distinct(kb).tolist():
         cells = np.flatnonzero(kb == kk)
         step = max(1, _CHUNK_WORK // (lines * kk))
-        r = np.arange(kk)
         for lo in range(0, len(cells), step):
             c = cells[lo:lo + step]
-            ix = np.where(r < pk[c][:, None], pf[c][:, None] + r, dummy)
-            pu, pv, qu, qv, pm = (a[ix] for a in pad)
+            pu, pv, qu, qv, pm = _padded(pad, pf[c], pk[c], kk)
             out[c] = _sample_lines(np.broadcast_to(H, (len(c), lines + 1)), pu, pv, qu, qv, pm,
                                    C[c], eo[c])
     return out

@@ -426,7 +426,7 @@ def test_sampled_cells_converge_to_the_exact_coverage(seed):
     exact = scan._exact_small(ua, va, ub, vb, m, C, eo)
     pf, pk = np.arange(F) * k, np.full(F, k)
     arrays = tuple(a.ravel() for a in (ua, va, ub, vb, m))
-    err = [np.abs(scan._sampled(arrays, pf, pk, C, eo, lines=n) - exact).max()
+    err = [np.abs(scan._sampled(scan._pad(arrays), pf, pk, C, eo, lines=n) - exact).max()
            for n in (16, 256, 4096)]
     assert err[0] < 0.1 and err[1] < err[0] / 8 and err[2] < err[1] / 8
 
