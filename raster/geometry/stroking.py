@@ -916,16 +916,18 @@ class _Near:
         ``p0 -> p1`` ((N, 2)) of path ``c`` that lies within reach of the
         window (t0 > t1: none): the segment clipped to the grown window in
         device space (an affine map keeps the parameter)."""
-        a, b, cc, d, e, f = self.m[c].T
+        m = self.m[c]
+        a, b, cc, d = m[:, :4].T
         r = self.reach[c]
         x0, y0, x1, y1 = self.box
         t0 = np.zeros(len(c))
         t1 = np.ones(len(c))
+        q = apply_each(m, p0)                   # the start in device space
         with np.errstate(invalid='ignore', divide='ignore', over='ignore'):
             for lo, hi, q0, dq in (
-                    (x0 - r, x1 + r, a * p0[:, 0] + cc * p0[:, 1] + e,
+                    (x0 - r, x1 + r, q[:, 0],
                      a * (p1[:, 0] - p0[:, 0]) + cc * (p1[:, 1] - p0[:, 1])),
-                    (y0 - r, y1 + r, b * p0[:, 0] + d * p0[:, 1] + f,
+                    (y0 - r, y1 + r, q[:, 1],
                      b * (p1[:, 0] - p0[:, 0]) + d * (p1[:, 1] - p0[:, 1]))):
                 ta, tb = (lo - q0) / dq, (hi - q0) / dq
                 flat = dq == 0
@@ -949,11 +951,11 @@ class _Near:
         lo = np.minimum.reduceat(lines.points, st)
         hi = np.maximum.reduceat(lines.points, st)
         c, h = 0.5 * (lo + hi), 0.5 * (hi - lo)
-        a, b, cc, d, e, f = self.m[cp[has]].T
+        m = self.m[cp[has]]
+        a, b, cc, d = m[:, :4].T
         r = self.reach[cp[has]]
         x0, y0, x1, y1 = self.box
-        dx = a * c[:, 0] + cc * c[:, 1] + e
-        dy = b * c[:, 0] + d * c[:, 1] + f
+        dx, dy = apply_each(m, c).T             # the box's centre in device space
         hx = np.abs(a) * h[:, 0] + np.abs(cc) * h[:, 1] + r
         hy = np.abs(b) * h[:, 0] + np.abs(d) * h[:, 1] + r
         with np.errstate(invalid='ignore'):

@@ -877,8 +877,9 @@ def _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd, 
     u0, v0 = xa[f] - cx, ya[f] - cy
     u1, v1 = xb[last] - cx, yb[last] - cy
     fdx, fdy = dx[f], dy[f]
+    ldx, ldy = (fdx, fdy) if single else (dx[last], dy[last])
     t0, d0, ok0 = _perimeter(u0, v0, fdx, fdy)
-    t1, d1, ok1 = _perimeter(u1, v1, *((fdx, fdy) if single else (dx[last], dy[last])))
+    t1, d1, ok1 = _perimeter(u1, v1, ldx, ldy)
     # (an end outside the cell by rounding, or at the top-left corner's
     # t = 0 or 4, is not on the boundary as the walk reads it)
     ends_in = ((np.minimum(np.minimum(u0, v0), np.minimum(u1, v1)) >= 0)
@@ -1045,10 +1046,10 @@ def _fill_of(w, evenodd):
 def _linear_on(mn, mx, eo):
     """Whether the fill rule is linear on the integers mn..mx (evenodd:
     two adjacent values; nonzero: within [0, 1], [-1, 0], >= 1 or <= -1)."""
+    if np.ndim(eo) == 0 and eo:
+        return mx - mn <= 1
     nonzero = ((mn >= 0) & (mx <= 1)) | (mn >= 1) | ((mx <= 0) & (mn >= -1)) | (mx <= -1)
-    if np.ndim(eo) == 0:
-        return mx - mn <= 1 if eo else nonzero
-    return np.where(eo, mx - mn <= 1, nonzero)
+    return nonzero if np.ndim(eo) == 0 else np.where(eo, mx - mn <= 1, nonzero)
 
 
 #: Rounding margin of the orientation tests of :func:`_apart`.
