@@ -52,6 +52,7 @@ TABLE = [
     ('10^8 use fan-out, svg-bbox', 'svg-bbox', 'use_fanout.svg', []),
     ('10^8 use fan-out, svg-flatten', 'svg-flatten', 'use_fanout.svg', []),
     ('7.5 MB path of 3.75M segments', 'rasterize', 'gen:long_path', []),
+    ('2 MB path of 998k segments (at max_path_bytes)', 'rasterize', 'gen:path_at_the_limit', []),
     ('300k rects (8.4 MB)', 'rasterize', 'gen:many_elements', []),
     ('199 MB of 6.8M rects', 'rasterize', 'huge-rects', []),
     ('20,000 rules x 4,000 elements', 'rasterize', 'gen:css_rules', []),

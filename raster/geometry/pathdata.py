@@ -18,7 +18,9 @@ included, with the same result bit for bit (:func:`_lex_fast`): a map's
 megabytes of path data would spend most of their time in the regular
 expression.  Only invalid data takes the slower path that locates the
 first error.  The geometry (relative coordinates, ``S``/``T`` reflections,
-arcs) is then computed by numpy over all commands at once for long paths,
+arcs) is then computed by numpy over all commands at once for long paths
+(the longest in parts of :data:`_BUILD_TOKENS` tokens, each continuing
+from where the previous stopped, so that the temporaries stay bounded),
 or by a plain loop over commands for short ones, where numpy's per-call
 overhead would dominate (:data:`SMALL_PATH_TOKENS`); the two agree
 (tested).
@@ -42,7 +44,7 @@ import math
 import re
 import sys
 
-from typing import List, Optional, Sequence, TYPE_CHECKING
+from typing import List, NamedTuple, Optional, Sequence, TYPE_CHECKING
 
 import numpy as np
 if TYPE_CHECKING:              # numpy.typing costs 1 ms of every start-up
@@ -212,14 +214,14 @@ def parse_path(d: str, tolerance: float = 0.01, strict: bool = True) -> Path:
     elif len(d2) >= FAST_LEX_CHARS:
         fast = _lex_fast(d2)
     if fast is not None:
-        kb, vals = fast[0], fast[1].tolist()
+        kb, vals = fast             # (the values stay one float64 array)
     else:
         nums, kb = _split(d2)
         vals = list(map(float, nums))
     kinds = kb.replace(b',', b'') if b',' in kb else kb
     if _is_valid(kb, kinds, vals):
         return _build(kinds, vals, tol)
-    vals = np.array(vals, dtype=np.float64)
+    vals = np.asarray(vals, dtype=np.float64)
     at, what = _first_error(kb, kinds, vals)
     if strict:
         pos = _char_position(d2, at)
@@ -229,7 +231,7 @@ def parse_path(d: str, tolerance: float = 0.01, strict: bool = True) -> Path:
         raise PathError('path data error at %d: %s' % (pos, what))
     cut = at - kb.count(b',', 0, at)              # token index without commas
     end = _VALID.match(kinds, 0, cut).end()
-    return _build(kinds[:end], vals[:kinds.count(b'#', 0, end)].tolist(), tol)
+    return _build(kinds[:end], vals[:kinds.count(b'#', 0, end)], tol)
 
 
 def parse_paths(ds: Sequence[str], tolerance: float = 0.01) -> List[Path]:
@@ -329,6 +331,8 @@ def _is_valid(kb, kinds, vals):
         return False
     if _VALID.fullmatch(kinds) is None:
         return False
+    if isinstance(vals, np.ndarray):
+        return bool(np.isfinite(vals).all())
     return not vals or max(map(abs, vals)) < math.inf
 
 
@@ -361,19 +365,23 @@ def _lex_marked(d):
     Long data is lexed in chunks of about :data:`_LEX_CHUNK` characters
     (the lexers' temporaries are several arrays per character: tens of MB
     for a megabyte at once).  A chunk ends at a ``'|'`` (a one-character
-    junk token: it is dropped, and the chunks' kinds are joined by it) or
-    just after a space or comma; no token spans such a cut and either lexer
-    reads the next character as at the start of data, so the result is the
-    same as in one piece."""
+    junk token: it is dropped, and the chunks' kinds are joined by it),
+    just after a space or comma, or just before a command letter (data
+    without separators, ``h1h1...``); no token spans such a cut and either
+    lexer reads the next character as at the start of data, so the result
+    is the same as in one piece."""
     kinds, vals = [], []
     pos, n = 0, len(d)
     while pos <= n:
         m = _CUT.search(d, pos + _LEX_CHUNK) if n - pos > _LEX_CHUNK else None
         sep = b''
+        nxt = None if m is None else m.start() + 1
         if m is None:
             end = n
         elif d[m.start()] == '|':                   # dropped: the kinds join by it
             end, sep = m.start(), b'|'
+        elif d[m.start()] in _COMMANDS:             # a letter: starts the next chunk
+            end = nxt = m.start()
         else:                                       # a space or comma: kept
             end = m.start() + 1
         part = d[pos:end] if pos or end < n else d
@@ -386,18 +394,19 @@ def _lex_marked(d):
         vals.append(r[1])
         if m is None:
             break
-        pos = m.start() + 1
+        pos = nxt
     if len(vals) == 1:
         return kinds[0], vals[0]
     return b''.join(kinds), np.concatenate(vals)
 
 
 #: Where :func:`_lex_marked` may end a chunk.
-_CUT = re.compile('[|,%s]' % _WS)
+_COMMANDS = 'MmZzLlHhVvCcSsQqTtAa'
+_CUT = re.compile('[|,%s%s]' % (_WS, _COMMANDS))
 
 
 #: Characters per chunk of :func:`_lex_marked` (a chunk ends at the next
-#: ``'|'``, space or comma after that many).
+#: ``'|'``, space, comma or command letter after that many).
 _LEX_CHUNK = 1 << 18
 
 
@@ -635,11 +644,12 @@ SMALL_PATH_TOKENS = 2000
 
 
 def _build(kinds, vals, tol):
-    """Path from a validated token string and its numbers."""
+    """Path from a validated token string and its numbers (a list of
+    floats or a float64 array)."""
     if len(kinds) < SMALL_PATH_TOKENS:
-        return _build_loop(kinds, vals, tol)
+        return _build_loop(kinds, vals.tolist() if isinstance(vals, np.ndarray) else vals, tol)
     with np.errstate(over='ignore', invalid='ignore'):   # overflow: checked at the end
-        return _build_vector(kinds, np.array(vals, dtype=np.float64), tol)
+        return _build_vector(kinds, np.asarray(vals, dtype=np.float64), tol)
 
 
 def _build_loop(kinds, vals, tol):
@@ -732,7 +742,7 @@ def _build_loop(kinds, vals, tol):
     return Path(verbs, points, _checked=True)
 
 
-def _resolve(mode, val, is_move):
+def _resolve(mode, val, is_move, before=None):
     """One coordinate of the current point after every command.
 
     ``mode`` is ``_SET`` (absolute value), ``_ADD`` (relative) or ``_CLOSE``
@@ -740,7 +750,16 @@ def _resolve(mode, val, is_move):
     relative commands are cumulative sums from the last set/close; a close
     refers to the position of an earlier move, which may itself hang off an
     earlier close: those chains are resolved by pointer jumping (log n
-    rounds)."""
+    rounds).  ``before``: ``(cur, start)``, the coordinate of the current
+    point and of the contour's start before the first command (a later part
+    of a long path, see :func:`_build_vector`): a relative first command
+    starts from ``cur``, a close before any move goes back to ``start``."""
+    if before is not None:
+        # as if the commands followed a move to `start` and a line to `cur`
+        cur, start = before
+        r = _resolve(np.concatenate([[_SET, _SET], mode]), np.concatenate([[start, cur], val]),
+                     np.concatenate([[True, False], is_move]))
+        return r[2:]
     n = len(mode)
     bound = mode != _ADD
     seg = np.cumsum(bound) - 1
@@ -765,23 +784,112 @@ def _resolve(mode, val, is_move):
     return base[seg] + local
 
 
+#: Tokens the vectorized builder takes per pass (:func:`_build_vector`):
+#: its per-command temporaries, some 300 bytes a command, stay a few
+#: tens of MB for the longest path data.
+_BUILD_TOKENS = 1 << 16
+
+
+class _Carry(NamedTuple):
+    """What a part of a path leaves the next (:func:`_build_vector`): the
+    current point, the contour's start, the last command's kind (upper
+    case; 0 before any) and its control point (the second one of a
+    ``C``/``S``, the one of a ``Q``/``T``)."""
+    x: float = 0.0
+    y: float = 0.0
+    sx: float = 0.0
+    sy: float = 0.0
+    kind: int = 0
+    cx: float = 0.0
+    cy: float = 0.0
+
+
 def _build_vector(kinds, vals, tol, starts=None):
     """Vectorized builder: all commands at once (used for long paths).
 
     With ``starts`` (token offsets into ``kinds`` where independent paths
     begin, each with a moveto), return one Path per piece instead: many
-    paths built by one pass (:func:`parse_paths`)."""
+    paths built by one pass (:func:`parse_paths`).
+
+    Token strings longer than :data:`_BUILD_TOKENS` are built in parts of
+    about that many tokens, cut between command groups (a part that starts
+    inside a run of implicit repeats gets the run's letter, ``M`` becoming
+    ``L``), each starting from the state the previous one left
+    (:class:`_Carry`): the result is that of one pass, but for the last
+    bits of relative coordinates, whose cumulative sums then run per part."""
     if not kinds:
         return Path.empty()
+    carry = _Carry()
+    verbs, points, vstarts, pstarts = [], [], [], []
+    nv = nverb = npt = 0
+    for lo, hi, lead in _parts(kinds, _BUILD_TOKENS):
+        part = lead + kinds[lo:hi] if lead else (kinds if hi - lo == len(kinds) else kinds[lo:hi])
+        k = kinds.count(b'#', lo, hi)
+        local = None
+        if starts is not None:
+            local = starts[(starts >= lo) & (starts < hi)] - lo + len(lead)
+        v, pts, carry, sv, sp = _build_part(part, vals[nv:nv + k], tol, carry, lo == 0, local)
+        nv += k
+        verbs.append(v)
+        points.append(pts)
+        if starts is not None:
+            vstarts.append(sv + nverb)
+            pstarts.append(sp + npt)
+        nverb += len(v)
+        npt += len(pts)
+    iverb = verbs[0] if len(verbs) == 1 else np.concatenate(verbs)
+    pts = points[0] if len(points) == 1 else np.concatenate(points)
+    if not np.isfinite(pts).all():
+        raise PathError('path coordinates overflow float64')
+    if starts is None:
+        return Path(iverb, pts, _checked=True)
+    v0 = np.append(np.concatenate(vstarts), nverb).tolist()
+    p0 = np.append(np.concatenate(pstarts), npt).tolist()
+    return [Path(iverb[v0[k]:v0[k + 1]], pts[p0[k]:p0[k + 1]], _checked=True)
+            for k in range(len(v0) - 1)]
+
+
+def _parts(kinds, size):
+    """Cut a validated token string (without commas) into parts of about
+    ``size`` tokens between command groups: ``(lo, hi, lead)`` in order,
+    the part being ``lead + kinds[lo:hi]``, where ``lead`` is the letter of
+    a run of implicit repeats that the cut fell into (``b''`` otherwise)."""
+    n = len(kinds)
+    codes = np.frombuffer(kinds, np.uint8)
+    lo, lead = 0, b''
+    while n - lo > size:
+        hi = lo + size
+        let = np.flatnonzero(codes[lo + 1:hi + 1] >= 65)
+        if len(let):                            # end before the last letter
+            cut = lo + 1 + int(let[-1])
+            yield lo, cut, lead
+            lo, lead = cut, b''
+            continue
+        # inside one run of groups: end at a group boundary.  The run's
+        # letter is the part's lead or its first token
+        letter = lead if lead else kinds[lo:lo + 1]
+        first = lo if lead else lo + 1         # where the part's groups start
+        a = int(_ARITY[letter[0]])
+        cut = first + (hi - first) // a * a
+        yield lo, cut, lead
+        lo, lead = cut, {b'M': b'L', b'm': b'l'}.get(letter, letter)
+    yield lo, n, lead
+
+
+def _build_part(kinds, vals, tol, carry, first, starts=None):
+    """:func:`_build_vector` of one part: ``(verbs, points, carry, v0, p0)``
+    (the part's verbs and points, the state it leaves, and with ``starts``
+    the verb and point offsets of the pieces starting in it).  ``first``:
+    the part starts the path (its leading ``m`` is absolute)."""
     codes = np.frombuffer(kinds, np.uint8)
     cmd_at = np.flatnonzero(codes >= 65)
     letters = codes[cmd_at]
     arity = _ARITY[letters]
     ntok = np.diff(cmd_at, append=len(codes)) - 1
     ngroups = np.where(arity > 0, ntok // np.maximum(arity, 1), 1)
-    first = np.cumsum(ngroups) - ngroups
+    first_group = np.cumsum(ngroups) - ngroups
     cmd = np.repeat(np.arange(len(letters)), ngroups)
-    j = np.arange(len(cmd)) - first[cmd]
+    j = np.arange(len(cmd)) - first_group[cmd]
     letter = letters[cmd]
     tok = cmd_at[cmd] + 1 + j * arity[cmd]         # first argument token
     rel = letter >= 97
@@ -806,19 +914,20 @@ def _build_vector(kinds, vals, tol, starts=None):
     ey[isH] = 0.0
     mx[isZ] = _CLOSE
     my[isZ] = _CLOSE
-    mx[0] = my[0] = _SET                           # a leading 'm' is absolute
+    if first:
+        mx[0] = my[0] = _SET                       # a leading 'm' is absolute
     if starts is not None:
-        g0 = first[np.searchsorted(cmd_at, starts)]  # first group of every piece
+        g0 = first_group[np.searchsorted(cmd_at, starts)]  # first group of every piece
         mx[g0] = my[g0] = _SET
     is_move = kind == _M
     pos = np.empty((len(kind), 2))
-    pos[:, 0] = _resolve(mx, ex, is_move)
-    pos[:, 1] = _resolve(my, ey, is_move)
+    pos[:, 0] = _resolve(mx, ex, is_move, None if first else (carry.x, carry.sx))
+    pos[:, 1] = _resolve(my, ey, is_move, None if first else (carry.y, carry.sy))
     prev = np.empty_like(pos)
-    prev[0] = 0.0
+    prev[0] = carry.x, carry.y
     prev[1:] = pos[:-1]
     prevkind = np.empty_like(kind)
-    prevkind[0] = 0
+    prevkind[0] = carry.kind
     prevkind[1:] = kind[:-1]
 
     def args(idx, npts):
@@ -866,44 +975,46 @@ def _build_vector(kinds, vals, tol, starts=None):
     keepz = isZ & ~drop
     iverb[at[keepz]] = CLOSE
 
+    # control points (C/S: the second; Q/T: the only one), with the one
+    # carried from the previous part in front
+    ctrl = np.zeros((len(kind) + 1, 2))
+    ctrl[0] = carry.cx, carry.cy
     isC, isS = kind == _C, kind == _S
     if isC.any() or isS.any():
-        c2 = np.zeros_like(pos)                     # second control points
         ci = np.flatnonzero(isC)
         k = at[ci]
         iverb[k] = CUBIC
         inpt[k] = 3
         a = args(ci, 2)
         ipts[k, :2] = a
-        c2[ci] = a[:, 1]
+        ctrl[ci + 1] = a[:, 1]
         ipts[k, 2] = pos[ci]
         si = np.flatnonzero(isS)
         if len(si):
-            c2[si] = args(si, 1)[:, 0]
+            ctrl[si + 1] = args(si, 1)[:, 0]
             pk = prevkind[si]
             smooth = (pk == _C) | (pk == _S)
             c1 = prev[si].copy()
-            c1[smooth] = 2 * prev[si][smooth] - c2[si - 1][smooth]
+            c1[smooth] = 2 * prev[si][smooth] - ctrl[si][smooth]
             k = at[si]
             iverb[k] = CUBIC
             inpt[k] = 3
             ipts[k, 0] = c1
-            ipts[k, 1] = c2[si]
+            ipts[k, 1] = ctrl[si + 1]
             ipts[k, 2] = pos[si]
 
     isQ, isT = kind == _Q, kind == _T
     if isQ.any() or isT.any():
-        qc = np.zeros_like(pos)                     # quadratic control points
         qi = np.flatnonzero(isQ)
-        qc[qi] = args(qi, 1)[:, 0]
+        ctrl[qi + 1] = args(qi, 1)[:, 0]
         ti = np.flatnonzero(isT)
         if len(ti):
-            qc[ti] = _t_controls(ti, prev, prevkind, qc)
+            ctrl[ti + 1] = _t_controls(ti, prev, prevkind, ctrl)
         qt = np.flatnonzero(isQ | isT)
         k = at[qt]
         iverb[k] = QUAD
         inpt[k] = 2
-        ipts[k, 0] = qc[qt]
+        ipts[k, 0] = ctrl[qt + 1]
         ipts[k, 1] = pos[qt]
 
     if arcs is not None:
@@ -923,30 +1034,36 @@ def _build_vector(kinds, vals, tol, starts=None):
             ipts[k] = actrl
 
     points = ipts[np.arange(3) < inpt[:, None]]
-    if not np.isfinite(points).all():
-        raise PathError('path coordinates overflow float64')
+    moves = np.flatnonzero(is_move)
+    sx, sy = pos[moves[-1]] if len(moves) else (carry.sx, carry.sy)
+    last = len(kind) - 1
+    out = _Carry(float(pos[last, 0]), float(pos[last, 1]), float(sx), float(sy),
+                 int(kind[last]), float(ctrl[last + 1, 0]), float(ctrl[last + 1, 1]))
     if starts is None:
-        return Path(iverb, points, _checked=True)
-    v0 = np.append(item_at[g0], total).tolist()
-    p0 = np.concatenate([[0], np.cumsum(inpt)])[v0].tolist()
-    return [Path(iverb[v0[k]:v0[k + 1]], points[p0[k]:p0[k + 1]], _checked=True)
-            for k in range(len(v0) - 1)]
+        return iverb, points, out, None, None
+    v0 = item_at[g0]
+    p0 = (np.cumsum(inpt) - inpt)[v0]
+    return iverb, points, out, v0, p0
 
 
-def _t_controls(ti, prev, prevkind, qc):
-    """Control points of the ``T`` commands at indices ``ti``.
+def _t_controls(ti, prev, prevkind, ctrl):
+    """Control points of the ``T`` commands at indices ``ti``; ``ctrl[i +
+    1]`` is the control point of command ``i`` (``ctrl[0]``: the one before
+    the first command).
 
     Each reflects the previous control point about the current point when
     the previous command was ``Q``/``T``, else it is the current point.  In
     a run of ``T`` commands ``c[k] = 2 P[k] - c[k-1]``; with
     ``u[k] = (-1)**k c[k]`` that becomes ``u[k] = u[k-1] + 2 (-1)**k P[k]``,
-    a cumulative sum per run."""
+    a cumulative sum per run (a run at the first command continues the
+    previous part's, from its control point)."""
     P = prev[ti]
     pk = prevkind[ti]
     start = pk != _T
+    start[0] |= ti[0] == 0
     r = P.copy()                                   # reflected point at a run start
-    fromq = start & (pk == _Q)
-    r[fromq] = qc[ti[fromq] - 1]
+    fromq = start & ((pk == _Q) | (pk == _T))
+    r[fromq] = ctrl[ti[fromq]]
     sgn = np.where(ti % 2 == 0, 1.0, -1.0)[:, None]
     term = 2 * sgn * P
     cs = np.cumsum(term, axis=0)

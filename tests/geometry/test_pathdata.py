@@ -476,6 +476,82 @@ def test_long_path_uses_vector_builder_and_agrees():
     assert np.allclose(a.points, b.points, rtol=1e-12, atol=1e-9)
 
 
+@FEWER
+@given(path_strings(), st.sampled_from([9, 10, 13, 40]))
+def test_vector_builder_in_parts_is_the_one_pass_result(d, size):
+    # long token strings are built in parts of about _BUILD_TOKENS tokens,
+    # cut between command groups (inside runs of implicit repeats too),
+    # each starting from the state the previous left (current point,
+    # contour start, last command and control point for S / T): with
+    # integer coordinates every sum is exact, so the same numbers (up to
+    # the sign of a zero: the T recurrence alternates signs by index)
+    _, nums, kb = _lex(d)
+    kinds = kb.replace(b',', b'')
+    vals = np.array([float(x) for x in nums])
+    whole = _build_vector(kinds, vals, 0.01)
+    saved = svgpath._BUILD_TOKENS
+    svgpath._BUILD_TOKENS = size
+    try:
+        parts = _build_vector(kinds, vals, 0.01)
+    finally:
+        svgpath._BUILD_TOKENS = saved
+    assert parts.verbs.tobytes() == whole.verbs.tobytes()
+    assert np.array_equal(parts.points, whole.points)
+
+
+@FEWER
+@given(st.lists(path_strings(), min_size=2, max_size=8), st.sampled_from([9, 17, 50]))
+def test_many_paths_built_in_parts_are_each_path(ds, size):
+    # parse_paths builds all strings in one pass, which is cut into parts
+    # regardless of where the strings start
+    one = [parse_path(d, strict=False) for d in ds]
+    saved = svgpath._BUILD_TOKENS
+    svgpath._BUILD_TOKENS = size
+    try:
+        many = svgpath.parse_paths(ds)
+    finally:
+        svgpath._BUILD_TOKENS = saved
+    for a, b in zip(one, many):
+        assert a.verbs.tolist() == b.verbs.tolist()
+        assert np.array_equal(a.points, b.points)
+
+
+def test_parts_of_a_run_of_implicit_repeats():
+    # one moveto and 3000 implicit relative linetos: parts cut inside the
+    # run continue it as 'l' (not as another moveto)
+    d = 'm5 5 ' + ' '.join('%d %d' % (k % 7 - 3, k % 5 - 2) for k in range(3000)) + ' z'
+    _, nums, kb = _lex(d)
+    cuts = list(svgpath._parts(kb, 100))
+    assert len(cuts) > 50 and {lead for _, _, lead in cuts[1:]} == {b'l'}
+    saved = svgpath._BUILD_TOKENS
+    svgpath._BUILD_TOKENS = 100
+    try:
+        p = parse_path(d)
+    finally:
+        svgpath._BUILD_TOKENS = saved
+    assert p.verbs.tolist() == [MOVE] + [LINE] * 3000 + [CLOSE]
+    steps = np.array([(k % 7 - 3, k % 5 - 2) for k in range(3000)], float)
+    assert np.array_equal(p.points, np.cumsum(np.vstack([[5.0, 5.0], steps]), axis=0))
+
+
+@pytest.mark.parametrize('d', ['M0 0' + 'l1 2' * 200_000, 'M0 0' + 'h1' * 400_000,
+                               'M0 0 ' + ' '.join(['1 2'] * 200_000), 'M0 0Z' * 160_000])
+def test_long_path_data_is_parsed_in_bounded_memory(d):
+    # lexed in chunks (also data without separators, cut before letters)
+    # and built in parts: the temporaries were some 300 bytes a command
+    # (160 MB for 2 MB of 'L1 2'); now the peak is the result, the values
+    # and a few MB
+    import tracemalloc
+    tracemalloc.start()
+    try:
+        p = parse_path(d)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    kept = p.points.nbytes + p.verbs.nbytes
+    assert peak < 3 * kept + 8e6, (peak, kept)
+
+
 def _svgelements_ends(d):
     out = []
     for s in svgelements.Path(d):

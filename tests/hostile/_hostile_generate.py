@@ -62,6 +62,14 @@ def long_path(d):
                   '</svg>' % (NS, 'h1v1' * 1_875_000, MARK))
 
 
+def path_at_the_limit(d):
+    """One path of 998,000 segments in 1,996,004 bytes of data without a
+    separator (``h1v1...``): just under the default max_path_bytes, so it
+    is parsed and drawn."""
+    return _write(d, 'path_at_the_limit.svg', '<svg %s width="200" height="200"><path '
+                  'd="M0 0%s" fill="blue"/>%s</svg>' % (NS, 'h1v1' * 499_000, MARK))
+
+
 def many_elements(d):
     """300,000 rects (8.4 MB): more elements than max_xml_elements."""
     return _write(d, 'many.svg', '<svg %s width="200" height="200">%s%s</svg>'
