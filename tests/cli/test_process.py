@@ -114,3 +114,79 @@ def test_from_the_command_line_the_objects_of_the_run_are_frozen():
     before, after, enabled = run_code(FROZEN % 'None')
     assert before == '0' and int(after) > 1000 and enabled == 'True'
     assert run_code(FROZEN % '[]') == ['0', '0', 'True']
+
+
+
+HEAP = """
+import ctypes, sys
+calls = []
+
+class _Mallopt:
+    argtypes = None
+
+    def __call__(self, param, value):
+        calls.append((param, value))
+        return 1
+
+class _Libc:
+    mallopt = _Mallopt()
+
+ctypes.CDLL = lambda name: _Libc()          # records instead of setting
+%s
+print(calls)
+"""
+
+COMMAND = """
+from raster_cli import _common
+sys.argv = ['rasterize', '--version']
+try:
+    _common.run('rasterize', lambda a: 0, _common.Parser(prog='rasterize'), %s)
+except SystemExit:
+    pass
+"""
+
+RENDER = """
+import raster
+raster.render(b'<svg xmlns="http://www.w3.org/2000/svg" width="8" height="8"><circle r="4"/></svg>')
+"""
+
+
+def run_heap(code, env_extra=None):
+    """stdout of ``code`` in a child without the user's malloc settings."""
+    import os
+    import subprocess
+    import sys
+    env = {k: v for k, v in os.environ.items()
+           if not k.startswith('MALLOC_') and k != 'GLIBC_TUNABLES'}
+    env.update(env_extra or {})
+    return subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
+                          env=env, check=True).stdout.strip()
+
+
+def _glibc():
+    import os
+    try:
+        return bool(os.confstr('CS_GNU_LIBC_VERSION'))
+    except (ValueError, OSError, AttributeError):
+        return False
+
+
+def test_from_the_command_line_malloc_gets_fixed_thresholds():
+    # a command's own process fixes glibc's thresholds (M_MMAP_THRESHOLD -3,
+    # M_TRIM_THRESHOLD -1); not when called with arguments, not when the
+    # user tuned malloc, and on other C libraries not at all
+    want = str([(-3, _common.HEAP_MMAP_THRESHOLD), (-1, _common.HEAP_TRIM_THRESHOLD)])
+    assert run_heap(HEAP % (COMMAND % 'None')) == (want if _glibc() else '[]')
+    assert run_heap(HEAP % (COMMAND % '[]')) == '[]'
+    assert run_heap(HEAP % (COMMAND % 'None'), {'MALLOC_ARENA_MAX': '2'}) == '[]'
+    assert run_heap(HEAP % (COMMAND % 'None'),
+                    {'GLIBC_TUNABLES': 'glibc.malloc.tcache_count=0'}) == '[]'
+
+
+def test_the_library_leaves_malloc_alone():
+    assert run_heap(HEAP % RENDER) == '[]'
+
+
+def test_the_real_mallopt_takes_the_thresholds():
+    got = run_heap('from raster_cli import _common\nprint(_common.steady_heap())')
+    assert got == ('True' if _glibc() else 'False')
