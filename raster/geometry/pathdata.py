@@ -104,10 +104,12 @@ _GROUP.update({k.lower(): v for k, v in _GROUP.items()})
 POSSESSIVE = sys.version_info >= (3, 11, 5)
 
 
-def _validity_source(possessive):
+def _validity_source(possessive, body=False):
     p = b'+' if possessive else b''
     cmd = (rb'(?:[MmLlTt](?:##)+%s|[HhVv]#+%s|[Cc](?:######)+%s|[SsQq](?:####)+%s'
            rb'|[Aa](?:###[\x00\x01][\x00\x01]##)+%s|[Zz])' % ((p,) * 5))
+    if body:            # commands after the first (see _grammar_ok)
+        return cmd + rb'*' + p
     return rb'(?:[Mm](?:##)+' + p + cmd + rb'*' + p + rb')?'
 
 
@@ -118,6 +120,33 @@ def validity_regex(possessive=POSSESSIVE):
 
 
 _VALID = lazy(globals(), '_VALID', _validity_source(POSSESSIVE))
+_VALID_BODY = lazy(globals(), '_VALID_BODY', _validity_source(POSSESSIVE, body=True))
+_LETTER = lazy(globals(), '_LETTER', rb'[MmZzLlHhVvCcSsQqTtAa]')
+
+#: Tokens per piece of the grammar check (:func:`_grammar_ok`).
+_VALID_TOKENS = 1 << 16
+
+
+def _grammar_ok(kinds):
+    """Whether the token string (without commas) is valid path data:
+    ``_VALID.fullmatch(kinds)``, checked a piece of about
+    :data:`_VALID_TOKENS` tokens at a time, each cut before a command
+    letter (valid data is a sequence of commands, each starting at a
+    letter: the first piece must be valid data, every other one a sequence
+    of commands).  Without possessive repeats (Python before 3.11.5) the
+    regex engine keeps some 100 bytes of backtracking state a command:
+    84 MB for 2 MB of ``M0 0Z`` in one match."""
+    n = len(kinds)
+    if n <= _VALID_TOKENS:
+        return _VALID.fullmatch(kinds) is not None
+    lo, rx = 0, _VALID
+    while lo < n:
+        m = _LETTER.search(kinds, lo + _VALID_TOKENS) if n - lo > _VALID_TOKENS else None
+        hi = n if m is None else m.start()
+        if rx.fullmatch(kinds, lo, hi) is None:
+            return False
+        lo, rx = hi, _VALID_BODY
+    return True
 _CMD_SPAN = lazy(globals(), '_CMD_SPAN',
                  rb'([MmZzLlHhVvCcSsQqTtAa])([^MmZzLlHhVvCcSsQqTtAa]*)')
 _COMMA_AFTER_BAD = lazy(globals(), '_COMMA_AFTER_BAD', rb'(?<![#\x00\x01]),')
@@ -287,12 +316,12 @@ def parse_paths(ds: Sequence[str], tolerance: float = 0.01) -> List[Path]:
         if (all(k[:1] in (b'M', b'm') for k in kinds)
                 and not (len(whole) != len(kb) - len(pieces) + 1
                          and _bad_commas(kb))
-                and _VALID.fullmatch(whole) is not None):
+                and _grammar_ok(whole)):
             good = list(range(len(batch)))
         else:
             good = [j for j, (p, k) in enumerate(zip(pieces, kinds))
                     if k and (len(k) == len(p) or not _bad_commas(p))
-                    and _VALID.fullmatch(k) is not None]
+                    and _grammar_ok(k)]
             if len(good) > 1:
                 off = np.cumsum(counts) - counts
                 vals = np.concatenate([vals[off[j]:off[j] + counts[j]] for j in good])
@@ -329,7 +358,7 @@ def _is_valid(kb, kinds, vals):
     fails."""
     if len(kinds) != len(kb) and _bad_commas(kb):
         return False
-    if _VALID.fullmatch(kinds) is None:
+    if not _grammar_ok(kinds):
         return False
     if isinstance(vals, np.ndarray):
         return bool(np.isfinite(vals).all())

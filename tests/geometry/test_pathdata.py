@@ -534,14 +534,22 @@ def test_parts_of_a_run_of_implicit_repeats():
     assert np.array_equal(p.points, np.cumsum(np.vstack([[5.0, 5.0], steps]), axis=0))
 
 
+@pytest.mark.parametrize('plain', [False, True])
 @pytest.mark.parametrize('d', ['M0 0' + 'l1 2' * 200_000, 'M0 0' + 'h1' * 400_000,
                                'M0 0 ' + ' '.join(['1 2'] * 200_000), 'M0 0Z' * 160_000])
-def test_long_path_data_is_parsed_in_bounded_memory(d):
-    # lexed in chunks (also data without separators, cut before letters)
-    # and built in parts: the temporaries were some 300 bytes a command
-    # (160 MB for 2 MB of 'L1 2'); now the peak is the result, the values
-    # and a few MB
+def test_long_path_data_is_parsed_in_bounded_memory(d, plain, monkeypatch):
+    # lexed in chunks (also data without separators, cut before letters),
+    # its grammar checked in pieces and built in parts: the temporaries were
+    # some 300 bytes a command (160 MB for 2 MB of 'L1 2'); now the peak is
+    # the result, the values and a few MB.  `plain`: the grammar regex
+    # without possessive repeats (Python before 3.11.5), whose backtracking
+    # state was another 100 bytes a command in one match
+    import re
     import tracemalloc
+    if plain:
+        monkeypatch.setattr(svgpath, '_VALID', re.compile(svgpath._validity_source(False)))
+        monkeypatch.setattr(svgpath, '_VALID_BODY',
+                            re.compile(svgpath._validity_source(False, body=True)))
     tracemalloc.start()
     try:
         p = parse_path(d)
@@ -550,6 +558,38 @@ def test_long_path_data_is_parsed_in_bounded_memory(d):
         tracemalloc.stop()
     kept = p.points.nbytes + p.verbs.nbytes
     assert peak < 3 * kept + 8e6, (peak, kept)
+
+
+def test_grammar_checked_in_pieces_agrees_with_one_match():
+    # _grammar_ok cuts long token strings before command letters: the first
+    # piece must be valid data, the others sequences of commands; the same
+    # verdict as one match of the whole, with either form of the regex
+    import random
+    import re
+    rng = random.Random(3)
+    toks = [b'M##', b'm####', b'L##', b'l', b'H#', b'V##', b'C######', b'S####', b'Q####',
+            b'T##', b'A###\x00\x01##', b'a###\x01\x01##', b'Z', b'z', b'#', b'##', b'x',
+            b'\x00', b'A###\x00\x02##']
+    forms = [(svgpath._VALID, svgpath._VALID_BODY),
+             (re.compile(svgpath._validity_source(False)),
+              re.compile(svgpath._validity_source(False, body=True)))]
+    saved = svgpath._VALID, svgpath._VALID_BODY, svgpath._VALID_TOKENS
+    seen = set()
+    try:
+        for _ in range(3000):
+            k = b''.join(rng.choice(toks) for _ in range(rng.randint(0, 12)))
+            if rng.random() < 0.5:
+                k = b'M##' + k
+            want = forms[1][0].fullmatch(k) is not None
+            seen.add(want)
+            for whole, body in forms:
+                svgpath._VALID, svgpath._VALID_BODY = whole, body
+                for size in (1, 2, 3, 5, 8):
+                    svgpath._VALID_TOKENS = size
+                    assert svgpath._grammar_ok(k) == want, (k, size)
+    finally:
+        svgpath._VALID, svgpath._VALID_BODY, svgpath._VALID_TOKENS = saved
+    assert seen == {True, False}
 
 
 def _svgelements_ends(d):
