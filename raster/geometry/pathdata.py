@@ -121,7 +121,7 @@ def validity_regex(possessive=POSSESSIVE):
 
 _VALID = lazy(globals(), '_VALID', _validity_source(POSSESSIVE))
 _VALID_BODY = lazy(globals(), '_VALID_BODY', _validity_source(POSSESSIVE, body=True))
-_LETTER = lazy(globals(), '_LETTER', rb'[MmZzLlHhVvCcSsQqTtAa]')
+_LETTER = lazy(globals(), '_LETTER', b'[%s]' % _CMD_LETTERS.encode())
 
 #: Tokens per piece of the grammar check (:func:`_grammar_ok`).
 _VALID_TOKENS = 1 << 16
@@ -148,7 +148,7 @@ def _grammar_ok(kinds):
         lo, rx = hi, _VALID_BODY
     return True
 _CMD_SPAN = lazy(globals(), '_CMD_SPAN',
-                 rb'([MmZzLlHhVvCcSsQqTtAa])([^MmZzLlHhVvCcSsQqTtAa]*)')
+                 b'([%s])([^%s]*)' % (_CMD_LETTERS.encode(), _CMD_LETTERS.encode()))
 _COMMA_AFTER_BAD = lazy(globals(), '_COMMA_AFTER_BAD', rb'(?<![#\x00\x01]),')
 _COMMA_BEFORE_BAD = lazy(globals(), '_COMMA_BEFORE_BAD', rb',(?![#\x00\x01])')
 # token string -> 'N' (number or flag), ',' (comma) or 'x' (anything else)
@@ -409,7 +409,7 @@ def _lex_marked(d):
             end = n
         elif d[m.start()] == '|':                   # dropped: the kinds join by it
             end, sep = m.start(), b'|'
-        elif d[m.start()] in _COMMANDS:             # a letter: starts the next chunk
+        elif d[m.start()] in _CMD_LETTERS:          # a letter: starts the next chunk
             end = nxt = m.start()
         else:                                       # a space or comma: kept
             end = m.start() + 1
@@ -430,8 +430,7 @@ def _lex_marked(d):
 
 
 #: Where :func:`_lex_marked` may end a chunk.
-_COMMANDS = 'MmZzLlHhVvCcSsQqTtAa'
-_CUT = re.compile('[|,%s%s]' % (_WS, _COMMANDS))
+_CUT = re.compile('[|,%s%s]' % (_WS, _CMD_LETTERS))
 
 
 #: Characters per chunk of :func:`_lex_marked` (a chunk ends at the next

@@ -74,16 +74,20 @@ def test_a_command_called_with_arguments_freezes_nothing(tmp_path):
 
 
 def run_code(code, env_extra=None):
+    """The words ``code`` prints in a child without the user's BLAS and
+    malloc settings (plus ``env_extra``)."""
     import os
     import subprocess
     import sys
-    env = {k: v for k, v in os.environ.items() if k != 'OPENBLAS_NUM_THREADS'}
+    env = {k: v for k, v in os.environ.items()
+           if k not in ('OPENBLAS_NUM_THREADS', 'GLIBC_TUNABLES') and not k.startswith('MALLOC_')}
     env.update(env_extra or {})
     return subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
                           env=env, check=True).stdout.split()
 
 
-BLAS = '''
+# a command's run() with argv %s (None: from the command line)
+COMMAND = """
 import os, sys
 from raster_cli import _common
 sys.argv = ['rasterize', '--version']
@@ -91,8 +95,10 @@ try:
     _common.run('rasterize', lambda a: 0, _common.Parser(prog='rasterize'), %s)
 except SystemExit:
     pass
-print(os.environ.get('OPENBLAS_NUM_THREADS', '-'))
-'''
+"""
+
+BLAS = COMMAND + """print(os.environ.get('OPENBLAS_NUM_THREADS', '-'))
+"""
 
 
 def test_from_the_command_line_numpy_gets_one_blas_thread():
@@ -133,34 +139,13 @@ class _Libc:
 
 ctypes.CDLL = lambda name: _Libc()          # records instead of setting
 %s
-print(calls)
-"""
-
-COMMAND = """
-from raster_cli import _common
-sys.argv = ['rasterize', '--version']
-try:
-    _common.run('rasterize', lambda a: 0, _common.Parser(prog='rasterize'), %s)
-except SystemExit:
-    pass
+print(*[f'{p}:{v}' for p, v in calls])
 """
 
 RENDER = """
 import raster
 raster.render(b'<svg xmlns="http://www.w3.org/2000/svg" width="8" height="8"><circle r="4"/></svg>')
 """
-
-
-def run_heap(code, env_extra=None):
-    """stdout of ``code`` in a child without the user's malloc settings."""
-    import os
-    import subprocess
-    import sys
-    env = {k: v for k, v in os.environ.items()
-           if not k.startswith('MALLOC_') and k != 'GLIBC_TUNABLES'}
-    env.update(env_extra or {})
-    return subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
-                          env=env, check=True).stdout.strip()
 
 
 def _glibc():
@@ -175,18 +160,18 @@ def test_from_the_command_line_malloc_gets_fixed_thresholds():
     # a command's own process fixes glibc's thresholds (M_MMAP_THRESHOLD -3,
     # M_TRIM_THRESHOLD -1); not when called with arguments, not when the
     # user tuned malloc, and on other C libraries not at all
-    want = str([(-3, _common.HEAP_MMAP_THRESHOLD), (-1, _common.HEAP_TRIM_THRESHOLD)])
-    assert run_heap(HEAP % (COMMAND % 'None')) == (want if _glibc() else '[]')
-    assert run_heap(HEAP % (COMMAND % '[]')) == '[]'
-    assert run_heap(HEAP % (COMMAND % 'None'), {'MALLOC_ARENA_MAX': '2'}) == '[]'
-    assert run_heap(HEAP % (COMMAND % 'None'),
-                    {'GLIBC_TUNABLES': 'glibc.malloc.tcache_count=0'}) == '[]'
+    want = ['-3:%d' % _common.HEAP_MMAP_THRESHOLD, '-1:%d' % _common.HEAP_TRIM_THRESHOLD]
+    assert run_code(HEAP % (COMMAND % 'None')) == (want if _glibc() else [])
+    assert run_code(HEAP % (COMMAND % '[]')) == []
+    assert run_code(HEAP % (COMMAND % 'None'), {'MALLOC_ARENA_MAX': '2'}) == []
+    assert run_code(HEAP % (COMMAND % 'None'),
+                    {'GLIBC_TUNABLES': 'glibc.malloc.tcache_count=0'}) == []
 
 
 def test_the_library_leaves_malloc_alone():
-    assert run_heap(HEAP % RENDER) == '[]'
+    assert run_code(HEAP % RENDER) == []
 
 
 def test_the_real_mallopt_takes_the_thresholds():
-    got = run_heap('from raster_cli import _common\nprint(_common.steady_heap())')
-    assert got == ('True' if _glibc() else 'False')
+    got = run_code('from raster_cli import _common\nprint(_common.steady_heap())')
+    assert got == (['True'] if _glibc() else ['False'])
