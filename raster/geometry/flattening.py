@@ -829,26 +829,31 @@ class Polylines:
             return (np.zeros((0, 2, 2)), np.zeros(0, np.int64)) if owners else np.zeros((0, 2, 2))
         starts, ends = self.starts, self.ends
         sizes = ends - starts
+        live = sizes > 0
+        s, last = starts[live], ends[live] - 1
         want = np.ones(len(starts), bool) if close_all else self.closed.copy()
-        want &= np.any(P[starts] != P[ends - 1], axis=1)   # zero length: left out
-        ne = sizes - 1 + want                              # edges per polyline
-        off = np.cumsum(ne) - ne
+        want &= live
+        want[live] &= np.any(P[s] != P[last], axis=1)      # zero length: left out
+        ne = np.where(live, sizes - 1 + want, 0)            # edges per polyline
         nedge = int(ne.sum())
-        # (points move as complex128: one element per point)
+        # vertex i starts the edge to the next vertex, or at a polyline's
+        # last vertex the closing edge to its first (if wanted).  Points
+        # move as complex128 (one element per point); the temporaries are
+        # one point array and one flag per vertex
         Pc = pairs(np.ascontiguousarray(P))
+        nxt = np.empty_like(Pc)
+        nxt[:-1] = Pc[1:]
+        nxt[last] = Pc[s]
         oc = np.empty((nedge, 2), np.complex128)
-        # inner edges i -> i+1: polyline k's vertex i goes to off[k] + i - starts[k]
-        k_of = np.repeat(np.arange(len(starts)), sizes)
-        src = np.arange(len(P))
-        inner = src != (ends - 1)[k_of]
-        si = src[inner]
-        di = (off - starts)[k_of][inner] + si
-        oc[di, 0] = Pc[si]
-        oc[di, 1] = Pc[si + 1]
-        w = np.flatnonzero(want)
-        cw = off[w] + sizes[w] - 1
-        oc[cw, 0] = Pc[ends[w] - 1]
-        oc[cw, 1] = Pc[starts[w]]
+        opens = np.ones(len(P), bool)
+        opens[last] = want[live]
+        if nedge == len(P):
+            oc[:, 0] = Pc
+            oc[:, 1] = nxt
+        else:
+            np.compress(opens, Pc, out=oc[:, 0])
+            np.compress(opens, nxt, out=oc[:, 1])
+        del nxt
         out = oc.view(np.float64).reshape(nedge, 2, 2)
         if owners:
             return out, np.repeat(np.arange(len(starts)), ne)

@@ -1541,8 +1541,12 @@ def _area_coverage(loc, w, h, evenodd, exact=True, depth=0):
     if len(bands) == 1:
         return _band(loc, w, h, evenodd, exact, depth)
     data = None
+    # an edge reaches band rows r0..r1 (whole numbers) where its lowest y
+    # is below r1 and its highest above r0: floor(lowest) < r1 and
+    # ceil(highest) > r0, the same test on int32 rows (half the memory)
     ys = loc[:, :, 1]
-    ylo, yhi = ys.min(1), ys.max(1)
+    ylo = np.floor(ys.min(1)).clip(-1, h + 1).astype(np.int32)
+    yhi = np.ceil(ys.max(1)).clip(-1, h + 1).astype(np.int32)
     for r0, r1 in bands:
         sel = np.flatnonzero((yhi > r0) & (ylo < r1))
         if len(sel) == 0:

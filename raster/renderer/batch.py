@@ -433,6 +433,9 @@ class Masks:
                 exact.append(False)
                 # a dotted hairline is left to the general stroker
                 keys.append(None if dotted[j] else (self._hair_ready, items[i][0]))
+        # (only the parts are scanned: the polylines and per-edge owners go
+        # before the coverage, the peak of a large batch)
+        pl = sub = e = own = poly_item = keep = None
         self._scan_geometry(items, parts, counts, rules, aas, exact, kept, size, keys)
 
     def _scan_geometry(self, items, parts, counts, rules, aas, exact, kept, size, keys=()):
@@ -514,7 +517,9 @@ class Masks:
                     outlines[j] = o
             if items:
                 pl, first = flatten_joined(outlines, None, self.tol)
+                outlines = outs = o = None          # (in the polylines now)
                 e, own = pl.edges(close_all=True, owners=True)
+                pl = None
                 counts = np.bincount(np.repeat(np.arange(len(items)), np.diff(first))[own]
                                      if len(own) else own, minlength=len(items))
                 if self.store is not None and size == self._store_size:
@@ -523,9 +528,7 @@ class Masks:
                                                               ends.tolist())], size, 'stroke')
             else:
                 e, counts = np.zeros((0, 2, 2)), np.zeros(0, np.int64)
-            # (the outlines and their polylines are in the edges now: freed
-            # before the coverage, which is the peak of a long stroke)
-            outlines = outs = o = pl = None
+            own = None          # (freed before the coverage, the peak of a long stroke)
             if kept:
                 items = items + [it for it, _ in kept]
                 e = np.concatenate([e] + [k for _, k in kept])

@@ -278,3 +278,38 @@ def test_a_layer_between_paths_keeps_the_later_paths_batched(monkeypatch, window
     monkeypatch.setattr(batch_mod, 'BATCH_VERBS', 1)
     monkeypatch.setattr(batch_mod, 'BATCH_AREA', 1)
     assert np.abs(render_tree(tree, window=window).data - ref).max() <= 1e-6
+
+
+def test_a_long_stroke_is_scan_converted_with_only_its_edges_live(monkeypatch):
+    """A path of 200 random cubics stroked 1.5 px (its outline crosses
+    itself everywhere): when the batch's coverage starts, what the render
+    holds beyond the canvas is the edges (the outline, its polylines and
+    the per-edge owners are gone)."""
+    import tracemalloc
+    from raster.svg import load_svg
+    rng = np.random.default_rng(0)
+    w = 500
+    d = 'M250 250' + ''.join('C%.2f %.2f %.2f %.2f %.2f %.2f' % tuple(q)
+                             for q in rng.uniform(0, w, (200, 6)))
+    tree = load_svg(('<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d">'
+                     '<path fill="none" stroke="#000" stroke-width="1.5" d="%s"/></svg>'
+                     % (w, w, d)).encode())
+    seen = []
+    real = batch_mod.coverage_batch
+
+    def probe(e, counts, *args, **kw):
+        seen.append((tracemalloc.get_traced_memory()[0], e.nbytes))
+        return real(e, counts, *args, **kw)
+    monkeypatch.setattr(batch_mod, 'coverage_batch', probe)
+    render_tree(tree, dtype='uint8')                # (warm)
+    seen.clear()
+    tracemalloc.start()
+    try:
+        base = tracemalloc.get_traced_memory()[0]
+        render_tree(tree, dtype='uint8')
+    finally:
+        tracemalloc.stop()
+    assert len(seen) == 1
+    live, edge_bytes = seen[0]
+    assert edge_bytes > 400_000
+    assert live - base - 4 * w * w - edge_bytes <= 0.1 * edge_bytes + 32_000
