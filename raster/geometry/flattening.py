@@ -845,12 +845,12 @@ class Polylines:
         nxt[:-1] = Pc[1:]
         nxt[last] = Pc[s]
         oc = np.empty((nedge, 2), np.complex128)
-        opens = np.ones(len(P), bool)
-        opens[last] = want[live]
-        if nedge == len(P):
+        if nedge == len(P):                                 # every vertex starts an edge
             oc[:, 0] = Pc
             oc[:, 1] = nxt
         else:
+            opens = np.ones(len(P), bool)
+            opens[last] = want[live]
             np.compress(opens, Pc, out=oc[:, 0])
             np.compress(opens, nxt, out=oc[:, 1])
         del nxt
