@@ -28,7 +28,10 @@ HEAVY = ('fontTools', 'uharfbuzz', 'PIL', 'raster.fonts.font', 'raster.fonts.mat
          'raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
          'raster.tree.filter', 'raster.parser.images', 'raster.parser.imageload',
          'raster.parser.markers', 'raster.parser.clipmask', 'raster.fonts.files',
-         'raster.parser.mesh', 'raster.pixels.mesh', 'raster.geometry.patches')
+         'raster.parser.mesh', 'raster.pixels.mesh', 'raster.geometry.patches',
+         'raster.tree.servers', 'raster.parser.servers')
+#: The paint servers' classes (tree and parser): loaded by the first url() paint.
+SERVERS = ('raster.tree.servers', 'raster.parser.servers')
 MESH = ('raster.parser.mesh', 'raster.pixels.mesh', 'raster.geometry.patches')
 #: Modules of numpy and the standard library a plain document does not need.
 LIGHT_EXTRAS = ('numpy.ma', 'numpy.typing', 'logging', 'threading', 'hashlib', '_hashlib',
@@ -195,6 +198,45 @@ def test_markers_and_clip_paths_load_their_modules():
     mods = modules_after(render_code(doc))
     assert loaded(mods, ('raster.parser.markers', 'raster.parser.clipmask')) == [
         'raster.parser.clipmask', 'raster.parser.markers']
+    # solid paints in markers load no paint servers
+    assert loaded(mods, SERVERS) == []
+
+
+@pytest.mark.parametrize('server', [
+    '<linearGradient id="p"><stop offset="0" stop-color="red"/><stop offset="1"/></linearGradient>',
+    '<radialGradient id="p"><stop offset="0" stop-color="red"/><stop offset="1"/></radialGradient>',
+    '<pattern id="p" width="2" height="2" patternUnits="userSpaceOnUse">'
+    '<rect width="1" height="1"/></pattern>'])
+def test_a_paint_server_loads_the_server_modules(server):
+    doc = SVG % (server + '<rect width="10" height="8" stroke="url(#p)" fill="url(#p) lime"/>')
+    mods = modules_after(render_code(doc))
+    assert loaded(mods, SERVERS) == sorted(SERVERS)
+    assert loaded(mods, FILTERS + MESH + ('raster.fonts.files', 'fontTools', 'PIL')) == []
+
+
+def test_a_url_to_something_else_loads_no_paint_servers():
+    # a url() paint whose target is not a paint server uses its fallback
+    doc = SVG % '<g id="g"/><rect width="10" height="8" fill="url(#g) red" stroke="url(#none)"/>'
+    mods = modules_after(render_code(doc))
+    assert 'raster.renderer.draw' in mods and loaded(mods, SERVERS) == []
+
+
+def test_the_tree_exports_the_server_classes_on_first_use():
+    mods = modules_after('import raster.tree')
+    assert loaded(mods, SERVERS) == []
+    mods = modules_after(textwrap.dedent('''
+        import raster.tree, raster.tree.paint, raster.tree.servers as s
+        from raster.tree import LinearGradient, Paint
+        assert LinearGradient is s.LinearGradient is raster.tree.paint.LinearGradient
+        assert Paint is raster.tree.paint.Paint and raster.tree.SpreadMethod is s.SpreadMethod
+        assert set(Paint.__args__) == {raster.tree.SolidPaint, LinearGradient, s.RadialGradient,
+                                       s.SweepGradient, s.Pattern, s.MeshGradient}
+        for name in raster.tree.__all__:
+            getattr(raster.tree, name)
+        for name in raster.tree.paint.__all__:
+            getattr(raster.tree.paint, name)
+    '''))
+    assert 'raster.tree.servers' in mods and 'raster.parser.servers' not in mods
 
 
 PATTERNS = textwrap.dedent('''

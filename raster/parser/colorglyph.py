@@ -32,8 +32,8 @@ import dataclasses
 from ..errors import RasterError
 from ..geometry.transform import IDENTITY, Affine
 from ..fonts.color import BitmapGlyph, ClipLayer, CompositeLayer, FillLayer, SvgGlyph
-from ..tree import (BlendMode, ClipPath, Fill, GradientStop, Group, ImageNode, LinearGradient,
-                    PathNode, RadialGradient, SolidPaint, SpreadMethod, SweepGradient)
+from ..tree import BlendMode, ClipPath, Fill, Group, ImageNode, PathNode, SolidPaint
+from ..tree.servers import GradientStop, LinearGradient, RadialGradient, SpreadMethod, SweepGradient
 from ..tree import filter as tf
 from .imageload import ImageError, decode_raster, load_svg_data
 

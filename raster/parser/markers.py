@@ -70,7 +70,6 @@ from ..tree import FillRule, Group, PathNode, SolidPaint
 from .convert import convert_children
 from .boxes import walk_all
 from .effects import clip_rect
-from .paint import in_space
 from .style import doc_style, length, local_name
 from .values import (ZERO_VIEWBOX, parse_angle, parse_length, parse_preserve_aspect_ratio,
                      parse_url, resolve_viewbox, viewbox_transform)
@@ -365,6 +364,9 @@ def context_paint(paint, to_context, box=None):
     Returns None when the paint cannot be used (singular transform, empty
     box).  Solid colours and None are returned unchanged.
     """
+    if paint is None or isinstance(paint, SolidPaint):
+        return paint
+    from .servers import in_space       # loaded with the first paint server
     if box is not None:
         box = (box[0], box[1], box[2] - box[0], box[3] - box[1])
     return in_space(paint, to_context, box)

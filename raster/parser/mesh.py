@@ -30,7 +30,7 @@ import re
 import numpy as np
 
 from ..geometry.transform import IDENTITY, Affine
-from ..tree import MeshGradient, MeshInterpolation
+from ..tree.servers import MeshGradient, MeshInterpolation
 from .document import chain_attr
 from .refs import href_chain
 from .style import BLACK, doc_style, local_name, opacity

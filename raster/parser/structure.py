@@ -20,7 +20,7 @@ from .context import State
 from .convert import convert, convert_children
 from .css import parse_declarations
 from .effects import clip_rect, effects, wrap
-from .paint import GradientServer, PatternServer, in_space, paint
+from .paint import paint
 from .refs import external_target, href_target, instance_size, is_recursive
 from .style import (initial_inherited, is_displayed, length, length_context, local_name,
                     origin_box, passes_conditions, style_of, transform_of)
@@ -283,6 +283,8 @@ def _rebase_context(kids, move, inh, cfill, cstroke):
         todo.append(p)
     if not todo or not kids:
         return
+    # the paints are servers or gradients: raster.parser.servers made them
+    from .servers import GradientServer, PatternServer, in_space
     box = None
     if any(isinstance(p, (GradientServer, PatternServer)) and p.needs_box() for p in todo):
         b = layer_box(kids, move)

@@ -32,8 +32,7 @@ from ..geometry.flattening import flatten
 from ..pixels.scan import Mask, coverage
 from ..pixels.views import ClipRect, pixel_overlaps
 from ..geometry.transform import Affine
-from ..tree import (Group, ImageNode, LinearGradient, MaskType, MeshGradient, PaintItem, PathNode,
-                    Pattern, RadialGradient, SolidPaint, SweepGradient)
+from ..tree import Group, ImageNode, MaskType, PaintItem, PathNode, SolidPaint
 from .batch import Masks
 from .bounds import clip_rect, group_box, pixel_box
 from .paint import STRIP_PIXELS, draw_pixels, gradient_colors, mesh_colors, sample
@@ -418,6 +417,8 @@ class Renderer:
             canvas.fill(mask, paint.color, opacity)
             return
         self.settle()
+        # a paint server: the parser loaded their module
+        from ..tree.servers import LinearGradient, MeshGradient, Pattern, RadialGradient, SweepGradient
         # colours are computed at the pixel centres of the canvas's frame
         # with the frame's CTM: a window gets the whole render's colours
         ox, oy = self.place(canvas)[:2]

@@ -24,7 +24,6 @@ from ..geometry.path import Path
 from ..pixels.scan import path_coverage
 from ..pixels.views import pixel_overlaps
 from ..geometry.transform import Affine
-from ..tree import LinearGradient, SweepGradient
 
 __all__ = ['gradient_colors', 'mesh_colors', 'draw_pixels', 'sample', 'resample_window', 'STRIP_PIXELS']
 
@@ -80,6 +79,7 @@ def gradient_colors(paint, mask, t):
         Premultiplied RGBA already multiplied by the coverage; None when
         nothing is painted.
     """
+    from ..tree.servers import LinearGradient, SweepGradient   # loaded with the paint
     stops = paint.stops
     if not stops:
         return None

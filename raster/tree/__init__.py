@@ -25,13 +25,14 @@ Guarantees of a tree built by the parser:
   costs the renderer nothing.
 
 Modules: :mod:`.nodes` (Tree, Group, PathNode, ImageNode), :mod:`.paint`
-(paints, Fill, Stroke), :mod:`.effects` (ClipPath, Mask, BlendMode),
-:mod:`.filter` (one class per filter primitive kind).
+(SolidPaint, Fill, Stroke), :mod:`.servers` (gradients, patterns),
+:mod:`.effects` (ClipPath, Mask, BlendMode), :mod:`.filter` (one class per
+filter primitive kind).  Two of them load on first use: :mod:`.servers`
+with the first document that has a paint server (or the first use of one
+of its names here), :mod:`.filter` with the first filter.
 """
 
-from .paint import (RGBA, SolidPaint, GradientStop, LinearGradient, RadialGradient, Pattern,
-                    SweepGradient, MeshGradient, MeshInterpolation, Paint, SpreadMethod, Fill, FillRule, Stroke,
-                    PaintItem, DEFAULT_PAINT_ORDER)
+from .paint import RGBA, SERVER_NAMES, SolidPaint, Fill, FillRule, Stroke, PaintItem, DEFAULT_PAINT_ORDER
 from .effects import BlendMode, MaskType, ClipPath, Mask
 from .nodes import Node, Group, PathNode, ImageNode, Tree, walk
 
@@ -42,8 +43,12 @@ __all__ = ['RGBA', 'SolidPaint', 'GradientStop', 'LinearGradient', 'RadialGradie
 
 
 def __getattr__(name):
-    # the filter classes (a module of ~30 dataclasses) load with the first
-    # document that has a filter: ``raster.tree.filter`` on first use
+    # the paint servers and the filter classes (modules of dataclasses,
+    # which cost a plain document's start-up to create) load with the first
+    # document that needs them, or the first use of their names here
+    if name in SERVER_NAMES:
+        from . import paint
+        return getattr(paint, name)
     if name == 'filter':
         import importlib
         return importlib.import_module(__name__ + '.filter')

@@ -371,7 +371,7 @@ def test_context_fill_and_stroke():
 
 
 def test_context_paint_gradient_stays_in_context_space():
-    from raster.parser.paint import GradientServer, PatternServer
+    from raster.parser.servers import GradientServer, PatternServer
     g = GradientServer(LinearGradient(0, 0, 1, 0, ()), obb=True)
     T = marker_transform((10, 20), 90, 2, 2, (1, 1))
     p = context_paint(g, T, box=(10, 20, 30, 60))

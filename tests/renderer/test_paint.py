@@ -345,7 +345,7 @@ def test_centred_radial_is_distance_over_radius():
 def test_object_bounding_box_units_resolve_to_the_box():
     """objectBoundingBox units are resolved by the parser: the gradient
     vector (0, 0) -> (1, 0) of the box x 4..14 runs over x 4..14."""
-    from raster.parser.paint import GradientServer, in_space
+    from raster.parser.servers import GradientServer, in_space
     stops = [GradientStop(0.0, (0, 0, 0, 1)), GradientStop(1.0, (1, 1, 1, 1))]
     server = GradientServer(LinearGradient(0, 0, 1, 0, stops), obb=True)
     p = in_space(server, Affine(), (4.0, 0.0, 10.0, 3.0))
