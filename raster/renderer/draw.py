@@ -418,7 +418,8 @@ class Renderer:
             return
         self.settle()
         # a paint server: the parser loaded their module
-        from ..tree.servers import LinearGradient, MeshGradient, Pattern, RadialGradient, SweepGradient
+        from ..tree.servers import (LinearGradient, MeshGradient, Pattern, RadialGradient,
+                                    SweepGradient)
         # colours are computed at the pixel centres of the canvas's frame
         # with the frame's CTM: a window gets the whole render's colours
         ox, oy = self.place(canvas)[:2]

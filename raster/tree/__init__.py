@@ -32,7 +32,8 @@ with the first document that has a paint server (or the first use of one
 of its names here), :mod:`.filter` with the first filter.
 """
 
-from .paint import RGBA, SERVER_NAMES, SolidPaint, Fill, FillRule, Stroke, PaintItem, DEFAULT_PAINT_ORDER
+from .paint import (RGBA, SERVER_NAMES, SolidPaint, Fill, FillRule, Stroke, PaintItem,
+                    DEFAULT_PAINT_ORDER)
 from .effects import BlendMode, MaskType, ClipPath, Mask
 from .nodes import Node, Group, PathNode, ImageNode, Tree, walk
 
