@@ -107,6 +107,10 @@ class Bezier(CurveMixin):
     def __setattr__(self, name, value):
         raise AttributeError('Bezier is immutable')
 
+    def __reduce__(self):
+        # pickled and copied as its control points
+        return (type(self), (self.ctrl,))
+
     def __repr__(self):
         return 'Bezier(%s)' % np.array2string(self.ctrl, separator=', ').replace('\n', '')
 
@@ -302,6 +306,10 @@ class PiecewiseBezier(CurveMixin):
 
     def __setattr__(self, name, value):
         raise AttributeError('PiecewiseBezier is immutable')
+
+    def __reduce__(self):
+        # pickled and copied as its control points and breaks
+        return (type(self), (self.ctrl, self.breaks))
 
     def __repr__(self):
         return 'PiecewiseBezier(%d segments, degree %d, D=%d)' % (len(self), self.degree, self.dim)

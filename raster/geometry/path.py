@@ -117,6 +117,11 @@ class Path:
     def __setattr__(self, name, value):
         raise AttributeError('Path is immutable')
 
+    def __reduce__(self):
+        # pickled and copied as its arrays (already checked); the caches
+        # are made again on use
+        return (type(self), (self.verbs, self.points, True))
+
     @classmethod
     def from_arrays(cls, verbs: ArrayLike, points: ArrayLike) -> 'Path':
         """Validated construction from verb and point arrays (raises

@@ -336,3 +336,18 @@ def test_bad_parameters():
         b.deriv(-1)
     with pytest.raises(CurveError):
         PiecewiseBezier([[[0, 0], [1, 0]]], breaks=[1, 0])
+
+
+def test_bezier_and_piecewise_bezier_pickle_and_copy_as_immutable_curves():
+    import copy
+    import pickle
+    b = Bezier([[0.0, 0.0], [1.0, 2.0], [3.0, 1.0], [4.0, 4.0]])
+    pb = PiecewiseBezier([[[0, 0], [1, 2], [3, 1]], [[3, 1], [4, 0], [5, 1]]], [0.0, 0.5, 2.0])
+    t = np.linspace(0.0, 1.0, 9)
+    for curve, ts in ((b, t), (pb, 2.0 * t)):
+        for q in (pickle.loads(pickle.dumps(curve)), copy.copy(curve), copy.deepcopy(curve)):
+            assert type(q) is type(curve)
+            assert np.array_equal(q.ctrl, curve.ctrl) and np.array_equal(q.eval(ts), curve.eval(ts))
+            with pytest.raises(AttributeError):
+                q.ctrl = None
+    assert np.array_equal(pickle.loads(pickle.dumps(pb)).breaks, pb.breaks)

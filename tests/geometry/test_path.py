@@ -31,6 +31,20 @@ def test_path_is_immutable():
         p.points[0, 0] = 3.0
 
 
+def test_path_pickles_and_copies_as_an_immutable_path():
+    import copy
+    import pickle
+    p = parse_path('M0 0 L10 0 Q20 0 20 10 Z M30 30 C31 31 32 32 33 30')
+    p.segments()                                   # (a filled cache is not carried)
+    for q in (pickle.loads(pickle.dumps(p)), copy.copy(p), copy.deepcopy(p)):
+        assert type(q) is Path and q == p and q.verbs.dtype == p.verbs.dtype
+        assert q.segments().ctrl.tolist() == p.segments().ctrl.tolist()
+        with pytest.raises(AttributeError):
+            q.verbs = None
+        with pytest.raises(ValueError):
+            q.points[0, 0] = 3.0
+
+
 # -- segments -------------------------------------------------------------------
 
 def test_segments_arrays():

@@ -109,3 +109,33 @@ def test_filter_primitives_are_typed_and_inputs_resolved():
     assert blend.inputs == (F.PREVIOUS, F.Source.ALPHA)      # 'nope' names no result
     assert comp.operator is F.CompositeOperator.XOR and comp.inputs == (F.PREVIOUS, F.Result('o'))
     assert isinstance(bad, F.Flood) and bad.color == F.TRANSPARENT      # in error
+
+
+def test_a_tree_pickles_and_renders_the_same():
+    # what a worker started afresh (no fork) would be sent: every node,
+    # paint, effect and path of the tree travels by pickle
+    import pickle
+
+    import numpy as np
+
+    from raster.renderer import render_tree
+    from raster.svg import load_svg
+    doc = b'''<svg xmlns="http://www.w3.org/2000/svg" width="40" height="30">
+      <linearGradient id="g"><stop offset="0" stop-color="red"/><stop offset="1"/></linearGradient>
+      <radialGradient id="r"><stop offset="0" stop-color="lime"/><stop offset="1"/></radialGradient>
+      <pattern id="p" width="4" height="4" patternUnits="userSpaceOnUse">
+        <rect width="2" height="2" fill="url(#g)"/></pattern>
+      <clipPath id="c"><circle cx="20" cy="15" r="14"/></clipPath>
+      <mask id="m"><rect width="40" height="30" fill="white" opacity="0.7"/></mask>
+      <filter id="f"><feGaussianBlur stdDeviation="1"/></filter>
+      <g clip-path="url(#c)" mask="url(#m)">
+        <rect width="20" height="30" fill="url(#g)" stroke="url(#r)" stroke-dasharray="3 1"/>
+        <rect x="20" width="20" height="30" fill="url(#p)" filter="url(#f)"/>
+      </g>
+    </svg>'''
+    tree = load_svg(doc)
+    copy = pickle.loads(pickle.dumps(tree))
+    assert [type(n) for n, _ in walk(copy.root)] == [type(n) for n, _ in walk(tree.root)]
+    a = render_tree(tree, dtype='uint8').to_rgba8()
+    b = render_tree(copy, dtype='uint8').to_rgba8()
+    assert a[..., 3].any() and np.array_equal(a, b)
