@@ -73,9 +73,8 @@ import time
 
 from ._common import (Parser, UsageError, add_font_options, add_languages, add_limit_options,
                       add_version, base_dir_of, collect_inputs, cpu_count, error_message,
-                      font_options, languages_of, list_fonts, open_output, output_name,
-                      process_pool,
-                      read_source, run, write_output)
+                      font_options, install_warnings, languages_of, list_fonts, open_output,
+                      output_name, process_pool, read_source, run, write_output)
 
 PROG = 'rasterize'
 
@@ -303,7 +302,7 @@ def convert(args, dpi, fmt, bg, inp, out, jobs=1):
                 global _JOB
                 _JOB = job
                 try:
-                    with process_pool(min(workers, len(spans))) as pool:
+                    with _pool(min(workers, len(spans)), '_JOB', job) as pool:
                         for piece in pool.imap(_strip_piece, spans):
                             png.write_compressed(piece)
                 finally:
@@ -329,6 +328,31 @@ def convert(args, dpi, fmt, bg, inp, out, jobs=1):
 
 #: What forked workers of one image render: (tree, render_tree options, level).
 _JOB = None
+
+
+def _pool(workers, name, value):
+    """A pool of ``workers`` processes (:func:`process_pool`) whose workers
+    see ``value`` as this module's global ``name``: forked copies inherit
+    it; workers started afresh, where the system cannot fork, get it (with
+    the limits and the warning lines in force here) from
+    :func:`_worker_start`, which needs ``value`` to pickle."""
+    from raster import limits
+    return process_pool(workers, _worker_start, (name, value, limits.current()))
+
+
+#: The limits a worker started afresh keeps applied (see :func:`_pool`).
+_WORKER_LIMITS = None
+
+
+def _worker_start(name, value, lim):
+    global _WORKER_LIMITS
+    if globals()[name] is value:            # a forked copy: it has all of it
+        return
+    globals()[name] = value
+    from raster import limits
+    _WORKER_LIMITS = limits.applied(lim)
+    _WORKER_LIMITS.__enter__()              # for the life of the worker
+    install_warnings(PROG)
 
 #: Fewest strips of an image beyond the memory budget, and strips per
 #: worker of one within it spread over workers.
@@ -483,7 +507,7 @@ def _batch(args, dpi, paths, out_dir):
     bar = _progress(len(tasks))
     try:
         if jobs > 1:
-            with process_pool(jobs) as pool:
+            with _pool(jobs, '_BATCH', _BATCH) as pool:
                 # a few files per hand-over: one round trip per file
                 # costs the parent (on the same cores) more than the
                 # small imbalance of the last chunks
@@ -598,7 +622,7 @@ def _tiles(args, dpi, inp):
     bar = _progress(len(tasks))
     try:
         if jobs > 1 and len(tasks) > 1:
-            with process_pool(min(jobs, len(tasks))) as pool:
+            with _pool(min(jobs, len(tasks)), '_TILES', _TILES) as pool:
                 for n, k in pool.imap(_tile_piece, tasks):
                     count += n
                     skipped += k

@@ -352,3 +352,60 @@ def test_a_chunked_batch_reports_a_bad_file_inside_a_chunk(tmp_path, capsys, mon
     assert sorted(os.listdir(out)) == ['icon%d.png' % i for i in range(7) if i != 3]
     assert len([ln for ln in err.splitlines() if 'error' in ln and 'icon3.svg' in ln]) == 1
     assert '6 of 7 files converted, 0 skipped, 1 failed' in summary(err)
+
+
+# -- workers started afresh (no fork) -------------------------------------------------------
+
+NO_FORK = '''
+import multiprocessing, os, sys
+del os.fork                                     # as on a system that cannot fork
+multiprocessing.get_all_start_methods = lambda: ['spawn']
+multiprocessing.set_start_method('spawn')      # (Linux's default is fork)
+from raster_cli.rasterize import main
+sys.exit(main(sys.argv[1:]))
+'''
+
+
+def _without_fork(*argv):
+    import subprocess
+    import sys
+    return subprocess.run([sys.executable, '-c', NO_FORK] + [str(a) for a in argv],
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_workers_started_afresh_draw_strips_batches_and_tiles(tmp_path):
+    # where the system cannot fork, the pools' workers are new processes:
+    # what a forked copy inherits (the parsed document, the batch's options,
+    # the limits) reaches them through the pool's initializer, so the
+    # outputs are the forked workers' (and the one-process render's)
+    src = write(tmp_path, 'big.svg', doc(500, 400, 90, 'orange'))
+    out = tmp_path / 'strips.png'
+    r = _without_fork('--width', 1200, '--jobs', 2, src, out)
+    assert r.returncode == 0, r.stderr
+    assert np.array_equal(png(out), raster.render(src, 1200))
+    d = folder(tmp_path, 3)
+    r = _without_fork(d, '--out-dir', tmp_path / 'many', '--jobs', 2)
+    assert r.returncode == 0 and '3 of 3 files converted' in r.stderr, r.stderr
+    for i in range(3):
+        assert np.array_equal(png(tmp_path / 'many' / ('icon%d.png' % i)),
+                              raster.render(str(d / ('icon%d.svg' % i))))
+    tiles = tmp_path / 'tiles'
+    r = _without_fork(src, '--tiles', tiles, '--max-zoom', 1, '--jobs', 2)
+    assert r.returncode == 0, r.stderr
+    whole = raster.render(src, 512)
+    tile = png(tiles / '1' / '1' / '0.png')
+    assert np.array_equal(tile, whole[:256, 256:512])
+    # the limits of the command line hold in those workers too, and their
+    # warnings are the command's one-line ones: the blurred group is left
+    # out of every strip, as forked workers leave it out
+    r = _without_fork('--width', 1200, '--jobs', 2, '--max-pixel-work', 1, src,
+                      tmp_path / 'limited.png')
+    assert r.returncode == 0, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert lines and all(ln.startswith('rasterize: warning: element not drawn: a group layer')
+                         for ln in lines), r.stderr
+    assert rasterize.main(['--width', '1200', '--jobs', '2', '--max-pixel-work', '1', src,
+                           str(tmp_path / 'forked.png')]) == 0
+    limited = png(tmp_path / 'limited.png')
+    assert np.array_equal(limited, png(tmp_path / 'forked.png'))
+    assert not np.array_equal(limited, png(out))
