@@ -15,6 +15,7 @@ a library logs (fontTools on broken fonts) into one-line
 
 import contextlib
 import contextvars
+import sys
 import _thread
 import warnings
 
@@ -80,6 +81,8 @@ def one_line(msg: object) -> str:
 
 
 _CAPTURE: contextvars.ContextVar = contextvars.ContextVar('raster_log_capture', default=None)
+#: The log_warnings blocks this context is in: [logger name, attached] each.
+_BLOCKS: contextvars.ContextVar = contextvars.ContextVar('raster_log_blocks', default=())
 _LOCK = _thread.allocate_lock()     # threading.Lock, without importing threading (0.6 ms)
 _HANDLERS: dict = {}
 
@@ -126,23 +129,53 @@ def log_warnings(name: str = 'fontTools'):
 
         with log_warnings('fontTools'):
             font = TTFont(path)
+
+    A library that is not imported yet cannot log, so the handler (and
+    :mod:`logging` itself) waits until code in the block imports it and
+    calls :func:`library_loaded` (the plain text of most documents never
+    imports fontTools, nor then :mod:`logging`).
     """
+    block = [name, False]          # (the logger, whether this block attached)
+    prev = _CAPTURE.get()
+    token = _CAPTURE.set((prev or ()) + (name,))
+    btoken = _BLOCKS.set(_BLOCKS.get() + (block,))
+    try:
+        if name.partition('.')[0] in sys.modules:
+            _attach(block)
+        yield
+    finally:
+        _BLOCKS.reset(btoken)
+        _CAPTURE.reset(token)
+        if block[1]:
+            _detach(name)
+
+
+def library_loaded(name: str = 'fontTools') -> None:
+    """Say that library ``name`` was just imported: the :func:`log_warnings`
+    blocks for it that this context is in, entered before the library was
+    loaded, attach their handler now (for the rest of each block)."""
+    for block in _BLOCKS.get():
+        if block[0] == name and not block[1]:
+            _attach(block)
+
+
+def _attach(block):
     import logging
-    logger = logging.getLogger(name)
+    name = block[0]
     with _LOCK:
         h = _HANDLERS.get(name)
         if h is None:
             h = _HANDLERS[name] = _to_warnings()
         if h.users == 0:
-            logger.addHandler(h)
+            logging.getLogger(name).addHandler(h)
         h.users += 1
-    prev = _CAPTURE.get()
-    token = _CAPTURE.set((prev or ()) + (name,))
-    try:
-        yield
-    finally:
-        _CAPTURE.reset(token)
-        with _LOCK:
-            h.users -= 1
-            if h.users == 0:
-                logger.removeHandler(h)
+    block[1] = True
+
+
+def _detach(name):
+    import logging
+    with _LOCK:
+        h = _HANDLERS[name]
+        h.users -= 1
+        if h.users == 0:
+            logging.getLogger(name).removeHandler(h)

@@ -143,6 +143,9 @@ def test_text_loads_the_fonts():
     assert loaded(mods, ('hashlib', '_hashlib')) == []
     mods = modules_after(render_code(doc, font_dirs=[SUITE_FONTS]))
     assert loaded(mods, ('hashlib', '_hashlib', 'tempfile', 'shutil')) == []
+    # nor logging: fontTools, whose records the text converter turns into
+    # warnings, is not loaded (raster.errors.log_warnings)
+    assert 'logging' not in mods
     # with the scan cached, plain text (TrueType outlines, no colour
     # tables) is shaped, measured and drawn by HarfBuzz alone
     assert 'uharfbuzz' in mods and loaded(mods, ('fontTools',)) == []

@@ -17,6 +17,7 @@ from ..geometry.path import CLOSE as _CLOSE, CUBIC as _CUBIC, LINE as _LINE, MOV
     QUAD as _QUAD, Path
 from .files import MAX_FONT_BYTES, FontError, FontFace, check_font_data, quiet_fonttools, \
     read_font_bytes, sfnt_bytes
+from ..errors import library_loaded
 from .matching import cached
 from .ranges import in_ranges
 
@@ -227,6 +228,7 @@ class Font:
         base = self._base
         if base._tt is None:
             from fontTools.ttLib import TTFont
+            library_loaded('fontTools')     # its tables are read later, in log_warnings blocks
             with quiet_fonttools():
                 try:
                     data = _font_data(self.face.path)
