@@ -830,6 +830,39 @@ CASES.update({
 })
 
 
+# --- zero-length subpaths: dots when stroked, nothing when dashed ---------------
+
+_ZERO = ('<path d="M40 40 Z M100 40 Z M160 40 L160 40 M20 150 L180 150" fill="none" '
+         'stroke="#264653" stroke-width="24" %s/>')
+
+CASES.update({
+    'stroke-zero-length-subpath-dots': (
+        'zero-length subpaths stroked with round and square caps',
+        'A subpath without length ("M x y Z", "M x y L x y") draws a dot with round caps and '
+        'a square (axis-aligned) with square caps; butt caps draw nothing.',
+        _ZERO % 'stroke-linecap="round"' + '<g transform="translate(0 50)">'
+        + _ZERO % 'stroke-linecap="square"' + '</g>'
+        + '<path d="M40 190 Z" stroke="#e76f51" stroke-width="24"/>'),
+    'stroke-zero-length-subpath-dashed': (
+        'zero-length subpaths of a dashed stroke draw nothing',
+        'Dashing follows each subpath along its length; a subpath without length has none '
+        'to dash, so it draws no dot, with round or square caps, whatever the dash offset '
+        '(as Skia and resvg do); the line below is dashed as usual.',
+        _ZERO % 'stroke-linecap="round" stroke-dasharray="30 10"'
+        + '<g transform="translate(0 30)">'
+        + _ZERO % 'stroke-linecap="round" stroke-dasharray="30 10" stroke-dashoffset="4"'
+        + '</g>'),
+    'stroke-zero-length-subpath-dashed-square': (
+        'zero-length subpaths of a dashed stroke with square caps and an offset',
+        'As for round caps: with stroke-dashoffset placing a dash across the start of every '
+        'subpath, the zero-length ones still draw nothing.',
+        _ZERO % 'stroke-linecap="square" stroke-dasharray="12 6" stroke-dashoffset="3"'
+        + '<g transform="translate(0 30)">'
+        + _ZERO % 'stroke-linecap="square" stroke-dasharray="12 6" stroke-dashoffset="-20"'
+        + '</g>'),
+})
+
+
 # --- transform-origin and transform-box ------------------------------------------
 
 CASES.update({

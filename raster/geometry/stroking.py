@@ -801,6 +801,9 @@ def _dash(lines, pattern, offset, near=None, cp=None):
         off = 0.0
     with np.errstate(over='ignore', invalid='ignore'):
         Kf = np.floor((L + off) / period) + 1
+    # a contour of length zero has no dashes (as Skia's contour measure
+    # skips it): dashed, a zero-length subpath draws no dot
+    Kf[L <= 0] = 0
     if near is None:
         _check_size(float(Kf.sum()) * len(on0), 'dashes')      # before the int cast (huge)
         K = Kf.astype(np.int64)

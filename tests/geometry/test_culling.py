@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import example, given, settings, strategies as st
 
 from raster.geometry.culling import cull_fill, cull_stroke
 from raster.geometry.flattening import flatten
@@ -209,6 +209,7 @@ def window_of(outline, box):
 @settings(max_examples=60, deadline=None)
 @given(st.integers(0, 2**32 - 1), st.sampled_from(['butt', 'round', 'square']),
        st.sampled_from(['miter', 'round', 'bevel']))
+@example(2122490, 'round', 'miter')        # a zero-length subpath by the window's edge
 def test_dashes_far_from_the_window_are_left_out_and_the_window_is_unchanged(seed, cap, join):
     rng = np.random.default_rng(seed)
     p, t, box = random_path(rng, spread=(-200, 300)), random_transform(rng), random_box(rng)
@@ -219,6 +220,28 @@ def test_dashes_far_from_the_window_are_left_out_and_the_window_is_unchanged(see
     cut, b = dashed_window(p, style, t, box, window=box)
     np.testing.assert_allclose(b, a, rtol=0, atol=1e-6)
     assert int((cut.verbs == MOVE).sum()) <= int((whole.verbs == MOVE).sum())
+
+
+@pytest.mark.parametrize('cap', ['round', 'square'])
+@pytest.mark.parametrize('offset', [0.0, 0.5, 6.5])
+@pytest.mark.parametrize('d', ['M 10 -3 Z M -40 15 L 60 15',
+                               'M -40 15 Q 10 25 60 15 Z M 10 -3 Z',
+                               'M 10 -3 L 10 -3 M -40 15 L 60 15'])
+def test_a_dashed_zero_length_subpath_draws_no_dot_cut_or_not(cap, offset, d):
+    # "M x y Z" stroked with round or square caps draws a dot, but dashed
+    # it has no length to dash and draws nothing (Skia's contour measure
+    # skips it; resvg draws no dot), wherever it is in the path and
+    # whatever the dash offset (a dash starting before 0 made a dot of it);
+    # the window cut of the dashes agrees (the dot would reach 1 px into the box)
+    p = parse_path(d)
+    box = (0, 0, 20, 20)
+    plain = window_of(stroke(p, StrokeStyle(width=8.0, cap=cap), tolerance=0.1), box)
+    assert plain[0, 8:12].min() > 0.5
+    style = StrokeStyle(width=8.0, cap=cap, dash=[5.0, 2.0], dash_offset=offset)
+    whole, a = dashed_window(p, style, None, box)
+    cut, b = dashed_window(p, style, None, box, window=box)
+    assert not a[:2, 4:16].any() and a[12:18].any()     # no dot; the other dashes
+    np.testing.assert_allclose(b, a, rtol=0, atol=1e-6)
 
 
 def test_a_long_dashed_line_through_a_small_window_keeps_its_few_dashes():
