@@ -21,23 +21,20 @@ from PIL import Image
 
 from _shared import SUITE_FONTS
 
-#: Loaded only by documents that need them.
-HEAVY = ('fontTools', 'uharfbuzz', 'PIL', 'raster.fonts.font', 'raster.fonts.matching',
-         'raster.fonts.discovery', 'raster.fonts.color', 'raster.parser.text',
-         'raster.parser.fontface',
-         'raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
-         'raster.tree.filter', 'raster.parser.images', 'raster.parser.imageload',
-         'raster.parser.markers', 'raster.parser.clipmask', 'raster.fonts.files',
-         'raster.parser.mesh', 'raster.pixels.mesh', 'raster.geometry.patches',
-         'raster.tree.servers', 'raster.parser.servers')
 #: The paint servers' classes (tree and parser): loaded by the first url() paint.
 SERVERS = ('raster.tree.servers', 'raster.parser.servers')
 MESH = ('raster.parser.mesh', 'raster.pixels.mesh', 'raster.geometry.patches')
+FILTERS = ('raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
+           'raster.tree.filter')
+#: Loaded only by documents that need them.
+HEAVY = ('fontTools', 'uharfbuzz', 'PIL', 'raster.fonts.font', 'raster.fonts.matching',
+         'raster.fonts.discovery', 'raster.fonts.color', 'raster.parser.text',
+         'raster.parser.fontface', 'raster.parser.images', 'raster.parser.imageload',
+         'raster.parser.markers', 'raster.parser.clipmask',
+         'raster.fonts.files') + FILTERS + MESH + SERVERS
 #: Modules of numpy and the standard library a plain document does not need.
 LIGHT_EXTRAS = ('numpy.ma', 'numpy.typing', 'logging', 'threading', 'hashlib', '_hashlib',
                 'tempfile', 'shutil')
-FILTERS = ('raster.parser.filters', 'raster.renderer.filters', 'raster.pixels.effects',
-           'raster.tree.filter')
 
 SVG = '<svg xmlns="http://www.w3.org/2000/svg" width="20" height="10">%s</svg>'
 RECT = '<rect x="2" y="2" width="6" height="6" fill="red" stroke="blue"/>'

@@ -147,6 +147,8 @@ def _grammar_ok(kinds):
             return False
         lo, rx = hi, _VALID_BODY
     return True
+
+
 _CMD_SPAN = lazy(globals(), '_CMD_SPAN',
                  b'([%s])([^%s]*)' % (_CMD_LETTERS.encode(), _CMD_LETTERS.encode()))
 _COMMA_AFTER_BAD = lazy(globals(), '_COMMA_AFTER_BAD', rb'(?<![#\x00\x01]),')

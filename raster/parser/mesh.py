@@ -29,12 +29,12 @@ import re
 
 import numpy as np
 
-from ..geometry.transform import IDENTITY, Affine
+from ..geometry.transform import IDENTITY
 from ..tree.servers import MeshGradient, MeshInterpolation
 from .document import chain_attr
 from .refs import href_chain
-from .style import BLACK, doc_style, local_name, opacity
-from .values import CURRENT_COLOR, parse_color, parse_length, parse_number, parse_transform
+from .style import local_name, stop_color
+from .values import parse_length, parse_number, parse_transform
 
 __all__ = ['mesh_gradient']
 
@@ -84,17 +84,6 @@ def _edge(path, start, end=None):
     return np.array([start, pts[0], pts[1], stop])
 
 
-def _stop_color(stop, cache):
-    """Straight RGBA of a ``stop`` (stop-color with stop-opacity)."""
-    inh, own = doc_style(stop, cache)
-    c = parse_color(own.get('stop-color', 'black'))
-    if c is None:
-        c = BLACK
-    elif c is CURRENT_COLOR:
-        c = inh['_color']
-    return (c[0], c[1], c[2], c[3] * opacity(own.get('stop-opacity')))
-
-
 def _mesh(rows, x, y, cache):
     """``(patches (P, 12, 2), colors (P, 4, 4), (rows, cols))`` of the
     ``meshrow`` elements ``rows`` starting at (x, y)."""
@@ -136,7 +125,7 @@ def _mesh(rows, x, y, cache):
                 # earlier patch did (the first stop of every patch but the
                 # mesh's first starts at a shared corner)
                 if k > 0 or (r == 0 and c == 0):
-                    color[a] = _stop_color(stop, cache)
+                    color[a] = stop_color(stop, cache)
                 if kind == 'top':
                     if b[1] < a[1]:
                         pts = pts[::-1]

@@ -42,10 +42,9 @@ from .context import SVG_NS, State
 from .convert import convert_children
 from .document import chain_attr
 from .refs import href_chain
-from .style import BLACK, doc_style, number_or_percent, opacity
-from .values import (CURRENT_COLOR, LengthContext, parse_color, parse_length,
-                     parse_preserve_aspect_ratio, parse_transform, parse_transform_origin,
-                     resolve_viewbox, viewbox_transform, ZERO_VIEWBOX)
+from .style import doc_style, number_or_percent, stop_color
+from .values import (LengthContext, parse_length, parse_preserve_aspect_ratio, parse_transform,
+                     parse_transform_origin, resolve_viewbox, viewbox_transform, ZERO_VIEWBOX)
 
 __all__ = ['url_paint', 'server_of', 'in_space', 'GradientServer', 'PatternServer',
            'UNSUPPORTED']
@@ -292,14 +291,7 @@ def _gradient(el, name, ctx, cache):
         off = 0.0 if off is None else min(max(off, 0.0), 1.0)
         off = max(off, last)
         last = off
-        sinh, sown = doc_style(stop, cache)
-        c = parse_color(sown.get('stop-color', 'black'))
-        if c is None:
-            c = BLACK
-        elif c is CURRENT_COLOR:
-            c = sinh['_color']
-        a = opacity(sown.get('stop-opacity'))
-        stops.append(GradientStop(off, (c[0], c[1], c[2], c[3] * a)))
+        stops.append(GradientStop(off, stop_color(stop, cache)))
     if len(stops) == 1:
         return SolidPaint(stops[0].color)
     obb = attr('gradientUnits') != 'userSpaceOnUse'

@@ -18,7 +18,7 @@ from ..tree import DEFAULT_PAINT_ORDER, PaintItem
 
 __all__ = ['local_name', 'style_of', 'doc_style', 'initial_inherited', 'length_context',
            'length', 'transform_of', 'passes_conditions', 'is_displayed', 'opacity',
-           'number_or_percent', 'paint_order', 'BLACK']
+           'number_or_percent', 'paint_order', 'stop_color', 'BLACK']
 
 _P = '{%s}' % SVG_NS
 _PLEN = len(_P)
@@ -281,6 +281,19 @@ def opacity(s, default=1.0):
         if len(_OPACITY_CACHE) < 4096:
             _OPACITY_CACHE[s] = v
     return default if v is False else v
+
+
+def stop_color(stop, cache):
+    """Straight RGBA of a gradient or mesh ``stop`` element: its computed
+    ``stop-color`` (``currentColor`` its ``color``; invalid: black) with
+    ``stop-opacity`` folded into alpha."""
+    inh, own = doc_style(stop, cache)
+    c = parse_color(own.get('stop-color', 'black'))
+    if c is None:
+        c = BLACK
+    elif c is CURRENT_COLOR:
+        c = inh['_color']
+    return (c[0], c[1], c[2], c[3] * opacity(own.get('stop-opacity')))
 
 
 _PAINT_ORDERS = {}
