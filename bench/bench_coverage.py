@@ -1,7 +1,7 @@
 """Coverage benchmark: edge accuracy and crossing-heavy geometry (issue 11).
 
     python bench/bench_coverage.py [--part accuracy,crossing] [--mode process|inprocess|both]
-                                   [--repeat 3] [--cases jitter,cubics,scribble]
+                                   [--repeat 3] [--cases jitter,cubics,scribble,hatching,crosshatch]
                                    [--rasterize PATH] [--python PATH]
                                    [--json OUT.json] [--markdown OUT.md]
 
@@ -23,7 +23,10 @@ used before (vertices on the curve at 0.25 px).
 even-odd polygon with +-5 px radial jitter at 2000x2000, one path of 2,000
 random cubics across a 2000x2000 canvas stroked 1.5 px wide, and a dense
 hand-drawn-like scribble (one path of 20,000 smooth quadratic pieces of a
-random walk, stroked 2 px, on 1000x1000).  Modes:
+random walk, stroked 2 px, on 1000x1000), dense hatching (3,000 thin
+parallel stripes 0.1 px apart on 400x400: about 20 edges through every
+pixel, none crossing) and a cross-hatch (1,000 stripes 0.3 px apart, half
+leaning each way: each crosses hundreds of the others).  Modes:
 
 * ``process`` (how users run it): every render is a fresh process --
   raster's ``rasterize in.svg out.png`` command, the peers through
@@ -241,10 +244,31 @@ def scribble(n=20_000, seed=0, width=2.0, size=1000):
                 % (width, d))
 
 
+def hatching(n=3000, pitch=0.1, width=0.04, lean=40.0, cross=False, size=400):
+    """Dense hatching: ``n`` thin parallelograms (stripes) ``width`` px
+    wide, ``pitch`` px apart, leaning ``lean`` px over the canvas's height:
+    about 2 / pitch edges through every pixel, none crossing another (as
+    in an engraving or a plotter's fill drawn small).  ``cross``: half of
+    them lean the other way, so each crosses hundreds of the others."""
+    rng = np.random.default_rng(1)
+    x = 0.1 * size + pitch * np.arange(n) + rng.uniform(-0.2, 0.2, n) * pitch
+    t = np.full(n, lean)
+    if cross:
+        t[1::2] = -lean
+        x[1::2] += lean
+    top, bottom = 0.05 * size, 0.95 * size
+    d = ''.join('M%.4f %.4fh%.4fl%.4f %.4fh%.4fZ' % (a, top, width, b, bottom - top, -width)
+                for a, b in zip(x.tolist(), t.tolist()))
+    return _svg(size, size, '<path fill="#102030" d="%s"/>' % d)
+
+
 CROSSING = {
     'jitter': ('100,000-vertex even-odd polygon, +-5 px jitter, 2000x2000', jitter_polygon),
     'cubics': ('2,000 random cubics stroked 1.5 px, 2000x2000', random_cubics),
     'scribble': ('scribble of 20,000 quadratics stroked 2 px, 1000x1000', scribble),
+    'hatching': ('3,000 parallel stripes 0.1 px apart, 400x400', hatching),
+    'crosshatch': ('1,000 stripes 0.3 px apart, half leaning each way, 400x400',
+                   lambda: hatching(1000, 0.3, 0.1, 40.0, True)),
 }
 
 _PEER_CODE = {

@@ -383,7 +383,9 @@ def test_refinement_work_is_bounded(monkeypatch):
     # 300 lines through one point: refinement never parts them there, so
     # cells are refined only while their distinct pieces times 4 ** level
     # stay within _REFINE_WORK (levels 0 to 3 here); the busier ones are
-    # sampled on evenly spaced lines, within 1/255 of refining 5 levels deep
+    # sampled on evenly spaced lines, within 1/255 of refining deeper
+    # (cells away from the point, whose lines cross nowhere, are decided
+    # by their faces at some level)
     rng = np.random.default_rng(2)
     ang = rng.uniform(0, np.pi, 300)
     c = np.array([5.37, 5.61])
@@ -401,11 +403,12 @@ def test_refinement_work_is_bounded(monkeypatch):
         assert max(depth) <= 3 and sum(sampled) > 0
         ref = reference(e, 11, 11, rule, n=64)
         assert np.abs(got - ref).max() < 0.02
+        level = max(depth)
         depth.clear()
         with monkeypatch.context() as m:
             m.setattr(scan, '_REFINE_WORK', 12 * 4 ** 5)
             deep = full(e, 11, 11, fill_rule=rule)
-        assert max(depth) == 4
+        assert max(depth) > level
         assert np.abs(got - deep).max() < 1 / 255
 
 

@@ -255,3 +255,135 @@ def test_faces_decide_the_crossings_of_a_stroke():
         mp.undo()
     assert counts['faces'] > 200
     assert counts['exact'] < 0.1 * counts['faces']
+
+
+# -- cells of many chords (dense hatching) ------------------------------------
+
+def _boundary_point(t):
+    """The point of the unit cell's boundary at parameter t (the walk of
+    scan._perimeter: top left to right, right side down, bottom right to
+    left, left side up)."""
+    side, f = np.floor(t).astype(int), t - np.floor(t)
+    x = np.choose(side, [f, np.ones_like(f), 1 - f, np.zeros_like(f)])
+    y = np.choose(side, [np.zeros_like(f), f, np.ones_like(f), 1 - f])
+    return x, y
+
+
+def _segments_cross(p, q, r, s):
+    """Whether segments pq and rs cross at one point inside both."""
+    def orient(a, b, c):
+        return np.sign((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+    return (orient(p, q, r) * orient(p, q, s) < 0) and (orient(r, s, p) * orient(r, s, q) < 0)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 6), st.integers(1, 40))
+def test_chords_cross_exactly_where_two_chords_cross(seed, cells, most):
+    """scan._chords_cross tells, from the order of chord ends along each
+    cell's boundary alone, the cells where two chords cross: the same
+    answer as testing every pair of segments (random chords between
+    different sides, nested, parallel or crossing; many cells at once)."""
+    from raster.pixels import scan
+    rng = np.random.default_rng(seed)
+    k = rng.integers(1, most + 1, cells)
+    g = np.repeat(np.arange(cells), k)
+    K = len(g)
+    # distinct parameters, the two ends of a chord on different sides
+    t0 = rng.uniform(0.001, 3.999, K)
+    t1 = (np.floor(t0) + rng.integers(1, 4, K) + rng.uniform(0.001, 0.999, K)) % 4.0
+    if rng.uniform() < 0.5:         # parallel chords (nested brackets) in some cells
+        par = rng.uniform(size=cells)[g] < 0.5
+        t0[par] = rng.uniform(0.001, 0.999, par.sum())
+        t1[par] = 3.0 - t0[par] + rng.normal(0, 0.01, par.sum()).clip(-0.0009, 0.0009)
+    ends_g = np.concatenate([g, g])
+    ends_t = np.concatenate([t0, t1])
+    o = np.lexsort((ends_t, ends_g))
+    pos = np.empty(2 * K, np.int64)
+    pos[o] = np.arange(2 * K)
+    got = scan._chords_cross(ends_g[o], pos[:K], pos[K:], cells)
+    x0, y0 = _boundary_point(t0)
+    x1, y1 = _boundary_point(t1)
+    want = np.zeros(cells, bool)
+    for c in range(cells):
+        idx = np.flatnonzero(g == c)
+        for i, a in enumerate(idx):
+            for b in idx[i + 1:]:
+                if _segments_cross((x0[a], y0[a]), (x1[a], y1[a]), (x0[b], y0[b]), (x1[b], y1[b])):
+                    want[c] = True
+    assert np.array_equal(got, want)
+
+
+def stripes(n, x0, pitch, width, lean, top, bottom):
+    """n thin parallelograms (stripes) ``width`` wide, ``pitch`` apart,
+    from ``x0`` on, leaning ``lean`` to the right between ``top`` and
+    ``bottom``: dense hatching, whose edges cross nowhere."""
+    xs = x0 + pitch * np.arange(n)
+    return [np.array([(x, top), (x + width, top), (x + width + lean, bottom), (x + lean, bottom)])
+            for x in xs]
+
+
+@pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
+@pytest.mark.parametrize('pitch', [0.25, 0.02])
+def test_dense_hatching_is_exact_and_decided_by_faces(monkeypatch, rule, pitch):
+    """Hatching of 8 to 100 edges a pixel (thin stripes, none crossing
+    another) is exact.  Cells of up to _FACES_CHORDS chords that cross
+    nowhere are decided from their faces, whatever their number of chords:
+    only the cells where the stripes end (first and last rows) are left to
+    the exact recompute, and the chords of cells of more than
+    _CHORDS_TESTED are not tested pair by pair."""
+    from raster.pixels import scan
+    n = int(round(5.0 / pitch))
+    # (no edge through a cell's corner: such cells go to the exact recompute)
+    polys = stripes(n, 1.3137, pitch, 0.4 * pitch, 3.7219, 0.6173, 11.4291)
+    rows, pairs = [], []
+    real_exact, real_crossings = scan._exact, scan._crossings
+
+    def exact(*a):
+        xa, ya, xb, yb, col, row, pieces, counts = a[:8]
+        if a[-1] == 0:
+            rows.extend(row[pieces[np.cumsum(counts) - counts]].tolist())
+        return real_exact(*a)
+
+    def crossings(*a):
+        if a[7] is None:                    # cells of chords alone
+            pairs.append(int(a[6][a[8]].max(initial=0)))
+        return real_crossings(*a)
+    monkeypatch.setattr(scan, '_exact', exact)
+    monkeypatch.setattr(scan, '_crossings', crossings)
+    got = check(polys, 12, rule)
+    assert set(rows) <= {0, 11} and len(rows) > 0
+    # (a chord is tested against the later ones of its cell: fewer than
+    # _CHORDS_TESTED, in cells tested directly)
+    assert max(pairs, default=0) < scan._CHORDS_TESTED
+    # the same coverage when every cell is left to the general methods
+    monkeypatch.setattr(scan, '_FACES_CHORDS', 0)
+    monkeypatch.setattr(scan, '_FACES_PIECES', 0)
+    assert np.allclose(coverage(edges_of(polys), 12, 12, fill_rule=rule).full(12, 12), got,
+                       atol=1e-9)
+
+
+@pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
+def test_crossing_hatches_are_exact_with_bounded_pair_work(monkeypatch, rule):
+    """Two hatches leaning opposite ways (every stripe of one crosses many
+    of the other): cells of chords that cross are tested pair by pair up
+    to _FACES_PIECES chords, in slices of at most _FACES_WORK pairs (and
+    one piece's); busier ones go to the exact recompute.  Exact either way,
+    and the same with the pair slices a single pair."""
+    from raster.pixels import scan
+    polys = (stripes(40, 0.5, 0.23, 0.07, 4.0, 0.5, 11.5)
+             + stripes(40, 5.0, 0.19, 0.05, -4.0, 0.5, 11.5))
+    pairs = []
+    real = scan._crossings
+
+    def crossings(*a):
+        pairs.append(int(a[6][a[8]].sum()))
+        return real(*a)
+    monkeypatch.setattr(scan, '_crossings', crossings)
+    got = check(polys, 12, rule)
+    assert sum(pairs) > 0
+    assert max(pairs) <= scan._FACES_WORK + scan._FACES_PIECES
+    monkeypatch.setattr(scan, '_FACES_WORK', 1)
+    pairs.clear()
+    assert np.allclose(coverage(edges_of(polys), 12, 12, fill_rule=rule).full(12, 12), got,
+                       atol=1e-12)
+    assert max(pairs) <= scan._FACES_PIECES
