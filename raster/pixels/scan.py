@@ -88,11 +88,10 @@ _FACES_PIECES = 64
 # a pixel); where they cross, cells of more than _FACES_PIECES are
 # recomputed.
 _FACES_CHORDS = 4096
-# Cells of more chords than this are first checked for crossings
-# (_chords_cross) and tested pair by pair only where some cross; fewer
-# are tested directly: checking cells of more than 8 cost the stroked
-# random cubics of the coverage benchmark 1.6 % more instructions (most of
-# their cells of 9 to 16 chords have some crossing).
+# Cells of chords are checked for crossings (_chords_cross) and tested
+# pair by pair only where some cross when some cell of a call holds more
+# chords than this (cells of a few chords, most with some crossing, cost
+# about as much to check as to test).
 _CHORDS_TESTED = 16
 # Most work items (sample crossings) per batch of recomputed cells.
 _CHUNK_WORK = 1 << 20
@@ -712,7 +711,8 @@ def _flag(xa, ya, xb, yb, col, row, cell, brk, left_of, evenodd, everything=None
     ok = (gcnt == 1) & gsimple & (not every)
     npc = np.add.reduceat(rlen, gstart)
     # (cells of chords alone, one piece a run, may hold many more: those
-    # whose chords cross nowhere cost O(k log k), see _chords_cross)
+    # whose chords cross nowhere cost the sort of their ends, see
+    # _chords_cross)
     chords = npc == gcnt
     faces = ((not every) & (gcnt >= 2) & gsimple
              & (((gcnt <= _FACES_RUNS) & (npc <= _FACES_PIECES))
@@ -981,20 +981,11 @@ def _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd, 
     cstart = _group_starts(pg)                      # pieces of a cell are consecutive
     cend = cstart + _run_lengths(cstart, npc)
     pend = np.repeat(cend, cend - cstart)           # each piece's cell end
-    # each piece against the later pieces of its cell (single pieces: only
-    # in cells where some of them cross, see _chords_cross)
+    # each piece against the later pieces of its cell (chords: only in
+    # cells where some of them cross, see _chords_cross)
     nb = pend - np.arange(npc) - 1
-    many = gcnt > _CHORDS_TESTED if single else None
-    if single and many.any():
-        # the ends of those cells' chords in boundary order, ranked among
-        # themselves (the other cells' pairs are all tested)
-        ch = np.flatnonzero(many[rg])
-        m = len(ch)
-        at = np.concatenate([pos[ch], pos[nk + ch]])
-        o = np.argsort(at)
-        rank = np.empty(2 * m, np.int64)
-        rank[o] = np.arange(2 * m)
-        crossed = ~many | _chords_cross(eg[at[o]], rank[:m], rank[m:], G)
+    if single and (gcnt > _CHORDS_TESTED).any():
+        crossed = _chords_cross(pos[:nk], pos[nk:], rg, G)
         # (cells of many chords that cross are left to the general method)
         wide = crossed & (gcnt > _FACES_PIECES)
         bad |= wide
@@ -1074,7 +1065,7 @@ def _crossings(ax, ay, bx, by, ex, ey, nb, run, sl):
     return ia[mi[~proper]], qa, qb, ta, tb, turn
 
 
-def _chords_cross(cell, first, second, G):
+def _chords_cross(first, second, cell, G):
     """Which cells hold two chords that cross.
 
     Chords are straight pieces from a cell's boundary to its boundary
@@ -1082,20 +1073,21 @@ def _chords_cross(cell, first, second, G):
     at the same ``t``).  Two chords of a convex cell cross if and only if
     their ends interleave along its boundary.  Read along the boundary,
     each chord's first end an opening bracket and its other end a closing
-    one, a cell's chords cross nowhere exactly when every closing bracket
-    closes the last bracket still open, that is when, grouped by depth (an
-    opening bracket's depth after it, a closing one's before it) and in
-    order within a group, every opening bracket is followed by its own
-    chord's closing one: ``O(k log k)`` for ``k`` chords, where testing
-    every pair costs ``O(k**2)``.
+    one, a cell's chords cross nowhere exactly when its brackets nest, and
+    they nest exactly when every chord's opening bracket leaves the depth
+    at the value its closing bracket finds (the brackets of one depth then
+    alternate, opening and closing, and a chord can only be closed by the
+    closing bracket right after its opening one): ``O(k)`` for ``k``
+    chords once the ends are in order, where testing every pair costs
+    ``O(k**2)``.
 
     Parameters
     ----------
-    cell : (2K,) int64 ndarray
-        The cell (0..G-1) of every chord end, in boundary order: cell after
-        cell, each cell's ends by ``t``.
     first, second : (K,) int64 ndarray
-        Where each chord's two ends are in that order.
+        Where each chord's two ends are in boundary order: the 2K ends
+        cell after cell, each cell's by ``t``.
+    cell : (K,) int64 ndarray
+        The cell (0..G-1) of each chord.
     G : int
         Number of cells.
 
@@ -1104,25 +1096,15 @@ def _chords_cross(cell, first, second, G):
     (G,) bool ndarray
         True for the cells where two chords cross.
     """
-    K = len(first)
     opening = np.minimum(first, second)
     closing = np.maximum(first, second)
-    step = np.zeros(2 * K, np.int64)
+    step = np.zeros(2 * len(first), np.int32)
     step[opening] = 1
     step[closing] = -1
     # (each cell's brackets balance: the depth is 0 between cells)
-    level = np.cumsum(step)
-    level[closing] += 1
-    chord = np.empty(2 * K, np.int64)
-    chord[opening] = np.arange(K)
-    chord[closing] = np.arange(K)
-    # (a group's brackets alternate, opening first, as the depth steps up
-    # and down through its level)
-    o = _stable_order(level)
-    ch = chord[o]
-    wrong = ch[0::2] != ch[1::2]
+    depth = np.cumsum(step)
     out = np.zeros(G, bool)
-    out[cell[o[0::2][wrong]]] = True
+    out[cell[depth[opening] != depth[closing] + 1]] = True
     return out
 
 

@@ -300,7 +300,7 @@ def test_chords_cross_exactly_where_two_chords_cross(seed, cells, most):
     o = np.lexsort((ends_t, ends_g))
     pos = np.empty(2 * K, np.int64)
     pos[o] = np.arange(2 * K)
-    got = scan._chords_cross(ends_g[o], pos[:K], pos[K:], cells)
+    got = scan._chords_cross(pos[:K], pos[K:], g, cells)
     x0, y0 = _boundary_point(t0)
     x1, y1 = _boundary_point(t1)
     want = np.zeros(cells, bool)
