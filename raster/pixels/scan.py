@@ -95,8 +95,9 @@ _FACES_CHORDS = 4096
 _CHORDS_TESTED = 16
 # Most work items (sample crossings) per batch of recomputed cells.
 _CHUNK_WORK = 1 << 20
-# Most work (four per run plus one per pair of pieces of a cell) per call
-# of _faces (see _flag).
+# Most work (four per run plus one per pair of pieces of a cell, one per
+# chord of a cell checked by _chords_cross) per call of _faces (see
+# _flag), and most pairs per slice of its pair tests (_crossings).
 _FACES_WORK = 1 << 16
 
 # Fewest cells of single-piece runs worth a _faces call of their own beside
