@@ -40,6 +40,7 @@ what SVG renderers draw.
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 import sys
@@ -1343,6 +1344,18 @@ def _quarters(centres, rx, ry, quadrants, tol):
     Returns (Q * n, 3, 2) control points, quarter by quarter; quarter end
     points are exact."""
     n = _piece_count(np.pi / 2, max(rx, ry), tol)
+    out = _unit_quarters(n, tuple(quadrants)) * np.array([rx, ry])
+    out += np.repeat(np.asarray(centres, dtype=np.float64), n, axis=0)[:, None, :]
+    return out, n
+
+
+@functools.lru_cache(maxsize=64)
+def _unit_quarters(n, quadrants):
+    """The unit circle's part of :func:`_quarters` for ``n`` pieces a
+    quarter: (Q * n, 3, 2) control points, the quarters' ends exact (the
+    same for every circle, ellipse and rounded corner drawn in that many
+    pieces; read-only and cached, so a document of many small circles
+    builds them once)."""
     q = np.repeat(np.asarray(quadrants), n)
     j = np.tile(np.arange(n), len(quadrants))
     step = (np.pi / 2) / n
@@ -1357,14 +1370,11 @@ def _quarters(centres, rx, ry, quadrants, tol):
     first = j == 0
     c0 = np.where(first, _QUADRANT[q][:, 0], c0)
     s0 = np.where(first, _QUADRANT[q][:, 1], s0)
-    ux = np.stack([c0 - k * s0, c1 + k * s1, c1], 1)
-    uy = np.stack([s0 + k * c0, s1 - k * c1, s1], 1)
-    cen = np.repeat(np.asarray(centres, dtype=np.float64), n, axis=0)
-    out = np.empty((len(q), 3, 2))
-    out[:, :, 0] = cen[:, 0:1] + rx * ux
-    out[:, :, 1] = cen[:, 1:2] + ry * uy
-    out[last, 2] = cen[last] + np.array([rx, ry]) * end[last]   # exact corners
-    return out, n
+    u = np.empty((len(q), 3, 2))
+    u[:, :, 0] = np.stack([c0 - k * s0, c1 + k * s1, c1], 1)
+    u[:, :, 1] = np.stack([s0 + k * c0, s1 - k * c1, s1], 1)
+    u.flags.writeable = False
+    return u
 
 
 def _auto_radii(rx, ry):

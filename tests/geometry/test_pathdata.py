@@ -846,6 +846,28 @@ def test_ellipse_path():
     assert len(ellipse_path(1, 2)) == 0
 
 
+def test_shapes_share_the_unit_quarter_arcs_but_not_their_points():
+    # circles, ellipses and rounded corners of one piece count scale the
+    # same cached unit arcs (read-only); every shape gets its own points,
+    # equal to those built with the cache empty
+    makers = [lambda: circle_path(3, 4, 5, tolerance=0.01),
+              lambda: ellipse_path(-2, 7, 5, 3, tolerance=0.01),
+              lambda: rect_path(1, 2, 30, 20, 5, 4, tolerance=0.01),
+              lambda: circle_path(1e5, -3, 4.5, tolerance=0.01)]
+    fresh = []
+    for make in makers:
+        svgpath._unit_quarters.cache_clear()
+        fresh.append(make())
+    svgpath._unit_quarters.cache_clear()
+    warm = [make() for make in makers]
+    assert svgpath._unit_quarters.cache_info().hits >= 2
+    assert all(a == b for a, b in zip(fresh, warm))
+    assert not any(np.shares_memory(a.points, b.points) for a in warm for b in warm if a is not b)
+    u = svgpath._unit_quarters(3, (0, 1, 2, 3))
+    assert not u.flags.writeable and u.shape == (12, 3, 2)
+    assert u[[2, 5, 8, 11], 2].tolist() == [[0, 1], [-1, 0], [0, -1], [1, 0]]
+
+
 def test_line_and_polyline():
     assert line_path(1, 2, 1, 2).to_svg() == 'M 1 2 L 1 2'
     assert polyline_path([[0, 0], [1, 0], [1, 1]]).to_svg() == 'M 0 0 L 1 0 L 1 1'
