@@ -1478,10 +1478,22 @@ def ellipse_path(cx: float, cy: float, rx: Optional[float] = None, ry: Optional[
     rx, ry = _auto_radii(rx, ry)
     if rx <= 0 or ry <= 0:
         return Path.empty()
-    arcs, n = _quarters([[cx, cy]] * 4, rx, ry, [0, 1, 2, 3], tol)
-    pts = np.concatenate([[[cx + rx, cy]], arcs.reshape(-1, 2)])
-    verbs = np.array([MOVE] + [CUBIC] * (4 * n) + [CLOSE], np.uint8)
-    return Path(verbs, pts, _checked=True)
+    # (_quarters about one centre, written into the path's points)
+    n = _piece_count(np.pi / 2, max(rx, ry), tol)
+    pts = np.empty((1 + 12 * n, 2))
+    pts[0] = cx + rx, cy
+    np.multiply(_unit_quarters(n, (0, 1, 2, 3)).reshape(-1, 2), (rx, ry), out=pts[1:])
+    pts[1:] += (cx, cy)
+    return Path(_ellipse_verbs(n), pts, _checked=True)
+
+
+@functools.lru_cache(maxsize=64)
+def _ellipse_verbs(n):
+    """The verbs of :func:`ellipse_path` with ``n`` pieces a quarter
+    (read-only, shared by those paths: a Path's arrays never change)."""
+    v = np.array([MOVE] + [CUBIC] * (4 * n) + [CLOSE], np.uint8)
+    v.flags.writeable = False
+    return v
 
 
 def circle_path(cx: float, cy: float, r: float, tolerance: float = 0.01) -> Path:

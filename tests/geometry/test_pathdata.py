@@ -865,6 +865,10 @@ def test_shapes_share_the_unit_quarter_arcs_but_not_their_points():
     assert not any(np.shares_memory(a.points, b.points) for a in warm for b in warm if a is not b)
     u = svgpath._unit_quarters(3, (0, 1, 2, 3))
     assert not u.flags.writeable and u.shape == (12, 3, 2)
+    # ellipses of one piece count share their (read-only) verbs
+    a, b = warm[0], warm[1]
+    assert a.verbs is b.verbs and not a.verbs.flags.writeable
+    assert a.verbs.tolist() == [MOVE] + [CUBIC] * (len(a.verbs) - 2) + [CLOSE]
     assert u[[2, 5, 8, 11], 2].tolist() == [[0, 1], [-1, 0], [0, -1], [1, 0]]
 
 
