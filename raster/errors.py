@@ -80,7 +80,6 @@ def one_line(msg: object) -> str:
     return ' '.join(str(msg).split())
 
 
-_CAPTURE: contextvars.ContextVar = contextvars.ContextVar('raster_log_capture', default=None)
 #: The log_warnings blocks this context is in: [logger name, attached] each.
 _BLOCKS: contextvars.ContextVar = contextvars.ContextVar('raster_log_blocks', default=())
 _LOCK = _thread.allocate_lock()     # threading.Lock, without importing threading (0.6 ms)
@@ -100,9 +99,8 @@ def _to_warnings():
             self.users = 0
 
         def emit(self, record):
-            names = _CAPTURE.get()
-            if names is None or not any(record.name == n or record.name.startswith(n + '.')
-                                        for n in names):
+            if not any(record.name == b[0] or record.name.startswith(b[0] + '.')
+                       for b in _BLOCKS.get()):
                 return
             try:
                 msg = record.getMessage()
@@ -136,16 +134,13 @@ def log_warnings(name: str = 'fontTools'):
     imports fontTools, nor then :mod:`logging`).
     """
     block = [name, False]          # (the logger, whether this block attached)
-    prev = _CAPTURE.get()
-    token = _CAPTURE.set((prev or ()) + (name,))
-    btoken = _BLOCKS.set(_BLOCKS.get() + (block,))
+    token = _BLOCKS.set(_BLOCKS.get() + (block,))
     try:
         if name.partition('.')[0] in sys.modules:
             _attach(block)
         yield
     finally:
-        _BLOCKS.reset(btoken)
-        _CAPTURE.reset(token)
+        _BLOCKS.reset(token)
         if block[1]:
             _detach(name)
 
