@@ -1341,11 +1341,13 @@ def _quarters(centres, rx, ry, quadrants, tol):
     """Cubics of quarter-ellipse arcs, each from angle ``q * 90`` to
     ``(q + 1) * 90`` degrees (positive direction) about its centre.
 
-    Returns (Q * n, 3, 2) control points, quarter by quarter; quarter end
-    points are exact."""
+    ``centres`` is one centre (2,) for all quarters or one a quarter
+    (Q, 2).  Returns (Q * n, 3, 2) control points, quarter by quarter;
+    quarter end points are exact."""
     n = _piece_count(np.pi / 2, max(rx, ry), tol)
     out = _unit_quarters(n, tuple(quadrants)) * np.array([rx, ry])
-    out += np.repeat(np.asarray(centres, dtype=np.float64), n, axis=0)[:, None, :]
+    c = np.asarray(centres, dtype=np.float64)
+    out += c if c.ndim == 1 else np.repeat(c, n, axis=0)[:, None, :]
     return out, n
 
 
@@ -1478,12 +1480,10 @@ def ellipse_path(cx: float, cy: float, rx: Optional[float] = None, ry: Optional[
     rx, ry = _auto_radii(rx, ry)
     if rx <= 0 or ry <= 0:
         return Path.empty()
-    # (_quarters about one centre, written into the path's points)
-    n = _piece_count(np.pi / 2, max(rx, ry), tol)
+    arcs, n = _quarters((cx, cy), rx, ry, (0, 1, 2, 3), tol)
     pts = np.empty((1 + 12 * n, 2))
     pts[0] = cx + rx, cy
-    np.multiply(_unit_quarters(n, (0, 1, 2, 3)).reshape(-1, 2), (rx, ry), out=pts[1:])
-    pts[1:] += (cx, cy)
+    pts[1:] = arcs.reshape(-1, 2)
     return Path(_ellipse_verbs(n), pts, _checked=True)
 
 
