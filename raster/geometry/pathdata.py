@@ -1271,6 +1271,9 @@ def _arc_scalar(x0, y0, rx, ry, phi_deg, large, sweep, x1, y1, tol):
 def _finite(name, *vals):
     out = []
     for v in vals:
+        if type(v) is float and v - v == 0.0:        # (the common case, quickly)
+            out.append(v)
+            continue
         try:
             f = float(v)
         except (TypeError, ValueError):
@@ -1344,11 +1347,18 @@ def _quarters(centres, rx, ry, quadrants, tol):
     ``centres`` is one centre (2,) for all quarters or one a quarter
     (Q, 2).  Returns (Q * n, 3, 2) control points, quarter by quarter;
     quarter end points are exact."""
-    n = _piece_count(np.pi / 2, max(rx, ry), tol)
+    n = _quarter_pieces(max(rx, ry), tol)
     out = _unit_quarters(n, tuple(quadrants)) * np.array([rx, ry])
     c = np.asarray(centres, dtype=np.float64)
     out += c if c.ndim == 1 else np.repeat(c, n, axis=0)[:, None, :]
     return out, n
+
+
+@functools.lru_cache(maxsize=1024)
+def _quarter_pieces(radius, tol):
+    """Pieces of a quarter arc of ``radius`` within ``tol`` (memoized:
+    documents repeat their radii and tolerances)."""
+    return _piece_count(np.pi / 2, radius, tol)
 
 
 @functools.lru_cache(maxsize=64)
@@ -1480,20 +1490,24 @@ def ellipse_path(cx: float, cy: float, rx: Optional[float] = None, ry: Optional[
     rx, ry = _auto_radii(rx, ry)
     if rx <= 0 or ry <= 0:
         return Path.empty()
-    arcs, n = _quarters((cx, cy), rx, ry, (0, 1, 2, 3), tol)
-    pts = np.empty((1 + 12 * n, 2))
-    pts[0] = cx + rx, cy
-    pts[1:] = arcs.reshape(-1, 2)
-    return Path(_ellipse_verbs(n), pts, _checked=True)
+    n = _quarter_pieces(max(rx, ry), tol)
+    verbs, unit = _unit_ellipse(n)
+    pts = unit * np.array((rx, ry))
+    pts += np.array((cx, cy))
+    return Path(verbs, pts, _checked=True)
 
 
 @functools.lru_cache(maxsize=64)
-def _ellipse_verbs(n):
-    """The verbs of :func:`ellipse_path` with ``n`` pieces a quarter
-    (read-only, shared by those paths: a Path's arrays never change)."""
+def _unit_ellipse(n):
+    """The verbs and points of :func:`ellipse_path` for the unit circle
+    with ``n`` pieces a quarter: the start ``(1, 0)`` and the four quarters
+    of :func:`_unit_quarters` (read-only, shared by those paths: a Path's
+    arrays never change)."""
     v = np.array([MOVE] + [CUBIC] * (4 * n) + [CLOSE], np.uint8)
     v.flags.writeable = False
-    return v
+    u = np.concatenate([[[1.0, 0.0]], _unit_quarters(n, (0, 1, 2, 3)).reshape(-1, 2)])
+    u.flags.writeable = False
+    return v, u
 
 
 def circle_path(cx: float, cy: float, r: float, tolerance: float = 0.01) -> Path:

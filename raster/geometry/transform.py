@@ -36,20 +36,14 @@ class Affine:
 
     def __init__(self, a: float = 1.0, b: float = 0.0, c: float = 0.0, d: float = 1.0,
                  e: float = 0.0, f: float = 0.0) -> None:
-        try:
-            vals = tuple(float(v) for v in (a, b, c, d, e, f))
-        except (TypeError, ValueError):
-            raise TransformError('transform values must be numbers, got %r'
-                                 % ((a, b, c, d, e, f),)) from None
-        if not all(math.isfinite(v) for v in vals):
-            raise TransformError('transform has non-finite values: %r' % (vals,))
-        object.__setattr__(self, 'a', vals[0])
-        object.__setattr__(self, 'b', vals[1])
-        object.__setattr__(self, 'c', vals[2])
-        object.__setattr__(self, 'd', vals[3])
-        object.__setattr__(self, 'e', vals[4])
-        object.__setattr__(self, 'f', vals[5])
-        object.__setattr__(self, '_hash', hash(vals))
+        if not (type(a) is float and type(b) is float and type(c) is float
+                and type(d) is float and type(e) is float and type(f) is float):
+            try:
+                a, b, c, d, e, f = float(a), float(b), float(c), float(d), float(e), float(f)
+            except (TypeError, ValueError):
+                raise TransformError('transform values must be numbers, got %r'
+                                     % ((a, b, c, d, e, f),)) from None
+        _fill(self, a, b, c, d, e, f)
 
     def __setattr__(self, name, value):
         raise AttributeError('Affine is immutable')
@@ -99,18 +93,13 @@ class Affine:
             return NotImplemented
         a, b, c, d, e, f = self.a, self.b, self.c, self.d, self.e, self.f
         A, B, C, D, E, F = other.a, other.b, other.c, other.d, other.e, other.f
-        if other.is_identity:
+        if A == 1.0 and B == 0.0 and C == 0.0 and D == 1.0 and E == 0.0 and F == 0.0:
             return self
-        if self.is_identity:
+        if a == 1.0 and b == 0.0 and c == 0.0 and d == 1.0 and e == 0.0 and f == 0.0:
             return other
-        vals = (a * A + c * B, b * A + d * B, a * C + c * D, b * C + d * D,
-                a * E + c * F + e, b * E + d * F + f)
-        if not all(map(math.isfinite, vals)):
-            raise TransformError('transform has non-finite values: %r' % (vals,))
         t = object.__new__(Affine)
-        for name, v in zip(Affine.__slots__, vals):
-            object.__setattr__(t, name, v)
-        object.__setattr__(t, '_hash', hash(vals))
+        _fill(t, a * A + c * B, b * A + d * B, a * C + c * D, b * C + d * D,
+              a * E + c * F + e, b * E + d * F + f)
         return t
 
     def inverse(self) -> 'Affine':
@@ -133,11 +122,12 @@ class Affine:
 
     @property
     def is_identity(self) -> bool:
-        return (self.a, self.b, self.c, self.d, self.e, self.f) == (1, 0, 0, 1, 0, 0)
+        return (self.a == 1.0 and self.b == 0.0 and self.c == 0.0 and self.d == 1.0
+                and self.e == 0.0 and self.f == 0.0)
 
     @property
     def is_translation(self) -> bool:
-        return (self.a, self.b, self.c, self.d) == (1, 0, 0, 1)
+        return self.a == 1.0 and self.b == 0.0 and self.c == 0.0 and self.d == 1.0
 
     def max_scale(self) -> float:
         """Largest singular value: the most any length can grow."""
@@ -204,6 +194,21 @@ class Affine:
 
     def __repr__(self):
         return 'Affine(%g, %g, %g, %g, %g, %g)' % tuple(self)
+
+
+def _fill(t, a, b, c, d, e, f, _set=object.__setattr__):
+    """Set the six floats of a new Affine ``t`` (and its hash); a
+    TransformError when one of them is not finite (``x * 0.0`` is 0.0 for
+    every finite ``x``, NaN for infinities and NaN)."""
+    if a * 0.0 + b * 0.0 + c * 0.0 + d * 0.0 + e * 0.0 + f * 0.0 != 0.0:
+        raise TransformError('transform has non-finite values: %r' % ((a, b, c, d, e, f),))
+    _set(t, 'a', a)
+    _set(t, 'b', b)
+    _set(t, 'c', c)
+    _set(t, 'd', d)
+    _set(t, 'e', e)
+    _set(t, 'f', f)
+    _set(t, '_hash', hash((a, b, c, d, e, f)))
 
 
 IDENTITY = Affine()

@@ -531,6 +531,8 @@ class LengthContext(NamedTuple):
 
 DEFAULT_CONTEXT = LengthContext()
 
+#: The characters of a unitless number without spaces (see parse_length).
+_PLAIN_CHARS = '0123456789.+-eE'
 _LEN_RE = lazy(globals(), '_LEN_RE', r'\s*(' + NUMBER + r')([a-zA-Z]*|%)\s*')
 _ABS_UNITS = {'': 1.0, 'px': 1.0, 'in': None, 'cm': 1 / 2.54, 'mm': 1 / 25.4,
               'pt': 1 / 72, 'pc': 1 / 6}
@@ -588,6 +590,14 @@ def parse_length(s, axis='x', ctx=None):
     (4.0, 12.0, None)
     """
     _check_str(s, 'length')
+    if s and not s.strip(_PLAIN_CHARS):
+        # digits, '.', signs and exponents alone: float() accepts such a
+        # string exactly when it is an SVG number, and it has no unit
+        try:
+            v = float(s)
+        except ValueError:
+            return None
+        return v if v - v == 0.0 else None
     if ctx is None:
         ctx = DEFAULT_CONTEXT
     m = _LEN_RE.fullmatch(s)

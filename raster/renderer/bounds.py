@@ -102,6 +102,12 @@ def device_box(path, t):
     bound of what the path covers, before any stroke)."""
     x0, y0, x1, y1 = path.control_box()
     a, b, c, d = t.a, t.b, t.c, t.d
+    if b == 0.0 and c == 0.0:       # scale and translation: the corners' order is known
+        if a < 0.0:
+            x0, x1 = x1, x0
+        if d < 0.0:
+            y0, y1 = y1, y0
+        return a * x0 + t.e, d * y0 + t.f, a * x1 + t.e, d * y1 + t.f
     xs = (a * x0 + c * y0, a * x1 + c * y0, a * x0 + c * y1, a * x1 + c * y1)
     ys = (b * x0 + d * y0, b * x1 + d * y0, b * x0 + d * y1, b * x1 + d * y1)
     return min(xs) + t.e, min(ys) + t.f, max(xs) + t.e, max(ys) + t.f

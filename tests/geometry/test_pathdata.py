@@ -854,13 +854,17 @@ def test_shapes_share_the_unit_quarter_arcs_but_not_their_points():
               lambda: ellipse_path(-2, 7, 5, 3, tolerance=0.01),
               lambda: rect_path(1, 2, 30, 20, 5, 4, tolerance=0.01),
               lambda: circle_path(1e5, -3, 4.5, tolerance=0.01)]
+    caches = (svgpath._unit_quarters, svgpath._unit_ellipse, svgpath._quarter_pieces)
     fresh = []
     for make in makers:
-        svgpath._unit_quarters.cache_clear()
+        for c in caches:
+            c.cache_clear()
         fresh.append(make())
-    svgpath._unit_quarters.cache_clear()
+    for c in caches:
+        c.cache_clear()
     warm = [make() for make in makers]
-    assert svgpath._unit_quarters.cache_info().hits >= 2
+    assert svgpath._unit_ellipse.cache_info().hits >= 1
+    assert svgpath._quarter_pieces.cache_info().hits >= 1
     assert all(a == b for a, b in zip(fresh, warm))
     assert not any(np.shares_memory(a.points, b.points) for a in warm for b in warm if a is not b)
     u = svgpath._unit_quarters(3, (0, 1, 2, 3))

@@ -72,6 +72,22 @@ def test_as_affine_accepts_common_spellings_and_refuses_others():
         Affine.scale(0).inverse()
 
 
+@pytest.mark.parametrize('k', range(6))
+@pytest.mark.parametrize('bad', [math.inf, -math.inf, math.nan])
+def test_every_non_finite_value_is_refused(k, bad):
+    vals = [1.0, 0.0, 0.0, 1.0, 0.0, 0.0]
+    vals[k] = bad
+    with pytest.raises(TransformError, match='non-finite'):
+        Affine(*vals)
+    # a product that overflows is refused too, one that is large is not
+    big = [1.0, 0.0, 0.0, 1.0, 0.0, 0.0]
+    big[k] = 1e300
+    with pytest.raises(TransformError, match='non-finite'):
+        Affine(1e300, 1e300, 1e300, 1e300, 1e300, 1e300) @ Affine(*big)
+    t = Affine(*big) @ Affine(2, 0, 0, 2, 0, 0)
+    assert max(map(abs, t)) == pytest.approx(2e300 if k < 4 else 1e300)
+
+
 def test_max_scale_has_no_cancellation_near_equal_singular_values():
     """(0 12; 12 eps): singular values 12 +- eps/2; the old s^2/4 - det^2
     formula lost every digit of the difference."""

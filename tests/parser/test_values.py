@@ -251,6 +251,21 @@ def test_invalid_lengths(s):
     assert parse_length(s, 'x', CTX) is None
 
 
+@given(st.text(alphabet='0123456789.+-eE', min_size=1, max_size=12), st.sampled_from(['', ' ']))
+def test_unitless_lengths_follow_the_number_grammar(s, pad):
+    # strings of digits, points, signs and exponents take a shorter path
+    # (float()); they are lengths exactly when they are SVG numbers, with
+    # or without the spaces the grammar allows around them
+    m = re.fullmatch(V.NUMBER, s)
+    want = None
+    if m is not None:
+        v = float(s)
+        want = v if math.isfinite(v) else None
+    assert parse_length(pad + s + pad, 'x', CTX) == want
+    for bad in ('1_0', 'inf', 'nan', '1e', 'e1', '+-1', '1..2', '--1', '.', '1.2.3'):
+        assert parse_length(bad, 'x', CTX) is None
+
+
 def test_length_dpi_and_defaults():
     assert parse_length('1in', 'x', LengthContext(dpi=72)) == 72.0
     assert parse_length('1em') == 12.0  # resvg's default font size
