@@ -28,7 +28,12 @@ How it works
    separate chains of edges meet) get their exact coverage from the faces
    the chains cut them into (:func:`_faces`), or, where the chains are not
    simple enough for that, are recomputed on their own sets of horizontal
-   sample lines (see :func:`coverage`).
+   sample lines (see :func:`coverage`).  In a dense box (dense hatching),
+   a row crossed only by segments that run from its top to its bottom and
+   keep their order (none crosses another) is settled first: each segment
+   is weighted by the change of ``f`` across it instead of its direction,
+   and the running sums of those weights are the coverage of every cell of
+   the row, none flagged (:func:`_row_weights`).
 4. The output is assembled from the cells holding pieces: along a row the
    coverage is constant between them, so the running sum runs over those
    cells only and the mask is written with one ``np.repeat``.
@@ -76,6 +81,9 @@ _BATCH_PIECES = 1 << 16
 # partial sums over the touched cells only (sorting the pieces' cells
 # costs less than sweeping the whole box).
 _SPARSE_RATIO = 8
+# Bands holding at least this many pieces per cell on average try to settle
+# their rows by edge weights (see _row_weights): dense hatching.
+_DENSE_BAND = 4.0
 # Longest run checked for monotonicity along some direction.
 _STRETCH_MAX = 256
 # Cells of several simple runs holding at most this many runs and pieces
@@ -481,7 +489,7 @@ def _split(ua, va, ub, vb, hi, tag=None):
     return UA, VA, UB, VB
 
 
-def _pieces(loc, w, h):
+def _pieces(loc, w, h, evenodd=None):
     """Cell pieces of local edges ``loc`` ((E, 2, 2), box origin at 0).
 
     Returns xa, ya, xb, yb (float64) and col, row (int64) for every piece
@@ -489,6 +497,11 @@ def _pieces(loc, w, h):
     virtual column -1 (x set to -0.5): it changes the winding of every cell
     to its right like a vertical edge.  The part right of the box is
     dropped.  Consecutive pieces share their split points bitwise.
+
+    With ``evenodd`` (the fill rule, for the exact coverage) a dense box
+    also has rows settled by edge weights (:func:`_row_weights`), and a
+    seventh value is returned: None, or ``(weight, settled)``, the weight
+    of every piece and which rows are settled ((h,) bool).
     """
     xa, ya = loc[:, 0, 0], loc[:, 0, 1]
     xb, yb = loc[:, 1, 0], loc[:, 1, 1]
@@ -500,12 +513,20 @@ def _pieces(loc, w, h):
         xa, ya, xb, yb = xa[keep], ya[keep], xb[keep], yb[keep]
     if len(xa) == 0:
         return None
+    weights = None
+    if evenodd is not None and len(xa) + np.abs(xb - xa).sum() >= _DENSE_BAND * w * h:
+        weights = _row_weights(xa, ya, xb, yb, h, evenodd)
     # split in x (u = x, v = y)
-    xa, ya, xb, yb = _split(xa, ya, xb, yb, w)
+    if weights is None:
+        xa, ya, xb, yb = _split(xa, ya, xb, yb, w)
+    else:
+        xa, ya, xb, yb, wt = _split(xa, ya, xb, yb, w, tag=weights[0])
     xm = 0.5 * (xa + xb)
     keep = xm < w
     if not keep.all():
         xa, ya, xb, yb, xm = xa[keep], ya[keep], xb[keep], yb[keep], xm[keep]
+        if weights is not None:
+            wt = wt[keep]
     if len(xa) == 0:
         return None
     col = np.floor(xm).astype(np.int64)
@@ -516,7 +537,72 @@ def _pieces(loc, w, h):
         xb = np.where(left, -0.5, xb)
     row = np.floor(0.5 * (ya + yb)).astype(np.int64)
     np.clip(row, 0, h - 1, out=row)
-    return xa, ya, xb, yb, col, row
+    if evenodd is None:
+        return xa, ya, xb, yb, col, row
+    return xa, ya, xb, yb, col, row, None if weights is None else (wt, weights[1])
+
+
+def _row_weights(xa, ya, xb, yb, h, evenodd):
+    """Rows of a box that the running sums get exactly, with edge weights.
+
+    A row of pixels whose segments (edges cut at the rows, ``(xa, ya) ->
+    (xb, yb)``) all run from its top to its bottom, and keep their order
+    from top to bottom (no two cross), is cut by them into strips of
+    constant winding: counted from the left, the winding right of the
+    ``i``-th segment is the sum of the directions (+1 down, -1 up) of the
+    first ``i``.  The fill rule is then a step function across the row,
+    changing by ``fill(w right) - fill(w left)`` at each segment (0 where
+    both sides are filled, as between two overlapping stripes under
+    nonzero).  Giving each segment that weight instead of its direction,
+    the running sums add up the filled area itself, exact in every cell
+    of the row whatever the number of segments in it: dense hatching needs
+    no recompute.
+
+    Returns ``(weight, settled)``: the weight of every segment, as a factor
+    of its direction (1 in rows not settled), and which rows are settled
+    ((h,) bool); None when none is.
+    """
+    top = np.minimum(ya, yb)
+    full = np.abs(yb - ya) == 1.0
+    # the middle row first: where segments spanning it cross (a
+    # cross-hatch), the other rows are not tried
+    probe = np.flatnonzero(full & (top == float(h // 2)))
+    pd = ya[probe] < yb[probe]
+    xt = np.where(pd, xa[probe], xb[probe])
+    xd = np.where(pd, xb[probe], xa[probe])
+    if (np.diff(xd[np.lexsort((xd, xt))]) < 0).any():
+        return None
+    row = np.floor(0.5 * (ya + yb)).astype(np.int64)
+    down = ya < yb
+    spans = full & (top == row)
+    ok = np.bincount(row[~spans], minlength=h) == 0
+    if not ok.any():
+        return None
+    sel = np.flatnonzero(ok[row])
+    r = row[sel]
+    xt = np.where(down[sel], xa[sel], xb[sel])       # x on the row's top line
+    xd = np.where(down[sel], xb[sel], xa[sel])       # ... and on its bottom line
+    o = np.lexsort((xd, xt, r))
+    r, xd = r[o], xd[o]
+    first = np.ones(len(r), bool)
+    first[1:] = r[1:] != r[:-1]
+    # two segments cross where the later one (by the top) ends left of the
+    # earlier one at the bottom
+    crossed = ~first[1:] & (xd[1:] < xd[:-1])
+    ok[r[1:][crossed]] = False
+    d = np.where(down[sel][o], 1.0, -1.0)
+    cs = np.cumsum(d)
+    after = cs - np.repeat((cs - d)[first], _run_lengths(np.flatnonzero(first), len(r)))
+    before = after - d
+    if evenodd:
+        step = np.abs(np.remainder(after, 2.0)) - np.abs(np.remainder(before, 2.0))
+    else:
+        step = np.minimum(np.abs(after), 1.0) - np.minimum(np.abs(before), 1.0)
+    weight = np.ones(len(ya))
+    weight[sel[o]] = np.where(ok[r], step * d, 1.0)
+    if not ok.any():
+        return None
+    return weight, ok
 
 
 def _bands(loc, w, h):
@@ -1658,13 +1744,17 @@ def _area_coverage(loc, w, h, evenodd, exact=True, depth=0):
 def _band(loc, w, h, evenodd, exact, depth):
     """:func:`_area_coverage` of one band: pieces, running sums, then the
     exact recompute of the flagged cells."""
-    pc = _pieces(loc, w, h)
+    pc = _pieces(loc, w, h, bool(evenodd) if exact else None)
     if pc is None:
         return None
-    xa, ya, xb, yb, col, row = pc
+    xa, ya, xb, yb, col, row = pc[:6]
+    settled = None if not exact or pc[6] is None else pc[6]
     real = col >= 0
     cell = row * w + np.maximum(col, 0)
     dy = yb - ya
+    if settled is not None:
+        # rows settled by edge weights: their sums are the coverage
+        dy *= settled[0]
     # mean x offset inside the cell; virtual pieces act as if at x = 0
     fx = np.where(real, 0.5 * (xa + xb) - col, 0.0)
     ncell = w * h
@@ -1689,7 +1779,7 @@ def _band(loc, w, h, evenodd, exact, depth):
     virt = ~real
     vrow = np.bincount(row[virt], weights=dy[virt], minlength=h) if virt.any() else None
     left_of = _left_lookup(touched, run, w, vrow)
-    fcell = np.where(real, cell, -1)
+    fcell = np.where(real if settled is None else real & ~settled[1][row], cell, -1)
     flagged, fp, fc, (dc, dv) = _flag(xa, ya, xb, yb, col, row, fcell, None, left_of, evenodd)
     data.reshape(-1)[dc] = dv
     if len(flagged):

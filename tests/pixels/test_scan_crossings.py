@@ -332,6 +332,9 @@ def test_dense_hatching_is_exact_and_decided_by_faces(monkeypatch, rule, pitch):
     the exact recompute, and the chords of cells of more than
     _CHORDS_TESTED are not tested pair by pair."""
     from raster.pixels import scan
+    # (rows of stripes alone are settled by edge weights before any cell
+    # is flagged: see test_rows_of_stripes_are_settled_by_edge_weights)
+    monkeypatch.setattr(scan, '_DENSE_BAND', np.inf)
     n = int(round(5.0 / pitch))
     # (no edge through a cell's corner: such cells go to the exact recompute)
     polys = stripes(n, 1.3137, pitch, 0.4 * pitch, 3.7219, 0.6173, 11.4291)
@@ -360,6 +363,138 @@ def test_dense_hatching_is_exact_and_decided_by_faces(monkeypatch, rule, pitch):
     monkeypatch.setattr(scan, '_FACES_PIECES', 0)
     assert np.allclose(coverage(edges_of(polys), 12, 12, fill_rule=rule).full(12, 12), got,
                        atol=1e-9)
+
+
+def spy_rows(monkeypatch):
+    """Record the rows :func:`_row_weights` settles, and the rows of the
+    cells flagged for _faces or the exact recompute (a list each); every
+    box is tried for weights, however sparse (_DENSE_BAND 0)."""
+    from raster.pixels import scan
+    monkeypatch.setattr(scan, '_DENSE_BAND', 0.0)
+    settled, flagged, depth = [], [], []
+    real_weights, real_flag = scan._row_weights, scan._flag
+    real_band, real_batch = scan._band, scan._batch
+
+    def band(*a):
+        depth.append(a[-1])
+        try:
+            return real_band(*a)
+        finally:
+            depth.pop()
+
+    def batch(*a, **k):         # (the refinement of recomputed cells)
+        depth.append(a[8])
+        try:
+            return real_batch(*a, **k)
+        finally:
+            depth.pop()
+
+    def weights(*a):
+        r = real_weights(*a)
+        if r is not None and depth[-1] == 0:
+            settled.extend(np.flatnonzero(r[1]).tolist())
+        return r
+
+    def flag(xa, ya, xb, yb, col, row, cell, *a, **k):
+        r = real_flag(xa, ya, xb, yb, col, row, cell, *a, **k)
+        if depth[-1] == 0:      # (not the refinement of a recomputed cell)
+            at = np.concatenate([r[0], r[3][0]])
+            flagged.extend(np.unique(row[np.isin(cell, at)]).tolist())
+        return r
+    monkeypatch.setattr(scan, '_band', band)
+    monkeypatch.setattr(scan, '_batch', batch)
+    monkeypatch.setattr(scan, '_row_weights', weights)
+    monkeypatch.setattr(scan, '_flag', flag)
+    return settled, flagged
+
+
+@pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
+@pytest.mark.parametrize('pitch, width', [(0.25, 0.1), (0.02, 0.008), (0.05, 0.12)])
+def test_rows_of_stripes_are_settled_by_edge_weights(monkeypatch, rule, pitch, width):
+    """Rows crossed only by stripe edges that span them and cross nowhere
+    are settled by edge weights (the change of the fill rule across each
+    edge): exact, and no cell of theirs is flagged, whatever the number of
+    edges in a pixel (up to 100 here).  Stripes wider than their pitch
+    overlap (windings up to 3: nonzero fills the overlaps, evenodd
+    alternates).  Rows where the stripes end are left to the cells."""
+    from raster.pixels import scan
+    settled, flagged = spy_rows(monkeypatch)
+    n = int(round(5.0 / pitch))
+    polys = stripes(n, 1.3137, pitch, width, 3.7219, 0.6173, 11.4291)
+    got = check(polys, 12, rule)
+    assert set(settled) == set(range(1, 11))
+    assert set(flagged) <= {0, 11}
+    # the same coverage without the weights (cells flagged and recomputed)
+    monkeypatch.setattr(scan, '_DENSE_BAND', np.inf)
+    assert np.allclose(coverage(edges_of(polys), 12, 12, fill_rule=rule).full(12, 12), got,
+                       atol=1e-9)
+
+
+@pytest.mark.parametrize('pitch, tried', [(0.02, True), (1.5, False)])
+def test_only_dense_boxes_are_tried_for_edge_weights(monkeypatch, pitch, tried):
+    # hatching of about 100 edges a pixel is tried (and settled) at the
+    # default density; stripes 1.5 px apart are left to the cells
+    from raster.pixels import scan
+    calls = []
+    real = scan._row_weights
+    monkeypatch.setattr(scan, '_row_weights', lambda *a: calls.append(1) or real(*a))
+    polys = stripes(int(round(8.0 / pitch)), 1.3137, pitch, 0.4 * pitch, 3.7219, 0.6173,
+                    11.4291)
+    check(polys, 12, 'nonzero')
+    assert bool(calls) == tried
+
+
+@pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
+def test_rows_with_crossings_or_vertices_are_not_settled(monkeypatch, rule):
+    """Rows where two edges cross, or an edge ends, keep the flags: a
+    cross-hatch settles no row (its first sorted row tells), a stripe
+    crossing a hatch in its top rows leaves those, and stripes bent in the
+    middle rows settle only the others."""
+    settled, flagged = spy_rows(monkeypatch)
+    cross = stripes(60, 0.5, 0.15, 0.05, 4.0, 0.5, 11.5) + stripes(60, 5.0, 0.15, 0.05, -4.0, 0.5, 11.5)
+    check(cross, 12, rule)
+    assert settled == [] and len(flagged) > 0
+    # a shallow stripe crossing a vertical hatch in rows 0-2 only: the row
+    # sorted first (the middle one) has no crossing, the top rows do
+    hatch = stripes(10, 1.0, 0.2, 0.05, 0.0, 0.5, 11.5)
+    shallow = [np.array([(0.5, 0.5), (0.6, 0.5), (12.1, 11.5), (12.0, 11.5)])]
+    settled.clear()
+    check(hatch + shallow, 12, rule)
+    assert set(settled) == set(range(3, 11))
+    # chevrons: every stripe turns at y = 6.5, inside row 6
+    bent = [np.array([(x, 0.5), (x + 0.06, 0.5), (x + 3.06, 6.5), (x + 0.06, 11.5),
+                      (x, 11.5), (x + 3.0, 6.5)]) for x in 1.3 + 0.15 * np.arange(40)]
+    settled.clear()
+    check(bent, 12, rule)
+    assert 6 not in settled and set(settled) == set(range(1, 11)) - {6}
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.integers(0, 2**32 - 1), st.integers(20, 120), st.floats(0.01, 0.6),
+       st.floats(-6.0, 6.0), st.floats(0.0, 0.6), st.sampled_from(['nonzero', 'evenodd']))
+def test_property_dense_stripes_exact_with_and_without_weights(seed, n, width, lean, jitter,
+                                                               rule):
+    # random stripes (widths, leans and directions jittered: some cross,
+    # some overlap, some run backwards) through a 10 x 10 box: the same
+    # coverage as the reference, and as without the edge weights
+    from raster.pixels import scan
+    rng = np.random.default_rng(seed)
+    xs = np.sort(rng.uniform(-2.0, 10.0, n))
+    saved = scan._DENSE_BAND
+    polys = []
+    for x in xs:
+        w = width * rng.uniform(0.5, 1.5)
+        ln = lean + jitter * rng.normal()
+        p = np.array([(x, 0.3), (x + w, 0.3), (x + w + ln, 9.7), (x + ln, 9.7)])
+        polys.append(p[::-1] if rng.random() < 0.3 else p)
+    try:
+        scan._DENSE_BAND = 0.0          # (every box tried for weights)
+        got = check(polys, 10, rule)
+        scan._DENSE_BAND = np.inf       # (none)
+        plain = coverage(edges_of(polys), 10, 10, fill_rule=rule).full(10, 10)
+    finally:
+        scan._DENSE_BAND = saved
+    assert np.allclose(plain, got, atol=1e-9)
 
 
 @pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
