@@ -497,6 +497,45 @@ def test_property_dense_stripes_exact_with_and_without_weights(seed, n, width, l
     assert np.allclose(plain, got, atol=1e-9)
 
 
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.integers(0, 2**32 - 1), st.integers(1, 11), st.integers(1, 11),
+       st.sampled_from(['nonzero', 'evenodd']))
+def test_property_weights_with_polygons_and_coincident_edges(seed, w, h, rule):
+    # stripes spanning whole rows (or starting on a row line, or outside
+    # the box), polygons with vertices on row lines, and copies of earlier
+    # shapes (coincident edges, some reversed) in small boxes: the same
+    # coverage with every box tried for weights as with none
+    from raster.pixels import scan
+    rng = np.random.default_rng(seed)
+    polys = []
+    for _ in range(int(rng.integers(1, 30))):
+        kind = rng.random()
+        if kind < 0.6 or not polys:
+            x, wd, ln = rng.uniform(-4, w + 4), rng.uniform(0, 1), rng.uniform(-5, 5) * (rng.random() < 0.7)
+            y0 = float(rng.integers(0, h)) if rng.random() < 0.5 else rng.uniform(-1, h)
+            y1 = float(h) if rng.random() < 0.5 else rng.uniform(y0, h + 1)
+            polys.append(np.array([(x, y0), (x + wd, y0), (x + wd + ln, y1), (x + ln, y1)]))
+        elif kind < 0.75:
+            # (vertices on row lines: their edges span whole rows too)
+            n = int(rng.integers(3, 8))
+            polys.append(np.stack([np.round(rng.uniform(-2, w + 2, n) * 2) / 2,
+                                   rng.integers(-1, h + 2, n).astype(float)], axis=1))
+        else:
+            p = polys[int(rng.integers(0, len(polys)))]
+            polys.append(p[::-1].copy() if rng.random() < 0.5 else p.copy())
+    e = edges_of(polys)
+    saved = scan._DENSE_BAND
+    got = []
+    try:
+        for band in (0.0, np.inf):
+            scan._DENSE_BAND = band
+            m = coverage(e, w, h, fill_rule=rule)
+            got.append(np.zeros((h, w)) if m is None else m.full(w, h))
+    finally:
+        scan._DENSE_BAND = saved
+    assert np.abs(got[0] - got[1]).max() <= 1e-7
+
+
 @pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
 def test_crossing_hatches_are_exact_with_bounded_pair_work(monkeypatch, rule):
     """Two hatches leaning opposite ways (every stripe of one crosses many
