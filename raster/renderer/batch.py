@@ -355,17 +355,13 @@ class Masks:
         bottom."""
         w, h, ox, oy = size
         for it, e in zip(items, edges):
-            x0, y0, x1, y1 = it[1].path.control_box()
             m = it[2]
-            ys = (m.b * x0 + m.d * y0, m.b * x1 + m.d * y0, m.b * x0 + m.d * y1,
-                  m.b * x1 + m.d * y1)
-            xs = (m.a * x0 + m.c * y0, m.a * x1 + m.c * y0, m.a * x0 + m.c * y1,
-                  m.a * x1 + m.c * y1)
+            _, _, right, bottom = device_box(it[1].path, m)
             reach = 2.0
             if tag == 'stroke':
                 reach += stroke_reach(it[5]) * m.max_scale()
-            bottom = max(ys) + m.f + reach
-            if bottom > oy + h or max(xs) + m.e + reach > ox + w:
+            bottom += reach
+            if bottom > oy + h or right + reach > ox + w:
                 self.store.put((tag, it[0]), e, bottom)
 
     def _flush_geometry(self, key, size):

@@ -19,6 +19,7 @@ import numpy as np
 
 from ..errors import CanvasError
 from ..tree import ImageNode, PathNode, walk
+from .bounds import device_box
 
 __all__ = ['DEFAULT_BUDGET', 'BYTES_PER_PIXEL', 'TILE_SIZE', 'strip_rows', 'strip_spans',
            'row_work', 'balanced_spans', 'XYZLevel', 'xyz_levels', 'default_max_zoom']
@@ -92,13 +93,9 @@ def row_work(node, transform, width: int, height: int) -> np.ndarray:
             if isinstance(n, PathNode) and n.path is not None and len(n.path.verbs):
                 if n.markers is not None:
                     pending.append((n.markers, t))
-                x0, y0, x1, y1 = n.path.control_box()
-                xs = (t.a * x0 + t.c * y0, t.a * x1 + t.c * y0, t.a * x0 + t.c * y1,
-                      t.a * x1 + t.c * y1)
-                ys = (t.b * x0 + t.d * y0, t.b * x1 + t.d * y0, t.b * x0 + t.d * y1,
-                      t.b * x1 + t.d * y1)
-                bx0, bx1 = max(min(xs) + t.e, 0.0), min(max(xs) + t.e, width)
-                by0, by1 = max(min(ys) + t.f, 0.0), min(max(ys) + t.f, height)
+                x0, y0, x1, y1 = device_box(n.path, t)
+                bx0, bx1 = max(x0, 0.0), min(x1, width)
+                by0, by1 = max(y0, 0.0), min(y1, height)
                 if not (bx1 > bx0 and by1 > by0) or not math.isfinite(by1 - by0):
                     continue
                 y0s.append(by0)
