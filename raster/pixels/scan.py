@@ -499,9 +499,9 @@ def _pieces(loc, w, h, evenodd=None):
     dropped.  Consecutive pieces share their split points bitwise.
 
     With ``evenodd`` (the fill rule, for the exact coverage) a dense box
-    also has rows settled by edge weights (:func:`_row_weights`), and a
-    seventh value is returned: None, or ``(weight, settled)``, the weight
-    of every piece and which rows are settled ((h,) bool).
+    also has rows settled by edge weights (:func:`_row_weights`): the
+    seventh value is then ``(weight, settled)``, the weight of every piece
+    and which rows are settled ((h,) bool), else None.
     """
     xa, ya = loc[:, 0, 0], loc[:, 0, 1]
     xb, yb = loc[:, 1, 0], loc[:, 1, 1]
@@ -537,8 +537,6 @@ def _pieces(loc, w, h, evenodd=None):
         xb = np.where(left, -0.5, xb)
     row = np.floor(0.5 * (ya + yb)).astype(np.int64)
     np.clip(row, 0, h - 1, out=row)
-    if evenodd is None:
-        return xa, ya, xb, yb, col, row
     return xa, ya, xb, yb, col, row, None if weights is None else (wt, weights[1])
 
 
@@ -1747,8 +1745,7 @@ def _band(loc, w, h, evenodd, exact, depth):
     pc = _pieces(loc, w, h, bool(evenodd) if exact else None)
     if pc is None:
         return None
-    xa, ya, xb, yb, col, row = pc[:6]
-    settled = None if not exact or pc[6] is None else pc[6]
+    xa, ya, xb, yb, col, row, settled = pc
     real = col >= 0
     cell = row * w + np.maximum(col, 0)
     dy = yb - ya
