@@ -1271,7 +1271,7 @@ def _arc_scalar(x0, y0, rx, ry, phi_deg, large, sweep, x1, y1, tol):
 def _finite(name, *vals):
     out = []
     for v in vals:
-        if type(v) is float and v - v == 0.0:        # (the common case, quickly)
+        if type(v) is float and math.isfinite(v):     # (the common case, quickly)
             out.append(v)
             continue
         try:

@@ -597,7 +597,7 @@ def parse_length(s, axis='x', ctx=None):
             v = float(s)
         except ValueError:
             return None
-        return v if v - v == 0.0 else None
+        return v if math.isfinite(v) else None
     if ctx is None:
         ctx = DEFAULT_CONTEXT
     m = _LEN_RE.fullmatch(s)
