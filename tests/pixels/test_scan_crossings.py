@@ -3,6 +3,8 @@ contours and self-overlapping strokes against an exact-area reference
 (raster.testing.span_coverage), at small sizes; the exact recompute must
 stay within 1/255 of the true area."""
 
+import contextlib
+
 import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st, HealthCheck
@@ -469,6 +471,20 @@ def test_rows_with_crossings_or_vertices_are_not_settled(monkeypatch, rule):
     assert 6 not in settled and set(settled) == set(range(1, 11)) - {6}
 
 
+@contextlib.contextmanager
+def dense_band(value):
+    """``scan._DENSE_BAND`` set to ``value`` in the block (0: every box
+    tried for edge weights, inf: none), for the Hypothesis tests, which
+    cannot take pytest's monkeypatch."""
+    from raster.pixels import scan
+    saved = scan._DENSE_BAND
+    scan._DENSE_BAND = value
+    try:
+        yield
+    finally:
+        scan._DENSE_BAND = saved
+
+
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.integers(0, 2**32 - 1), st.integers(20, 120), st.floats(0.01, 0.6),
        st.floats(-6.0, 6.0), st.floats(0.0, 0.6), st.sampled_from(['nonzero', 'evenodd']))
@@ -477,23 +493,18 @@ def test_property_dense_stripes_exact_with_and_without_weights(seed, n, width, l
     # random stripes (widths, leans and directions jittered: some cross,
     # some overlap, some run backwards) through a 10 x 10 box: the same
     # coverage as the reference, and as without the edge weights
-    from raster.pixels import scan
     rng = np.random.default_rng(seed)
     xs = np.sort(rng.uniform(-2.0, 10.0, n))
-    saved = scan._DENSE_BAND
     polys = []
     for x in xs:
         w = width * rng.uniform(0.5, 1.5)
         ln = lean + jitter * rng.normal()
         p = np.array([(x, 0.3), (x + w, 0.3), (x + w + ln, 9.7), (x + ln, 9.7)])
         polys.append(p[::-1] if rng.random() < 0.3 else p)
-    try:
-        scan._DENSE_BAND = 0.0          # (every box tried for weights)
+    with dense_band(0.0):               # (every box tried for weights)
         got = check(polys, 10, rule)
-        scan._DENSE_BAND = np.inf       # (none)
+    with dense_band(np.inf):            # (none)
         plain = coverage(edges_of(polys), 10, 10, fill_rule=rule).full(10, 10)
-    finally:
-        scan._DENSE_BAND = saved
     assert np.allclose(plain, got, atol=1e-9)
 
 
@@ -505,7 +516,6 @@ def test_property_weights_with_polygons_and_coincident_edges(seed, w, h, rule):
     # the box), polygons with vertices on row lines, and copies of earlier
     # shapes (coincident edges, some reversed) in small boxes: the same
     # coverage with every box tried for weights as with none
-    from raster.pixels import scan
     rng = np.random.default_rng(seed)
     polys = []
     for _ in range(int(rng.integers(1, 30))):
@@ -524,15 +534,11 @@ def test_property_weights_with_polygons_and_coincident_edges(seed, w, h, rule):
             p = polys[int(rng.integers(0, len(polys)))]
             polys.append(p[::-1].copy() if rng.random() < 0.5 else p.copy())
     e = edges_of(polys)
-    saved = scan._DENSE_BAND
     got = []
-    try:
-        for band in (0.0, np.inf):
-            scan._DENSE_BAND = band
+    for band in (0.0, np.inf):
+        with dense_band(band):
             m = coverage(e, w, h, fill_rule=rule)
             got.append(np.zeros((h, w)) if m is None else m.full(w, h))
-    finally:
-        scan._DENSE_BAND = saved
     assert np.abs(got[0] - got[1]).max() <= 1e-7
 
 
