@@ -637,16 +637,25 @@ def _bands(loc, w, h):
 
 
 def _stable_order(key):
-    """``np.argsort(key, kind='stable')`` for a 1-D array of integers >= 0:
-    while ``key * len(key)`` stays exact in float64, the distinct float
-    keys ``key * len + position`` sort faster, in the same order."""
+    """``np.argsort(key, kind='stable')`` for a 1-D array of integers >= 0.
+
+    numpy sorts 8- and 16-bit integers stably by radix, in linear time,
+    where wider keys take a merge sort: keys below 2**48 are sorted here
+    16 bits at a time, least significant digit first, each pass stable
+    (the order of equal keys is the input's)."""
     n = len(key)
-    if n == 0 or float(key.max()) * n >= 2.0 ** 52:
+    top = int(key.max()) if n else 0
+    if top < 1 << 16:
+        return np.argsort(key.astype(np.uint16), kind='stable')
+    if top >= 1 << 48:
         return np.argsort(key, kind='stable')
-    k = key.astype(np.float64)
-    k *= n
-    k += np.arange(n)
-    return np.argsort(k)
+    order = np.argsort((key & 0xFFFF).astype(np.uint16), kind='stable')
+    shift = 16
+    while top >> shift:
+        digit = ((key[order] >> shift) & 0xFFFF).astype(np.uint16)
+        order = order[np.argsort(digit, kind='stable')]
+        shift += 16
+    return order
 
 
 def _group_starts(key):
@@ -1677,7 +1686,7 @@ def _refine(ua, va, ub, vb, k, C, eo, depth):
     if full.any():
         m = ~full[allc]
         allc, edges = allc[m], edges[m]
-    o = np.argsort(allc, kind='stable')
+    o = _stable_order(allc)
     edges = edges[o]
     counts = np.bincount(allc, minlength=n)
     out = np.zeros(n)

@@ -776,3 +776,17 @@ def test_distinct_is_sorted_unique(values, cols):
     got = scan._distinct(a)
     assert got.dtype == np.int64 and got.ndim == 1
     np.testing.assert_array_equal(got, np.unique(a))
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.integers(0, 60), st.integers(0, 3000), st.integers(0, 2**32 - 1))
+def test_property_stable_order_is_a_stable_argsort(bits, n, seed):
+    # cell keys of every width: one 16-bit radix pass, several, or (48 bits
+    # and more) numpy's merge sort; many repeated keys, so the order of
+    # equal keys is tested too
+    rng = np.random.default_rng(seed)
+    top = 1 << bits
+    keys = rng.integers(0, top, n, dtype=np.int64)
+    if n and rng.uniform() < 0.5:
+        keys = rng.choice(keys[:max(1, n // 10)], n)
+    assert np.array_equal(scan._stable_order(keys), np.argsort(keys, kind='stable'))
