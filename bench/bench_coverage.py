@@ -342,6 +342,7 @@ def run_crossing(names, renderers, modes, repeat, rasterize, python, tmp):
             print('  process %-9s ' % name + '  '.join(
                 '%s %.2f s %.0f MB' % (r, _med([x[0] for x in res[(name, r, 'process')]]),
                                        _med([x[2] for x in res[(name, r, 'process')]]))
+                if all(x[3] for x in res[(name, r, 'process')]) else '%s error' % r
                 for r in renderers), flush=True)
     if 'inprocess' in modes:
         for name in names:
@@ -422,10 +423,13 @@ def markdown(acc, cross, names, renderers, modes, repeat, info):
                     '| case | ' + ' | '.join(renderers) + ' | raster / faster peer (wall, RSS) |',
                     '|---|' + '---|' * len(renderers) + '---|']
             for name in names:
+                # (a renderer that failed in any round is an error, not a time)
                 vals = {r: [_med([x[i] for x in cross[(name, r, 'process')]]) for i in range(3)]
-                        for r in renderers}
-                cells = ['%.2f / %.2f / %.0f' % tuple(vals[r]) for r in renderers]
-                peers = [r for r in renderers if r != 'raster']
+                        for r in renderers
+                        if all(x[3] for x in cross[(name, r, 'process')])}
+                cells = ['%.2f / %.2f / %.0f' % tuple(vals[r]) if r in vals else 'error'
+                         for r in renderers]
+                peers = [r for r in renderers if r != 'raster' and r in vals]
                 ratio = ''
                 if 'raster' in vals and peers:
                     fast = min(peers, key=lambda r: vals[r][0])
