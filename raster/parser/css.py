@@ -107,18 +107,32 @@ def _strip_comments(text):
     return text
 
 
+#: Per set of stop characters, a pattern finding the next character that
+#: matters to :func:`_scan_to` (a quote, a bracket or a stop).
+_SCAN_RES = {}
+
+
 def _scan_to(text, pos, stops):
     """Index of the first character of `stops` at nesting depth 0 (outside
     strings, parentheses and brackets) from `pos`, or ``len(text)``."""
+    find = _SCAN_RES.get(stops)
+    if find is None:
+        find = _SCAN_RES[stops] = re.compile('[%s]' % re.escape('"\'()[]' + stops)).search
     n = len(text)
     depth = 0
-    while pos < n:
+    while True:
+        m = find(text, pos)
+        if m is None:
+            return n
+        pos = m.start()
         ch = text[pos]
         if ch == '"' or ch == "'":
             end = text.find(ch, pos + 1)
             while end != -1 and text[end - 1] == '\\':
                 end = text.find(ch, end + 1)
-            pos = n if end == -1 else end + 1
+            if end == -1:
+                return n
+            pos = end + 1
             continue
         if depth == 0 and ch in stops:
             return pos
@@ -127,7 +141,6 @@ def _scan_to(text, pos, stops):
         elif ch in ')]':
             depth = max(depth - 1, 0)
         pos += 1
-    return n
 
 
 def _skip_block(text, pos):

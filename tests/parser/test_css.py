@@ -558,3 +558,43 @@ def test_import_inside_svg_image_is_refused(tmp_path):
     rect, circle = tree.root.children
     assert rect.fill.paint.color == (0.0, 0.0, 0.0, 1.0)
     assert circle.fill.paint.color == (0.0, 0.0, 1.0, 1.0)
+
+
+def _scan_reference(text, pos, stops):
+    # one character at a time: strings skipped (a quote escaped by a
+    # backslash does not end one; an unclosed string runs to the end),
+    # parentheses and brackets nest, a stop counts at depth 0 only
+    depth = 0
+    while pos < len(text):
+        ch = text[pos]
+        if ch in '"\'':
+            end = pos + 1
+            while end < len(text) and not (text[end] == ch and text[end - 1] != '\\'):
+                end += 1
+            pos = end + 1
+            continue
+        if depth == 0 and ch in stops:
+            return pos
+        if ch in '([':
+            depth += 1
+        elif ch in ')]':
+            depth = max(depth - 1, 0)
+        pos += 1
+    return len(text)
+
+
+@settings(max_examples=400, deadline=None)
+@given(st.text(alphabet='ab ;,:{}()[]"\'\\#', max_size=40), st.integers(0, 45),
+       st.sampled_from([';', ')', ',', ';{}', '{}', '}']))
+def test_property_scan_to_skips_strings_and_nesting(text, pos, stops):
+    from raster.parser.css import _scan_to
+    assert _scan_to(text, pos, stops) == min(_scan_reference(text, pos, stops), len(text))
+
+
+def test_scan_to_by_hand():
+    from raster.parser.css import _scan_to
+    s = "fill:url(#a;b);font-family:'x;y\\'z;w';stroke:red"
+    assert _scan_to(s, 0, ';') == s.index(');') + 1
+    assert _scan_to(s, 15, ';') == s.index("';stroke") + 1
+    assert _scan_to('a(b[c)d]e)f;g', 0, ';') == 11     # (unbalanced: depth never below 0)
+    assert _scan_to('"unclosed;', 0, ';') == 10
