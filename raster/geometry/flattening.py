@@ -79,6 +79,23 @@ quadratics and cubics with integer coordinates, a quarter of them with
 cusps (tests/geometry/test_flatten.py checks random and cusped curves);
 the vertices are no longer on the curve.
 
+Repeated contours
+-----------------
+Text draws the same glyph many times at one size, and markers and
+symbols repeat one shape: in device space such contours are translates
+of one another.  :func:`flatten_joined` (what the renderer calls) looks
+for them when a call holds at least :data:`REPEAT_MIN_CONTOURS`
+contours: contours with the same segments, degrees and closing whose
+control points relative to their start agree on a grid of
+:data:`REPEAT_GRID` (2**-20 px) are found by a hash and confirmed point
+by point (:func:`repeated_contours`).  Each distinct contour is flattened
+once and its polyline moved to every copy's start, so a copy's polyline
+is within ``tolerance + REPEAT_GRID`` of its curve.  A quick look at
+every contour (segment count, closing, where its first and last segments
+end) leaves the call as it was when most contours are unlike any other
+(maps).  A page of 12 px text (7,900 glyphs, 60 lines): 0.16 -> 0.065 s
+of flattening.
+
 Conventions: coordinates are float64 user units (x right, y down);
 ``tolerance`` is in the same units (device pixels after a transform).
 Tolerances below the floating-point resolution of the coordinates
@@ -1048,8 +1065,11 @@ def flatten_joined(paths: Sequence[Path], transforms: Optional[Sequence[AffineLi
     polylines : Polylines
         The polylines of all paths, path after path.
     first : (n + 1,) int64 ndarray
-        Path ``i`` owns polylines ``first[i]:first[i + 1]``, identical to
-        ``flatten(paths[i], tolerance, transforms[i], straddle)``.
+        Path ``i`` owns polylines ``first[i]:first[i + 1]``, those of
+        ``flatten(paths[i], tolerance, transforms[i], straddle)``: the
+        same, or, for a contour that repeats an earlier one of the call up
+        to a translation (see *Repeated contours* above), the earlier one's
+        moved to its start, within :data:`REPEAT_GRID` of them.
 
     Raises
     ------
@@ -1095,12 +1115,169 @@ def flatten_joined(paths: Sequence[Path], transforms: Optional[Sequence[AffineLi
         cstart = _transform_owned(cstart, c_path, M, ident)
         if not (np.all(np.isfinite(ctrl)) and np.all(np.isfinite(cstart))):
             raise PathError('transformed path has non-finite coordinates')
-    out, starts, keep_c, _ = _assemble(ctrl, cstart, seg.degree, seg.contour,
-                                       seg.contour_nseg, seg.contour_closed, tol, straddle)
+    out, starts, keep_c = _assemble_repeated(ctrl, cstart, seg.degree, seg.contour,
+                                             seg.contour_nseg, seg.contour_closed, tol,
+                                             straddle)
     per_path = np.bincount(np.repeat(np.arange(n), nc), weights=keep_c,
                            minlength=n).astype(np.int64)
     first = np.concatenate([[0], np.cumsum(per_path)])
     return Polylines(out, starts, seg.contour_closed[keep_c]), first
+
+
+#: Fewest contours in one call worth looking for repeated ones.
+REPEAT_MIN_CONTOURS = 64
+#: Contours equal up to a translation when their control points relative
+#: to their start agree on this grid (device pixels): 2**-20, about 1e-6.
+REPEAT_GRID = 2.0 ** -20
+#: Share the work only where the distinct contours are at most this
+#: fraction of all.
+_REPEAT_SHARE = 0.5
+
+
+def _mix64(x):
+    """A 64-bit integer mixing step (splitmix64's finalizer), in place on
+    a uint64 array: nearby inputs give unrelated outputs."""
+    x ^= x >> np.uint64(30)
+    x *= np.uint64(0xBF58476D1CE4E5B9)
+    x ^= x >> np.uint64(27)
+    x *= np.uint64(0x94D049BB133111EB)
+    x ^= x >> np.uint64(31)
+    return x
+
+
+def repeated_contours(ctrl, cstart, degree, contour, contour_nseg, contour_closed,
+                      grid=REPEAT_GRID):
+    """For each contour, an earlier (or the same) contour it repeats up to
+    a translation.
+
+    Two contours repeat each other when they have the same segments, of
+    the same degrees, in the same order, closed alike, and every control
+    point relative to the contour's start agrees after rounding to
+    ``grid``: the two are then within ``grid`` of being translates.  Text
+    (the same glyph many times at one size), markers and symbols drawn
+    many times are made of such contours.
+
+    Parameters
+    ----------
+    ctrl : (S, 4, 2) float64 ndarray
+        Segments' control points (unused slots repeat the end point).
+    cstart : (C, 2) float64 ndarray
+        Contour start points.
+    degree, contour : (S,) ndarray
+        Degree and contour of each segment (contours' segments are
+        consecutive, in contour order).
+    contour_nseg : (C,) int64 ndarray
+    contour_closed : (C,) bool ndarray
+    grid : float, optional
+
+    Returns
+    -------
+    (C,) int64 ndarray
+        ``rep[c] <= c``, with ``rep[rep[c]] == rep[c]``: the first contour
+        of those ``c`` repeats (``c`` itself when none before it).
+    """
+    C, S = len(cstart), len(ctrl)
+    if S == 0:
+        return np.arange(C)
+    q = np.rint((ctrl - cstart[contour][:, None, :]) * (1.0 / grid)).astype(np.int64)
+    q = q.reshape(S, 8)
+    # a hash of each segment (its points, degree and place in its contour),
+    # summed over the contour (wrapping uint64 arithmetic); equal contours
+    # have equal hashes, unequal ones are told apart below
+    first_seg = np.cumsum(contour_nseg) - contour_nseg
+    place = np.arange(S) - first_seg[contour]
+    h = (degree.astype(np.uint64) + (place.astype(np.uint64) << np.uint64(2)))
+    h = _mix64(h)
+    with np.errstate(over='ignore'):
+        for j in range(8):
+            h += q[:, j].view(np.uint64) * np.uint64((0x9E3779B97F4A7C15 ^ (j * 0x632BE59BD9B4E019)) & 0xFFFFFFFFFFFFFFFF)
+            h = _mix64(h)
+    key = np.zeros(C, np.uint64)
+    has = contour_nseg > 0
+    with np.errstate(over='ignore'):
+        key[has] = np.add.reduceat(h, first_seg[has])
+        key += contour_nseg.astype(np.uint64) * np.uint64(0xD6E8FEB86659FD93)
+        key += contour_closed.astype(np.uint64)
+    key = _mix64(key)
+    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
+    rep = first[inverse.reshape(-1)]
+    # confirm: same count, closing and degrees, the same rounded points
+    other = np.flatnonzero(rep != np.arange(C))
+    if len(other):
+        r = rep[other]
+        bad = (contour_nseg[other] != contour_nseg[r]) | (contour_closed[other] != contour_closed[r])
+        n_o = np.where(bad, 0, contour_nseg[other])
+        own = np.repeat(first_seg[other], n_o) + (np.arange(int(n_o.sum()))
+                                                  - np.repeat(np.cumsum(n_o) - n_o, n_o))
+        theirs = own - np.repeat(first_seg[other] - first_seg[r], n_o)
+        differ = (q[own] != q[theirs]).any(axis=1) | (degree[own] != degree[theirs])
+        if differ.any():
+            bad[np.repeat(np.arange(len(other)), n_o)[differ]] = True
+        rep[other[bad]] = other[bad]
+    return rep
+
+
+def _assemble_repeated(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol,
+                       straddle=False):
+    """:func:`_assemble` (its first three results), each contour that
+    repeats an earlier one (:func:`repeated_contours`) flattened once and
+    moved: its polyline is the earlier one's translated by the difference
+    of their start points, so within ``tol`` plus :data:`REPEAT_GRID` of
+    its curve (rounding aside, the polyline flattening it would give)."""
+    C = len(cstart)
+    if C < REPEAT_MIN_CONTOURS:
+        return _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol,
+                         straddle)[:3]
+    if len(ctrl):
+        # (the limit applies to all of them, as without sharing)
+        limits.check_coord(max(float(np.abs(ctrl).max()), float(np.abs(cstart).max())))
+    # a quick look first (segment count, closing, the first and last
+    # segments' ends): contours alone in their look repeat nothing
+    first_seg = np.cumsum(contour_nseg) - contour_nseg
+    has = contour_nseg > 0
+    look = contour_nseg.astype(np.uint64) * np.uint64(0xD6E8FEB86659FD93)
+    look += contour_closed.astype(np.uint64)
+    for end in (first_seg[has], first_seg[has] + contour_nseg[has] - 1):
+        q = np.rint((ctrl[end, 3] - cstart[has]) * (1.0 / REPEAT_GRID)).astype(np.int64)
+        with np.errstate(over='ignore'):
+            look[has] = _mix64(look[has] + q[:, 0].view(np.uint64))
+            look[has] = _mix64(look[has] + q[:, 1].view(np.uint64))
+    _, inverse, count = np.unique(look, return_inverse=True, return_counts=True)
+    if np.count_nonzero(count[inverse.reshape(-1)] == 1) > _REPEAT_SHARE * C:
+        return _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol,
+                         straddle)[:3]
+    rep = repeated_contours(ctrl, cstart, degree, contour, contour_nseg, contour_closed)
+    reps = np.flatnonzero(rep == np.arange(C))
+    if len(reps) > _REPEAT_SHARE * C:
+        return _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol,
+                         straddle)[:3]
+    # the distinct contours alone, renumbered
+    slot = np.zeros(C, np.int64)
+    slot[reps] = np.arange(len(reps))
+    nr = contour_nseg[reps]
+    segs = np.repeat(first_seg[reps], nr) + (np.arange(int(nr.sum()))
+                                             - np.repeat(np.cumsum(nr) - nr, nr))
+    out_r, starts_r, keep_r, _ = _assemble(ctrl[segs], cstart[reps], degree[segs],
+                                           np.repeat(np.arange(len(reps)), nr), nr,
+                                           contour_closed[reps], tol, straddle)
+    # each contour: its distinct contour's polyline, moved to its start
+    k = slot[rep]                                   # distinct contour of each contour
+    keep_c = keep_r[k]
+    kept_r = np.flatnonzero(keep_r)
+    length = np.zeros(len(reps), np.int64)
+    length[kept_r] = np.diff(np.append(starts_r, len(out_r)))
+    start_of = np.zeros(len(reps), np.int64)
+    start_of[kept_r] = starts_r
+    kc = np.flatnonzero(keep_c)
+    L = length[k[kc]]
+    total = int(L.sum())
+    limits.check_points(total, 'flattening')
+    starts = np.cumsum(L) - L
+    idx = np.repeat(start_of[k[kc]], L) + (np.arange(total) - np.repeat(starts, L))
+    shift = cstart[kc] - cstart[rep[kc]]
+    out = take_rows(out_r, idx)
+    out += np.repeat(shift, L, axis=0)
+    return out, starts, keep_c
 
 
 def _transform_owned(pts, owner, M, ident):

@@ -171,3 +171,129 @@ def test_joined_lines_equal_the_general_flattening(seed, straddle, monkeypatch):
                                    (got.starts[first[i + 1]] if first[i + 1] < len(got.starts)
                                     else len(got.points)) - got.starts[first[i]])
         assert np.array_equal(sl[:len(one.points)], one.points)
+
+
+# -- contours repeated up to a translation (text, markers) -------------------
+
+def _copies(rng, bases, n, hair=0.0):
+    """``n`` contours, each a base contour (``M`` and curves, closed or
+    not) moved by a random translation with a fraction part; with ``hair``
+    every third copy has one control point moved by that much or more.  Returns
+    the path and, per contour, its base (-1: moved by a hair)."""
+    parts, base_of = [], []
+    for i in range(n):
+        b = int(rng.integers(len(bases)))
+        pts, closed = bases[b]
+        off = rng.uniform(-400, 400, 2)
+        q = pts + off
+        moved = hair and i % 3 == 1
+        if moved:
+            q = q.copy()
+            # (by a different amount each: no two of them are translates)
+            q[1 + int(rng.integers(len(q) - 1))] += hair * (1 + i)
+        d = 'M%.17g %.17g' % tuple(q[0]) + ''.join(
+            ' C%.17g %.17g %.17g %.17g %.17g %.17g' % tuple(q[1 + 3 * k:4 + 3 * k].ravel())
+            for k in range((len(q) - 1) // 3))
+        parts.append(d + (' Z' if closed else ''))
+        base_of.append(-1 if moved else b)
+    return parse_path(' '.join(parts)), base_of
+
+
+def _bases(rng, k):
+    out = []
+    for _ in range(k):
+        m = int(rng.integers(1, 4))
+        out.append((rng.uniform(-20, 20, (1 + 3 * m, 2)), bool(rng.random() < 0.5)))
+    return out
+
+
+@pytest.mark.parametrize('seed', range(4))
+@pytest.mark.parametrize('collide', [False, True])
+def test_repeated_contours_are_translates(seed, collide, monkeypatch):
+    # copies of a few contours at random offsets are found (the first copy
+    # of each base stands for the others); copies with a control point
+    # moved by 1e-3 px stand for themselves; with every hash the same
+    # (collide), the point by point check alone tells them apart
+    from raster.geometry import flattening
+    from raster.geometry.path import segment_arrays
+    rng = np.random.default_rng(seed)
+    bases = _bases(rng, 5)
+    path, base_of = _copies(rng, bases, 120, hair=1e-3)
+    if collide:
+        monkeypatch.setattr(flattening, '_mix64', lambda x: x * np.uint64(0))
+    seg = segment_arrays(path.verbs, path.points)
+    rep = flattening.repeated_contours(seg.ctrl, seg.contour_start, seg.degree, seg.contour,
+                                       seg.contour_nseg, seg.contour_closed)
+    assert np.all(rep[rep] == rep) and np.all(rep <= np.arange(len(rep)))
+    if collide:
+        # every hash equal: the first contour stands for its own copies,
+        # the point by point check leaves every other contour to itself
+        b0 = base_of[0]
+        want = [0 if b0 >= 0 and b == b0 else c for c, b in enumerate(base_of)]
+        assert rep.tolist() == want
+        return
+    first = {}
+    for c, b in enumerate(base_of):
+        if b < 0:
+            assert rep[c] == c
+        else:
+            first.setdefault(b, c)
+            assert rep[c] == first[b]
+
+
+@pytest.mark.parametrize('straddle', [False, True])
+@pytest.mark.parametrize('seed', range(3))
+def test_repeated_contours_flattened_once_and_moved(seed, straddle, monkeypatch):
+    # a batch of many copies: the distinct contours alone are flattened,
+    # and every polyline is the one flattening each path alone gives
+    # (within the grid of REPEAT_GRID and rounding), same structure
+    from raster.geometry import flattening
+    from raster.geometry.flattening import REPEAT_GRID, flatten_joined
+    rng = np.random.default_rng(80 + seed)
+    bases = _bases(rng, 4)
+    paths = []
+    for _ in range(40):
+        p, _ = _copies(rng, bases, int(rng.integers(1, 6)))
+        paths.append(p)
+    ts = [Affine(1.5, 0.3, -0.2, 1.1, 7.25, -3.5) if i % 2 else None
+          for i in range(len(paths))]
+    sizes = []
+    real = flattening._assemble
+
+    def spy(ctrl, cstart, *a, **k):
+        sizes.append(len(cstart))
+        return real(ctrl, cstart, *a, **k)
+    monkeypatch.setattr(flattening, '_assemble', spy)
+    pl, first = flatten_joined(paths, ts, 0.1, straddle)
+    total = sum(int(np.count_nonzero(p.verbs == 0)) for p in paths)
+    assert total >= flattening.REPEAT_MIN_CONTOURS and sizes == [8]   # 4 bases, 2 transforms
+    monkeypatch.setattr(flattening, '_assemble', real)
+    for i, (p, t) in enumerate(zip(paths, ts)):
+        want = flatten(p, 0.1, transform=t, straddle=straddle)
+        k0, k1 = first[i], first[i + 1]
+        assert k1 - k0 == len(want)
+        pts = pl.points[pl.starts[k0]:pl.ends[k1 - 1]]
+        assert np.allclose(pts, want.points, rtol=0, atol=2 * REPEAT_GRID)
+        assert np.array_equal(pl.closed[k0:k1], want.closed)
+        assert np.array_equal(pl.starts[k0:k1] - pl.starts[k0], want.starts)
+    # without repeats enough to pay, everything is flattened as before
+    monkeypatch.setattr(flattening, '_assemble', spy)
+    sizes.clear()
+    flatten_joined(paths[:3], ts[:3], 0.1, straddle)
+    assert sizes == [sum(int(np.count_nonzero(p.verbs == 0)) for p in paths[:3])]
+
+
+def test_repeated_symbols_render_as_without_sharing(monkeypatch):
+    # 300 copies of a curved symbol at fractional offsets: the same pixels
+    # with the sharing as with every contour flattened (within one level)
+    import raster
+    from raster.geometry import flattening
+    rng = np.random.default_rng(5)
+    xy = rng.uniform(0, 190, (300, 2))
+    uses = ''.join('<use href="#s" x="%.6f" y="%.6f"/>' % tuple(p) for p in xy)
+    doc = ('<svg xmlns="http://www.w3.org/2000/svg" width="200" height="200"><defs>'
+           '<path id="s" d="M0 0C3 -2 6 4 9 1Q5 8 0 0Z"/></defs>%s</svg>' % uses).encode()
+    shared = raster.render(doc).astype(int)
+    monkeypatch.setattr(flattening, 'REPEAT_MIN_CONTOURS', 10**9)
+    alone = raster.render(doc).astype(int)
+    assert np.abs(shared - alone).max() <= 1
