@@ -107,7 +107,7 @@ import numpy as np
 from ..errors import LimitError, RasterError
 from .. import limits
 from .bezier import evaluate
-from .flattening import flatten_beziers
+from .flattening import REPEAT_GRID, flatten_beziers
 from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path
 from .rules import StrChoice
 from .transform import Affine, AffineLike, apply_each, as_affine
@@ -1678,10 +1678,14 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
     strokes when the paths' transforms have the same largest scale
     (:meth:`~raster.geometry.transform.Affine.max_scale`); otherwise, and for dashes
     (whose arc lengths are summed over all paths in float64), within a
-    rounding error far below ``tolerance``.  Repeated paths (equal verbs
-    and points) whose transforms have the same largest scale share one
-    user-space outline, mapped by each one's transform; the returned paths
-    of such a group share one read-only verbs array.
+    rounding error far below ``tolerance``.  Repeated paths (equal verbs,
+    and points equal up to a translation within
+    :data:`~raster.geometry.flattening.REPEAT_GRID` device pixels: the same
+    circle at many centres) whose transforms have the same largest scale
+    share one user-space outline, moved to each one's place and mapped by
+    its transform (within ``REPEAT_GRID`` plus rounding of its own
+    outline); the returned paths of such a group share one read-only
+    verbs array.
 
     Parameters
     ----------
@@ -1765,7 +1769,7 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
     # the user-space outline depends only on the path and the tolerance in
     # user units (tol / max_scale): build it once per distinct pair and map
     # it by the transform of every path that shares it
-    rep, inv = _distinct(paths, use, scales)
+    rep, inv, shift = _distinct(paths, use, scales)
     sub = [paths[i] for i in rep.tolist()]
     big = Path(np.concatenate([p.verbs for p in sub]),
                np.concatenate([p.points for p in sub]), _checked=True)
@@ -1792,9 +1796,15 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
     npoly = np.bincount(owner, minlength=len(rep))
     npts = np.bincount(ppath, minlength=len(rep))
     if len(rep) < len(use):
-        # gather each used path's copy of its representative's polygons
+        # gather each used path's copy of its representative's polygons,
+        # moved to the path's own place (its translation from the
+        # representative, in user space)
         ipath, loc = _ranges(npts[inv])
         pts = pts[_starts(npts)[inv][ipath] + loc]
+        moved = (shift != 0).any(axis=1)
+        if moved.any():
+            sel = np.flatnonzero(moved[ipath])
+            pts[sel] += shift[ipath[sel]]
     else:
         ipath = ppath
     if len(ipath) and not np.all(mu == (1.0, 0.0, 0.0, 1.0, 0.0, 0.0)):
@@ -1827,18 +1837,37 @@ def _max_scales(m):
 
 
 def _distinct(paths, use, scales):
-    """Group the paths ``paths[use]`` by (verbs, points, scale).
+    """Group the paths ``paths[use]`` by (verbs, points up to a
+    translation, scale).
 
-    Returns ``(rep, inv)``: ``rep`` (R,) int64, the index (into ``paths``)
-    of the first path of each group, in order of first occurrence, and
-    ``inv`` (len(use),) int64, the group of each used path; without repeats
-    ``rep`` is ``use`` and ``inv`` is ``arange(len(use))``.  A path object
-    met again is recognized by identity, equal paths by their bytes."""
-    by_id, by_content = {}, {}
+    Two paths fall in one group when their verbs are equal, their scales
+    too, and their points relative to their first point agree after
+    rounding to ``REPEAT_GRID / scale`` user units (so within
+    :data:`raster.geometry.flattening.REPEAT_GRID` device pixels of being
+    translates; equal paths are in one group).
+
+    Returns ``(rep, inv, shift)``: ``rep`` (R,) int64, the index (into
+    ``paths``) of the first path of each group, in order of first
+    occurrence; ``inv`` (len(use),) int64, the group of each used path;
+    ``shift`` (len(use), 2) float64, each used path's first point minus
+    its group's first path's (0 for equal paths).  Without repeats ``rep``
+    is ``use`` and ``inv`` is ``arange(len(use))``.  A path object met
+    again is recognized by identity, the others by the bytes of their
+    verbs and rounded relative points."""
     used = [paths[i] for i in use.tolist()]
-    for p in used:
+    lens = np.array([len(p.points) for p in used], np.int64)
+    starts = np.cumsum(lens) - lens
+    pts = np.concatenate([p.points for p in used])
+    first_pt = pts[starts]
+    own = np.repeat(np.arange(len(used)), lens)
+    unit = (scales[use] / REPEAT_GRID)[own][:, None]
+    with np.errstate(over='ignore', invalid='ignore'):   # (non-finite: refused later)
+        q = np.rint((pts - first_pt[own]) * unit).astype(np.int64).tobytes()
+    by_id, by_content = {}, {}
+    for k, p in enumerate(used):
         if id(p) not in by_id:
-            key = (p.verbs.tobytes(), p.points.tobytes())
+            a = 16 * int(starts[k])
+            key = (p.verbs.tobytes(), q[a:a + 16 * int(lens[k])])
             by_id[id(p)] = by_content.setdefault(key, len(by_content))
     group = np.array([by_id[id(p)] for p in used], np.int64)
     sc_val, sc_id = np.unique(scales[use], return_inverse=True)
@@ -1848,4 +1877,6 @@ def _distinct(paths, use, scales):
     order = np.argsort(first, kind='stable')
     rank = np.empty(len(order), np.int64)
     rank[order] = np.arange(len(order))
-    return use[first[order]], rank[inv.reshape(-1)]
+    inv = rank[inv.reshape(-1)]
+    rep_local = first[order]
+    return use[rep_local], inv, first_pt - first_pt[rep_local[inv]]

@@ -222,7 +222,7 @@ def no_sharing(monkeypatch):
     import raster.geometry.stroking as S
 
     def distinct(paths, use, scales):
-        return use, np.arange(len(use))
+        return use, np.arange(len(use)), np.zeros((len(use), 2))
     monkeypatch.setattr(S, '_distinct', distinct)
 
 
@@ -298,11 +298,51 @@ def test_distinct_groups_by_content_and_scale():
     paths = [a, Path.empty(), a2, b, a, a, b]
     scales = np.array([2.0, 2.0, 2.0, 2.0, 3.0, 2.0, 2.0])
     use = np.array([0, 2, 3, 4, 5, 6])
-    rep, inv = _distinct(paths, use, scales)
+    rep, inv, shift = _distinct(paths, use, scales)
     assert rep.tolist() == [0, 3, 4]                   # first of each group, in order
     assert inv.tolist() == [0, 0, 1, 2, 0, 1]
-    rep, inv = _distinct([a, b], np.array([0, 1]), np.array([1.0, 1.0]))
+    assert not shift.any()
+    rep, inv, _ = _distinct([a, b], np.array([0, 1]), np.array([1.0, 1.0]))
     assert rep.tolist() == [0, 1] and inv.tolist() == [0, 1]
+
+
+def test_distinct_groups_translates():
+    # the same shape at other places (a scatter plot's markers) is one
+    # group, each with its shift from the first; a shape moved by more than
+    # the grid (2**-20 device px) at one point is not
+    from raster.geometry.flattening import REPEAT_GRID
+    from raster.geometry.stroking import _distinct
+    d = 'M{0} {1} C{2} {1} {3} {4} {0} {4} Z'
+    paths = [parse_path(d.format(x, y, x + 2.5, x + 3, y + 1.75))
+             for x, y in ((0.1, 0.2), (10.37, -4.91), (1e3 / 7, 1e3 / 3), (5.5, 6.5))]
+    paths.append(Path(paths[0].verbs, paths[0].points + [0.3, 0.0], _checked=True))
+    far = paths[1].points.copy()
+    far[2, 0] += 4 * REPEAT_GRID / 2.0                 # 4 grid steps in device px (scale 2)
+    paths.append(Path(paths[1].verbs, far, _checked=True))
+    use = np.arange(len(paths))
+    rep, inv, shift = _distinct(paths, use, np.full(len(paths), 2.0))
+    assert rep.tolist() == [0, 5] and inv.tolist() == [0, 0, 0, 0, 0, 1]
+    for k in range(5):
+        assert np.allclose(shift[k], paths[k].points[0] - paths[0].points[0], rtol=0,
+                           atol=1e-12)
+    assert not shift[5].any()
+
+
+def test_scatter_of_translated_circles_strokes_like_each_alone():
+    # circles of one radius at many centres, as the parser builds them:
+    # one outline, moved; each within the grid of its own stroke
+    from raster.geometry.flattening import REPEAT_GRID
+    from raster.geometry.pathdata import ellipse_path
+    rng = np.random.default_rng(3)
+    cs = rng.uniform(0, 500, (200, 2))
+    paths = [ellipse_path(x, y, 3.0, 3.0) for x, y in cs]
+    t = Affine.scale(1.7)
+    outs = stroke_many(paths, StrokeStyle(width=1.2), transforms=[t] * len(paths))
+    assert all(o.verbs is outs[0].verbs for o in outs)
+    for p, o in zip(paths, outs):
+        alone = stroke(p, StrokeStyle(width=1.2), transform=t)
+        assert np.array_equal(o.verbs, alone.verbs)
+        assert np.allclose(o.points, alone.points, rtol=0, atol=2 * REPEAT_GRID)
 
 
 def test_max_scales_are_the_methods_values():
