@@ -90,7 +90,10 @@ control points relative to their start agree on a grid of
 :data:`REPEAT_GRID` (2**-20 px) are found by a hash and confirmed point
 by point (:func:`repeated_contours`).  Each distinct contour is flattened
 once and its polyline moved to every copy's start, so a copy's polyline
-is within ``tolerance + REPEAT_GRID`` of its curve.  A quick look at
+is within ``tolerance + REPEAT_GRID`` of its curve; a
+:class:`ContourCache` passed to successive calls (the renderer keeps one
+per render) carries the distinct contours' polylines from call to call.
+A quick look at
 every contour (segment count, closing, where its first and last segments
 end) leaves the call as it was when most contours are unlike any other
 (maps).  A page of 12 px text (7,900 glyphs, 60 lines): 0.16 -> 0.065 s
@@ -1044,7 +1047,8 @@ def _smooth_joints(ctrl, deg, contour, contour_nseg, cstart):
 
 def flatten_joined(paths: Sequence[Path], transforms: Optional[Sequence[AffineLike]] = None,
                    tolerance: float = DEFAULT_TOLERANCE,
-                   straddle: bool = False) -> Tuple[Polylines, np.ndarray]:
+                   straddle: bool = False,
+                   cache: Optional['ContourCache'] = None) -> Tuple[Polylines, np.ndarray]:
     """Flatten many paths at once into one :class:`Polylines`.
 
     The verbs and points of all paths are read as one array (every path
@@ -1059,6 +1063,9 @@ def flatten_joined(paths: Sequence[Path], transforms: Optional[Sequence[AffineLi
         One transform per path (user to device space); None: identity.
     tolerance, straddle : optional
         As for :func:`flatten` (device pixels, default 0.25; on the path).
+    cache : ContourCache or None, optional
+        Distinct contours flattened by earlier calls, taken from it and
+        added to it (see *Repeated contours* above).
 
     Returns
     -------
@@ -1117,7 +1124,7 @@ def flatten_joined(paths: Sequence[Path], transforms: Optional[Sequence[AffineLi
             raise PathError('transformed path has non-finite coordinates')
     out, starts, keep_c = _assemble_repeated(ctrl, cstart, seg.degree, seg.contour,
                                              seg.contour_nseg, seg.contour_closed, tol,
-                                             straddle)
+                                             straddle, cache)
     per_path = np.bincount(np.repeat(np.arange(n), nc), weights=keep_c,
                            minlength=n).astype(np.int64)
     first = np.concatenate([[0], np.cumsum(per_path)])
@@ -1176,34 +1183,51 @@ def repeated_contours(ctrl, cstart, degree, contour, contour_nseg, contour_close
         ``rep[c] <= c``, with ``rep[rep[c]] == rep[c]``: the first contour
         of those ``c`` repeats (``c`` itself when none before it).
     """
+    return _repeats(*_contour_keys(ctrl, cstart, degree, contour, contour_nseg,
+                                   contour_closed, grid), degree, contour_nseg, contour_closed)
+
+
+def _contour_keys(ctrl, cstart, degree, contour, contour_nseg, contour_closed, grid):
+    """``(key, q)``: a 64-bit hash of each contour ((C,) uint64) and the
+    rounded control points relative to each segment's contour start
+    ((S, 8) int64, in units of ``grid``).  Equal contours (as
+    :func:`repeated_contours` reads them) have equal keys."""
     C, S = len(cstart), len(ctrl)
-    if S == 0:
-        return np.arange(C)
-    q = np.rint((ctrl - cstart[contour][:, None, :]) * (1.0 / grid)).astype(np.int64)
+    with np.errstate(over='ignore', invalid='ignore'):
+        q = np.rint((ctrl - cstart[contour][:, None, :]) * (1.0 / grid)).astype(np.int64)
     q = q.reshape(S, 8)
     # a hash of each segment (its points, degree and place in its contour),
-    # summed over the contour (wrapping uint64 arithmetic); equal contours
-    # have equal hashes, unequal ones are told apart below
+    # summed over the contour (wrapping uint64 arithmetic)
     first_seg = np.cumsum(contour_nseg) - contour_nseg
     place = np.arange(S) - first_seg[contour]
     h = (degree.astype(np.uint64) + (place.astype(np.uint64) << np.uint64(2)))
     h = _mix64(h)
     with np.errstate(over='ignore'):
         for j in range(8):
-            h += q[:, j].view(np.uint64) * np.uint64((0x9E3779B97F4A7C15 ^ (j * 0x632BE59BD9B4E019)) & 0xFFFFFFFFFFFFFFFF)
+            h += q[:, j].view(np.uint64) * np.uint64(
+                (0x9E3779B97F4A7C15 ^ (j * 0x632BE59BD9B4E019)) & 0xFFFFFFFFFFFFFFFF)
             h = _mix64(h)
     key = np.zeros(C, np.uint64)
     has = contour_nseg > 0
     with np.errstate(over='ignore'):
-        key[has] = np.add.reduceat(h, first_seg[has])
+        if S:
+            key[has] = np.add.reduceat(h, first_seg[has])
         key += contour_nseg.astype(np.uint64) * np.uint64(0xD6E8FEB86659FD93)
         key += contour_closed.astype(np.uint64)
-    key = _mix64(key)
+    return _mix64(key), q
+
+
+def _repeats(key, q, degree, contour_nseg, contour_closed):
+    """:func:`repeated_contours` from the contours' keys and rounded points
+    (:func:`_contour_keys`): the first contour of each key, confirmed
+    point by point (a contour that differs from it stands for itself)."""
+    C = len(key)
     _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
     rep = first[inverse.reshape(-1)]
     # confirm: same count, closing and degrees, the same rounded points
     other = np.flatnonzero(rep != np.arange(C))
     if len(other):
+        first_seg = np.cumsum(contour_nseg) - contour_nseg
         r = rep[other]
         bad = (contour_nseg[other] != contour_nseg[r]) | (contour_closed[other] != contour_closed[r])
         n_o = np.where(bad, 0, contour_nseg[other])
@@ -1217,13 +1241,53 @@ def repeated_contours(ctrl, cstart, degree, contour, contour_nseg, contour_close
     return rep
 
 
+class ContourCache:
+    """Polylines of distinct contours kept across :func:`flatten_joined`
+    calls (the renderer keeps one per render: a page of text flattens
+    each glyph once, not once per batch).
+
+    An entry is a contour's polyline relative to its start, found by the
+    contour's key (tolerance, straddling, hash of :func:`_contour_keys`)
+    and taken only when the contour's rounded points, degrees and closing
+    (the proof, stored with it) are the same.  At most ``max_bytes`` of
+    polylines and proofs are held (default 4 MB); beyond, the cache starts
+    afresh.
+    """
+
+    def __init__(self, max_bytes=1 << 22):
+        self.max_bytes = int(max_bytes)
+        self._entries = {}
+        self._bytes = 0
+
+    def __len__(self):
+        return len(self._entries)
+
+    def get(self, key, proof):
+        """``(polyline relative to the start (k, 2), kept)`` or None."""
+        e = self._entries.get(key)
+        return e[1:] if e is not None and e[0] == proof else None
+
+    def put(self, key, proof, rel, kept):
+        size = rel.nbytes + len(proof)
+        old = self._entries.pop(key, None)
+        if old is not None:
+            self._bytes -= old[1].nbytes + len(old[0])
+        if self._bytes + size > self.max_bytes:
+            self._entries.clear()
+            self._bytes = 0
+        if size <= self.max_bytes:
+            self._entries[key] = (proof, rel, kept)
+            self._bytes += size
+
+
 def _assemble_repeated(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol,
-                       straddle=False):
+                       straddle=False, cache=None):
     """:func:`_assemble` (its first three results), each contour that
-    repeats an earlier one (:func:`repeated_contours`) flattened once and
-    moved: its polyline is the earlier one's translated by the difference
-    of their start points, so within ``tol`` plus :data:`REPEAT_GRID` of
-    its curve (rounding aside, the polyline flattening it would give)."""
+    repeats an earlier one (:func:`repeated_contours`), or one of
+    ``cache`` (a :class:`ContourCache`), flattened once and moved: its
+    polyline is the earlier one's translated to its start point, so
+    within ``tol`` plus :data:`REPEAT_GRID` of its curve (rounding aside,
+    the polyline flattening it would give)."""
     C = len(cstart)
     if C < REPEAT_MIN_CONTOURS:
         return _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol,
@@ -1246,37 +1310,66 @@ def _assemble_repeated(ctrl, cstart, degree, contour, contour_nseg, contour_clos
     if np.count_nonzero(count[inverse.reshape(-1)] == 1) > _REPEAT_SHARE * C:
         return _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol,
                          straddle)[:3]
-    rep = repeated_contours(ctrl, cstart, degree, contour, contour_nseg, contour_closed)
+    key, q = _contour_keys(ctrl, cstart, degree, contour, contour_nseg, contour_closed,
+                           REPEAT_GRID)
+    rep = _repeats(key, q, degree, contour_nseg, contour_closed)
     reps = np.flatnonzero(rep == np.arange(C))
     if len(reps) > _REPEAT_SHARE * C:
         return _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol,
                          straddle)[:3]
-    # the distinct contours alone, renumbered
     slot = np.zeros(C, np.int64)
     slot[reps] = np.arange(len(reps))
-    nr = contour_nseg[reps]
-    segs = np.repeat(first_seg[reps], nr) + (np.arange(int(nr.sum()))
-                                             - np.repeat(np.cumsum(nr) - nr, nr))
-    out_r, starts_r, keep_r, _ = _assemble(ctrl[segs], cstart[reps], degree[segs],
-                                           np.repeat(np.arange(len(reps)), nr), nr,
-                                           contour_closed[reps], tol, straddle)
+    # the polyline of each distinct contour: from the cache, or flattened
+    # now (the distinct contours alone, renumbered)
+    rel, kept, proofs, fresh = [None] * len(reps), [False] * len(reps), [], reps
+    if cache is not None:
+        proofs = [(tol, bool(straddle), int(key[r])) for r in reps.tolist()]
+        fs, ns, cl = first_seg.tolist(), contour_nseg.tolist(), contour_closed.tolist()
+        proofs = [(k, q[fs[r]:fs[r] + ns[r]].tobytes() + degree[fs[r]:fs[r] + ns[r]].tobytes()
+                   + (b'z' if cl[r] else b'o')) for k, r in zip(proofs, reps.tolist())]
+        miss = []
+        for j, (k, proof) in enumerate(proofs):
+            hit = cache.get(k, proof)
+            if hit is None:
+                miss.append(j)
+            else:
+                rel[j], kept[j] = hit
+        fresh = reps[miss]
+    if len(fresh):
+        nr = contour_nseg[fresh]
+        segs = np.repeat(first_seg[fresh], nr) + (np.arange(int(nr.sum()))
+                                                  - np.repeat(np.cumsum(nr) - nr, nr))
+        out_f, starts_f, keep_f, _ = _assemble(ctrl[segs], cstart[fresh], degree[segs],
+                                               np.repeat(np.arange(len(fresh)), nr), nr,
+                                               contour_closed[fresh], tol, straddle)
+        ends_f = np.append(starts_f[1:], len(out_f))
+        kf = np.flatnonzero(keep_f)
+        where = dict(zip(kf.tolist(), range(len(kf))))
+        fresh_slot = slot[fresh].tolist()
+        for i, j in enumerate(fresh_slot):
+            if i in where:
+                w = where[i]
+                rel[j] = out_f[starts_f[w]:ends_f[w]] - cstart[fresh[i]]
+                kept[j] = True
+            else:
+                rel[j] = np.zeros((0, 2))
+            if cache is not None:
+                cache.put(proofs[j][0], proofs[j][1], rel[j], kept[j])
+    keep_r = np.array(kept, bool)
+    length = np.array([len(x) for x in rel], np.int64)
+    out_r = np.concatenate(rel) if len(rel) else np.zeros((0, 2))
+    start_of = np.cumsum(length) - length
     # each contour: its distinct contour's polyline, moved to its start
     k = slot[rep]                                   # distinct contour of each contour
     keep_c = keep_r[k]
-    kept_r = np.flatnonzero(keep_r)
-    length = np.zeros(len(reps), np.int64)
-    length[kept_r] = np.diff(np.append(starts_r, len(out_r)))
-    start_of = np.zeros(len(reps), np.int64)
-    start_of[kept_r] = starts_r
     kc = np.flatnonzero(keep_c)
     L = length[k[kc]]
     total = int(L.sum())
     limits.check_points(total, 'flattening')
     starts = np.cumsum(L) - L
     idx = np.repeat(start_of[k[kc]], L) + (np.arange(total) - np.repeat(starts, L))
-    shift = cstart[kc] - cstart[rep[kc]]
     out = take_rows(out_r, idx)
-    out += np.repeat(shift, L, axis=0)
+    out += np.repeat(cstart[kc], L, axis=0)
     return out, starts, keep_c
 
 

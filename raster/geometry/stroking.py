@@ -1769,7 +1769,10 @@ def stroke_many(paths: Sequence[Path], style: Optional[StrokeStyle] = None, *,
     # the user-space outline depends only on the path and the tolerance in
     # user units (tol / max_scale): build it once per distinct pair and map
     # it by the transform of every path that shares it
-    rep, inv, shift = _distinct(paths, use, scales)
+    # (dashed strokes cut to a window: translates keep outlines of their
+    # own, whose dashes out of reach are left out)
+    rep, inv, shift = _distinct(paths, use, scales,
+                                translates=window is None or not style.dash)
     sub = [paths[i] for i in rep.tolist()]
     big = Path(np.concatenate([p.verbs for p in sub]),
                np.concatenate([p.points for p in sub]), _checked=True)
@@ -1836,7 +1839,7 @@ def _max_scales(m):
     return s[inv.reshape(-1)]
 
 
-def _distinct(paths, use, scales):
+def _distinct(paths, use, scales, translates=True):
     """Group the paths ``paths[use]`` by (verbs, points up to a
     translation, scale).
 
@@ -1844,7 +1847,8 @@ def _distinct(paths, use, scales):
     too, and their points relative to their first point agree after
     rounding to ``REPEAT_GRID / scale`` user units (so within
     :data:`raster.geometry.flattening.REPEAT_GRID` device pixels of being
-    translates; equal paths are in one group).
+    translates; equal paths are in one group).  Without ``translates``
+    only equal paths are (their points compared as they are).
 
     Returns ``(rep, inv, shift)``: ``rep`` (R,) int64, the index (into
     ``paths``) of the first path of each group, in order of first
@@ -1861,8 +1865,11 @@ def _distinct(paths, use, scales):
     first_pt = pts[starts]
     own = np.repeat(np.arange(len(used)), lens)
     unit = (scales[use] / REPEAT_GRID)[own][:, None]
-    with np.errstate(over='ignore', invalid='ignore'):   # (non-finite: refused later)
-        q = np.rint((pts - first_pt[own]) * unit).astype(np.int64).tobytes()
+    if translates:
+        with np.errstate(over='ignore', invalid='ignore'):   # (non-finite: refused later)
+            q = np.rint((pts - first_pt[own]) * unit).astype(np.int64).tobytes()
+    else:
+        q = pts.tobytes()
     by_id, by_content = {}, {}
     for k, p in enumerate(used):
         if id(p) not in by_id:
@@ -1879,4 +1886,5 @@ def _distinct(paths, use, scales):
     rank[order] = np.arange(len(order))
     inv = rank[inv.reshape(-1)]
     rep_local = first[order]
-    return use[rep_local], inv, first_pt - first_pt[rep_local[inv]]
+    shift = first_pt - first_pt[rep_local[inv]] if translates else np.zeros((len(used), 2))
+    return use[rep_local], inv, shift

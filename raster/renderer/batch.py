@@ -29,7 +29,7 @@ import numpy as np
 
 from .. import limits
 from ..errors import RasterError
-from ..geometry.flattening import flatten, flatten_joined
+from ..geometry.flattening import ContourCache, flatten, flatten_joined
 from ..pixels.hairline import hairline_edges, hairline_outline
 from ..pixels.scan import Mask, coverage, coverage_batch
 from ..geometry.stroking import StrokeStyle, hairline_scale, stroke as stroke_outline, stroke_many
@@ -117,6 +117,9 @@ class Masks:
         self.store = store
         self._store_size = None
         self._flat_key = self._flat_path = self._flat = None
+        # distinct contours flattened so far (glyphs, markers), for the
+        # later batches of this render
+        self._shapes = ContourCache()
         # fills and undashed hairlines: key -> (node, t, size, area, fill?,
         # hair?) waiting in document order (per canvas), and key -> Mask or
         # None of those already scan converted (a hairline is absent when
@@ -382,7 +385,8 @@ class Masks:
             return
         try:
             pl, first = flatten_joined([self.cut_fill(it[1], it[2], size) for it in items],
-                                       [it[2] for it in items], self.tol, straddle=True)
+                                       [it[2] for it in items], self.tol, straddle=True,
+                                       cache=self._shapes)
         except RasterError:
             return          # drawn one by one (errors where they were)
         k = len(items)
@@ -512,7 +516,7 @@ class Masks:
                 for j, o in zip(js, outs):
                     outlines[j] = o
             if items:
-                pl, first = flatten_joined(outlines, None, self.tol)
+                pl, first = flatten_joined(outlines, None, self.tol, cache=self._shapes)
                 outlines = outs = o = None          # (in the polylines now)
                 e, own = pl.edges(close_all=True, owners=True)
                 pl = None

@@ -297,3 +297,86 @@ def test_repeated_symbols_render_as_without_sharing(monkeypatch):
     monkeypatch.setattr(flattening, 'REPEAT_MIN_CONTOURS', 10**9)
     alone = raster.render(doc).astype(int)
     assert np.abs(shared - alone).max() <= 1
+
+
+@pytest.mark.parametrize('collide', [False, True])
+def test_contour_cache_carries_contours_from_call_to_call(collide, monkeypatch):
+    # a second call with the same shapes elsewhere flattens nothing new and
+    # gives each path's own flattening within the grid; with every hash the
+    # same (collide) the stored points tell contours apart
+    from raster.geometry import flattening
+    from raster.geometry.flattening import REPEAT_GRID, ContourCache, flatten_joined
+    if collide:
+        monkeypatch.setattr(flattening, '_mix64', lambda x: x * np.uint64(0))
+    rng = np.random.default_rng(11)
+    bases = _bases(rng, 6)
+
+    def batch(k):
+        return [_copies(rng, bases, k)[0] for _ in range(20)]
+    flattened = []
+    real = flattening._assemble
+
+    def spy(ctrl, cstart, *a, **k):
+        flattened.append(len(cstart))
+        return real(ctrl, cstart, *a, **k)
+    monkeypatch.setattr(flattening, '_assemble', spy)
+    cache = ContourCache()
+    first = batch(5)
+    flatten_joined(first, None, 0.1, True, cache=cache)
+    # (colliding hashes: the point by point check leaves most contours to
+    # themselves, too many to share: all flattened, as without a cache)
+    assert (sum(flattened) <= 6 and len(cache) == sum(flattened)) or collide
+    flattened.clear()
+    second = batch(4)
+    pl, starts = flatten_joined(second, None, 0.1, True, cache=cache)
+    # (with colliding hashes one key holds one contour at a time: the
+    # others are flattened again, never taken for it)
+    assert sum(flattened) == 0 or collide
+    monkeypatch.setattr(flattening, '_assemble', real)
+    for i, p in enumerate(second):
+        want = flatten(p, 0.1, straddle=True)
+        k0, k1 = starts[i], starts[i + 1]
+        assert k1 - k0 == len(want)
+        got = pl.points[pl.starts[k0]:pl.ends[k1 - 1]]
+        assert np.allclose(got, want.points, rtol=0, atol=2 * REPEAT_GRID)
+        assert np.array_equal(pl.starts[k0:k1] - pl.starts[k0], want.starts)
+    # a different tolerance or straddling takes nothing from the cache
+    flattened.clear()
+    monkeypatch.setattr(flattening, '_assemble', spy)
+    flatten_joined(second, None, 0.2, True, cache=cache)
+    flatten_joined(second, None, 0.1, False, cache=cache)
+    assert len(flattened) == 2 and min(flattened) > 0
+
+
+def test_contour_cache_is_bounded():
+    from raster.geometry.flattening import ContourCache
+    c = ContourCache(max_bytes=200)                   # polylines of 16 bytes a vertex
+    c.put('a', b'1', np.zeros((6, 2)), True)          # 97 bytes
+    c.put('b', b'2', np.zeros((3, 2)), True)          # 49
+    assert len(c) == 2 and c.get('a', b'1')[1] is True
+    assert c.get('a', b'x') is None                   # another contour under that key
+    c.put('a', b'1', np.zeros((6, 2)), True)          # the same again: still 146 bytes
+    assert len(c) == 2
+    c.put('c', b'3', np.zeros((4, 2)), True)          # 65 more: over, starts afresh
+    assert len(c) == 1 and c.get('a', b'1') is None and c.get('c', b'3') is not None
+    c.put('d', b'4', np.zeros((13, 2)), True)         # larger than the bound: not kept
+    assert c.get('d', b'4') is None
+
+
+def test_contour_cache_checks_points_behind_a_shared_key(monkeypatch):
+    # every hash the same: the copies of one shape fill the cache under one
+    # key; copies of another shape then meet that key, are told apart by
+    # their points and flattened, not drawn as the first shape
+    from raster.geometry import flattening
+    from raster.geometry.flattening import REPEAT_GRID, ContourCache, flatten_joined
+    monkeypatch.setattr(flattening, '_mix64', lambda x: x * np.uint64(0))
+    rng = np.random.default_rng(12)
+    a, b = _bases(rng, 2)
+    cache = ContourCache()
+    flatten_joined([_copies(rng, [a], 70)[0]], None, 0.1, True, cache=cache)
+    assert len(cache) == 1
+    other, _ = _copies(rng, [b], 70)
+    pl, _ = flatten_joined([other], None, 0.1, True, cache=cache)
+    want = flatten(other, 0.1, straddle=True)
+    assert np.array_equal(pl.starts, want.starts)
+    assert np.allclose(pl.points, want.points, rtol=0, atol=2 * REPEAT_GRID)

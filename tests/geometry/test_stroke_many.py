@@ -221,7 +221,7 @@ def no_sharing(monkeypatch):
     gets its own user-space outline)."""
     import raster.geometry.stroking as S
 
-    def distinct(paths, use, scales):
+    def distinct(paths, use, scales, translates=True):
         return use, np.arange(len(use)), np.zeros((len(use), 2))
     monkeypatch.setattr(S, '_distinct', distinct)
 
@@ -326,6 +326,10 @@ def test_distinct_groups_translates():
         assert np.allclose(shift[k], paths[k].points[0] - paths[0].points[0], rtol=0,
                            atol=1e-12)
     assert not shift[5].any()
+    # translates off (dashes cut to a window): equal paths only
+    rep, inv, shift = _distinct(paths + [paths[0]], np.arange(len(paths) + 1),
+                                np.full(len(paths) + 1, 2.0), translates=False)
+    assert rep.tolist() == list(range(len(paths))) and inv[-1] == 0 and not shift.any()
 
 
 def test_scatter_of_translated_circles_strokes_like_each_alone():
