@@ -241,6 +241,20 @@ def test_repeated_contours_are_translates(seed, collide, monkeypatch):
             assert rep[c] == first[b]
 
 
+def spy_assemble(monkeypatch):
+    """Record the number of contours of every flattening of distinct
+    contours (flattening._assemble); returns the list it fills."""
+    from raster.geometry import flattening
+    sizes = []
+    real = flattening._assemble
+
+    def spy(ctrl, cstart, *a, **k):
+        sizes.append(len(cstart))
+        return real(ctrl, cstart, *a, **k)
+    monkeypatch.setattr(flattening, '_assemble', spy)
+    return sizes
+
+
 @pytest.mark.parametrize('straddle', [False, True])
 @pytest.mark.parametrize('seed', range(3))
 def test_repeated_contours_flattened_once_and_moved(seed, straddle, monkeypatch):
@@ -257,13 +271,8 @@ def test_repeated_contours_flattened_once_and_moved(seed, straddle, monkeypatch)
         paths.append(p)
     ts = [Affine(1.5, 0.3, -0.2, 1.1, 7.25, -3.5) if i % 2 else None
           for i in range(len(paths))]
-    sizes = []
     real = flattening._assemble
-
-    def spy(ctrl, cstart, *a, **k):
-        sizes.append(len(cstart))
-        return real(ctrl, cstart, *a, **k)
-    monkeypatch.setattr(flattening, '_assemble', spy)
+    sizes = spy_assemble(monkeypatch)
     pl, first = flatten_joined(paths, ts, 0.1, straddle)
     total = sum(int(np.count_nonzero(p.verbs == 0)) for p in paths)
     assert total >= flattening.REPEAT_MIN_CONTOURS and sizes == [8]   # 4 bases, 2 transforms
@@ -277,8 +286,7 @@ def test_repeated_contours_flattened_once_and_moved(seed, straddle, monkeypatch)
         assert np.array_equal(pl.closed[k0:k1], want.closed)
         assert np.array_equal(pl.starts[k0:k1] - pl.starts[k0], want.starts)
     # without repeats enough to pay, everything is flattened as before
-    monkeypatch.setattr(flattening, '_assemble', spy)
-    sizes.clear()
+    sizes = spy_assemble(monkeypatch)
     flatten_joined(paths[:3], ts[:3], 0.1, straddle)
     assert sizes == [sum(int(np.count_nonzero(p.verbs == 0)) for p in paths[:3])]
 
@@ -313,13 +321,8 @@ def test_contour_cache_carries_contours_from_call_to_call(collide, monkeypatch):
 
     def batch(k):
         return [_copies(rng, bases, k)[0] for _ in range(20)]
-    flattened = []
     real = flattening._assemble
-
-    def spy(ctrl, cstart, *a, **k):
-        flattened.append(len(cstart))
-        return real(ctrl, cstart, *a, **k)
-    monkeypatch.setattr(flattening, '_assemble', spy)
+    flattened = spy_assemble(monkeypatch)
     cache = ContourCache()
     first = batch(5)
     flatten_joined(first, None, 0.1, True, cache=cache)
@@ -341,8 +344,7 @@ def test_contour_cache_carries_contours_from_call_to_call(collide, monkeypatch):
         assert np.allclose(got, want.points, rtol=0, atol=2 * REPEAT_GRID)
         assert np.array_equal(pl.starts[k0:k1] - pl.starts[k0], want.starts)
     # a different tolerance or straddling takes nothing from the cache
-    flattened.clear()
-    monkeypatch.setattr(flattening, '_assemble', spy)
+    flattened = spy_assemble(monkeypatch)
     flatten_joined(second, None, 0.2, True, cache=cache)
     flatten_joined(second, None, 0.1, False, cache=cache)
     assert len(flattened) == 2 and min(flattened) > 0
