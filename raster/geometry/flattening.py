@@ -96,8 +96,8 @@ per render) carries the distinct contours' polylines from call to call.
 A quick look at
 every contour (segment count, closing, where its first and last segments
 end) leaves the call as it was when most contours are unlike any other
-(maps).  A page of 12 px text (7,900 glyphs, 60 lines): 0.16 -> 0.065 s
-of flattening.
+(maps).  A page of 12 px text (7,900 glyphs, 60 lines): 0.16 -> 0.05 s
+of flattening in one process.
 
 Conventions: coordinates are float64 user units (x right, y down);
 ``tolerance`` is in the same units (device pixels after a transform).
@@ -1292,9 +1292,6 @@ def _assemble_repeated(ctrl, cstart, degree, contour, contour_nseg, contour_clos
     if C < REPEAT_MIN_CONTOURS:
         return _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol,
                          straddle)[:3]
-    if len(ctrl):
-        # (the limit applies to all of them, as without sharing)
-        limits.check_coord(max(float(np.abs(ctrl).max()), float(np.abs(cstart).max())))
     # a quick look first (segment count, closing, the first and last
     # segments' ends): contours alone in their look repeat nothing
     first_seg = np.cumsum(contour_nseg) - contour_nseg
@@ -1302,14 +1299,17 @@ def _assemble_repeated(ctrl, cstart, degree, contour, contour_nseg, contour_clos
     look = contour_nseg.astype(np.uint64) * np.uint64(0xD6E8FEB86659FD93)
     look += contour_closed.astype(np.uint64)
     for end in (first_seg[has], first_seg[has] + contour_nseg[has] - 1):
-        q = np.rint((ctrl[end, 3] - cstart[has]) * (1.0 / REPEAT_GRID)).astype(np.int64)
-        with np.errstate(over='ignore'):
+        with np.errstate(over='ignore', invalid='ignore'):     # (coordinates: checked below)
+            q = np.rint((ctrl[end, 3] - cstart[has]) * (1.0 / REPEAT_GRID)).astype(np.int64)
             look[has] = _mix64(look[has] + q[:, 0].view(np.uint64))
             look[has] = _mix64(look[has] + q[:, 1].view(np.uint64))
     _, inverse, count = np.unique(look, return_inverse=True, return_counts=True)
     if np.count_nonzero(count[inverse.reshape(-1)] == 1) > _REPEAT_SHARE * C:
         return _assemble(ctrl, cstart, degree, contour, contour_nseg, contour_closed, tol,
                          straddle)[:3]
+    if len(ctrl):
+        # (the limit applies to all of them, as without sharing)
+        limits.check_coord(max(float(np.abs(ctrl).max()), float(np.abs(cstart).max())))
     key, q = _contour_keys(ctrl, cstart, degree, contour, contour_nseg, contour_closed,
                            REPEAT_GRID)
     rep = _repeats(key, q, degree, contour_nseg, contour_closed)
@@ -1321,14 +1321,15 @@ def _assemble_repeated(ctrl, cstart, degree, contour, contour_nseg, contour_clos
     slot[reps] = np.arange(len(reps))
     # the polyline of each distinct contour: from the cache, or flattened
     # now (the distinct contours alone, renumbered)
-    rel, kept, proofs, fresh = [None] * len(reps), [False] * len(reps), [], reps
+    rel, kept, entries, fresh = [None] * len(reps), [False] * len(reps), [], reps
     if cache is not None:
-        proofs = [(tol, bool(straddle), int(key[r])) for r in reps.tolist()]
         fs, ns, cl = first_seg.tolist(), contour_nseg.tolist(), contour_closed.tolist()
-        proofs = [(k, q[fs[r]:fs[r] + ns[r]].tobytes() + degree[fs[r]:fs[r] + ns[r]].tobytes()
-                   + (b'z' if cl[r] else b'o')) for k, r in zip(proofs, reps.tolist())]
+        for r in reps.tolist():
+            a, b = fs[r], fs[r] + ns[r]
+            entries.append(((tol, bool(straddle), int(key[r])),
+                            q[a:b].tobytes() + degree[a:b].tobytes() + (b'z' if cl[r] else b'o')))
         miss = []
-        for j, (k, proof) in enumerate(proofs):
+        for j, (k, proof) in enumerate(entries):
             hit = cache.get(k, proof)
             if hit is None:
                 miss.append(j)
@@ -1354,7 +1355,7 @@ def _assemble_repeated(ctrl, cstart, degree, contour, contour_nseg, contour_clos
             else:
                 rel[j] = np.zeros((0, 2))
             if cache is not None:
-                cache.put(proofs[j][0], proofs[j][1], rel[j], kept[j])
+                cache.put(entries[j][0], entries[j][1], rel[j], kept[j])
     keep_r = np.array(kept, bool)
     length = np.array([len(x) for x in rel], np.int64)
     out_r = np.concatenate(rel) if len(rel) else np.zeros((0, 2))

@@ -382,3 +382,19 @@ def test_contour_cache_checks_points_behind_a_shared_key(monkeypatch):
     want = flatten(other, 0.1, straddle=True)
     assert np.array_equal(pl.starts, want.starts)
     assert np.allclose(pl.points, want.points, rtol=0, atol=2 * REPEAT_GRID)
+
+
+def test_repeated_contours_beyond_the_coordinate_limit_are_refused():
+    # many copies far out: the coordinate limit, as without the sharing,
+    # and no warning from the rounding of the quick look
+    import warnings
+    from raster import limits as lim
+    from raster.errors import LimitError
+    from raster.geometry.flattening import ContourCache, flatten_joined
+    d = ' '.join('M%r 0 C%r 1 %r 2 %r 0 Z' % (x, x + 1, x + 2, x + 3)
+                 for x in (np.arange(100) * 1e12).tolist())
+    with warnings.catch_warnings():
+        warnings.simplefilter('error')
+        with pytest.raises(LimitError, match='max_coord'):
+            flatten_joined([parse_path(d)], None, 0.1, True, cache=ContourCache())
+    assert lim.current().max_coord == 1e9
