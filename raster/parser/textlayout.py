@@ -42,6 +42,8 @@ import re
 
 import numpy as np
 
+from ..geometry.rows import distinct_values
+
 __all__ = ['bidi_levels', 'visual_runs', 'is_upright', 'joins_letters', 'Clusters',
            'shape_clusters', 'affines', 'compose', 'translate', 'rotate', 'scale']
 
@@ -469,7 +471,7 @@ def _missing(text, gid, cl):
     after the fallback, without spaces, controls and default-ignorable
     characters, in order, once each."""
     out = []
-    for c in np.unique(cl[gid == 0]).tolist():
+    for c in distinct_values(cl[gid == 0]).tolist():
         ch = text[c]
         cp = ord(ch)
         if cp < 32 or ch.isspace() or 0x200B <= cp <= 0x200F or 0x2060 <= cp <= 0x206F or \
@@ -494,7 +496,7 @@ def _fallbacks(text, runs, owner, spans, fonts, fallback, memo, gid, cl, adv, xo
     st, en = _groups(cl)
     starts = cl[st]
     # end (exclusive, logical order) of every cluster: the next cluster start
-    srt = np.unique(starts)
+    srt = distinct_values(starts)
     nxt = np.r_[srt[1:], n]
     cend = nxt[np.searchsorted(srt, starts)]
     missing = np.logical_or.reduceat(gid == 0, st) if len(st) else np.zeros(0, bool)

@@ -57,6 +57,7 @@ import numpy as np
 from .. import limits
 from ..errors import CanvasError, LimitError, PathError
 from ..geometry.flattening import flatten
+from ..geometry.rows import distinct_values
 from ..geometry.rules import FillRule
 
 __all__ = ['Mask', 'coverage', 'coverage_many', 'coverage_batch', 'path_coverage', 'check_canvas_size']
@@ -135,19 +136,6 @@ _BATCH_CELLS = 1 << 24
 # 2^18 holds the terminal screenshot (textual_dolphie) at 2000 px to
 # 105 MB peak RSS against 124 MB at 2^24.
 _ALIASED_CELLS = 1 << 18
-
-
-def _distinct(a):
-    """The sorted distinct values of the integer array ``a`` (any shape,
-    flattened): ``np.unique(a)`` without its masked-array check, which
-    imports :mod:`numpy.ma` (7 ms of a command's start-up)."""
-    s = np.sort(a, axis=None)
-    if len(s) < 2:
-        return s
-    keep = np.empty(len(s), bool)
-    keep[0] = True
-    np.not_equal(s[1:], s[:-1], out=keep[1:])
-    return s[keep]
 
 
 class Mask:
@@ -1327,7 +1315,7 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
     kb[small] = _coarsen(kb[small], _piece_work)
     if small.any():
         pad = _pad((ua, va, ub, vb, np.ones(len(ua))))
-        for kk in _distinct(kb[small]).tolist():
+        for kk in distinct_values(kb[small]).tolist():
             c = np.flatnonzero(small & (kb == kk))
             groups.append((kk, c, pad, first[c], k[c]))
     big = np.flatnonzero(~small)
@@ -1345,7 +1333,7 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
         fits = kd <= _EXACT_PIECES
         kdb = _PIECE_BINS[np.minimum(np.searchsorted(_PIECE_BINS, kd), len(_PIECE_BINS) - 1)]
         kdb[fits] = _coarsen(kdb[fits], _piece_work)
-        for kk in _distinct(kdb[fits]).tolist():
+        for kk in distinct_values(kdb[fits]).tolist():
             sel = np.flatnonzero(fits & (kdb == kk))
             groups.append((kk, big[sel], dpad, dfirst[sel], kd[sel]))
         crowded = big[~fits]
@@ -1414,7 +1402,7 @@ def _sampled(pad, pf, pk, C, eo, lines=_SAMPLE_LINES):
     # cells padded to powers of two of pieces, batches of bounded work
     kb = 1 << np.ceil(np.log2(np.maximum(pk, 1))).astype(np.int64)
     H = np.linspace(0.0, 1.0, lines + 1)
-    for kk in _distinct(kb).tolist():
+    for kk in distinct_values(kb).tolist():
         cells = np.flatnonzero(kb == kk)
         step = max(1, _CHUNK_WORK // (lines * kk))
         for lo in range(0, len(cells), step):
@@ -1563,7 +1551,7 @@ def _exact_small(ua, va, ub, vb, m, C, eo):
     width = np.minimum(width, H.shape[1])
     width = _coarsen(width, lambda q: q * k)
     out = np.zeros(F)
-    for q in _distinct(width).tolist():
+    for q in distinct_values(width).tolist():
         rows = np.flatnonzero(width == q)
         sub = new[rows]
         rank = np.cumsum(sub, axis=1) - 1

@@ -769,11 +769,12 @@ def test_property_split_pieces_chain_between_grid_lines(seed, per_segment_hi):
 @settings(max_examples=200, deadline=None)
 @given(st.lists(st.integers(-2**40, 2**40), max_size=60), st.integers(1, 3))
 def test_distinct_is_sorted_unique(values, cols):
-    # the scan converter's np.unique without the masked-array import:
-    # same values, same order, same dtype, for any shape
+    # np.unique without the masked-array import (the scan converter's and
+    # the text layout's): same values, same order, same dtype, any shape
+    from raster.geometry.rows import distinct_values
     a = np.array(values, np.int64)
     a = a[:len(a) // cols * cols].reshape(-1, cols)
-    got = scan._distinct(a)
+    got = distinct_values(a)
     assert got.dtype == np.int64 and got.ndim == 1
     np.testing.assert_array_equal(got, np.unique(a))
 
