@@ -5,7 +5,8 @@ loop of two elements; the same bytes seen as ``(N,)`` complex128 move in
 one 16-byte element per row, several times faster (measured 7x for a
 million random rows).  The values are only moved, never computed, so the
 results are bit for bit those of ordinary indexing (NaN payloads and
-signed zeros included).
+signed zeros included).  :func:`distinct_values` is ``np.unique`` of an
+array without the import of :mod:`numpy.ma` its first call makes.
 
 >>> P = np.array([[0.0, 1.0], [2.0, 3.0], [4.0, 5.0]])
 >>> take_rows(P, np.array([2, 0])).tolist()
