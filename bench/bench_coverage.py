@@ -271,7 +271,8 @@ CROSSING = {
                    lambda: hatching(1000, 0.3, 0.1, 40.0, True)),
 }
 
-_PEER_CODE = {
+#: The peers' whole-process programs: ``python -c CODE in.svg out.png``.
+PEER_CODE = {
     'resvg': ('import resvg_py, sys\n'
               'open(sys.argv[2], "wb").write(bytes(resvg_py.svg_to_bytes(svg_path=sys.argv[1])))'),
     'cairosvg': ('import cairosvg, sys\n'
@@ -312,13 +313,32 @@ print(json.dumps({'wall': statistics.median(ts), 'rss_mb': rss / 1024}))
 '''
 
 
-def _timed(cmd):
-    """Run ``cmd`` under /usr/bin/time: (wall s, cpu s, peak RSS MB, ok)."""
+def timed(cmd):
+    """Run ``cmd`` under /usr/bin/time: (wall s, cpu s, peak RSS MB, ok);
+    ok is False when the command failed or its times cannot be read."""
     p = subprocess.run(['/usr/bin/time', '-f', '%e %U %S %M'] + cmd,
                        capture_output=True, text=True)
-    last = p.stderr.strip().splitlines()[-1].split()
-    wall, usr, sys_, rss = float(last[0]), float(last[1]), float(last[2]), int(last[3])
+    lines = p.stderr.strip().splitlines()
+    try:
+        last = lines[-1].split()
+        wall, usr, sys_, rss = float(last[0]), float(last[1]), float(last[2]), int(last[3])
+    except (IndexError, ValueError):
+        return 0.0, 0.0, 0.0, False
     return wall, usr + sys_, rss / 1024.0, p.returncode == 0
+
+
+def process_cells(runs, renderers):
+    """One table row of whole-process runs: ``runs`` maps each renderer to
+    its :func:`timed` results.  Returns ``(cells, vals, fast)``: the cells
+    ('wall / CPU / RSS' medians, or 'error' for a renderer that failed in
+    any round), the medians by renderer, and the faster peer (None when
+    raster or every peer failed)."""
+    vals = {r: [_med([x[i] for x in runs[r]]) for i in range(3)]
+            for r in renderers if all(x[3] for x in runs[r])}
+    cells = ['%.2f / %.2f / %.0f' % tuple(vals[r]) if r in vals else 'error' for r in renderers]
+    peers = [r for r in renderers if r != 'raster' and r in vals]
+    fast = min(peers, key=lambda r: vals[r][0]) if 'raster' in vals and peers else None
+    return cells, vals, fast
 
 
 def run_crossing(names, renderers, modes, repeat, rasterize, python, tmp):
@@ -337,8 +357,8 @@ def run_crossing(names, renderers, modes, repeat, rasterize, python, tmp):
                     if r == 'raster':
                         cmd = [rasterize, files[name], out]
                     else:
-                        cmd = [python, '-c', _PEER_CODE[r], files[name], out]
-                    res.setdefault((name, r, 'process'), []).append(_timed(cmd))
+                        cmd = [python, '-c', PEER_CODE[r], files[name], out]
+                    res.setdefault((name, r, 'process'), []).append(timed(cmd))
             print('  process %-9s ' % name + '  '.join(
                 '%s %.2f s %.0f MB' % (r, _med([x[0] for x in res[(name, r, 'process')]]),
                                        _med([x[2] for x in res[(name, r, 'process')]]))
@@ -423,16 +443,10 @@ def markdown(acc, cross, names, renderers, modes, repeat, info):
                     '| case | ' + ' | '.join(renderers) + ' | raster / faster peer (wall, RSS) |',
                     '|---|' + '---|' * len(renderers) + '---|']
             for name in names:
-                # (a renderer that failed in any round is an error, not a time)
-                vals = {r: [_med([x[i] for x in cross[(name, r, 'process')]]) for i in range(3)]
-                        for r in renderers
-                        if all(x[3] for x in cross[(name, r, 'process')])}
-                cells = ['%.2f / %.2f / %.0f' % tuple(vals[r]) if r in vals else 'error'
-                         for r in renderers]
-                peers = [r for r in renderers if r != 'raster' and r in vals]
+                cells, vals, fast = process_cells(
+                    {r: cross[(name, r, 'process')] for r in renderers}, renderers)
                 ratio = ''
-                if 'raster' in vals and peers:
-                    fast = min(peers, key=lambda r: vals[r][0])
+                if fast is not None:
                     ratio = '%.2fx %s, %.2fx' % (vals['raster'][0] / vals[fast][0], fast,
                                                  vals['raster'][2] / vals[fast][2])
                 out.append('| %s | %s | %s |' % (name, ' | '.join(cells), ratio))

@@ -33,21 +33,18 @@ import os
 import platform
 import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
 
 import numpy as np
 
+# (the peers' programs, the timing of one process and the table cells are
+# the coverage benchmark's)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench_coverage import PEER_CODE, process_cells, timed  # noqa: E402
+
 RENDERERS = ('raster', 'resvg', 'cairosvg')
 SVG_NS = 'http://www.w3.org/2000/svg'
-
-_PEER_CODE = {
-    'resvg': ('import resvg_py, sys\n'
-              'open(sys.argv[2], "wb").write(bytes(resvg_py.svg_to_bytes(svg_path=sys.argv[1])))'),
-    'cairosvg': ('import cairosvg, sys\n'
-                 'cairosvg.svg2png(url=sys.argv[1], write_to=sys.argv[2], unsafe=False)'),
-}
 
 _WORDS = ('the quick brown fox jumps over a lazy dog while raster renders every glyph '
           'exactly').split()
@@ -81,18 +78,6 @@ CASES = {
 }
 
 
-def _timed(cmd):
-    """Run ``cmd`` under /usr/bin/time: (wall s, cpu s, peak RSS MB, ok)."""
-    p = subprocess.run(['/usr/bin/time', '-f', '%e %U %S %M'] + cmd,
-                       capture_output=True, text=True)
-    last = p.stderr.strip().splitlines()[-1].split()
-    try:
-        wall, usr, sys_, rss = float(last[0]), float(last[1]), float(last[2]), int(last[3])
-    except (IndexError, ValueError):
-        return 0.0, 0.0, 0.0, False
-    return wall, usr + sys_, rss / 1024.0, p.returncode == 0
-
-
 def run(names, renderers, repeat, rasterize, python, tmp):
     files = {}
     for name in names:
@@ -105,8 +90,8 @@ def run(names, renderers, repeat, rasterize, python, tmp):
             for r in renderers:
                 out = os.path.join(tmp, '%s_%s.png' % (name, r))
                 cmd = ([rasterize, files[name], out] if r == 'raster'
-                       else [python, '-c', _PEER_CODE[r], files[name], out])
-                res.setdefault((name, r), []).append(_timed(cmd))
+                       else [python, '-c', PEER_CODE[r], files[name], out])
+                res.setdefault((name, r), []).append(timed(cmd))
         print('  %-8s ' % name + '  '.join(
             '%s %.2f s' % (r, statistics.median(x[0] for x in res[(name, r)]))
             for r in renderers), flush=True)
@@ -122,17 +107,9 @@ def markdown(res, names, renderers, repeat):
            '| case | ' + ' | '.join(renderers) + ' | raster / faster peer (wall) |',
            '|---|' + '---|' * len(renderers) + '---|']
     for name in names:
-        vals = {}
-        for r in renderers:
-            rows = res[(name, r)]
-            if all(x[3] for x in rows):
-                vals[r] = [statistics.median(x[i] for x in rows) for i in range(3)]
-        cells = ['%.2f / %.2f / %.0f' % tuple(vals[r]) if r in vals else 'error'
-                 for r in renderers]
-        peers = [r for r in renderers if r != 'raster' and r in vals]
+        cells, vals, fast = process_cells({r: res[(name, r)] for r in renderers}, renderers)
         ratio = ''
-        if 'raster' in vals and peers:
-            fast = min(peers, key=lambda r: vals[r][0])
+        if fast is not None:
             ratio = '%.2fx %s' % (vals['raster'][0] / vals[fast][0], fast)
         out.append('| %s | %s | %s |' % (name, ' | '.join(cells), ratio))
     out += ['', 'Cases: ' + '; '.join('%s: %s' % (n, CASES[n][0]) for n in names), '']
