@@ -1863,9 +1863,9 @@ def _distinct(paths, use, scales, translates=True):
     starts = np.cumsum(lens) - lens
     pts = np.concatenate([p.points for p in used])
     first_pt = pts[starts]
-    own = np.repeat(np.arange(len(used)), lens)
-    unit = (scales[use] / REPEAT_GRID)[own][:, None]
     if translates:
+        own = np.repeat(np.arange(len(used)), lens)
+        unit = (scales[use] / REPEAT_GRID)[own][:, None]
         with np.errstate(over='ignore', invalid='ignore'):   # (non-finite: refused later)
             q = np.rint((pts - first_pt[own]) * unit).astype(np.int64).tobytes()
     else:
