@@ -977,8 +977,14 @@ def _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd, 
     cy = row[f].astype(np.float64)
     u0, v0 = xa[f] - cx, ya[f] - cy
     u1, v1 = xb[last] - cx, yb[last] - cy
-    fdx, fdy = dx[f], dy[f]
-    ldx, ldy = (fdx, fdy) if single else (dx[last], dy[last])
+    if single:
+        # (u0 = xa - cx is exact for a point of cell cx (Sterbenz), so
+        # u1 - u0 is the piece's dx itself)
+        fdx, fdy = u1 - u0, v1 - v0
+        ldx, ldy = fdx, fdy
+    else:
+        fdx, fdy = dx[f], dy[f]
+        ldx, ldy = dx[last], dy[last]
     t0, d0, ok0 = _perimeter(u0, v0, fdx, fdy)
     t1, d1, ok1 = _perimeter(u1, v1, ldx, ldy)
     # (an end outside the cell by rounding, or at the top-left corner's
@@ -1009,9 +1015,13 @@ def _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd, 
     rg = gid[kr]
     # -- the boundary: run ends in order, the windings between them ---------
     nk = len(kr)
-    eg = np.concatenate([rg, rg])
-    et = np.concatenate([t0[kr], t1[kr]])
-    ed = np.concatenate([d0[kr], d1[kr]])
+    # (each run's two ends side by side: a cell's ends are together before
+    # the sort, which then has less to do)
+    eg = np.repeat(rg, 2)
+    et = np.empty(2 * nk)
+    et[0::2], et[1::2] = t0[kr], t1[kr]
+    ed = np.empty(2 * nk)
+    ed[0::2], ed[1::2] = d0[kr], d1[kr]
     o = np.argsort(eg * 8.0 + et, kind='stable')  # (tied keys flag their cell below)
     eg, et, ed = eg[o], et[o], ed[o]
     same = (eg[1:] == eg[:-1]) & (et[1:] == et[:-1])
@@ -1032,7 +1042,8 @@ def _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd, 
     value[ug] += _fill_of(w0r[ug], eo[ug] if rule is None else rule) * Gb(et[efirst])
     pos = np.empty(len(o), np.int64)
     pos[o] = np.arange(len(o))
-    w_start = w_after[pos[:nk]]                     # the winding after each run's start
+    p0, p1 = pos[0::2], pos[1::2]                   # where each run's ends are
+    w_start = w_after[p0]                           # the winding after each run's start
     # -- the pieces of those runs ------------------------------------------
     if single:
         npc = nk
@@ -1067,14 +1078,19 @@ def _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd, 
     # cells where some of them cross, see _chords_cross)
     nb = pend - np.arange(npc) - 1
     if single and (gcnt > _CHORDS_TESTED).any():
-        crossed = _chords_cross(pos[:nk], pos[nk:], rg, G)
+        crossed = _chords_cross(p0, p1, rg, G)
         # (cells of many chords that cross are left to the general method)
         wide = crossed & (gcnt > _FACES_PIECES)
         bad |= wide
         nb[~(crossed & ~wide)[pg]] = 0
     # (in slices of pieces of bounded pair work: the pair arrays stay small
     # whatever the cells; the crossings they find are few beside them)
-    found = [_crossings(ax, ay, bx, by, pex, pey, nb, None if single else prun, sl)
+    ends = None
+    if single:
+        # (chords: two cross exactly when their ends interleave along the
+        # boundary, see _chords_cross; only those pairs are measured)
+        ends = (np.minimum(p0, p1), np.maximum(p0, p1))
+    found = [_crossings(ax, ay, bx, by, pex, pey, nb, None if single else prun, sl, ends)
              for sl in _slices(nb, _FACES_WORK)]
     for touch, _, _, _, _, _ in found:
         bad[pg[touch]] = True
@@ -1116,10 +1132,14 @@ def _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd, 
     return linear & good, good, value
 
 
-def _crossings(ax, ay, bx, by, ex, ey, nb, run, sl):
+def _crossings(ax, ay, bx, by, ex, ey, nb, run, sl, ends=None):
     """The pair tests of :func:`_faces` for pieces ``sl`` (a slice), each
     against the ``nb`` pieces that follow it (in its cell), pieces of one
-    run (``run``; None: every piece is its own run) excepted.
+    run (``run``; None: every piece is its own run) excepted.  ``ends``:
+    for chords of a cell (straight pieces from its boundary to its
+    boundary, no two ends at one point), the positions ``(first, last)``
+    of each chord's ends in boundary order; the pairs whose ends do not
+    interleave cannot meet and are not measured.
 
     Returns ``(touch, qa, qb, ta, tb, turn)``: pieces of pairs that meet
     other than by a proper crossing (touching, overlapping, or too close
@@ -1133,6 +1153,12 @@ def _crossings(ax, ay, bx, by, ex, ey, nb, run, sl):
     if run is not None:
         other = run[ia] != run[ib]
         ia, ib = ia[other], ib[other]
+    if ends is not None:
+        first, last = ends
+        fa, la = first[ia], last[ia]
+        fb, lb = first[ib], last[ib]
+        meet = ((fa < fb) & (fb < la)) != ((fa < lb) & (lb < la))
+        ia, ib = ia[meet], ib[meet]
     o1, o2, o3, o4 = _orientations(ax[ia], ay[ia], bx[ia], by[ia], ax[ib], ay[ib], bx[ib], by[ib])
     e = _MEET_EPS
     mi = np.flatnonzero(~_apart(o1, o2, o3, o4))

@@ -567,3 +567,33 @@ def test_crossing_hatches_are_exact_with_bounded_pair_work(monkeypatch, rule):
     assert np.allclose(coverage(edges_of(polys), 12, 12, fill_rule=rule).full(12, 12), got,
                        atol=1e-12)
     assert max(pairs) <= scan._FACES_PIECES
+
+
+@pytest.mark.parametrize('rule', ['nonzero', 'evenodd'])
+def test_only_chords_whose_ends_interleave_are_measured(monkeypatch, rule):
+    """In cells of chords alone the pairs whose ends do not interleave
+    along the cell's boundary (parallel stripes of one hatch) cannot meet:
+    every pair measured (orientation tests) is a crossing found, and the
+    coverage is exact."""
+    from raster.pixels import scan
+    polys = (stripes(30, 0.5, 0.31, 0.07, 4.0, 0.5, 11.5)
+             + stripes(30, 5.0, 0.29, 0.05, -4.0, 0.5, 11.5))
+    measured, found = [], []
+    real_o, real_c = scan._orientations, scan._crossings
+
+    def orientations(*a):
+        measured.append(len(a[0]))
+        return real_o(*a)
+
+    def crossings(*a):
+        out = real_c(*a)
+        if a[7] is None:                    # cells of chords alone
+            found.append(len(out[1]) + len(out[0]))
+        else:
+            measured.pop()
+        return out
+    monkeypatch.setattr(scan, '_orientations', orientations)
+    monkeypatch.setattr(scan, '_crossings', crossings)
+    check(polys, 12, rule)
+    assert sum(found) > 100
+    assert measured == found
