@@ -568,13 +568,13 @@ def _row_weights(xa, ya, xb, yb, h, evenodd):
     r = row[sel]
     xt = np.where(down[sel], xa[sel], xb[sel])       # x on the row's top line
     xd = np.where(down[sel], xb[sel], xa[sel])       # ... and on its bottom line
-    o = np.lexsort((xd, xt, r))
-    r, xd = r[o], xd[o]
+    o = _row_order(r, xt, xd)
+    r, xt, xd = r[o], xt[o], xd[o]
     first = np.ones(len(r), bool)
     first[1:] = r[1:] != r[:-1]
     # two segments cross where the later one (by the top) ends left of the
-    # earlier one at the bottom
-    crossed = ~first[1:] & (xd[1:] < xd[:-1])
+    # earlier one at the bottom (or, out of order by the top, are taken to)
+    crossed = ~first[1:] & ((xd[1:] < xd[:-1]) | (xt[1:] < xt[:-1]))
     ok[r[1:][crossed]] = False
     d = np.where(down[sel][o], 1.0, -1.0)
     cs = np.cumsum(d)
@@ -589,6 +589,35 @@ def _row_weights(xa, ya, xb, yb, h, evenodd):
     if not ok.any():
         return None
     return weight, ok
+
+
+def _row_order(r, xt, xd):
+    """An order of segments by row ``r`` (int64 >= 0), then by ``xt``, then
+    by ``xd`` (float64): ``np.lexsort((xd, xt, r))``, in one sort of a
+    float key ``r * span + xt`` (the segments of equal ``r`` and ``xt``
+    then sorted by ``xd``).  Where the key's rounding merges two values of
+    ``xt`` of one row their order may come out reversed: the caller checks
+    ``xt`` along each row."""
+    n = len(r)
+    if n == 0:
+        return np.zeros(0, np.int64)
+    lo = float(xt.min())
+    key = r * (float(xt.max()) - lo + 1.0)
+    key += xt - lo
+    o = np.argsort(key, kind='stable')
+    rs, ts = r[o], xt[o]
+    tie = (rs[1:] == rs[:-1]) & (ts[1:] == ts[:-1])
+    if tie.any():
+        # (rare: segments from one point on a row's top line) each run of
+        # ties holds consecutive places: sorted together by (r, xt, xd),
+        # they keep those places
+        at = np.zeros(n, bool)
+        at[:-1] |= tie
+        at[1:] |= tie
+        k = np.flatnonzero(at)
+        sub = o[k]
+        o[k] = sub[np.lexsort((xd[sub], xt[sub], r[sub]))]
+    return o
 
 
 def _bands(loc, w, h):

@@ -597,3 +597,48 @@ def test_only_chords_whose_ends_interleave_are_measured(monkeypatch, rule):
     check(polys, 12, rule)
     assert sum(found) > 100
     assert measured == found
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 300), st.integers(1, 40),
+       st.sampled_from([1.0, 0.5, 1e-3]))
+def test_row_order_is_the_lexicographic_order(seed, n, rows, grid):
+    """_row_order sorts segments by (row, x at the top, x at the bottom),
+    as np.lexsort does, ties in x at the top included (values on a coarse
+    grid repeat often)."""
+    from raster.pixels.scan import _row_order
+    rng = np.random.default_rng(seed)
+    r = rng.integers(0, rows, n)
+    xt = np.round(rng.uniform(-5, 30, n) / grid) * grid
+    xd = np.round(rng.uniform(-5, 30, n) / grid) * grid
+    o = _row_order(r, xt, xd)
+    assert sorted(o.tolist()) == list(range(n))
+    ref = np.lexsort((xd, xt, r))
+    got = np.stack([r[o], xt[o], xd[o]])
+    assert np.array_equal(got, np.stack([r[ref], xt[ref], xd[ref]]))
+
+
+def test_row_order_rounding_leaves_crossing_rows_unsettled():
+    """Two segments of a far row whose x at the top differ by less than the
+    sort key's rounding and which cross in the row: their order may come
+    out reversed, and the row is then not settled (an unsettled row has
+    weight 1 everywhere)."""
+    from raster.pixels.scan import _row_order, _row_weights
+    h = 4000
+    # 40 stripes spanning row 3990 and crossing nowhere, and two segments
+    # 1e-13 apart at the top that cross (one leans right, one left)
+    xs = np.linspace(0, 300, 40)
+    xa = np.concatenate([xs, [150.00000000001 + 1e-13, 150.00000000001]])
+    xb = np.concatenate([xs + 0.5, [149.8, 150.2]])
+    ya = np.full(len(xa), 3990.0)
+    yb = ya + 1.0
+    r = np.full(len(xa), 3990)
+    o = _row_order(r, xa, xb)
+    i = o.tolist().index(40)
+    assert o[i + 1] == 41                           # (reversed: one key)
+    for evenodd in (False, True):
+        weight, settled = _row_weights(xa, ya, xb, yb, h, evenodd)
+        assert not settled[3990] and (weight == 1).all()
+    # the same row without the crossing pair is settled
+    weight, settled = _row_weights(xa[:40], ya[:40], xb[:40], yb[:40], h, False)
+    assert settled[3990]
