@@ -456,17 +456,24 @@ def _split(ua, va, ub, vb, hi, tag=None):
     UB[last] = ub
     VB[last] = vb
     # crossing j (of all) is crossing m = j - cb of segment owner: the line
-    # kmin + m going up, kmax - m going down
-    owner = np.repeat(np.arange(n_in), n)
+    # kmin + m going up, kmax - m going down, that is kb + sg * j with
+    # per-segment kb and sg (whole numbers: exact).  Per-segment values are
+    # spread over the crossings by np.repeat (sequential, where indexing by
+    # owner gathers)
+    up = ub > ua
+    sg = np.where(up, 1.0, -1.0)
+    kb = np.where(up, kmin, kmax)
+    kb -= sg * cb
     j = np.arange(m_total)
-    m = j - cb[owner]
-    a_u = ua[owner]
-    b_u = ub[owner]
-    k = np.where(b_u > a_u, kmin[owner] + m, kmax[owner] - m)
-    a_v = va[owner]
-    t = (k - a_u) / (b_u - a_u)
-    v = a_v + t * (vb[owner] - a_v)
-    pos = j + owner                              # the piece the crossing ends
+    k = np.repeat(sg, n)
+    k *= j
+    k += np.repeat(kb, n)
+    t = k - np.repeat(ua, n)
+    t /= np.repeat(ub - ua, n)
+    v = np.repeat(vb - va, n)
+    v *= t
+    v += np.repeat(va, n)
+    pos = j + np.repeat(np.arange(n_in), n)      # the piece the crossing ends
     UB[pos] = k
     VB[pos] = v
     pos += 1
