@@ -200,6 +200,39 @@ def test_an_image_over_parallel_pixels_is_drawn_in_forked_strips(tmp_path, monke
         os.waitpid(-1, os.WNOHANG)                 # every copy was reaped
 
 
+@needs_fork
+def test_a_small_image_forks_from_parallel_pixels_on(tmp_path, monkeypatch):
+    # by default a 300 x 300 image (above PARALLEL_PIXELS, far below the
+    # old million) is shared with a forked copy; one below it is not; where
+    # the system cannot fork, no pool of fresh workers is started for it
+    assert 90_000 >= rasterize.PARALLEL_PIXELS > 100 * 100
+    assert rasterize.SPAWN_PARALLEL_PIXELS > 90_000
+    src = write(tmp_path, 'mid.svg', doc(300, 300, 100, 'orange'))
+    whole = raster.render(src, 300)
+    forked, pooled = [], []
+    real_forked, real_pool = rasterize._forked_strips, rasterize._pool
+
+    def spy_forked(job, spans):
+        forked.append(len(spans))
+        return real_forked(job, spans)
+
+    def spy_pool(*a, **k):
+        pooled.append(1)
+        return real_pool(*a, **k)
+    monkeypatch.setattr(rasterize, '_forked_strips', spy_forked)
+    monkeypatch.setattr(rasterize, '_pool', spy_pool)
+    out = tmp_path / 'mid.png'
+    assert rasterize.main([src, str(out), '--jobs', '2']) == 0
+    assert np.array_equal(png(out), whole) and forked == [2]
+    small = write(tmp_path, 'small.svg', doc(100, 100, 30, 'orange'))
+    assert rasterize.main([small, str(tmp_path / 'small.png'), '--jobs', '2']) == 0
+    assert forked == [2]
+    monkeypatch.delattr(os, 'fork')
+    assert rasterize.main([src, str(tmp_path / 'nofork.png'), '--jobs', '2']) == 0
+    assert np.array_equal(png(tmp_path / 'nofork.png'), whole)
+    assert forked == [2] and pooled == []
+
+
 def _raise_in_copy(job, span, keep):
     raise raster.LimitError('strip budget spent')
 
