@@ -37,10 +37,11 @@ render, equal to it) and written as the strips finish, so memory stays
 within ``--memory-budget`` (MB of strip pixels per process, default 256)
 whatever the size, up to 4 000 million pixels; ``--jobs`` spreads the
 strips of one large image over worker processes (a few strips a worker,
-of about equal work, taken as workers finish).  A PNG of 1 million pixels
+of about equal work, taken as workers finish).  A PNG of 65,536 pixels
 or more within the budget is drawn as one strip per job (default: the
 number of CPUs) at the same time: this process draws the first while
-forked copies of it draw the others.  The pixels are the same whatever
+forked copies of it draw the others (where the system cannot fork, from
+1 million pixels, by workers started afresh).  The pixels are the same whatever
 the number of jobs, except that a resampled raster image may differ by
 one level on the rows where two strips meet (Pillow's resampling
 coefficients depend on where the window starts).  Other formats are
