@@ -15,6 +15,7 @@ import numpy as np
 
 from ..geometry.path import CLOSE as _CLOSE, CUBIC as _CUBIC, LINE as _LINE, MOVE as _MOVE, \
     QUAD as _QUAD, Path
+from ..geometry.rows import concat_ranges
 from .files import MAX_FONT_BYTES, FontError, FontFace, check_font_data, quiet_fonttools, \
     read_font_bytes, sfnt_bytes
 from ..errors import library_loaded
@@ -532,20 +533,6 @@ class Shaped(NamedTuple):
     ordered: bool
 
 
-def _ranges(starts, counts):
-    """Concatenated ``arange(start, start + count)`` of each pair.
-
-    ``starts``, ``counts`` : (G,) int64 ndarrays; returns (counts.sum(),)
-    int64.
-
-    >>> _ranges(np.array([5, 0, 2]), np.array([2, 0, 3])).tolist()
-    [5, 6, 2, 3, 4]
-    """
-    ends = np.cumsum(counts)
-    total = int(ends[-1]) if len(ends) else 0
-    return np.arange(total) + np.repeat(starts - (ends - counts), counts)
-
-
 class _GlyphAtlas:
     """The outlines of the glyphs of one font drawn so far, packed into
     growing verb and point arrays, with each glyph's start and length
@@ -603,7 +590,7 @@ class _GlyphAtlas:
                 self._add(g)
         vs, vn = self.vstart[gids], self.vcount[gids]
         ps, pn = self.pstart[gids], self.pcount[gids]
-        return self.verbs[_ranges(vs, vn)], self.points[_ranges(ps, pn)], pn
+        return self.verbs[concat_ranges(vs, vn)], self.points[concat_ranges(ps, pn)], pn
 
     def _add(self, gid):
         verbs, points = self.draw(gid)

@@ -59,6 +59,7 @@ from typing import Tuple
 import numpy as np
 
 from .path import CLOSE, CUBIC, LINE, MOVE, Path
+from .rows import concat_ranges
 from .transform import AffineLike, as_affine
 
 __all__ = ['cull_fill', 'cull_stroke']
@@ -84,16 +85,6 @@ def _inside(dev, box, m):
                 and max(ys) <= y1 + m)
     return bool(dev[:, 0].min() >= x0 - m and dev[:, 0].max() <= x1 + m
                 and dev[:, 1].min() >= y0 - m and dev[:, 1].max() <= y1 + m)
-
-
-def _ranges(starts, counts):
-    """Concatenated ``arange(s, s + c)`` for each start and count."""
-    counts = np.asarray(counts, np.int64)
-    total = int(counts.sum())
-    if total == 0:
-        return np.zeros(0, np.int64)
-    ends = np.cumsum(counts)
-    return np.repeat(np.asarray(starts, np.int64) - (ends - counts), counts) + np.arange(total)
 
 
 def _boxes(dev, first, last):
@@ -195,7 +186,8 @@ def cull_fill(path: Path, transform: AffineLike, box: Box, margin: float = 0.0) 
     out_verbs = np.where(run_end, np.uint8(LINE), verbs)[emit]
     counts = np.where(run_end, 1, npts)[emit]
     starts = np.where(run_end, off + npts - 1, off)[emit]
-    return Path(out_verbs.astype(np.uint8), path.points[_ranges(starts, counts)], _checked=True)
+    return Path(out_verbs.astype(np.uint8), path.points[concat_ranges(starts, counts)],
+                _checked=True)
 
 
 def _guard(near, contour, pos, size, first, ring, width=2):
@@ -327,5 +319,6 @@ def cull_stroke(path: Path, transform: AffineLike, box: Box, reach: float = 0.0)
         return Path.empty()
     final = np.lexsort((np.concatenate(parts_s), ic))
     out_verbs = np.concatenate(parts_v)[final]
-    pts = path.points[_ranges(np.concatenate(parts_f)[final], np.concatenate(parts_n)[final])]
+    pts = path.points[concat_ranges(np.concatenate(parts_f)[final],
+                                    np.concatenate(parts_n)[final])]
     return Path(out_verbs.astype(np.uint8), pts, _checked=True)

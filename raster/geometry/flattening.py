@@ -126,7 +126,7 @@ from ..errors import PathError, LimitError
 from .. import limits
 from .bezier import bernstein, bernstein_range, blossom_pieces, derivative
 from .path import CLOSE, CUBIC, LINE, MOVE, QUAD, Path, segment_arrays
-from .rows import pairs, put_rows, take_rows
+from .rows import concat_ranges, pairs, put_rows, take_rows
 from .transform import AffineLike, apply_each, as_affine
 
 __all__ = ['flatten', 'flatten_many', 'flatten_joined', 'flatten_beziers', 'Polylines',
@@ -1231,8 +1231,7 @@ def _repeats(key, q, degree, contour_nseg, contour_closed):
         r = rep[other]
         bad = (contour_nseg[other] != contour_nseg[r]) | (contour_closed[other] != contour_closed[r])
         n_o = np.where(bad, 0, contour_nseg[other])
-        own = np.repeat(first_seg[other], n_o) + (np.arange(int(n_o.sum()))
-                                                  - np.repeat(np.cumsum(n_o) - n_o, n_o))
+        own = concat_ranges(first_seg[other], n_o)
         theirs = own - np.repeat(first_seg[other] - first_seg[r], n_o)
         differ = (q[own] != q[theirs]).any(axis=1) | (degree[own] != degree[theirs])
         if differ.any():
@@ -1338,8 +1337,7 @@ def _assemble_repeated(ctrl, cstart, degree, contour, contour_nseg, contour_clos
         fresh = reps[miss]
     if len(fresh):
         nr = contour_nseg[fresh]
-        segs = np.repeat(first_seg[fresh], nr) + (np.arange(int(nr.sum()))
-                                                  - np.repeat(np.cumsum(nr) - nr, nr))
+        segs = concat_ranges(first_seg[fresh], nr)
         out_f, starts_f, keep_f, _ = _assemble(ctrl[segs], cstart[fresh], degree[segs],
                                                np.repeat(np.arange(len(fresh)), nr), nr,
                                                contour_closed[fresh], tol, straddle)

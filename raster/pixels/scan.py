@@ -57,7 +57,7 @@ import numpy as np
 from .. import limits
 from ..errors import CanvasError, LimitError, PathError
 from ..geometry.flattening import flatten
-from ..geometry.rows import distinct_values
+from ..geometry.rows import concat_ranges, distinct_values
 from ..geometry.rules import FillRule
 
 __all__ = ['Mask', 'coverage', 'coverage_many', 'coverage_batch', 'path_coverage', 'check_canvas_size']
@@ -699,14 +699,6 @@ def _run_lengths(starts, n):
     return out
 
 
-def _ranges(starts, lengths):
-    """Concatenated ``arange(s, s + l)`` for every (s, l), int64."""
-    lengths = np.asarray(lengths, np.int64)
-    tot = int(lengths.sum())
-    off = np.cumsum(lengths) - lengths
-    return np.repeat(np.asarray(starts, np.int64) - off, lengths) + np.arange(tot)
-
-
 # -- which cells need the exact recompute -------------------------------------
 #
 # A cell's running-sum value f(integral of w) is exact when the winding w
@@ -871,7 +863,7 @@ def _flag(xa, ya, xb, yb, col, row, cell, brk, left_of, evenodd, everything=None
     else:
         direct = (empty[0], np.zeros(0))
     fg = np.flatnonzero(~ok)
-    rr = _ranges(gstart[fg], gcnt[fg])
+    rr = concat_ranges(gstart[fg], gcnt[fg])
     pieces, _ = _run_pieces(ridx[rr], rlen[rr], merged[rr], hstart[rr], hlen[rr])
     counts = np.add.reduceat(rlen[rr], np.cumsum(gcnt[fg]) - gcnt[fg]) if len(fg) else gcnt[:0]
     return cells[fg], pieces, counts, direct
@@ -886,7 +878,7 @@ def _run_pieces(ridx, rlen, merged, hstart, hlen):
     # order: each run's tail part then, for merged runs, its head part
     slot = np.concatenate([2 * np.arange(len(ridx)), 2 * np.flatnonzero(merged) + 1])
     o = np.argsort(slot)                 # (distinct keys)
-    idx = _ranges(both[o], lens[o])
+    idx = concat_ranges(both[o], lens[o])
     return idx, np.cumsum(rlen) - rlen
 
 
@@ -1001,7 +993,7 @@ def _faces(xa, ya, xb, yb, col, row, dx, dy, runs, gstart, gcnt, left, evenodd, 
     """
     ridx, rlen, merged, hstart, hlen = runs
     G = len(gstart)
-    rr = _ranges(gstart, gcnt)                      # runs, group after group
+    rr = concat_ranges(gstart, gcnt)                # runs, group after group
     gid = np.repeat(np.arange(G), gcnt)
     r_idx = f = ridx[rr]
     if single:
@@ -1386,7 +1378,7 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
     if len(big):
         # equal pieces merged (opposite ones cancel): stacked copies of one
         # outline are few distinct pieces
-        ix = _ranges(first[big], k[big])
+        ix = concat_ranges(first[big], k[big])
         d_f, d_p, d_m = _merge_pieces(np.repeat(np.arange(len(big)), k[big]),
                                       [ua[ix], va[ix], ub[ix], vb[ix]], np.ones(len(ix)))
         dpad = _pad(tuple(d_p) + (d_m,))
@@ -1415,7 +1407,7 @@ def _exact(xa, ya, xb, yb, col, row, pieces, counts, left, evenodd, depth):
         c, pad, pf, pk = sampled
         out[c] = _sampled(pad, pf, pk, C[c], eo[c])
     if len(crowded):
-        ix = _ranges(first[crowded], k[crowded])
+        ix = concat_ranges(first[crowded], k[crowded])
         out[crowded] = _refine(ua[ix], va[ix], ub[ix], vb[ix], k[crowded], C[crowded],
                                eo[crowded], depth)
     np.clip(out, 0.0, 1.0, out=out)
