@@ -583,6 +583,8 @@ def _row_weights(xa, ya, xb, yb, h, evenodd):
     # earlier one at the bottom (or, out of order by the top, are taken to)
     crossed = ~first[1:] & ((xd[1:] < xd[:-1]) | (xt[1:] < xt[:-1]))
     ok[r[1:][crossed]] = False
+    if not ok.any():
+        return None
     d = np.where(down[sel][o], 1.0, -1.0)
     cs = np.cumsum(d)
     after = cs - np.repeat((cs - d)[first], _run_lengths(np.flatnonzero(first), len(r)))
@@ -593,8 +595,6 @@ def _row_weights(xa, ya, xb, yb, h, evenodd):
         step = np.minimum(np.abs(after), 1.0) - np.minimum(np.abs(before), 1.0)
     weight = np.ones(len(ya))
     weight[sel[o]] = np.where(ok[r], step * d, 1.0)
-    if not ok.any():
-        return None
     return weight, ok
 
 
