@@ -1,26 +1,20 @@
 """Tests of the corpus benchmark driver (bench/bench_corpus.py): its pure
 helpers, the table builder, and one small end-to-end run with the peers."""
 
-import importlib.util
 import io
 import json
 import math
-import os
 
 import numpy as np
 import pytest
 from PIL import Image
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SCRIPT = os.path.join(os.path.dirname(HERE), 'bench', 'bench_corpus.py')
+from _shared import load_bench
 
 
 @pytest.fixture(scope='module')
 def bc():
-    spec = importlib.util.spec_from_file_location('bench_corpus', SCRIPT)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_bench('bench_corpus')
 
 
 def test_geomean_analytic(bc):

@@ -1,21 +1,14 @@
 """Tests of the PNG encoder comparison (bench/bench_png.py): one small run
 on a temporary corpus, its table and totals."""
 
-import importlib.util
-import os
-
 import pytest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SCRIPT = os.path.join(os.path.dirname(HERE), 'bench', 'bench_png.py')
+from _shared import load_bench
 
 
 @pytest.fixture(scope='module')
 def bp():
-    spec = importlib.util.spec_from_file_location('bench_png', SCRIPT)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_bench('bench_png')
 
 
 def test_table_rows_sizes_and_totals(bp, tmp_path, capsys):

@@ -2,22 +2,15 @@
 its cases are the documents it describes, and its table shows a renderer
 that failed as an error, not as a time."""
 
-import importlib.util
-import os
-
 import pytest
 from lxml import etree
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SCRIPT = os.path.join(os.path.dirname(HERE), 'bench', 'bench_repeated.py')
+from _shared import load_bench
 
 
 @pytest.fixture(scope='module')
 def br():
-    spec = importlib.util.spec_from_file_location('bench_repeated', SCRIPT)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_bench('bench_repeated')
 
 
 def test_cases_are_what_they_say(br):

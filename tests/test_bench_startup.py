@@ -1,22 +1,16 @@
 """Tests of the start-up benchmark (bench/bench_startup.py): the program
 list and one round of real processes."""
 
-import importlib.util
-import os
 import sys
 
 import pytest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SCRIPT = os.path.join(os.path.dirname(HERE), 'bench', 'bench_startup.py')
+from _shared import load_bench
 
 
 @pytest.fixture(scope='module')
 def bs():
-    spec = importlib.util.spec_from_file_location('bench_startup', SCRIPT)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_bench('bench_startup')
 
 
 def test_programs_substitute_also(bs):
